@@ -1,0 +1,10 @@
+"""Rocking Audit: exact rocking response of rigid blocks and the audit of design guidelines.
+
+Equation numbers refer to Makris & Konstantinidis, *The Rocking Spectrum and the
+Shortcomings of Design Guidelines*, PEER 2001/07.
+"""
+
+__version__ = "0.1.0"
+
+#: Acceleration of gravity [m/s²] used throughout unless configured otherwise (SPEC §2).
+G = 9.81

@@ -1,0 +1,9 @@
+"""The one error type for bad input, shared by every package of the project."""
+
+
+class InputError(ValueError):
+    """Bad input (file, field, name or value) that the user can fix.
+
+    The message names the file or the option and says what is wrong, in one line;
+    the command-line interface prints it and exits with status 2.
+    """

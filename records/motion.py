@@ -1,0 +1,105 @@
+"""The ground-motion type every reader, pulse and manifest produces."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from audit import G
+from audit.errors import InputError
+
+
+@dataclass(frozen=True)
+class Pulse:
+    """Analytic pulse parameters, kept so the solver can evaluate the pulse exactly.
+
+    Attributes
+    ----------
+    shape : str
+        ``"cosine"`` (type-B, üg = a_p cos(2πt/T_p)) or ``"sine"`` (type-A, üg = a_p sin(2πt/T_p)).
+    amplitude : float
+        a_p [m/s²].
+    period_s : float
+        T_p [s]; the pulse lasts one period and is zero after.
+    """
+
+    shape: str
+    amplitude: float
+    period_s: float
+
+
+@dataclass(frozen=True)
+class GroundMotion:
+    """A horizontal ground acceleration history in SI units.
+
+    Attributes
+    ----------
+    id : str
+        Catalogue or manifest key.
+    acceleration : numpy.ndarray
+        üg at t = k·dt [m/s²], linear between samples.
+    dt : float
+        Sampling step [s].
+    component : str
+        What the file holds, in words.
+    source : str
+        Where it came from: a file path, or ``"analytic pulse"``.
+    sha256 : str
+        SHA-256 of the data file ("" for analytic motions).
+    pulse : Pulse or None
+        Set for analytic pulses, so the solver can use the closed form between samples.
+    """
+
+    id: str
+    acceleration: np.ndarray
+    dt: float
+    component: str = ""
+    source: str = ""
+    sha256: str = ""
+    pulse: Pulse | None = None
+    metadata: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        where = self.source or self.id
+        acc = np.ascontiguousarray(self.acceleration, dtype=float)
+        if acc.ndim != 1 or acc.size < 2:
+            raise InputError(f"{where}: acceleration: needs at least 2 samples, got {acc.size}")
+        if not np.all(np.isfinite(acc)):
+            bad = int(np.flatnonzero(~np.isfinite(acc))[0])
+            raise InputError(f"{where}: acceleration: sample {bad + 1} is not a finite number")
+        if not (np.isfinite(self.dt) and self.dt > 0):
+            raise InputError(f"{where}: dt: must be a positive number of seconds, got {self.dt}")
+        object.__setattr__(self, "acceleration", acc)
+
+    @property
+    def duration(self) -> float:
+        """Length of the record [s]."""
+        return (self.acceleration.size - 1) * self.dt
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times [s]."""
+        return np.arange(self.acceleration.size) * self.dt
+
+    @property
+    def pga(self) -> float:
+        """Peak ground acceleration max|üg| [m/s²]."""
+        return float(np.max(np.abs(self.acceleration)))
+
+    @property
+    def pga_g(self) -> float:
+        """Peak ground acceleration [g]."""
+        return self.pga / G
+
+    @property
+    def pgv(self) -> float:
+        """Peak ground velocity [m/s].
+
+        Trapezoid-rule integral of (üg − mean üg) from v(0) = 0, with no filtering: the
+        processing of ``../shared/records/SOURCES.md``, so the figures can be compared.
+        Analytic pulses are integrated without removing the mean.
+        """
+        acc = self.acceleration if self.pulse else self.acceleration - self.acceleration.mean()
+        velocity = np.concatenate(([0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * self.dt)))
+        return float(np.max(np.abs(velocity)))

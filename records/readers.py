@@ -1,0 +1,197 @@
+"""Readers for strong-motion files: PEER NGA ``.AT2`` and column text files.
+
+Both return a :class:`~records.motion.GroundMotion` in SI units. Every malformed input raises
+:class:`~audit.errors.InputError` with a message that names the file and the problem.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+
+from audit import G
+from audit.errors import InputError
+from records.motion import GroundMotion
+
+#: Factor from each accepted unit name to m/s².
+UNIT_FACTORS = {"g": G, "cm/s2": 0.01, "m/s2": 1.0}
+
+# Spellings of the units found in file headers and comments, normalised to UNIT_FACTORS keys.
+_UNIT_PATTERNS = (
+    (re.compile(r"\bunits?\s+of\s+g\b|\bunits?\s*[:=]\s*g\b|\bin\s+g\b", re.I), "g"),
+    (re.compile(r"cm\s*/\s*s(ec)?(\s*/\s*s(ec)?|\s*\^?\s*2|2)|\bgals?\b", re.I), "cm/s2"),
+    (re.compile(r"\bm\s*/\s*s(ec)?(\s*/\s*s(ec)?|\s*\^?\s*2|2)", re.I), "m/s2"),
+)
+_AT2_WEST2 = re.compile(r"NPTS\s*=\s*(\d+)\s*,\s*DT\s*=\s*([-+0-9.EeDd]+)", re.I)
+_AT2_WEST1 = re.compile(r"^\s*(\d+)\s+([-+0-9.EeDd]+)\s+NPTS\s*,\s*DT", re.I)
+_DT_COMMENT = re.compile(r"\bdt\s*=\s*([0-9.]+(?:[eE][-+]?\d+)?)", re.I)
+_NPTS_COMMENT = re.compile(r"\bnpts\s*=\s*(\d+)", re.I)
+
+
+def sha256_of(path: Path) -> str:
+    """Hex SHA-256 of a file's bytes (provenance of a record)."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def unit_factor(units: str, where: str) -> float:
+    """Factor from ``units`` ("g", "cm/s2", "m/s2") to m/s²; InputError naming ``where``."""
+    try:
+        return UNIT_FACTORS[units]
+    except KeyError:
+        raise InputError(f"{where}: units: unknown '{units}', expected one of "
+                         f"{', '.join(UNIT_FACTORS)}") from None
+
+
+def units_in_text(text: str) -> str | None:
+    """The acceleration unit that a header or comment line states, or None."""
+    for pattern, units in _UNIT_PATTERNS:
+        if pattern.search(text):
+            return units
+    return None
+
+
+def _read_text(path: Path) -> list[str]:
+    try:
+        text = Path(path).read_text(encoding="utf-8", errors="replace")
+    except FileNotFoundError:
+        raise InputError(f"{path}: file not found") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read: {exc.strerror}") from None
+    if not text.strip():
+        raise InputError(f"{path}: file is empty")
+    return text.splitlines()
+
+
+def _parse_float(token: str, path: Path, line_no: int) -> float:
+    try:
+        value = float(token.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        raise InputError(f"{path}: line {line_no}: '{token}' is not a number") from None
+    if not math.isfinite(value):
+        raise InputError(f"{path}: line {line_no}: value '{token}' is not finite")
+    return value
+
+
+def _check_dt(dt: float, path: Path) -> float:
+    if not (math.isfinite(dt) and dt > 0):
+        raise InputError(f"{path}: dt: must be a positive number of seconds, got {dt}")
+    return dt
+
+
+def read_at2(path: str | Path, record_id: str | None = None, component: str = "") -> GroundMotion:
+    """Read a PEER NGA ``.AT2`` acceleration file (NGA-West1 and NGA-West2 layouts).
+
+    Lines 1–3 are text (line 3 names the units), line 4 holds NPTS and DT either as
+    ``NPTS=  4096, DT= .0100 SEC, ...`` (West2) or ``1991  0.0100  NPTS, DT`` (West1), then
+    free-format values. The values are counted, not trusted to the layout, and the count
+    must equal NPTS.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.AT2`` file.
+    record_id : str, optional
+        Id of the motion; default is the file name without suffix.
+
+    Returns
+    -------
+    GroundMotion
+        üg [m/s²] at the file's DT [s].
+    """
+    path = Path(path)
+    lines = _read_text(path)
+    if len(lines) < 4:
+        raise InputError(f"{path}: truncated header: an AT2 file has 4 header lines, found {len(lines)}")
+    units = units_in_text(lines[2])
+    if units is None:
+        raise InputError(f"{path}: line 3: cannot tell the units from '{lines[2].strip()}'")
+    match = _AT2_WEST2.search(lines[3]) or _AT2_WEST1.search(lines[3])
+    if match is None:
+        raise InputError(f"{path}: line 4: expected 'NPTS=..., DT=...' or '<npts> <dt> NPTS, DT', "
+                         f"got '{lines[3].strip()}'")
+    npts = int(match.group(1))
+    dt = _check_dt(_parse_float(match.group(2), path, 4), path)
+    values = [_parse_float(token, path, line_no)
+              for line_no, line in enumerate(lines[4:], start=5) for token in line.split()]
+    if len(values) != npts:
+        raise InputError(f"{path}: NPTS: header says {npts} values, the file holds {len(values)}")
+    return GroundMotion(
+        id=record_id or path.stem,
+        acceleration=np.array(values) * unit_factor(units, str(path)),
+        dt=dt,
+        component=component or lines[1].strip(),
+        source=str(path),
+        sha256=sha256_of(path),
+        metadata={"format": "peer-at2", "units": units, "npts": npts},
+    )
+
+
+def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
+                 units: str | None = None, record_id: str | None = None,
+                 component: str = "") -> GroundMotion:
+    """Read one column of a whitespace-separated text file of accelerations.
+
+    Lines starting with ``%`` or ``#`` are comments; CRLF endings, tabs, repeated
+    separators and exponents like ``e-001`` are accepted. Where ``dt`` or ``units`` are not
+    given they are taken from the comments (``dt = 0.005``, ``cm/sec^2``, ``units: g``), and
+    a ``npts = N`` comment is checked against the count.
+
+    Parameters
+    ----------
+    path : str or Path
+        The text file.
+    column : int
+        1-based column to read.
+    dt : float, optional
+        Time step [s].
+    units : {"g", "cm/s2", "m/s2"}, optional
+        Units of the values.
+
+    Returns
+    -------
+    GroundMotion
+        üg [m/s²] at step ``dt`` [s].
+    """
+    path = Path(path)
+    lines = _read_text(path)
+    comments = " ".join(line for line in lines if line.lstrip()[:1] in ("%", "#"))
+    if dt is None:
+        found = _DT_COMMENT.search(comments)
+        if found is None:
+            raise InputError(f"{path}: dt: not stated in the file; give it in a manifest")
+        dt = float(found.group(1))
+    dt = _check_dt(float(dt), path)
+    if units is None:
+        units = units_in_text(comments)
+        if units is None:
+            raise InputError(f"{path}: units: not stated in the file; give them in a manifest")
+    factor = unit_factor(units, str(path))
+    if not isinstance(column, int) or column < 1:
+        raise InputError(f"{path}: column: must be a whole number ≥ 1, got {column!r}")
+    values = []
+    for line_no, line in enumerate(lines, start=1):
+        tokens = line.split()
+        if not tokens or tokens[0][0] in "%#":
+            continue
+        if len(tokens) < column:
+            raise InputError(f"{path}: line {line_no}: column {column} missing "
+                             f"(the line has {len(tokens)})")
+        values.append(_parse_float(tokens[column - 1], path, line_no))
+    if not values:
+        raise InputError(f"{path}: no data lines")
+    npts = _NPTS_COMMENT.search(comments)
+    if npts is not None and int(npts.group(1)) != len(values):
+        raise InputError(f"{path}: npts: header says {npts.group(1)} values, the file holds {len(values)}")
+    return GroundMotion(
+        id=record_id or path.stem,
+        acceleration=np.array(values) * factor,
+        dt=dt,
+        component=component or f"column {column}",
+        source=str(path),
+        sha256=sha256_of(path),
+        metadata={"format": "columns", "units": units, "column": column},
+    )
