@@ -1,0 +1,109 @@
+"""Saving and loading an audit run: ``results.csv``, ``summary.json`` and the figure data.
+
+A run directory holds everything the report is drawn from, so ``python -m audit report DIR``
+re-renders it without recomputing. Files are written to a temporary directory beside the
+target and moved into place only when all of them are complete: a failed run leaves no partial
+output.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import shutil
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from audit.errors import InputError
+from audit.runner import RESULT_COLUMNS, AuditRun
+
+RESULTS_CSV = "results.csv"
+SUMMARY_JSON = "summary.json"
+SPECTRA_CSV = "spectra.csv"
+HISTORIES_CSV = "histories.csv"
+REPORT_HTML = "report.html"
+
+
+def _json_ready(value):
+    """Plain JSON: NaN and inf become null, numpy scalars become Python numbers."""
+    if isinstance(value, dict):
+        return {str(k): _json_ready(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_ready(v) for v in value]
+    if isinstance(value, (np.bool_, bool)):
+        return bool(value)
+    if isinstance(value, (np.integer,)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    return value
+
+
+def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None:
+    """Write ``files`` (name → content) into ``out_dir``, all or nothing.
+
+    Everything is written into a temporary directory next to ``out_dir`` first; each file is
+    then moved into place with an atomic rename.
+    """
+    out_dir = Path(out_dir)
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}-", dir=out_dir.parent))
+    try:
+        for name, content in files.items():
+            (staging / name).write_bytes(content)
+        out_dir.mkdir(exist_ok=True)
+        for name in files:
+            os.replace(staging / name, out_dir / name)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+
+
+def run_files(run: AuditRun) -> dict[str, bytes]:
+    """The data files of a run, as bytes."""
+    results = run.results.copy()
+    for column in ("exact_overturned", "approx_overturned", "exact_uplifted"):
+        results[column] = results[column].map(
+            lambda v: "" if v is None or (isinstance(v, float) and math.isnan(v)) else bool(v))
+    return {
+        RESULTS_CSV: results.to_csv(index=False, float_format="%.10g").encode(),
+        SUMMARY_JSON: json.dumps(_json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
+        SPECTRA_CSV: run.spectra.to_csv(index=False, float_format="%.8g").encode(),
+        HISTORIES_CSV: run.histories.to_csv(index=False, float_format="%.7g").encode(),
+    }
+
+
+def load_run(run_dir: str | Path) -> AuditRun:
+    """Read a run directory written by :func:`write_files_atomically` of :func:`run_files`."""
+    run_dir = Path(run_dir)
+    if not run_dir.is_dir():
+        raise InputError(f"{run_dir}: not a directory of audit results")
+    for name in (RESULTS_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV):
+        if not (run_dir / name).is_file():
+            raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
+    try:
+        summary = json.loads((run_dir / SUMMARY_JSON).read_text(encoding="utf-8"))
+    except json.JSONDecodeError as exc:
+        raise InputError(f"{run_dir / SUMMARY_JSON}: not valid JSON: {exc}") from None
+    try:
+        results = pd.read_csv(run_dir / RESULTS_CSV, keep_default_na=False,
+                              na_values={c: [""] for c in RESULT_COLUMNS
+                                         if c not in ("verdict", "approx_outcome", "approx_detail")})
+        spectra = pd.read_csv(run_dir / SPECTRA_CSV, keep_default_na=False,
+                              na_values={c: [""] for c in ("alpha_deg", "damping", "period_s",
+                                                           "sd", "sv", "sa")})
+        histories = pd.read_csv(run_dir / HISTORIES_CSV)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise InputError(f"{run_dir}: cannot read the results: {exc}") from None
+    missing = [c for c in RESULT_COLUMNS if c not in results.columns]
+    if missing:
+        raise InputError(f"{run_dir / RESULTS_CSV}: columns missing: {', '.join(missing)}")
+    for column in ("exact_overturned", "approx_overturned", "exact_uplifted"):
+        results[column] = results[column].map({True: True, False: False, "True": True,
+                                               "False": False}).astype(object)
+    results["procedure"] = results["procedure"].astype(str)
+    spectra["procedure"] = spectra["procedure"].astype(str)
+    return AuditRun(results, spectra, histories, summary)

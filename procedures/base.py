@@ -1,0 +1,193 @@
+"""The contract of a guideline procedure, and the fixed-point iteration they share (Eqs. 8.1–8.2).
+
+In the manner of OpenQuake hazardlib's GSIMs, a procedure is a small class that *declares*
+what it needs from a record (:attr:`Procedure.requires_motion`, :attr:`Procedure.requires_site`)
+so the audit can say which records it cannot audit before running, and implements only its own
+physics: a damping law β(r) and a displacement spectrum Sd(T, β). The iteration of
+Priestley, Evison & Carr (1978) is common to all of them:
+
+1. no rocking when PGA ≤ g tan α;
+2. guess θ, T(θ) = (4/p) acosh(1/(1 − θ/α)) (Eq. 8.1);
+3. δ = Sd(T(θ), β);
+4. θ ← δ / (R cos α) (Eq. 8.2); repeat until |Δθ|/α ≤ tolerance.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, ClassVar
+
+import numpy as np
+
+from audit import G
+from audit.block import radius_from_p
+from audit.damping import housner_period
+
+#: Initial guess θ₀/α of the iteration: a small rotation, so the iteration climbs to the
+#: smallest non-trivial fixed point (θ = 0 is always one, and unstable when the block uplifts).
+INITIAL_ROTATION_RATIO = 0.1
+#: Convergence when successive iterates differ by at most this much in θ/α.
+TOLERANCE_RATIO = 1e-6
+#: Iterations allowed before the iteration is declared not converged.
+MAX_ITERATIONS = 200
+
+# Outcomes of an estimate.
+CONVERGED = "converged"
+OVERTURN = "overturn"
+NO_UPLIFT = "no-uplift"
+NOT_CONVERGED = "not-converged"
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """A procedure's estimates for blocks of one slenderness, arrays over the block sizes.
+
+    Attributes
+    ----------
+    theta : numpy.ndarray
+        Converged peak rotation [rad]; NaN where overturning is predicted; for a
+        non-converged iteration the last iterate.
+    period_s : numpy.ndarray
+        T(θ) of Eq. 8.1 at the converged θ [s]; NaN where overturning is predicted.
+    iterations : numpy.ndarray
+        Iterations used (0 for no uplift).
+    outcome : numpy.ndarray of str
+        ``converged``, ``overturn``, ``no-uplift`` or ``not-converged``.
+    detail : numpy.ndarray of str
+        For non-converged iterations, the range the iterates kept oscillating in.
+    damping : float
+        β used [-].
+    """
+
+    theta: np.ndarray
+    period_s: np.ndarray
+    iterations: np.ndarray
+    outcome: np.ndarray
+    detail: np.ndarray
+    damping: float
+
+
+def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
+                     g: float = G, initial_ratio: float = INITIAL_ROTATION_RATIO,
+                     tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
+    """Fixed-point iteration θ ← Sd(T(θ)) / (R cos α) of Eqs. 8.1–8.2, for many blocks at once.
+
+    Parameters
+    ----------
+    displacement : callable
+        Sd [m] as a function of the period T [s] (array in, array out).
+    p : array
+        Frequency parameters of the blocks [rad/s].
+    alpha_rad : float
+        Slenderness α [rad].
+    g : float
+        Acceleration of gravity [m/s²] (R = 3g/(4p²)).
+    initial_ratio, tolerance, max_iterations :
+        Initial guess θ₀/α, tolerance on |Δθ|/α, iteration cap.
+
+    Returns
+    -------
+    ratio, outcome, iterations, detail : numpy.ndarray
+        Final θ/α, outcome (``converged``, ``overturn``, ``not-converged``), iterations used,
+        and for non-converged blocks the range of their last iterates.
+    """
+    p = np.asarray(p, dtype=float)
+    scale = 1.0 / (radius_from_p(p, g) * np.cos(alpha_rad) * alpha_rad)
+    ratio = np.full(p.shape, initial_ratio)
+    outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
+    iterations = np.full(p.shape, max_iterations)
+    tail = np.empty((min(20, max_iterations),) + p.shape)
+    active = np.ones(p.shape, dtype=bool)
+    for i in range(1, max_iterations + 1):
+        new = displacement(housner_period(ratio[active], p[active])) * scale[active]
+        idx = np.flatnonzero(active)
+        over = new >= 1.0
+        done = np.abs(new - ratio[active]) <= tolerance
+        outcome[idx[over]] = OVERTURN
+        outcome[idx[done & ~over]] = CONVERGED
+        iterations[idx[over | done]] = i
+        ratio[idx] = np.where(over, 1.0, new)
+        tail[(i - 1) % tail.shape[0]] = ratio
+        active[idx[over | done]] = False
+        if not active.any():
+            break
+    detail = np.full(p.shape, "", dtype=object)
+    for j in np.flatnonzero(outcome == NOT_CONVERGED):
+        detail[j] = (f"iterates kept oscillating between θ/α = {tail[:, j].min():.4f} and "
+                     f"{tail[:, j].max():.4f} after {max_iterations} iterations")
+    return ratio, outcome, iterations, detail
+
+
+class Procedure:
+    """Base class of the guideline procedures: the contract the audit relies on.
+
+    Subclasses declare the class attributes and implement :meth:`damping` and
+    :meth:`displacement_spectrum`; :meth:`estimate` runs the shared iteration.
+    """
+
+    #: Registry key, as typed on the command line (e.g. ``"priestley1978"``).
+    name: ClassVar[str] = ""
+    #: Display title.
+    title: ClassVar[str] = ""
+    #: Bibliographic reference.
+    reference: ClassVar[str] = ""
+    #: Damping law and spectrum source, in words with equation numbers (for the report).
+    damping_law: ClassVar[str] = ""
+    spectrum_source: ClassVar[str] = ""
+    #: Figure series of the reference report that this procedure's audit reproduces.
+    figure_series: ClassVar[str] = ""
+    #: True when the recorded acceleration itself is needed (its spectrum, its PGA).
+    requires_motion: ClassVar[bool] = False
+    #: Site parameters the record must carry, keys of ``RecordEntry.site``.
+    requires_site: ClassVar[tuple[str, ...]] = ()
+
+    def unmet_requirements(self, entry) -> str | None:
+        """Why this procedure cannot estimate for the record ``entry``, or None."""
+        if self.requires_motion and entry.motion is None:
+            return f"no record file ({entry.missing_reason})"
+        missing = [key for key in self.requires_site if entry.site.get(key) is None]
+        if missing:
+            return f"no {self.title} site parameters ({', '.join(missing)})"
+        return None
+
+    def damping(self, r):
+        """Equivalent damping β [-] for a coefficient of restitution r [-]."""
+        raise NotImplementedError
+
+    def peak_ground_acceleration(self, entry, context) -> float:
+        """PGA [m/s²] for the uplift check of step 1."""
+        raise NotImplementedError
+
+    def displacement_spectrum(self, entry, damping: float, context) -> Callable[[np.ndarray], np.ndarray]:
+        """Sd(T) [m] at damping β for the record ``entry``; ``context`` caches record spectra."""
+        raise NotImplementedError
+
+    def estimate(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> Estimate:
+        """Peak rotation of blocks (p [rad/s], α [rad], r) under the record (SPEC §5–6).
+
+        Parameters
+        ----------
+        entry : records.RecordEntry
+        p : array
+            Frequency parameters [rad/s].
+        alpha_rad : float
+            Slenderness α [rad].
+        r : float
+            Coefficient of restitution [-].
+        context : audit.runner.RecordContext
+            Cache of the record's spectra.
+        """
+        p = np.asarray(p, dtype=float)
+        beta = float(self.damping(r))
+        theta = np.zeros(p.shape)
+        period = np.zeros(p.shape)
+        iterations = np.zeros(p.shape, dtype=int)
+        outcome = np.full(p.shape, NO_UPLIFT, dtype=object)
+        detail = np.full(p.shape, "", dtype=object)
+        if self.peak_ground_acceleration(entry, context) > g * np.tan(alpha_rad):
+            spectrum = self.displacement_spectrum(entry, beta, context)
+            ratio, outcome, iterations, detail = iterate_rotation(spectrum, p, alpha_rad, g)
+            overturn = outcome == OVERTURN
+            theta = np.where(overturn, np.nan, ratio * alpha_rad)
+            period = np.where(overturn, np.nan, housner_period(ratio, p))
+        return Estimate(theta, period, iterations, outcome, detail, beta)

@@ -1,0 +1,49 @@
+"""Registry of procedures: the built-ins and every ``rocking_audit.procedures`` entry point.
+
+A third-party distribution adds a procedure by declaring, in its ``pyproject.toml``::
+
+    [project.entry-points."rocking_audit.procedures"]
+    myname = "mypackage.mymodule:MyProcedure"
+
+where ``MyProcedure`` subclasses :class:`procedures.base.Procedure`.
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import entry_points
+
+from audit.errors import InputError
+from procedures.base import Procedure
+from procedures.fema_356 import FEMA356
+from procedures.priestley_1978 import PriestleyEvisonCarr1978
+
+ENTRY_POINT_GROUP = "rocking_audit.procedures"
+BUILT_IN = (PriestleyEvisonCarr1978, FEMA356)
+
+
+def available_procedures() -> dict[str, type[Procedure]]:
+    """Procedure classes by name: built-ins first, then the installed plug-ins."""
+    found = {cls.name: cls for cls in BUILT_IN}
+    for point in entry_points(group=ENTRY_POINT_GROUP):
+        if point.name in found:
+            continue
+        try:
+            cls = point.load()
+        except Exception as exc:  # a broken plug-in must not take the tool down
+            raise InputError(f"procedure plug-in '{point.name}' ({point.value}): cannot be "
+                             f"loaded: {exc}") from None
+        if not (isinstance(cls, type) and issubclass(cls, Procedure)):
+            raise InputError(f"procedure plug-in '{point.name}' ({point.value}): is not a "
+                             f"subclass of procedures.base.Procedure")
+        found[point.name] = cls
+    return found
+
+
+def get_procedures(name: str) -> list[Procedure]:
+    """Instances of the procedure ``name``, or of every procedure for ``"all"``."""
+    found = available_procedures()
+    if name == "all":
+        return [cls() for cls in found.values()]
+    if name not in found:
+        raise InputError(f"procedure: unknown '{name}', available: {', '.join(found)} or all")
+    return [found[name]()]
