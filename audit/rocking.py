@@ -149,9 +149,11 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
     peak_after = 0.0
     n_impacts = 0
     episode = 0
+    filled = 0  # history samples written so far
     if store:
         theta_out[0] = theta0
         omega_out[0] = omega0
+        filled = 1
 
     for k in range(n_seg):
         if resting and k > last_exceed:
@@ -261,15 +263,13 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
         if store:
             theta_out[k + 1] = theta
             omega_out[k + 1] = omega
+            filled = k + 2
 
     if store:
-        last = k + 1 if n_seg > 0 else 0
-        if overturned:
-            theta_out[last:] = math.nan
-            omega_out[last:] = math.nan
-        else:
-            theta_out[last + 1:] = 0.0
-            omega_out[last + 1:] = 0.0
+        # after overturning nothing is defined; after a final rest the block stays at rest
+        fill = math.nan if overturned else 0.0
+        theta_out[filled:] = fill
+        omega_out[filled:] = fill
     return peak, peak_omega, peak_after, overturned, t_over, n_impacts, uplifted, peak_signed
 
 
@@ -354,17 +354,26 @@ class RockingResponse:
         return self.peak_rotation / self.block.alpha
 
     @property
+    def cycle_starts(self) -> np.ndarray:
+        """Start times of the full rocking cycles of :attr:`cycle_durations` [s]."""
+        return self._cycles()[0]
+
+    @property
     def cycle_durations(self) -> np.ndarray:
         """Durations of full rocking cycles [s]: time between every second impact.
 
         Cycles are counted from the first impact of each rocking episode; a return to rest
         ends the episode, so no cycle spans a rest.
         """
-        durations = []
+        return self._cycles()[1]
+
+    def _cycles(self):
+        starts, durations = [], []
         for episode in np.unique(self.impact_episode):
             times = self.impact_times[self.impact_episode == episode]
+            starts.extend(times[:-2:2])
             durations.extend(times[2::2] - times[:-2:2])
-        return np.asarray(durations)
+        return np.asarray(starts), np.asarray(durations)
 
 
 def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTION_S,
