@@ -39,24 +39,31 @@ def _alphas(text: str) -> np.ndarray:
     return np.radians(values)
 
 
-def _sizes(text: str) -> np.ndarray:
+def _grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
+    """START:STOP:STEP (inclusive) or a comma list of times [s] given to ``option``."""
     from audit.runner import size_grid
     parts = text.split(":")
+    low = "0 ≤ START" if allow_zero else "0 < START"
     try:
         numbers = [float(part) for part in parts]
     except ValueError:
-        raise InputError(f"--sizes: expected START:STOP:STEP or a comma list in seconds, got '{text}'") from None
-    if len(parts) == 3:
+        numbers = None
+    if len(parts) == 3 and numbers is not None:
         start, stop, step = numbers
-        if not (start > 0 and stop >= start and step > 0):
-            raise InputError(f"--sizes: need 0 < START ≤ STOP and STEP > 0, got '{text}'")
+        if not ((start >= 0 if allow_zero else start > 0) and stop >= start and step > 0):
+            raise InputError(f"{option}: need {low} ≤ STOP and STEP > 0, got '{text}'")
         return size_grid(start, stop, step)
     if len(parts) == 1:
-        values = np.array(_float_list(text, "--sizes"))
-        if np.any(values <= 0):
-            raise InputError(f"--sizes: every size 2π/p must be positive, got '{text}'")
+        values = np.array(_float_list(text, option))
+        if np.any(values < 0) or (not allow_zero and np.any(values == 0)):
+            raise InputError(f"{option}: every value must be {'≥ 0' if allow_zero else '> 0'} s, "
+                             f"got '{text}'")
         return values
-    raise InputError(f"--sizes: expected START:STOP:STEP or a comma list in seconds, got '{text}'")
+    raise InputError(f"{option}: expected START:STOP:STEP or a comma list in seconds, got '{text}'")
+
+
+def _sizes(text: str) -> np.ndarray:
+    return _grid(text, "--sizes")
 
 
 def _positive(value: float, option: str) -> float:
@@ -182,7 +189,7 @@ def cmd_spectrum(args) -> int:
     if args.kind == "response":
         from audit.oscillator import response_spectra
         damping = np.array(_float_list(args.damping, "--damping")) / 100.0
-        periods = _sizes(args.periods)
+        periods = _grid(args.periods, "--periods", allow_zero=True)
         spectra = response_spectra(motion, periods, damping, args.free_motion)
         import pandas as pd
         frame = pd.concat([pd.DataFrame({
@@ -229,7 +236,7 @@ def cmd_design_spectrum(args) -> int:
         spectrum = FEMA356Spectrum(args.sxs, args.sx1)
     else:
         spectrum = UBC97Spectrum(args.na, args.nv)
-    periods = _sizes(args.periods)
+    periods = _grid(args.periods, "--periods", allow_zero=True)
     import pandas as pd
     frame = pd.concat([pd.DataFrame({
         "period_s": periods, "damping": d / 100.0,
@@ -242,7 +249,7 @@ def cmd_design_spectrum(args) -> int:
 
 def cmd_run(args) -> int:
     from audit.progress import Progress
-    from audit.results import REPORT_HTML, run_files, write_files_atomically
+    from audit.results import REPORT_HTML, save_run
     from audit.runner import run_audit
     from procedures import get_procedures
     from reports import render_report
@@ -255,9 +262,7 @@ def cmd_run(args) -> int:
     run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
                     free_motion_s=args.free_motion, progress=Progress(len(suite), "records"))
     computed = time.perf_counter() - start
-    files = run_files(run)
-    files[REPORT_HTML] = render_report(run).encode()
-    write_files_atomically(out_dir, files)
+    save_run(run, out_dir, lambda saved: render_report(saved, processes=args.jobs))
     total = time.perf_counter() - start
     print(f"Audited {', '.join(p.name for p in procedures)} on {suite.description}")
     for item in run.summary["unauditable"]:

@@ -102,13 +102,16 @@ class ResponseSpectra:
 
     @property
     def pseudo_velocity(self) -> np.ndarray:
-        """PSv = ω·Sd [m/s], a pseudo spectrum (not max|u'|)."""
-        return 2.0 * np.pi / self.period_s * self.sd
+        """PSv = ω·Sd [m/s], a pseudo spectrum (not max|u'|); 0 at T = 0."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.period_s > 0, 2.0 * np.pi / self.period_s * self.sd, 0.0)
 
     @property
     def pseudo_acceleration(self) -> np.ndarray:
-        """PSa = ω²·Sd [m/s²], a pseudo spectrum (not max|u'' + üg|)."""
-        return (2.0 * np.pi / self.period_s) ** 2 * self.sd
+        """PSa = ω²·Sd [m/s²], a pseudo spectrum (not max|u'' + üg|); PGA at T = 0."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.period_s > 0, (2.0 * np.pi / self.period_s) ** 2 * self.sd,
+                            self.sa)
 
     def displacement_at(self, period_s, damping_index: int) -> np.ndarray:
         """Sd [m] at arbitrary periods [s] by linear interpolation in T.

@@ -8,6 +8,7 @@ output.
 
 from __future__ import annotations
 
+import io
 import json
 import math
 import os
@@ -77,33 +78,62 @@ def run_files(run: AuditRun) -> dict[str, bytes]:
 
 
 def load_run(run_dir: str | Path) -> AuditRun:
-    """Read a run directory written by :func:`write_files_atomically` of :func:`run_files`."""
+    """Read a run directory written by :func:`save_run`."""
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a directory of audit results")
+    files = {}
     for name in (RESULTS_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV):
         if not (run_dir / name).is_file():
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
+        files[name] = (run_dir / name).read_bytes()
+    return parse_run(files, str(run_dir))
+
+
+def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
+    """An :class:`AuditRun` from the bytes of its data files (the inverse of :func:`run_files`)."""
     try:
-        summary = json.loads((run_dir / SUMMARY_JSON).read_text(encoding="utf-8"))
-    except json.JSONDecodeError as exc:
-        raise InputError(f"{run_dir / SUMMARY_JSON}: not valid JSON: {exc}") from None
+        summary = json.loads(files[SUMMARY_JSON].decode("utf-8"))
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"{where}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
+    keep_text = ("verdict", "approx_outcome", "approx_detail")
     try:
-        results = pd.read_csv(run_dir / RESULTS_CSV, keep_default_na=False,
-                              na_values={c: [""] for c in RESULT_COLUMNS
-                                         if c not in ("verdict", "approx_outcome", "approx_detail")})
-        spectra = pd.read_csv(run_dir / SPECTRA_CSV, keep_default_na=False,
+        results = pd.read_csv(io.BytesIO(files[RESULTS_CSV]), keep_default_na=False,
+                              na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
+        spectra = pd.read_csv(io.BytesIO(files[SPECTRA_CSV]), keep_default_na=False,
                               na_values={c: [""] for c in ("alpha_deg", "damping", "period_s",
                                                            "sd", "sv", "sa")})
-        histories = pd.read_csv(run_dir / HISTORIES_CSV)
+        histories = pd.read_csv(io.BytesIO(files[HISTORIES_CSV]))
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-        raise InputError(f"{run_dir}: cannot read the results: {exc}") from None
+        raise InputError(f"{where}: cannot read the results: {exc}") from None
     missing = [c for c in RESULT_COLUMNS if c not in results.columns]
     if missing:
-        raise InputError(f"{run_dir / RESULTS_CSV}: columns missing: {', '.join(missing)}")
+        raise InputError(f"{where}/{RESULTS_CSV}: columns missing: {', '.join(missing)}")
     for column in ("exact_overturned", "approx_overturned", "exact_uplifted"):
         results[column] = results[column].map({True: True, False: False, "True": True,
                                                "False": False}).astype(object)
     results["procedure"] = results["procedure"].astype(str)
     spectra["procedure"] = spectra["procedure"].astype(str)
     return AuditRun(results, spectra, histories, summary)
+
+
+def save_run(run: AuditRun, out_dir: str | Path, render) -> AuditRun:
+    """Write a run's data files and its report, rendered from exactly what is saved.
+
+    Parameters
+    ----------
+    run : AuditRun
+    out_dir : str or Path
+    render : callable
+        ``render(run) -> str``, the HTML report.
+
+    Returns
+    -------
+    AuditRun
+        The run as saved (and as ``python -m audit report`` will read it back).
+    """
+    files = run_files(run)
+    saved = parse_run(files, str(out_dir))
+    files[REPORT_HTML] = render(saved).encode("utf-8")
+    write_files_atomically(out_dir, files)
+    return saved

@@ -28,8 +28,12 @@ from audit.damping import housner_period
 INITIAL_ROTATION_RATIO = 0.1
 #: Convergence when successive iterates differ by at most this much in θ/α.
 TOLERANCE_RATIO = 1e-6
-#: Iterations allowed before the iteration is declared not converged.
-MAX_ITERATIONS = 200
+#: A settled 2-cycle re-reads the same two periods, so its iterates repeat to round-off; a
+#: slowly contracting alternation differs by far more than this between every other iterate.
+CYCLE_TOLERANCE_RATIO = 1e-12
+#: Iterations allowed: enough for slowly alternating iterations (slope near −1 at the fixed
+#: point) to converge, which on the seed records take up to ~300.
+MAX_ITERATIONS = 2000
 
 # Outcomes of an estimate.
 CONVERGED = "converged"
@@ -45,10 +49,10 @@ class Estimate:
     Attributes
     ----------
     theta : numpy.ndarray
-        Converged peak rotation [rad]; NaN where overturning is predicted; for a
-        non-converged iteration the last iterate.
+        Converged peak rotation [rad]; 0 for no uplift; NaN where overturning is predicted
+        or the iteration did not converge (see ``detail``).
     period_s : numpy.ndarray
-        T(θ) of Eq. 8.1 at the converged θ [s]; NaN where overturning is predicted.
+        T(θ) of Eq. 8.1 at the converged θ [s]; NaN where θ is.
     iterations : numpy.ndarray
         Iterations used (0 for no uplift).
     outcome : numpy.ndarray of str
@@ -89,32 +93,39 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     -------
     ratio, outcome, iterations, detail : numpy.ndarray
         Final θ/α, outcome (``converged``, ``overturn``, ``not-converged``), iterations used,
-        and for non-converged blocks the range of their last iterates.
+        and for non-converged blocks what the iterates did: an exact 2-cycle (detected as soon
+        as it settles) or no settled value within the cap.
     """
     p = np.asarray(p, dtype=float)
     scale = 1.0 / (radius_from_p(p, g) * np.cos(alpha_rad) * alpha_rad)
     ratio = np.full(p.shape, initial_ratio)
+    previous = np.full(p.shape, np.nan)  # the iterate before ``ratio``
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
-    tail = np.empty((min(20, max_iterations),) + p.shape)
+    detail = np.full(p.shape, "", dtype=object)
     active = np.ones(p.shape, dtype=bool)
     for i in range(1, max_iterations + 1):
-        new = displacement(housner_period(ratio[active], p[active])) * scale[active]
         idx = np.flatnonzero(active)
+        new = displacement(housner_period(ratio[idx], p[idx])) * scale[idx]
         over = new >= 1.0
-        done = np.abs(new - ratio[active]) <= tolerance
+        done = ~over & (np.abs(new - ratio[idx]) <= tolerance)
+        # a settled 2-cycle: back where it was two steps ago, yet still jumping
+        cycle = ~over & ~done & (np.abs(new - previous[idx]) <= CYCLE_TOLERANCE_RATIO)
         outcome[idx[over]] = OVERTURN
-        outcome[idx[done & ~over]] = CONVERGED
-        iterations[idx[over | done]] = i
+        outcome[idx[done]] = CONVERGED
+        iterations[idx[over | done | cycle]] = i
+        for j, low, high in zip(idx[cycle], np.minimum(new, ratio[idx])[cycle],
+                                np.maximum(new, ratio[idx])[cycle]):
+            detail[j] = (f"iterates alternate between θ/α = {low:.4f} and {high:.4f} "
+                         f"(a 2-cycle: no attracting fixed point)")
+        previous[idx] = ratio[idx]
         ratio[idx] = np.where(over, 1.0, new)
-        tail[(i - 1) % tail.shape[0]] = ratio
-        active[idx[over | done]] = False
+        active[idx[over | done | cycle]] = False
         if not active.any():
             break
-    detail = np.full(p.shape, "", dtype=object)
-    for j in np.flatnonzero(outcome == NOT_CONVERGED):
-        detail[j] = (f"iterates kept oscillating between θ/α = {tail[:, j].min():.4f} and "
-                     f"{tail[:, j].max():.4f} after {max_iterations} iterations")
+    for j in np.flatnonzero(active):
+        detail[j] = (f"no convergence after {max_iterations} iterations "
+                     f"(last iterates θ/α = {previous[j]:.4f}, {ratio[j]:.4f})")
     return ratio, outcome, iterations, detail
 
 
@@ -187,7 +198,8 @@ class Procedure:
         if self.peak_ground_acceleration(entry, context) > g * np.tan(alpha_rad):
             spectrum = self.displacement_spectrum(entry, beta, context)
             ratio, outcome, iterations, detail = iterate_rotation(spectrum, p, alpha_rad, g)
-            overturn = outcome == OVERTURN
-            theta = np.where(overturn, np.nan, ratio * alpha_rad)
-            period = np.where(overturn, np.nan, housner_period(ratio, p))
+            # no single rotation to report when overturning is predicted or nothing converged
+            undefined = outcome != CONVERGED
+            theta = np.where(undefined, np.nan, ratio * alpha_rad)
+            period = np.where(undefined, np.nan, housner_period(ratio, p))
         return Estimate(theta, period, iterations, outcome, detail, beta)

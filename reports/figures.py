@@ -189,7 +189,7 @@ def draw_rocking_spectra(fig, frame, title, axes=None):
         _margins(fig, fig.get_figheight(), hspace=0.1)
     for alpha, group in frame.groupby("alpha_deg"):
         colour = alpha_colour(alpha)
-        over = group["overturned"].astype(bool).to_numpy()
+        over = group["overturned"].eq(True).to_numpy()
         size = group["size_s"].to_numpy()
         ratio = np.where(over, np.nan, group["theta_ratio"].to_numpy())
         axes[0].plot(size, ratio, color=colour, lw=1, label=f"α = {alpha:g}°")
@@ -235,8 +235,8 @@ def draw_procedure_comparison(fig, results, spectra, title, procedure_title):
         ax.set_title(f"Sd at β = {100 * beta:.2f} %", fontsize=8)
         size = rows["size_s"].to_numpy()
         alpha_rad = np.radians(alpha)
-        exact_over = rows["exact_overturned"].astype(bool).to_numpy()
-        approx_over = rows["approx_overturned"].astype(bool).to_numpy()
+        exact_over = rows["exact_overturned"].eq(True).to_numpy()  # NaN: no record file
+        approx_over = rows["approx_overturned"].eq(True).to_numpy()
         exact = np.where(exact_over, np.nan, rows["exact_theta"].to_numpy() / alpha_rad)
         approx = rows["approx_theta"].to_numpy(dtype=float) / alpha_rad
         ax = axes[row, 1]

@@ -1,0 +1,42 @@
+"""Shared fixtures: the real records of ``../shared/records`` via ``ROCKING_AUDIT_RECORDS``.
+
+Tests that need real records skip with a reason when the variable is unset outside CI; under
+CI (``CI=true``) they fail instead, so a missing record directory cannot pass silently.
+"""
+
+import os
+from pathlib import Path
+
+import pytest
+
+from records import ENV_VARIABLE, load_records
+
+
+def _seed_manifest() -> Path:
+    value = os.environ.get(ENV_VARIABLE)
+    if not value:
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(f"{ENV_VARIABLE} is not set under CI: the real-record tests cannot run")
+        pytest.skip(f"{ENV_VARIABLE} is not set: real-record tests need ../shared/records")
+    path = Path(value)
+    if not path.is_file():
+        pytest.fail(f"{ENV_VARIABLE}={value}: no such manifest")
+    return path
+
+
+@pytest.fixture(scope="session")
+def seed_manifest() -> Path:
+    """Path of ``seed-suite.toml``."""
+    return _seed_manifest()
+
+
+@pytest.fixture(scope="session")
+def records_dir(seed_manifest) -> Path:
+    """The shared records directory (``raw/``, ``derived/``, manifests)."""
+    return seed_manifest.parent
+
+
+@pytest.fixture(scope="session")
+def seed_suite(seed_manifest):
+    """The seed suite loaded from the real files."""
+    return load_records(seed_manifest)

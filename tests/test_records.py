@@ -1,0 +1,203 @@
+"""Readers, manifests, pulses and bad input, against the published facts of SOURCES.md."""
+
+import math
+
+import numpy as np
+import pytest
+
+from audit import G
+from audit.errors import InputError
+from records import (ENV_VARIABLE, load_manifest, load_records, one_pulse, pulse_suite,
+                     read_at2, read_columns, record_facts)
+
+# SOURCES.md, "Computed PGA g / PGV m/s" (g = 9.80665 for cm/s² files; PGV by the same processing)
+SOURCES_FACTS = [
+    ("raw/RSN77_SFERN_PUL164.AT2", "at2", None, 1.219, 1.144),
+    ("raw/Rinaldi228.AT2", "at2", None, 0.874, 1.479),
+    ("raw/Rinaldi318.AT2", "at2", None, 0.472, 0.747),
+    ("raw/NGA_no_1063_RRS228.AT2", "at2", None, 0.825, 1.601),
+    ("raw/RSN1120_KOBE_TAK090.AT2", "at2", None, 0.671, 1.229),
+    ("raw/RSN879_LANDERS_LCN260.AT2", "at2", None, 0.725, 1.334),
+    ("raw/RSN879_LANDERS_LCN345.AT2", "at2", None, 0.789, 0.281),
+    ("raw/RSN181_IMPVALL.H_H-E06230.AT2", "at2", None, 0.449, 1.135),
+    ("raw/RSN181_IMPVALL.H_H-E06140.AT2", "at2", None, 0.447, 0.670),
+    ("raw/rinaldi.txt", "cols", (1, 0.005, "cm/s2"), 0.840, 1.596),
+    ("raw/rinaldi.txt", "cols", (2, 0.005, "cm/s2"), 0.476, 0.751),
+    ("raw/sylmar.txt", "cols", (1, 0.005, "cm/s2"), 0.875, 1.292),
+    ("raw/erzikan.txt", "cols", (1, 0.005, "cm/s2"), 0.515, 0.839),
+    ("raw/erzikan.txt", "cols", (2, 0.005, "cm/s2"), 0.496, 0.647),
+    ("raw/jiji.txt", "cols", (1, 0.005, "cm/s2"), 0.512, 3.243),
+    ("raw/newhall.txt", "cols", (1, 0.005, "cm/s2"), 0.736, 1.180),
+    ("derived/P695NF_RSN1086_NORTHR_SYL_032.txt", "cols", (1, None, None), 0.733, 1.227),
+    ("derived/P695NF_RSN1063_NORTHR_RRS_032.txt", "cols", (1, None, None), 0.870, 1.670),
+    ("derived/P695NF_RSN821_ERZIKAN_ERZ_032.txt", "cols", (1, None, None), 0.486, 0.956),
+]
+
+
+@pytest.mark.parametrize("name,kind,columns,pga_g,pgv", SOURCES_FACTS)
+def test_every_shared_file_matches_sources(records_dir, name, kind, columns, pga_g, pgv):
+    path = records_dir / name
+    motion = read_at2(path) if kind == "at2" else read_columns(path, *columns)
+    # SOURCES.md converts with g = 9.80665; the tool's g is 9.81 (SPEC §2)
+    assert motion.pga_g * G / 9.80665 == pytest.approx(pga_g, rel=0.005)
+    assert motion.pgv == pytest.approx(pgv, rel=0.005)
+    assert len(motion.sha256) == 64
+
+
+def test_at2_header_layouts_and_counts(records_dir):
+    west2 = read_at2(records_dir / "raw/RSN1120_KOBE_TAK090.AT2")
+    west1 = read_at2(records_dir / "raw/NGA_no_1063_RRS228.AT2")
+    poles = read_at2(records_dir / "raw/Rinaldi228.AT2")
+    assert (west2.acceleration.size, west2.dt) == (4096, 0.01)
+    assert (west1.acceleration.size, west1.dt) == (1991, 0.01)
+    assert (poles.acceleration.size, poles.dt) == (1991, 0.01)
+    # first value of the Kobe file is .2668067E-02 g (no leading zero)
+    assert west2.acceleration[0] == pytest.approx(0.002668067 * G, rel=1e-12)
+
+
+def test_derived_header_gives_dt_units_and_npts(records_dir):
+    motion = read_columns(records_dir / "derived/P695NF_RSN1086_NORTHR_SYL_032.txt")
+    assert motion.dt == 0.02 and motion.acceleration.size == 2000
+    assert motion.acceleration[0] == pytest.approx(8.4189550e-03 * G)
+
+
+def test_seed_manifest_keeps_missing_records(seed_suite):
+    ids = [entry.id for entry in seed_suite]
+    assert ids == ["pacoima_dam_1971", "el_centro_5_1979", "los_gatos_1989", "rinaldi_1994",
+                   "sylmar_1994", "erzincan_1992", "takatori_1995"]
+    assert [e.id for e in seed_suite if e.missing] == ["el_centro_5_1979", "los_gatos_1989"]
+    assert seed_suite.get("pacoima_dam_1971").site == {"site_class": "B", "sxs_g": 1.59,
+                                                       "sx1_g": 0.50}
+    assert seed_suite.get("erzincan_1992").site == {}
+
+
+def test_extras_manifest(records_dir):
+    suite = load_manifest(records_dir / "extras.toml")
+    assert len(suite) == 6 and not any(e.missing for e in suite)
+
+
+def test_folder_of_at2_files(records_dir):
+    suite = load_records(records_dir / "raw")
+    assert len(suite) == 9
+    assert suite.get("RSN77_SFERN_PUL164").motion.pga_g == pytest.approx(1.219 * 9.80665 / G,
+                                                                         rel=0.005)
+
+
+def test_unit_conversion(tmp_path):
+    path = tmp_path / "a.txt"
+    path.write_text("% test\n981\t-490.5\n0 0\n")
+    assert read_columns(path, 1, 0.01, "cm/s2").acceleration[0] == pytest.approx(9.81)
+    assert read_columns(path, 2, 0.01, "m/s2").acceleration[0] == pytest.approx(-490.5)
+    assert read_columns(path, 1, 0.01, "g").pga_g == pytest.approx(981)
+
+
+def test_pulse_shapes():
+    cosine = one_pulse("cosine", 0.5, 2.0)
+    t, a = cosine.time, cosine.acceleration
+    assert a[0] == pytest.approx(0.5 * G)
+    assert np.interp(1.0, t, a) == pytest.approx(-0.5 * G)
+    assert cosine.duration == pytest.approx(2.0)
+    # velocity of a one-cosine pulse peaks at a_p T_p / (2π)
+    assert cosine.pgv == pytest.approx(0.5 * G * 2.0 / (2 * math.pi), rel=1e-5)
+    sine = one_pulse("sine", 0.3, 1.0)
+    assert np.interp(0.25, sine.time, sine.acceleration) == pytest.approx(0.3 * G)
+    assert np.interp(0.75, sine.time, sine.acceleration) == pytest.approx(-0.3 * G)
+    assert sine.acceleration[0] == 0.0
+
+
+def test_pulse_suite_is_table_5_1():
+    suite = pulse_suite()
+    assert suite.is_pulse_idealised and len(suite) == 7
+    rinaldi = suite.get("rinaldi_1994").motion
+    assert rinaldi.pga_g == pytest.approx(0.838) and rinaldi.pulse.period_s == 1.0
+    takatori = suite.get("takatori_1995")
+    assert takatori.motion.pulse.period_s == 1.0 and "assumed" in takatori.component
+
+
+def test_source_precedence(monkeypatch, tmp_path):
+    monkeypatch.delenv(ENV_VARIABLE, raising=False)
+    assert load_records().is_pulse_idealised
+    manifest = tmp_path / "m.toml"
+    data = tmp_path / "x.txt"
+    data.write_text("1\n2\n3\n")
+    manifest.write_text('[[record]]\nid = "x"\nfile = "x.txt"\nformat = "columns"\ndt = 0.01\n'
+                        'units = "g"\n')
+    monkeypatch.setenv(ENV_VARIABLE, str(manifest))
+    assert [e.id for e in load_records()] == ["x"]
+    assert load_records(None).get("x").motion.pga_g == pytest.approx(3.0)
+    explicit = tmp_path / "y.txt"
+    explicit.write_text("% Acc. in cm/sec^2 and dt=0.02 sec.\r\n981\r\n0\r\n")
+    chosen = load_records(explicit).get("y").motion  # an explicit path wins over the variable
+    assert chosen.dt == 0.02 and chosen.pga_g == pytest.approx(1.0)
+    with pytest.raises(InputError, match="not found"):
+        load_records(tmp_path / "nope.toml")
+
+
+AT2_HEADER = ("PEER NGA STRONG MOTION DATABASE RECORD\nTest, 1/1/2000, Station, 90\n"
+              "ACCELERATION TIME SERIES IN UNITS OF G\n")
+
+
+@pytest.mark.parametrize("content,message", [
+    (AT2_HEADER, "truncated header"),
+    (AT2_HEADER + "NPTS=    3, DT=   .0100 SEC,\n .1 .2\n", "header says 3 values, the file holds 2"),
+    (AT2_HEADER + "NPTS=    3, DT=   .0100 SEC,\n .1 abc .3\n", "'abc' is not a number"),
+    (AT2_HEADER + "NPTS=    3, DT=   .0100 SEC,\n .1 NaN .3\n", "not finite"),
+    (AT2_HEADER + "NPTS=    3, DT=   .0100 SEC,\n .1 inf .3\n", "not finite"),
+    (AT2_HEADER + "NPTS=    3, DT=   0.0 SEC,\n .1 .2 .3\n", "dt: must be a positive"),
+    (AT2_HEADER + "NPTS=    3, DT=   -.01 SEC,\n .1 .2 .3\n", "dt: must be a positive"),
+    (AT2_HEADER.replace("UNITS OF G", "UNITS OF FURLONGS") + "NPTS= 1, DT= .01 SEC,\n.1\n",
+     "cannot tell the units"),
+    (AT2_HEADER + "3 values follow\n .1 .2 .3\n", "line 4: expected"),
+    ("", "file is empty"),
+])
+def test_bad_at2_files(tmp_path, content, message):
+    path = tmp_path / "bad.AT2"
+    path.write_text(content)
+    with pytest.raises(InputError, match=message) as info:
+        read_at2(path)
+    assert str(path) in str(info.value) and "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("content,kwargs,message", [
+    ("1 2\n3\n", {"column": 2, "dt": 0.01, "units": "g"}, "line 2: column 2 missing"),
+    ("1\n2\n", {"dt": 0.01, "units": "furlongs"}, "units: unknown 'furlongs'"),
+    ("1\n2\n", {"units": "g"}, "dt: not stated"),
+    ("1\n2\n", {"dt": 0.01}, "units: not stated"),
+    ("1\n2\n", {"dt": -1.0, "units": "g"}, "dt: must be a positive"),
+    ("% only comments\n", {"dt": 0.01, "units": "g"}, "no data lines"),
+    ("1\nnan\n", {"dt": 0.01, "units": "g"}, "not finite"),
+    ("# units: g ; dt = 0.01 s ; npts = 3\n1\n2\n", {}, "header says 3 values"),
+])
+def test_bad_column_files(tmp_path, content, kwargs, message):
+    path = tmp_path / "bad.txt"
+    path.write_text(content)
+    with pytest.raises(InputError, match=message) as info:
+        read_columns(path, **kwargs)
+    assert str(path) in str(info.value)
+
+
+@pytest.mark.parametrize("entry,message", [
+    ('id = "a"\nfile = "a.txt"\nformat = "mseed"', "format: unknown 'mseed'"),
+    ('id = "a"\nfile = "nothere.txt"\nformat = "columns"', "file: .*nothere.txt not found"),
+    ('id = "a"\nformat = "columns"', "file: missing"),
+    ('file = "a.txt"', "id: missing"),
+    ('id = "a"\nfile = "a.txt"\nformat = "columns"\ncolum = 2', "unknown field"),
+])
+def test_bad_manifests(tmp_path, entry, message):
+    (tmp_path / "a.txt").write_text("1\n2\n")
+    manifest = tmp_path / "m.toml"
+    manifest.write_text(f"[[record]]\n{entry}\n")
+    with pytest.raises(InputError, match=message) as info:
+        load_manifest(manifest)
+    assert str(manifest) in str(info.value)
+
+
+def test_malformed_toml_and_unknown_id(tmp_path):
+    manifest = tmp_path / "m.toml"
+    manifest.write_text("[[record]\nid=")
+    with pytest.raises(InputError, match="not valid TOML"):
+        load_manifest(manifest)
+    with pytest.raises(InputError, match="unknown 'nope'"):
+        record_facts("nope")
+    with pytest.raises(InputError, match="unknown 'nope'"):
+        pulse_suite().get("nope")

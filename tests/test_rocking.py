@@ -1,0 +1,181 @@
+"""The exact rocking solver against closed forms, the SPEC anchors, invariants and a reference."""
+
+import math
+
+import numpy as np
+import pytest
+
+from audit import G
+from audit.block import RigidBlock, coefficient_of_restitution, frequency_parameter
+from audit.damping import housner_peak_ratio, housner_period
+from audit.errors import InputError
+from audit.reference import simulate_reference
+from audit.rocking import rocking_spectrum, simulate
+from records import GroundMotion, one_pulse
+
+
+def still(dt=0.0005):
+    return GroundMotion("still", np.zeros(2), dt)
+
+
+def peaks_between_impacts(response):
+    """max |θ| between successive impacts (the peaks θ1, θ2, … of free rocking)."""
+    out = []
+    for before, after in zip(response.impact_times[:-1], response.impact_times[1:]):
+        inside = (response.time > before) & (response.time < after)
+        out.append(np.max(np.abs(response.theta[inside])))
+    return np.array(out)
+
+
+def test_block_geometry():
+    block = RigidBlock.from_dimensions(b=0.5, h=2.0)
+    assert block.alpha == pytest.approx(math.atan(0.25))
+    assert block.radius == pytest.approx(math.hypot(0.5, 2.0))
+    assert block.p == pytest.approx(math.sqrt(3 * G / (4 * math.hypot(0.5, 2.0))))
+    assert block.half_width == pytest.approx(0.5) and block.half_height == pytest.approx(2.0)
+    assert float(frequency_parameter(block.radius)) == pytest.approx(block.p)
+    assert coefficient_of_restitution(math.radians(15)) == pytest.approx(0.809, abs=5e-4)
+    assert RigidBlock.from_size(2 * math.pi, 0.2).p == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("kwargs,message", [
+    ({"p": 0.0, "alpha": 0.2}, "p: must be a positive"),
+    ({"p": 2.0, "alpha": math.radians(50)}, "alpha: must lie between 0 and 45"),
+    ({"p": 2.0, "alpha": 0.0}, "alpha"),
+    ({"p": 2.0, "alpha": 0.2, "r": 1.5}, "r: coefficient of restitution"),
+    ({"p": float("nan"), "alpha": 0.2}, "p: must be a positive"),
+])
+def test_impossible_blocks(kwargs, message):
+    with pytest.raises(InputError, match=message):
+        RigidBlock(**kwargs)
+
+
+@pytest.mark.parametrize("theta0_ratio", [0.1, 0.3, 0.5])
+def test_housner_free_rocking_decay(theta0_ratio):
+    """Eq. 7.5 for a slender block (α = 5°): within 1 % for n ≤ 8."""
+    block = RigidBlock(2.0, math.radians(5))
+    response = simulate(block, still(), free_motion_s=40.0,
+                        initial_rotation=theta0_ratio * block.alpha)
+    measured = peaks_between_impacts(response)[:8] / block.alpha
+    expected = housner_peak_ratio(theta0_ratio, np.arange(1, 9), block.r)
+    np.testing.assert_allclose(measured, expected, rtol=0.01)
+
+
+def test_energy_ratio_per_impact_is_r():
+    """Each impact multiplies the kinetic energy by r: for the nonlinear free block, the peak
+    potential p²[cos(α − θk) − cos α] of successive peaks falls by exactly r."""
+    block = RigidBlock(3.0, math.radians(20))
+    response = simulate(block, still(0.0002), free_motion_s=20.0,
+                        initial_rotation=0.8 * block.alpha)
+    peaks = np.concatenate(([0.8 * block.alpha], peaks_between_impacts(response)[:6]))
+    energy = np.cos(block.alpha - peaks) - np.cos(block.alpha)
+    np.testing.assert_allclose(energy[1:] / energy[:-1], block.r, rtol=1e-4)
+
+
+def test_cycle_durations_match_housner_period_without_damping():
+    """With r = 1 free rocking is periodic; for a slender block its full cycle is Eq. 8.1."""
+    block = RigidBlock(2.0, math.radians(3), r=1.0)
+    response = simulate(block, still(0.001), free_motion_s=30.0,
+                        initial_rotation=0.4 * block.alpha)
+    durations = response.cycle_durations
+    assert durations.size >= 5
+    np.testing.assert_allclose(durations, housner_period(0.4, block.p), rtol=0.005)
+
+
+@pytest.fixture(scope="module")
+def pulse_anchor():
+    """SPEC §2: p = 2 rad/s, α = 15°, one-cosine T_p = 2 s, 8 s of free motion after it."""
+    block = RigidBlock(2.0, math.radians(15))
+    return {a: simulate(block, one_pulse("cosine", a, 2.0), free_motion_s=8.0)
+            for a in (0.310, 0.315, 0.316)}
+
+
+def test_pulse_anchor_sensitivity(pulse_anchor):
+    survives, near, falls = pulse_anchor[0.310], pulse_anchor[0.315], pulse_anchor[0.316]
+    assert not survives.overturned
+    assert 0.3 <= survives.peak_rotation_after_excitation / survives.block.alpha <= 0.4
+    assert not near.overturned
+    assert near.peak_rotation_after_excitation / near.block.alpha > 0.75
+    assert falls.overturned and 2.0 < falls.overturn_time < 10.0
+
+
+def test_pulse_anchor_against_reference(pulse_anchor):
+    for amplitude, response in pulse_anchor.items():
+        ref = simulate_reference(response.block, one_pulse("cosine", amplitude, 2.0), 8.0)
+        assert ref["overturned"] == response.overturned
+        assert ref["peak_rotation"] == pytest.approx(response.peak_rotation, rel=2e-3)
+
+
+def test_history_is_complete_and_bounded(seed_suite):
+    motion = seed_suite.get("pacoima_dam_1971").motion
+    for size, alpha in ((5.65, 15), (7.3, 15), (3.95, 15), (2.0, 20)):
+        response = simulate(RigidBlock.from_size(size, math.radians(alpha)), motion)
+        assert response.time.size == motion.acceleration.size + 1000
+        valid = np.isfinite(response.theta)
+        if response.overturned:
+            assert not valid[-1] and valid[0]
+        else:
+            assert valid.all() and np.isfinite(response.omega).all()
+            assert np.abs(response.theta).max() <= response.peak_rotation * (1 + 1e-12)
+            assert np.abs(response.omega).max() <= response.peak_angular_velocity * (1 + 1e-12)
+
+
+def test_sign_of_ground_motion_flips_rotation():
+    block = RigidBlock(2.5, math.radians(12))
+    pulse = one_pulse("sine", 0.4, 1.5)
+    flipped = GroundMotion("neg", -pulse.acceleration, pulse.dt)
+    a = simulate(block, GroundMotion("pos", pulse.acceleration, pulse.dt))
+    b = simulate(block, flipped)
+    np.testing.assert_allclose(a.theta, -b.theta, atol=1e-12)
+    # a positive ground acceleration starts a negative rotation
+    first = np.flatnonzero(a.theta != 0)[0]
+    assert a.theta[first] < 0
+
+
+def test_dimensionless_similarity_of_pulse_response():
+    """Same α, a_p/(g tan α) and ω_p/p ⇒ same θ as a function of p·t."""
+    alpha = math.radians(14)
+    small = simulate(RigidBlock(4.0, alpha), one_pulse("cosine", 0.35, 1.0), free_motion_s=5.0)
+    large = simulate(RigidBlock(2.0, alpha), one_pulse("cosine", 0.35, 2.0), free_motion_s=10.0)
+    tau = np.linspace(0.0, 30.0, 400)
+    np.testing.assert_allclose(np.interp(tau, small.time * 4.0, small.theta),
+                               np.interp(tau, large.time * 2.0, large.theta), atol=2e-6)
+    assert small.peak_rotation == pytest.approx(large.peak_rotation, rel=1e-6)
+
+
+def test_no_uplift_below_g_tan_alpha():
+    pulse = one_pulse("cosine", 0.3, 1.0)  # atan(0.3) = 16.70°
+    calm = simulate(RigidBlock(2.0, math.radians(16.8)), pulse)
+    assert not calm.uplifted and calm.peak_rotation == 0.0 and calm.n_impacts == 0
+    assert simulate(RigidBlock(2.0, math.radians(16.6)), pulse).uplifted
+
+
+def test_real_record_against_reference(seed_suite):
+    motion = seed_suite.get("pacoima_dam_1971").motion
+    for size, alpha in ((3.5, 20), (2.5, 20), (5.65, 15)):
+        block = RigidBlock.from_size(size, math.radians(alpha))
+        ours, ref = simulate(block, motion), simulate_reference(block, motion)
+        assert ours.overturned == ref["overturned"] and ours.n_impacts == ref["n_impacts"]
+        assert ours.peak_rotation == pytest.approx(ref["peak_rotation"], rel=1e-4)
+
+
+def test_halving_the_step_changes_surviving_peaks_by_less_than_0_1_percent(seed_suite):
+    sizes = np.arange(0.5, 8.01, 0.25)
+    alphas = np.radians([10, 15, 20])
+    for record in ("rinaldi_1994", "sylmar_1994"):
+        motion = seed_suite.get(record).motion
+        base = rocking_spectrum(motion, sizes, alphas)
+        fine = rocking_spectrum(motion, sizes, alphas, steps_per_radian=80.0)
+        survive = ~base.overturned & ~fine.overturned & base.uplifted
+        assert survive.sum() > 20
+        np.testing.assert_allclose(base.theta_peak[survive], fine.theta_peak[survive], rtol=1e-3)
+
+
+def test_spectrum_threads_agree_and_grid_shape():
+    pulse = one_pulse("cosine", 0.5, 1.0)
+    one = rocking_spectrum(pulse, [0.5, 1.0, 2.0, 4.0], np.radians([10, 20]), jobs=1)
+    two = rocking_spectrum(pulse, [0.5, 1.0, 2.0, 4.0], np.radians([10, 20]), jobs=2)
+    assert one.theta_peak.shape == (2, 4)
+    np.testing.assert_array_equal(one.theta_peak, two.theta_peak)
+    single = simulate(RigidBlock.from_size(2.0, math.radians(20)), pulse)
+    assert one.theta_peak[1, 2] == single.peak_rotation

@@ -1,0 +1,158 @@
+"""Oscillator response spectra, design spectra and damping laws against closed forms."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import signal
+
+from audit.block import coefficient_of_restitution
+from audit.damping import (damping_fema356, damping_free_rocking, damping_priestley,
+                           housner_period, housner_rotation_ratio)
+from audit.design_spectra import FEMA356_TABLE_1_6, FEMA356Spectrum, UBC97Spectrum, \
+    fema356_damping_coefficients
+from audit.oscillator import oscillator_history, response_spectra
+from records import GroundMotion
+
+DT = 0.001
+
+
+def motion_from(function, duration):
+    t = np.arange(0.0, duration + DT / 2, DT)
+    return GroundMotion("analytic", function(t), DT), t
+
+
+@pytest.mark.parametrize("damping", [0.0, 0.05, 0.2])
+def test_step_response(damping):
+    """üg = −a0 from t = 0: u = (a0/ω²)[1 − e^{−ξωt}(cos ωd t + ξ/√(1−ξ²) sin ωd t)]."""
+    a0, period = 2.0, 0.8
+    omega = 2 * math.pi / period
+    omega_d = omega * math.sqrt(1 - damping ** 2)
+    motion, t = motion_from(lambda t: np.full(t.shape, -a0), 4.0)
+    _, u = oscillator_history(motion, period, damping)
+    # the record starts with the step already on: the discrete input jumps at t = 0 exactly
+    exact = a0 / omega ** 2 * (1 - np.exp(-damping * omega * t) * (
+        np.cos(omega_d * t) + damping / math.sqrt(1 - damping ** 2) * np.sin(omega_d * t)))
+    np.testing.assert_allclose(u, exact, atol=1e-10 * a0 / omega ** 2)
+    spectra = response_spectra(motion, [period], [damping])
+    overshoot = 1 + math.exp(-damping * math.pi / math.sqrt(1 - damping ** 2))
+    assert spectra.sd[0, 0] == pytest.approx(a0 / omega ** 2 * overshoot, rel=1e-5)
+
+
+def test_ramp_response_undamped():
+    """üg = −c t: u = (c/ω²)(t − sin(ωt)/ω)."""
+    c, period = 1.5, 0.5
+    omega = 2 * math.pi / period
+    motion, t = motion_from(lambda t: -c * t, 3.0)
+    _, u = oscillator_history(motion, period, 0.0)
+    np.testing.assert_allclose(u, c / omega ** 2 * (t - np.sin(omega * t) / omega), atol=1e-12)
+
+
+@pytest.mark.parametrize("frequency_ratio", [0.5, 1.0, 1.7])
+def test_steady_state_harmonic_amplitude(frequency_ratio):
+    amplitude, period, damping = 1.0, 0.4, 0.05
+    omega = 2 * math.pi / period
+    forcing = frequency_ratio * omega
+    motion, t = motion_from(lambda t: amplitude * np.sin(forcing * t), 60.0)
+    _, u = oscillator_history(motion, period, damping)
+    expected = amplitude / omega ** 2 / math.hypot(1 - frequency_ratio ** 2,
+                                                   2 * damping * frequency_ratio)
+    assert np.max(np.abs(u[t > 50.0])) == pytest.approx(expected, rel=2e-3)
+
+
+def test_against_lsim_on_a_real_record(seed_suite):
+    motion = seed_suite.get("rinaldi_1994").motion
+    periods = np.geomspace(0.05, 10.0, 25)
+    dampings = [0.02, 0.05, 0.15]
+    spectra = response_spectra(motion, periods, dampings)
+    for j, xi in enumerate(dampings):
+        for i, period in enumerate(periods):
+            w = 2 * math.pi / period
+            system = signal.lti([[0, 1], [-w * w, -2 * xi * w]], [[0], [1]], [[1, 0]], [[0]])
+            _, y, _ = signal.lsim(system, -motion.acceleration, motion.time, interp=True)
+            assert spectra.sd[j, i] == pytest.approx(np.max(np.abs(y)), rel=1e-3)
+
+
+def test_zero_period_and_pseudo_spectra(seed_suite):
+    motion = seed_suite.get("sylmar_1994").motion
+    spectra = response_spectra(motion, [0.0, 1.0], [0.05])
+    assert spectra.sd[0, 0] == 0.0 and spectra.sv[0, 0] == 0.0
+    assert spectra.sa[0, 0] == pytest.approx(motion.pga)
+    assert spectra.pseudo_acceleration[0, 1] == pytest.approx((2 * math.pi) ** 2 * spectra.sd[0, 1])
+    assert spectra.pseudo_acceleration[0, 0] == pytest.approx(motion.pga)
+    assert spectra.pseudo_velocity[0, 0] == 0.0
+    # a stiff oscillator follows the ground: Sa → PGA
+    stiff = response_spectra(motion, [0.01], [0.05])
+    assert stiff.sa[0, 0] == pytest.approx(motion.pga, rel=0.02)
+
+
+def test_free_motion_tail_only_adds_response(seed_suite):
+    motion = seed_suite.get("erzincan_1992").motion
+    periods = [1.0, 5.0, 20.0]
+    short = response_spectra(motion, periods, [0.05])
+    long = response_spectra(motion, periods, [0.05], free_motion_s=30.0)
+    assert np.all(long.sd >= short.sd)
+
+
+def test_priestley_and_fema_damping_values():
+    r = coefficient_of_restitution(np.radians([10, 15, 20]))
+    np.testing.assert_allclose(100 * damping_priestley(r), [3.15, 7.20, 13.12], atol=0.005)
+    np.testing.assert_allclose(100 * damping_fema356(r), [1.8, 4.0, 7.0], atol=0.05)
+    # "the FEMA damping of Eq. 9.1 is about half of Eq. 7.10"
+    ratio = damping_fema356(r) / damping_priestley(r)
+    assert np.all((ratio > 0.45) & (ratio < 0.6))
+
+
+def test_free_rocking_damping_eq_7_9():
+    r = coefficient_of_restitution(np.radians([10, 15, 20]))
+    # small-amplitude limit of Eq. 7.9: θn/α → rⁿ θ₀/α, so β → −ln(r)/π
+    np.testing.assert_allclose(damping_free_rocking(1e-7, 4, r), -np.log(r) / np.pi, rtol=1e-5)
+    # over 16 impacts it approaches Eq. 7.10 within 10 % for θ₀/α ≤ 0.5 …
+    for x in (0.1, 0.2, 0.3, 0.4, 0.5):
+        np.testing.assert_allclose(damping_free_rocking(x, 16, r), damping_priestley(r), rtol=0.1)
+    # … and the deviation shrinks as the count of impacts grows, for the larger amplitudes
+    deviation = [np.abs(damping_free_rocking(0.5, n, r) / damping_priestley(r) - 1)
+                 for n in (2, 4, 8, 16)]
+    assert np.all(np.diff(deviation, axis=0) < 0)
+
+
+def test_housner_period_and_inverse():
+    p = 2.0
+    assert housner_period(0.0, p) == 0.0
+    assert housner_period(0.5, p) == pytest.approx(2.0 * math.acosh(2.0))
+    ratios = np.array([0.01, 0.3, 0.9, 0.999])
+    np.testing.assert_allclose(housner_rotation_ratio(housner_period(ratios, p), p), ratios)
+
+
+def test_fema_table_rows_and_continuity():
+    for beta, b_s, b_1 in FEMA356_TABLE_1_6:
+        assert fema356_damping_coefficients(beta) == (pytest.approx(b_s), pytest.approx(b_1))
+    assert fema356_damping_coefficients(0.01) == (0.8, 0.8)
+    assert fema356_damping_coefficients(0.7) == (3.0, 2.0)
+    assert fema356_damping_coefficients(0.075) == (pytest.approx(1.15), pytest.approx(1.1))
+    spectrum = FEMA356Spectrum(1.59, 0.50)
+    for beta in (0.018, 0.05, 0.1, 0.35):
+        t_0, t_s = spectrum.corner_periods(beta)
+        b_s, b_1 = fema356_damping_coefficients(beta)
+        assert t_s == pytest.approx(0.50 * b_s / (1.59 * b_1))
+        for corner in (t_0, t_s):
+            below, above = spectrum.acceleration([corner * (1 - 1e-9), corner * (1 + 1e-9)], beta)
+            assert below == pytest.approx(above, rel=1e-6)
+        assert spectrum.acceleration(0.0, beta) == pytest.approx(0.4 * 1.59)
+        assert spectrum.acceleration(t_s, beta) == pytest.approx(1.59 / b_s)
+        assert spectrum.acceleration(2.0, beta) == pytest.approx(0.50 / (b_1 * 2.0))
+    # Eq. 3.5: Sa = 1 g at T = 2π s is a displacement of g metres
+    assert float(spectrum.displacement(2 * math.pi, 0.05)) == pytest.approx(
+        0.5 / (2 * math.pi) * 9.81)
+
+
+def test_ubc97_zone_4_soil_sd():
+    spectrum = UBC97Spectrum()
+    assert spectrum.ca == pytest.approx(0.44) and spectrum.cv == pytest.approx(0.64)
+    t_s = 0.64 / (2.5 * 0.44)
+    assert spectrum.acceleration(0.0) == pytest.approx(0.44)
+    assert spectrum.acceleration(t_s) == pytest.approx(1.1)
+    assert spectrum.acceleration(1.0) == pytest.approx(0.64)
+    assert spectrum.acceleration(1.0, 0.10) == pytest.approx(0.64 / 1.2)
+    near = UBC97Spectrum(1.5, 2.0)
+    assert near.acceleration(2.0) == pytest.approx(0.64 * 2.0 / 2.0)
