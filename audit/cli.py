@@ -31,12 +31,13 @@ def _float_list(text: str, option: str) -> list[float]:
     return values
 
 
-def _alphas(text: str) -> np.ndarray:
+def _alphas_deg(text: str) -> np.ndarray:
+    """Slendernesses typed in degrees, checked to lie in (0°, 45°)."""
     values = _float_list(text, "--alpha")
     for value in values:
         if not 0 < value < 45:
             raise InputError(f"--alpha: slenderness must lie between 0 and 45 degrees, got {value:g}")
-    return np.radians(values)
+    return np.array(values)
 
 
 def _grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
@@ -201,7 +202,7 @@ def cmd_spectrum(args) -> int:
             _plot_to(args.plot, lambda fig: draw_response_spectra(fig, frame, motion.id))
     else:
         from audit.rocking import rocking_spectrum
-        spectrum = rocking_spectrum(motion, _sizes(args.sizes), _alphas(args.alpha),
+        spectrum = rocking_spectrum(motion, _sizes(args.sizes), np.radians(_alphas_deg(args.alpha)),
                                     free_motion_s=args.free_motion, jobs=args.jobs)
         import pandas as pd
         frame = pd.concat([pd.DataFrame({
@@ -256,7 +257,7 @@ def cmd_run(args) -> int:
     procedures = get_procedures(args.procedure)
     suite = _suite(args)
     sizes = _sizes(args.sizes)
-    alphas = np.degrees(_alphas(args.alpha))
+    alphas = _alphas_deg(args.alpha)
     out_dir = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
     start = time.perf_counter()
     run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,

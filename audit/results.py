@@ -26,6 +26,7 @@ RESULTS_CSV = "results.csv"
 SUMMARY_JSON = "summary.json"
 SPECTRA_CSV = "spectra.csv"
 HISTORIES_CSV = "histories.csv"
+ROCKING_CSV = "rocking.csv"
 REPORT_HTML = "report.html"
 
 
@@ -74,6 +75,7 @@ def run_files(run: AuditRun) -> dict[str, bytes]:
         SUMMARY_JSON: json.dumps(_json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
         SPECTRA_CSV: run.spectra.to_csv(index=False, float_format="%.8g").encode(),
         HISTORIES_CSV: run.histories.to_csv(index=False, float_format="%.7g").encode(),
+        ROCKING_CSV: run.rocking.to_csv(index=False, float_format="%.10g").encode(),
     }
 
 
@@ -83,7 +85,7 @@ def load_run(run_dir: str | Path) -> AuditRun:
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a directory of audit results")
     files = {}
-    for name in (RESULTS_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV):
+    for name in (RESULTS_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV, ROCKING_CSV):
         if not (run_dir / name).is_file():
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
         files[name] = (run_dir / name).read_bytes()
@@ -104,6 +106,7 @@ def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
                               na_values={c: [""] for c in ("alpha_deg", "damping", "period_s",
                                                            "sd", "sv", "sa")})
         histories = pd.read_csv(io.BytesIO(files[HISTORIES_CSV]))
+        rocking = pd.read_csv(io.BytesIO(files[ROCKING_CSV]))
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}: cannot read the results: {exc}") from None
     missing = [c for c in RESULT_COLUMNS if c not in results.columns]
@@ -114,7 +117,7 @@ def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
                                                "False": False}).astype(object)
     results["procedure"] = results["procedure"].astype(str)
     spectra["procedure"] = spectra["procedure"].astype(str)
-    return AuditRun(results, spectra, histories, summary)
+    return AuditRun(results, spectra, histories, rocking, summary)
 
 
 def save_run(run: AuditRun, out_dir: str | Path, render) -> AuditRun:

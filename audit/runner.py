@@ -110,6 +110,8 @@ class AuditRun:
         Record response spectra (kind ``response``, Figures 5.x and 8.x).
     histories : pandas.DataFrame
         Time histories of the representative blocks.
+    rocking : pandas.DataFrame
+        Exact rocking spectra of every record with a file, whatever the procedures.
     summary : dict
         Settings, records, unauditable records, per-record statistics (``summary.json``).
     """
@@ -117,6 +119,7 @@ class AuditRun:
     results: pd.DataFrame
     spectra: pd.DataFrame
     histories: pd.DataFrame
+    rocking: pd.DataFrame
     summary: dict = field(default_factory=dict)
 
 
@@ -200,7 +203,7 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
     alpha_rad = np.radians(alpha_deg)
     p = 2.0 * np.pi / sizes
     progress = progress or Progress(len(suite), "records", enabled=False)
-    frames, spectra_frames, history_frames = [], [], []
+    frames, spectra_frames, history_frames, rocking_frames = [], [], [], []
     unauditable, histories_meta = [], []
     for entry in suite:
         progress.step(entry.id)
@@ -210,6 +213,12 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
         if motion is not None:
             exact = rocking_spectrum(motion, sizes, alpha_rad, g=g, free_motion_s=free_motion_s,
                                      jobs=jobs)
+            rocking_frames.extend(pd.DataFrame({
+                "record": entry.id, "alpha_deg": alpha_deg[i], "size_s": sizes, "p": p,
+                "theta_peak": exact.theta_peak[i], "theta_ratio": exact.theta_ratio[i],
+                "overturned": exact.overturned[i], "omega_peak": exact.omega_peak[i],
+                "theta_after": exact.theta_after[i], "uplifted": exact.uplifted[i]})
+                for i in range(alpha_rad.size))
             for damping in FIGURE_5_DAMPING:
                 spectra_frames.append(_spectra_rows(entry.id, "", context.true_spectra(damping)))
         for procedure in procedures:
@@ -277,6 +286,8 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
                     pd.concat(history_frames, ignore_index=True) if history_frames
                     else pd.DataFrame(columns=["record", "alpha_deg", "size_s", "t",
                                                "theta_ratio", "omega"]),
+                    pd.concat(rocking_frames, ignore_index=True) if rocking_frames
+                    else pd.DataFrame(columns=ROCKING_COLUMNS),
                     summary)
 
 
@@ -286,6 +297,8 @@ def _spectra_rows(record_id, procedure_name, spectra):
                          "sd": spectra.sd[0], "sv": spectra.sv[0], "sa": spectra.sa[0]})
 
 
+ROCKING_COLUMNS = ["record", "alpha_deg", "size_s", "p", "theta_peak", "theta_ratio",
+                   "overturned", "omega_peak", "theta_after", "uplifted"]
 RESULT_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "p", "exact_theta",
                   "exact_overturned", "approx_theta", "approx_overturned", "approx_period",
                   "iterations", "verdict", "ratio", "exact_omega", "exact_uplifted",

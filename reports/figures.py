@@ -27,10 +27,11 @@ from audit import G  # noqa: E402
 ALPHA_COLOURS = {10.0: "#1f77b4", 15.0: "#d62728", 20.0: "#2ca02c"}
 DAMPING_COLOURS = {0.05: "#1f77b4", 0.10: "#ff7f0e", 0.15: "#9467bd"}
 _EXTRA_COLOURS = ("#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf")
+# unsafe errors in reds, over-safe ones in orange and blue, the rest in greys and lavender
 VERDICT_COLOURS = {
-    "no-uplift": "#e8e8e8", "both-overturn": "#4d4d4d", "false-overturn": "#f4a582",
-    "missed-overturn": "#b2182b", "conservative": "#92c5de", "unconservative": "#ef8a62",
-    "not-converged": "#c2a5cf", "record-missing": "#ffffff",
+    "no-uplift": "#eeeeee", "both-overturn": "#4d4d4d", "false-overturn": "#fdbf6f",
+    "missed-overturn": "#b2182b", "conservative": "#a6cee3", "unconservative": "#fb9a99",
+    "not-converged": "#cab2d6", "record-missing": "#ffffff",
 }
 DPI = 80
 
@@ -253,11 +254,16 @@ def draw_procedure_comparison(fig, results, spectra, title, procedure_title):
         ax.set_title("exact (× overturns) vs procedure (▲ predicts overturning, | no convergence)",
                      fontsize=8)
         ax = axes[row, 2]
-        ax.plot(size, rows["approx_period"], color=colour, lw=1)
+        period = rows["approx_period"].to_numpy(dtype=float)
+        ax.plot(size, period, color=colour, lw=1)
+        if not np.isfinite(period).any():
+            ax.set_yticks([])
+            ax.text(0.5, 0.5, "no converged T(θ):\nno block has a fixed point below α",
+                    ha="center", va="center", fontsize=8, transform=ax.transAxes)
         ax.set_ylabel("T(θ) [s]")
         ax.set_title("converged T(θ), Eq. 8.1", fontsize=8)
         if row == 0:
-            axes[row, 1].legend(fontsize=7, loc="center right")
+            axes[row, 1].legend(fontsize=7, loc="center left")
         for ax in axes[row]:
             ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("T [s]")
@@ -286,7 +292,7 @@ def draw_verdict_map(fig, results, records, record_names):
         ax.set_ylabel("α")
         ax.set_title(record_names.get(record, record), fontsize=8, loc="left")
     axes[-1].set_xlabel("2π/p [s]")
-    present = set(results["verdict"])
+    present = set(results.loc[results["record"].isin(records), "verdict"])
     fig.legend(handles=[Patch(facecolor=VERDICT_COLOURS[n], edgecolor="#888888", label=n)
                         for n in names if n in present],
                loc="lower center", ncol=4, fontsize=7)

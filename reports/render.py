@@ -132,10 +132,7 @@ def _record_sections(run, procedures, pending: _Figures) -> list[dict]:
         rows = results[results["record"] == rid]
         if not record["missing"]:
             response = spectra[(spectra["record"] == rid) & (spectra["procedure"] == "")]
-            first = rows[rows["procedure"] == rows["procedure"].iloc[0]] if len(rows) else rows
-            rocking = first.assign(theta_ratio=first["exact_theta"] / np.radians(first["alpha_deg"]),
-                                   overturned=first["exact_overturned"],
-                                   omega_peak=first["exact_omega"])
+            rocking = run.rocking[run.rocking["record"] == rid]
             design = _design_frame(record.get("site") or {}, summary["settings"]["figure_5_damping"],
                                    np.linspace(0.0, 8.0, 321))
             section["figures"].append({

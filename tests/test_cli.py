@@ -143,8 +143,8 @@ def test_run_and_rerender(tmp_path, monkeypatch, capsys):
     out = tmp_path / "audit"
     assert main(["run", "all", "--alpha", "15", "--sizes", "1:4:1", "--out", str(out)]) == 0
     assert "pulse-idealised" in capsys.readouterr().out
-    assert sorted(p.name for p in out.iterdir()) == ["histories.csv", "report.html",
-                                                     "results.csv", "spectra.csv", "summary.json"]
+    assert sorted(p.name for p in out.iterdir()) == ["histories.csv", "report.html", "results.csv",
+                                                     "rocking.csv", "spectra.csv", "summary.json"]
     results = pd.read_csv(out / "results.csv")
     assert list(results.columns[:12]) == [
         "record", "procedure", "alpha_deg", "size_s", "p", "exact_theta", "exact_overturned",
