@@ -106,11 +106,11 @@ def _add_excitation_options(parser):
     parser.add_argument("--pulse-period", type=float, metavar="S", help="pulse period T_p [s]")
 
 
-def _plot_to(path: str, draw) -> None:
+def _plot_to(path: str, draw, height: float = 6.0) -> None:
     """Draw a matplotlib figure with ``draw(fig)`` and save it atomically to ``path``."""
     from reports.figures import save_figure
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    save_figure(draw, path)
+    save_figure(draw, path, height=height)
 
 
 def cmd_list(args) -> int:
@@ -165,21 +165,26 @@ def cmd_rock(args) -> int:
             "rocking_span": (response.impact_times[0], response.impact_times[-1])
             if response.n_impacts else None,
             "cycle_starts": response.cycle_starts, "cycle_durations": response.cycle_durations,
-            "excitation_end": motion.duration}]))
+            "excitation_end": motion.duration}]), height=3.9)
     if args.json:
         print(json.dumps(result))
         return 0
     state = (f"OVERTURNS at t = {response.overturn_time:.3f} s" if response.overturned
              else "survives" if response.uplifted else "does not uplift (PGA ≤ g tan α)")
+    source = "" if motion.source in ("", "analytic pulse") else f" — {motion.source}"
+    cycles = ", ".join(f"{d:.3f}" for d in response.cycle_durations[:8]) or "—"
+    more = " …" if response.cycle_durations.size > 8 else ""
     print(f"Block p = {block.p:.4g} rad/s (2π/p = {block.size_s:.4g} s, R = {block.radius:.3g} m), "
-          f"α = {args.alpha:g}°, r = {block.r:.4f}\nExcitation: {motion.component or motion.id}\n"
+          f"α = {args.alpha:g}°, r = {block.r:.4f}\n"
+          f"Excitation: {motion.id}: {motion.component}{source}\n"
           f"Result: {state}\n"
-          f"  peak |θ|      {response.peak_rotation:.6g} rad = {response.peak_rotation_ratio:.4f} α\n"
-          f"  after the excitation  {response.peak_rotation_after_excitation / block.alpha:.4f} α\n"
-          f"  peak |θ'|     {response.peak_angular_velocity:.6g} rad/s\n"
-          f"  impacts       {response.n_impacts}\n"
-          f"  full cycles   {', '.join(f'{d:.3f}' for d in response.cycle_durations[:8]) or '—'}"
-          f"{' …' if response.cycle_durations.size > 8 else ''} s")
+          f"  peak |θ|                   {response.peak_rotation:.6g} rad = "
+          f"{response.peak_rotation_ratio:.4f} α\n"
+          f"  peak |θ| after excitation  "
+          f"{response.peak_rotation_after_excitation / block.alpha:.4f} α\n"
+          f"  peak |θ'|                  {response.peak_angular_velocity:.6g} rad/s\n"
+          f"  impacts                    {response.n_impacts}\n"
+          f"  full rocking cycles [s]    {cycles}{more}")
     if args.plot:
         print(f"Plot written to {args.plot}")
     return 0

@@ -100,8 +100,9 @@ def draw_time_histories(fig, blocks):
     ``excitation_end`` [s]. Full rocking cycles are shaded alternately with their durations,
     for comparison with the converged T(θ).
     """
-    grid = fig.add_gridspec(3 * len(blocks), 1, hspace=0.3,
-                            height_ratios=[0.5, 1.0, 1.0] * len(blocks))
+    # room above each block for its title: two lines when procedures are named
+    ratios = [r for b in blocks for r in (0.5 if b.get("procedures") else 0.15, 1.0, 1.0)]
+    grid = fig.add_gridspec(3 * len(blocks), 1, hspace=0.3, height_ratios=ratios)
     _margins(fig, fig.get_figheight(), top_inch=0.1, bottom_inch=0.5)
     for i, block in enumerate(blocks):
         ax_theta = fig.add_subplot(grid[3 * i + 1, 0])
@@ -149,7 +150,8 @@ def draw_response_spectra(fig, frame, title, design=None, axes=None, max_period=
     """True Sd [m], Sv [m/s], Sa [g] against T, one curve per damping (left of Figures 5.x).
 
     ``frame`` has columns ``period_s, damping, sd, sv, sa`` (SI); ``design`` is an optional
-    DataFrame ``period_s, damping, sd, sa_g`` of a code spectrum, drawn dashed.
+    DataFrame ``code, period_s, damping, sd, sa_g`` of code spectra: FEMA 356 dashed in the
+    damping's colour, others dotted black.
     """
     if axes is None:
         axes = fig.subplots(3, 1, sharex=True)
@@ -163,11 +165,12 @@ def draw_response_spectra(fig, frame, title, design=None, axes=None, max_period=
         axes[2].plot(group["period_s"], group["sa"] / G, color=colour, lw=1, label=label)
     if design is not None:
         design = design[design["period_s"] <= max_period]
-        for damping, group in design.groupby("damping"):
-            colour = damping_colour(damping)
-            label = f"FEMA 356 design, β = {100 * damping:g} %"
-            axes[0].plot(group["period_s"], group["sd"], color=colour, lw=1, ls="--", label=label)
-            axes[2].plot(group["period_s"], group["sa_g"], color=colour, lw=1, ls="--", label=label)
+        for (code, damping), group in design.groupby(["code", "damping"], sort=False):
+            fema = code.startswith("FEMA")
+            style = {"color": damping_colour(damping) if fema else "#000000", "lw": 1,
+                     "ls": "--" if fema else ":", "label": f"{code}, β = {100 * damping:g} %"}
+            axes[0].plot(group["period_s"], group["sd"], **style)
+            axes[2].plot(group["period_s"], group["sa_g"], **style)
     axes[0].set_title(title, fontsize=9)
     axes[0].set_ylabel("Sd = max|u| [m]")
     axes[1].set_ylabel("Sv = max|u'| [m/s]")

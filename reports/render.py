@@ -18,7 +18,7 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 from audit import G
 from audit.block import RigidBlock, coefficient_of_restitution
 from audit.damping import damping_fema356, damping_free_rocking, damping_priestley
-from audit.design_spectra import FEMA356Spectrum
+from audit.design_spectra import FEMA356Spectrum, UBC97Spectrum
 from audit.oscillator import oscillator_history
 from audit.rocking import simulate
 from audit.runner import VERDICTS
@@ -112,13 +112,18 @@ def _conclusion(rows: pd.DataFrame) -> str:
             "not-converged": "no fixed point"}.get(row["approx_outcome"], row["approx_outcome"])
 
 
-def _design_frame(site: dict, dampings, periods) -> pd.DataFrame | None:
-    if not site.get("sxs_g") or not site.get("sx1_g"):
-        return None
-    spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
-    return pd.concat([pd.DataFrame({"period_s": periods, "damping": d,
-                                    "sa_g": spectrum.acceleration(periods, d),
-                                    "sd": spectrum.displacement(periods, d)}) for d in dampings])
+def _design_frame(site: dict, dampings, periods) -> pd.DataFrame:
+    """Design spectra overlaid on Figure 5.x: FEMA 356 at each damping where the record has
+    site parameters, and UBC 97 (zone 4, soil S_D, N_a = N_v = 1) at 5 % on every record."""
+    frames = [pd.DataFrame({"code": "UBC 97 zone 4, S_D", "period_s": periods, "damping": 0.05,
+                            "sa_g": UBC97Spectrum().acceleration(periods, 0.05),
+                            "sd": UBC97Spectrum().displacement(periods, 0.05)})]
+    if site.get("sxs_g") and site.get("sx1_g"):
+        spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
+        frames += [pd.DataFrame({"code": "FEMA 356", "period_s": periods, "damping": d,
+                                 "sa_g": spectrum.acceleration(periods, d),
+                                 "sd": spectrum.displacement(periods, d)}) for d in dampings]
+    return pd.concat(frames, ignore_index=True)
 
 
 def _record_sections(run, procedures, pending: _Figures) -> list[dict]:
@@ -133,13 +138,15 @@ def _record_sections(run, procedures, pending: _Figures) -> list[dict]:
         if not record["missing"]:
             response = spectra[(spectra["record"] == rid) & (spectra["procedure"] == "")]
             rocking = run.rocking[run.rocking["record"] == rid]
+            has_site = bool((record.get("site") or {}).get("sxs_g"))
             design = _design_frame(record.get("site") or {}, summary["settings"]["figure_5_damping"],
                                    np.linspace(0.0, 8.0, 321))
             section["figures"].append({
                 "id": f"fig-5-{number}", "caption": f"Figure 5.{number} — {record['name']}: true "
                 f"response spectra Sd, Sv, Sa (relative displacement, relative velocity, absolute "
-                f"acceleration; not pseudo-spectra) for ξ = 5/10/15 % "
-                f"{'with the FEMA 356 design spectra dashed ' if design is not None else ''}"
+                f"acceleration; not pseudo-spectra) for ξ = 5/10/15 % with the design spectra "
+                f"{'of FEMA 356 (dashed, site parameters of Table 3.1) and ' if has_site else ''}"
+                f"of UBC 97 (dotted, zone 4, soil S_D, 5 %) "
                 f"(left), and the exact rocking spectra for α = "
                 f"{'/'.join(f'{a:g}' for a in summary['grid']['alpha_deg'])}° (right).",
                 "src": pending.add(figures.draw_figure_5,
@@ -264,8 +271,8 @@ def render_report(run, generated: datetime | None = None, processes: int = 2) ->
     html = _environment().get_template("report.html.j2").render(
         summary=summary, procedures=procedures,
         procedure_summaries=[_procedure_summary(p, run.results, names) for p in procedures],
-        verdict_maps=verdict_maps, sections=sections, mechanics=mechanics, statistics=statistics, verdicts=VERDICTS,
-        verdict_meaning=VERDICT_MEANING, verdict_colours=figures.VERDICT_COLOURS,
+        verdict_maps=verdict_maps, sections=sections, mechanics=mechanics, statistics=statistics,
+        verdicts=VERDICTS, verdict_meaning=VERDICT_MEANING, verdict_colours=figures.VERDICT_COLOURS,
         records=summary["records"], g=G,
         generated=(generated or datetime.now(timezone.utc)).strftime("%Y-%m-%d %H:%M UTC"))
     return html

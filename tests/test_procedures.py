@@ -7,7 +7,6 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from audit import G
 from audit.block import coefficient_of_restitution, radius_from_p
 from audit.damping import housner_period
 from audit.errors import InputError

@@ -54,7 +54,7 @@ def parsed(seed_report):
 def test_every_audited_record_has_its_section_and_figures(parsed):
     numbers = {"pacoima_dam_1971": 1, "el_centro_5_1979": 2, "los_gatos_1989": 3,
                "rinaldi_1994": 4, "sylmar_1994": 5, "erzincan_1992": 6, "takatori_1995": 7}
-    for record, n in numbers.items():
+    for record in numbers:
         assert f"record-{record}" in parsed.ids
     for record in ("pacoima_dam_1971", "rinaldi_1994", "sylmar_1994", "erzincan_1992",
                    "takatori_1995"):
