@@ -192,6 +192,8 @@ def cmd_rock(args) -> int:
 
 def cmd_spectrum(args) -> int:
     motion = _motion(args)
+    if args.free_motion is None:
+        args.free_motion = 10.0 if args.kind == "rocking" else 0.0
     if args.kind == "response":
         from audit.oscillator import response_spectra
         damping = np.array(_float_list(args.damping, "--damping")) / 100.0
@@ -323,8 +325,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="damping ratios [%%] (response)")
     p.add_argument("--periods", default="0.02:10:0.02", metavar="START:STOP:STEP",
                    help="oscillator periods [s] (response)")
-    p.add_argument("--free-motion", type=float, default=10.0, metavar="S",
-                   help="free motion after the record [s] (rocking default 10)")
+    p.add_argument("--free-motion", type=float, metavar="S",
+                   help="free motion after the record [s] (default: 10 for rocking, "
+                        "0 for response spectra)")
     p.add_argument("--jobs", type=int, default=2, help="threads")
     p.add_argument("--csv", metavar="FILE", help="CSV output (default: standard output)")
     p.add_argument("--plot", metavar="FILE.png", help="draw the spectra")

@@ -490,11 +490,11 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
     """
     size_s = np.atleast_1d(np.asarray(size_s, dtype=float))
     alpha_rad = np.atleast_1d(np.asarray(alpha_rad, dtype=float))
-    # RigidBlock validates p, α, r and g once per slenderness, with the same messages as elsewhere
+    if not (size_s.size and np.all(np.isfinite(size_s) & (size_s > 0))):
+        raise InputError("sizes: every 2π/p must be a positive number of seconds")
+    # RigidBlock validates α, r and g once per slenderness, with the same messages as elsewhere
     blocks = [RigidBlock(2 * np.pi / size_s.max(), a, r, **({} if g is None else {"g": g}))
               for a in alpha_rad]
-    if not np.all(np.isfinite(size_s) & (size_s > 0)):
-        raise InputError("sizes: every 2π/p must be a positive number of seconds")
     grid_alpha, grid_size = np.meshgrid(alpha_rad, size_s, indexing="ij")
     p = (2.0 * np.pi / grid_size).ravel()
     alpha = grid_alpha.ravel()

@@ -167,7 +167,7 @@ def _representative_sizes(spectrum, alpha_index: int, count: int = 3) -> list[fl
     return [float(sizes[i]) for i in picks]
 
 
-def _history_rows(entry, response, record_id, alpha_deg, size_s):
+def _history_rows(response, record_id, alpha_deg, size_s):
     stride = max(1, response.time.size // HISTORY_POINTS)
     return pd.DataFrame({
         "record": record_id, "alpha_deg": alpha_deg, "size_s": size_s,
@@ -248,7 +248,7 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
             for size in _representative_sizes(exact, alpha_index):
                 block = RigidBlock.from_size(size, alpha_rad[alpha_index], g=g)
                 response = simulate(block, motion, free_motion_s)
-                history_frames.append(_history_rows(entry, response, entry.id,
+                history_frames.append(_history_rows(response, entry.id,
                                                     alpha_deg[alpha_index], size))
                 histories_meta.append({
                     "record": entry.id, "alpha_deg": float(alpha_deg[alpha_index]),
