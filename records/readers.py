@@ -17,6 +17,9 @@ from audit import G
 from audit.errors import InputError
 from records.motion import GroundMotion
 
+#: No strong-motion record exceeds ~4.4 g; a larger PGA means the declared units are wrong.
+PLAUSIBLE_PGA_G = 6.0
+
 #: Factor from each accepted unit name to m/s².
 UNIT_FACTORS = {"g": G, "cm/s2": 0.01, "m/s2": 1.0}
 
@@ -52,6 +55,14 @@ def units_in_text(text: str) -> str | None:
         if pattern.search(text):
             return units
     return None
+
+
+def _checked(motion: GroundMotion, units: str) -> GroundMotion:
+    """The motion, unless its PGA shows that ``units`` cannot be right."""
+    if motion.pga_g > PLAUSIBLE_PGA_G:
+        raise InputError(f"{motion.source}: units: read as '{units}', the PGA would be "
+                         f"{motion.pga_g:.3g} g, beyond any recorded motion; are the units right?")
+    return motion
 
 
 def _read_text(path: Path) -> list[str]:
@@ -119,7 +130,7 @@ def read_at2(path: str | Path, record_id: str | None = None, component: str = ""
               for line_no, line in enumerate(lines[4:], start=5) for token in line.split()]
     if len(values) != npts:
         raise InputError(f"{path}: NPTS: header says {npts} values, the file holds {len(values)}")
-    return GroundMotion(
+    return _checked(GroundMotion(
         id=record_id or path.stem,
         acceleration=np.array(values) * unit_factor(units, str(path)),
         dt=dt,
@@ -127,7 +138,7 @@ def read_at2(path: str | Path, record_id: str | None = None, component: str = ""
         source=str(path),
         sha256=sha256_of(path),
         metadata={"format": "peer-at2", "units": units, "npts": npts},
-    )
+    ), units)
 
 
 def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
@@ -186,7 +197,7 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
     npts = _NPTS_COMMENT.search(comments)
     if npts is not None and int(npts.group(1)) != len(values):
         raise InputError(f"{path}: npts: header says {npts.group(1)} values, the file holds {len(values)}")
-    return GroundMotion(
+    return _checked(GroundMotion(
         id=record_id or path.stem,
         acceleration=np.array(values) * factor,
         dt=dt,
@@ -194,4 +205,4 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
         source=str(path),
         sha256=sha256_of(path),
         metadata={"format": "columns", "units": units, "column": column},
-    )
+    ), units)

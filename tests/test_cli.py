@@ -128,6 +128,17 @@ def test_bad_input_exits_2_with_one_line(tmp_path, monkeypatch, args, message):
     assert not out.exists() and list(tmp_path.iterdir()) == []
 
 
+def test_output_onto_a_file_is_a_one_line_error(tmp_path):
+    blocker = tmp_path / "taken"
+    blocker.write_text("not a folder")
+    result = run_cli("run", "fema356", "--alpha", "15", "--sizes", "2:3:1", "--out", str(blocker),
+                     env={ENV_VARIABLE: ""})
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    assert str(blocker) in result.stderr and result.stderr.count("\n") == 1
+    assert blocker.read_text() == "not a folder"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["taken"]  # no staging left behind
+
+
 def test_bad_record_file_names_file_and_leaves_no_output(tmp_path):
     bad = tmp_path / "bad.AT2"
     bad.write_text("PEER\nx\nACCELERATION IN UNITS OF G\nNPTS=   4, DT= .01 SEC\n.1 .2 .3\n")

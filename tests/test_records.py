@@ -85,10 +85,21 @@ def test_folder_of_at2_files(records_dir):
 
 def test_unit_conversion(tmp_path):
     path = tmp_path / "a.txt"
-    path.write_text("% test\n981\t-490.5\n0 0\n")
+    path.write_text("% test\n981\t-4.905\n0 0\n")
     assert read_columns(path, 1, 0.01, "cm/s2").acceleration[0] == pytest.approx(9.81)
-    assert read_columns(path, 2, 0.01, "m/s2").acceleration[0] == pytest.approx(-490.5)
-    assert read_columns(path, 1, 0.01, "g").pga_g == pytest.approx(981)
+    assert read_columns(path, 2, 0.01, "m/s2").acceleration[0] == pytest.approx(-4.905)
+    assert read_columns(path, 2, 0.01, "g").pga_g == pytest.approx(4.905)
+
+
+def test_wrong_units_are_caught(records_dir, tmp_path):
+    """A cm/s² file declared in g would be an 84 g record: refused, naming file and field."""
+    with pytest.raises(InputError, match=r"rinaldi.txt: units: read as 'g', the PGA would be 8"):
+        read_columns(records_dir / "raw/rinaldi.txt", 1, 0.005, "g")
+    manifest = tmp_path / "m.toml"
+    manifest.write_text(f'[[record]]\nid = "r"\nfile = "{records_dir / "raw/rinaldi.txt"}"\n'
+                        'format = "columns"\ndt = 0.005\nunits = "m/s2"\n')
+    with pytest.raises(InputError, match="units: read as 'm/s2'"):
+        load_manifest(manifest)
 
 
 def test_pulse_shapes():
