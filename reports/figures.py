@@ -244,7 +244,9 @@ def draw_procedure_comparison(fig, results, spectra, title, procedure_title):
         exact = np.where(exact_over, np.nan, rows["exact_theta"].to_numpy() / alpha_rad)
         approx = rows["approx_theta"].to_numpy(dtype=float) / alpha_rad
         ax = axes[row, 1]
-        ax.plot(size, exact, color="#333333", lw=1.2, label="exact")
+        no_file = rows["exact_theta"].isna().all()
+        ax.plot(size, exact, color="#333333", lw=1.2,
+                label="exact: no record file" if no_file else "exact")
         ax.plot(size, approx, color=colour, lw=1, ls="--", label=procedure_title)
         _mark_overturned(ax, size, np.full(size.shape, 1.0), exact_over, "#333333")
         if approx_over.any():
