@@ -199,25 +199,16 @@ def cmd_spectrum(args) -> int:
         damping = np.array(_float_list(args.damping, "--damping")) / 100.0
         periods = _grid(args.periods, "--periods", allow_zero=True)
         spectra = response_spectra(motion, periods, damping, args.free_motion)
-        import pandas as pd
-        frame = pd.concat([pd.DataFrame({
-            "period_s": spectra.period_s, "damping": d, "sd": spectra.sd[i], "sv": spectra.sv[i],
-            "sa": spectra.sa[i], "psv": spectra.pseudo_velocity[i],
-            "psa": spectra.pseudo_acceleration[i]}) for i, d in enumerate(damping)])
+        frame = spectra.to_frame()
         if args.plot:
             from reports.figures import draw_response_spectra
             _plot_to(args.plot, lambda fig: draw_response_spectra(fig, frame, motion.id))
     else:
         from audit.rocking import rocking_spectrum
-        spectrum = rocking_spectrum(motion, _sizes(args.sizes), np.radians(_alphas_deg(args.alpha)),
+        alphas = np.radians(_alphas_deg(args.alpha))
+        spectrum = rocking_spectrum(motion, _sizes(args.sizes), alphas,
                                     free_motion_s=args.free_motion, jobs=args.jobs)
-        import pandas as pd
-        frame = pd.concat([pd.DataFrame({
-            "alpha_deg": np.degrees(a), "size_s": spectrum.size_s, "p": spectrum.p,
-            "theta_peak": spectrum.theta_peak[i], "theta_ratio": spectrum.theta_ratio[i],
-            "overturned": spectrum.overturned[i], "omega_peak": spectrum.omega_peak[i],
-            "theta_after": spectrum.theta_after[i], "uplifted": spectrum.uplifted[i]})
-            for i, a in enumerate(spectrum.alpha_rad)])
+        frame = spectrum.to_frame()
         if args.plot:
             from reports.figures import draw_rocking_spectra
             _plot_to(args.plot, lambda fig: draw_rocking_spectra(fig, frame, motion.id))
@@ -351,7 +342,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--sizes", default="0.5:8:0.05", metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s]")
     p.add_argument("--out", metavar="DIR", help=f"output directory (default {DEFAULT_OUT}/PROCEDURE)")
-    p.add_argument("--jobs", type=int, default=2, help="threads for the exact solver (default 2)")
+    p.add_argument("--jobs", type=int, default=2,
+                   help="threads for the exact solver and processes drawing the report (default 2)")
     p.add_argument("--free-motion", type=float, default=10.0, metavar="S",
                    help="free motion after each record [s] (default 10)")
     p.set_defaults(func=cmd_run)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numba
 import numpy as np
+import pandas as pd
 from scipy.linalg import expm
 
 from audit.errors import InputError
@@ -112,6 +113,13 @@ class ResponseSpectra:
         with np.errstate(divide="ignore", invalid="ignore"):
             return np.where(self.period_s > 0, (2.0 * np.pi / self.period_s) ** 2 * self.sd,
                             self.sa)
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per (damping, period): ``period_s, damping, sd, sv, sa, psv, psa``."""
+        return pd.concat([pd.DataFrame({
+            "period_s": self.period_s, "damping": damping, "sd": self.sd[i], "sv": self.sv[i],
+            "sa": self.sa[i], "psv": self.pseudo_velocity[i], "psa": self.pseudo_acceleration[i]})
+            for i, damping in enumerate(self.damping)], ignore_index=True)
 
     def displacement_at(self, period_s, damping_index: int) -> np.ndarray:
         """Sd [m] at arbitrary periods [s] by linear interpolation in T.

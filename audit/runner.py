@@ -41,8 +41,8 @@ DEFAULT_SIZES = (0.5, 8.0, 0.05)
 FIGURE_5_DAMPING = (0.05, 0.10, 0.15)
 #: Periods on which procedures read record spectra (interpolated in between) [s].
 SPECTRUM_PERIODS_S = np.concatenate(([0.0], np.geomspace(0.01, 100.0, 800)))
-#: Longest period of the stored procedure spectra [s].
-PROCEDURE_SPECTRUM_MAX_S = 20.0
+#: Periods of the stored procedure spectra (Figures 8.x, 9.x): up to 20 s [s].
+PROCEDURE_SPECTRUM_PERIODS_S = SPECTRUM_PERIODS_S[SPECTRUM_PERIODS_S <= 20.0]
 #: Samples kept per stored time history.
 HISTORY_POINTS = 3000
 
@@ -213,12 +213,7 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
         if motion is not None:
             exact = rocking_spectrum(motion, sizes, alpha_rad, g=g, free_motion_s=free_motion_s,
                                      jobs=jobs)
-            rocking_frames.extend(pd.DataFrame({
-                "record": entry.id, "alpha_deg": alpha_deg[i], "size_s": sizes, "p": p,
-                "theta_peak": exact.theta_peak[i], "theta_ratio": exact.theta_ratio[i],
-                "overturned": exact.overturned[i], "omega_peak": exact.omega_peak[i],
-                "theta_after": exact.theta_after[i], "uplifted": exact.uplifted[i]})
-                for i in range(alpha_rad.size))
+            rocking_frames.append(exact.to_frame().assign(record=entry.id)[ROCKING_COLUMNS])
             for damping in FIGURE_5_DAMPING:
                 spectra_frames.append(_spectra_rows(entry.id, "", context.true_spectra(damping)))
         for procedure in procedures:
@@ -235,12 +230,12 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
                 r = float(coefficient_of_restitution(alpha))
                 estimate = procedure.estimate(entry, p, alpha, r, context, g)
                 # the spectrum this procedure read, whatever its source (Figures 8.x, 9.x)
-                periods = SPECTRUM_PERIODS_S[SPECTRUM_PERIODS_S <= PROCEDURE_SPECTRUM_MAX_S]
-                sd = procedure.displacement_spectrum(entry, estimate.damping, context)(periods)
+                sd = procedure.displacement_spectrum(entry, estimate.damping,
+                                                     context)(PROCEDURE_SPECTRUM_PERIODS_S)
                 spectra_frames.append(pd.DataFrame({
                     "record": entry.id, "procedure": procedure.name, "alpha_deg": alpha_deg[i],
-                    "damping": estimate.damping, "period_s": periods, "sd": sd,
-                    "sv": np.nan, "sa": np.nan}))
+                    "damping": estimate.damping, "period_s": PROCEDURE_SPECTRUM_PERIODS_S,
+                    "sd": sd, "sv": np.nan, "sa": np.nan}))
                 frames.append(_result_rows(entry.id, procedure.name, alpha_deg[i], sizes, p,
                                            estimate, exact, i))
         if exact is not None:
@@ -259,7 +254,7 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
                     "peak_rotation_ratio": response.peak_rotation_ratio,
                     "excitation_end": response.excitation_end})
     progress.done()
-    results = pd.concat(frames, ignore_index=True) if frames else _empty_results()
+    results = _concat(frames, RESULT_COLUMNS)
     summary = {
         "version": __version__,
         "procedures": [{"name": proc.name, "title": proc.title, "reference": proc.reference,
@@ -280,33 +275,29 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
         "statistics": _statistics(results),
         "histories": histories_meta,
     }
-    return AuditRun(results, pd.concat(spectra_frames, ignore_index=True) if spectra_frames
-                    else pd.DataFrame(columns=["record", "procedure", "alpha_deg", "damping",
-                                               "period_s", "sd", "sv", "sa"]),
-                    pd.concat(history_frames, ignore_index=True) if history_frames
-                    else pd.DataFrame(columns=["record", "alpha_deg", "size_s", "t",
-                                               "theta_ratio", "omega"]),
-                    pd.concat(rocking_frames, ignore_index=True) if rocking_frames
-                    else pd.DataFrame(columns=ROCKING_COLUMNS),
-                    summary)
+    return AuditRun(results, _concat(spectra_frames, SPECTRA_COLUMNS),
+                    _concat(history_frames, HISTORY_COLUMNS),
+                    _concat(rocking_frames, ROCKING_COLUMNS), summary)
+
+
+def _concat(frames, columns) -> pd.DataFrame:
+    """The frames one after the other, or an empty frame with the columns when there are none."""
+    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=columns)
 
 
 def _spectra_rows(record_id, procedure_name, spectra):
-    return pd.DataFrame({"record": record_id, "procedure": procedure_name, "alpha_deg": np.nan,
-                         "damping": spectra.damping[0], "period_s": spectra.period_s,
-                         "sd": spectra.sd[0], "sv": spectra.sv[0], "sa": spectra.sa[0]})
+    return spectra.to_frame().assign(record=record_id, procedure=procedure_name,
+                                     alpha_deg=np.nan)[SPECTRA_COLUMNS]
 
 
+SPECTRA_COLUMNS = ["record", "procedure", "alpha_deg", "damping", "period_s", "sd", "sv", "sa"]
+HISTORY_COLUMNS = ["record", "alpha_deg", "size_s", "t", "theta_ratio", "omega"]
 ROCKING_COLUMNS = ["record", "alpha_deg", "size_s", "p", "theta_peak", "theta_ratio",
                    "overturned", "omega_peak", "theta_after", "uplifted"]
 RESULT_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "p", "exact_theta",
                   "exact_overturned", "approx_theta", "approx_overturned", "approx_period",
                   "iterations", "verdict", "ratio", "exact_omega", "exact_uplifted",
                   "approx_outcome", "approx_detail", "beta"]
-
-
-def _empty_results():
-    return pd.DataFrame(columns=RESULT_COLUMNS)
 
 
 def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact, i):
