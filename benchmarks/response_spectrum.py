@@ -12,7 +12,7 @@ import time
 import numpy as np
 from scipy import signal
 
-from audit.oscillator import response_spectra
+from audit.physics.oscillator import response_spectra
 from records import load_records
 
 

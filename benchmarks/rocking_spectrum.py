@@ -1,9 +1,9 @@
 """Speed and accuracy of the exact rocking solver against a plain solve_ivp implementation.
 
-(a) :func:`audit.reference.simulate_reference` — scipy ``solve_ivp`` with DOP853, rtol 1e-10,
+(a) :func:`audit.physics.reference.simulate_reference` — scipy ``solve_ivp`` with DOP853, rtol 1e-10,
     atol 1e-13, max_step = record dt, events for impacts, turning points and overturning — on a
     sample of blocks of the default grid;
-(b) the project's :func:`audit.rocking.rocking_spectrum` on the full default grid
+(b) the project's :func:`audit.physics.rocking.rocking_spectrum` on the full default grid
     (α = 10, 15, 20°; 2π/p = 0.5 … 8 s step 0.05) of ``pacoima_dam_1971``;
 then the whole seed suite's spectra. A sampled block counts as "near the overturning boundary"
 when scaling the record by 0.99 or 1.01 changes whether it overturns.
@@ -16,10 +16,10 @@ import time
 
 import numpy as np
 
-from audit.block import RigidBlock
-from audit.reference import simulate_reference
-from audit.rocking import rocking_spectrum, simulate
-from audit.runner import DEFAULT_ALPHA_DEG, DEFAULT_SIZES, size_grid
+from audit.physics.block import RigidBlock
+from audit.physics.reference import simulate_reference
+from audit.physics.rocking import rocking_spectrum, simulate
+from audit.engine.grid import DEFAULT_ALPHA_DEG, DEFAULT_SIZES, size_grid
 from records import GroundMotion, load_records
 
 

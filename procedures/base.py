@@ -20,8 +20,8 @@ from typing import Callable, ClassVar
 import numpy as np
 
 from audit import G
-from audit.block import radius_from_p
-from audit.damping import housner_period
+from audit.physics.block import radius_from_p
+from audit.physics.damping import housner_period
 
 #: Initial guess θ₀/α of the iteration: a small rotation, so the iteration climbs to the
 #: smallest non-trivial fixed point (θ = 0 is always one, and unstable when the block uplifts).
@@ -185,7 +185,7 @@ class Procedure:
             Slenderness α [rad].
         r : float
             Coefficient of restitution [-].
-        context : audit.runner.RecordContext
+        context : audit.engine.runner.RecordContext
             Cache of the record's spectra.
         """
         p = np.asarray(p, dtype=float)

@@ -9,8 +9,8 @@ block only, not on the recorded motion.
 from __future__ import annotations
 
 from audit import G
-from audit.damping import damping_fema356
-from audit.design_spectra import FEMA356Spectrum
+from audit.physics.damping import damping_fema356
+from audit.physics.design_spectra import FEMA356Spectrum
 from procedures.base import Procedure
 
 

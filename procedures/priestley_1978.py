@@ -6,7 +6,7 @@ displacement spectrum of the record itself at that damping.
 
 from __future__ import annotations
 
-from audit.damping import damping_priestley
+from audit.physics.damping import damping_priestley
 from procedures.base import Procedure
 
 

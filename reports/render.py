@@ -1,4 +1,4 @@
-"""The self-contained HTML audit report (SPEC §8), rendered from an :class:`~audit.runner.AuditRun`.
+"""The self-contained HTML audit report (SPEC §8), rendered from an :class:`~audit.engine.runner.AuditRun`.
 
 Figures are drawn with matplotlib and embedded as base64 PNG; the page references nothing
 outside itself, so it opens offline and can be attached to a design review.
@@ -16,12 +16,12 @@ import pandas as pd
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from audit import G
-from audit.block import RigidBlock, coefficient_of_restitution
-from audit.damping import damping_fema356, damping_free_rocking, damping_priestley
-from audit.design_spectra import FEMA356Spectrum, UBC97Spectrum
-from audit.oscillator import oscillator_history
-from audit.rocking import simulate
-from audit.runner import VERDICTS
+from audit.physics.block import RigidBlock, coefficient_of_restitution
+from audit.physics.damping import damping_fema356, damping_free_rocking, damping_priestley
+from audit.physics.design_spectra import FEMA356Spectrum, UBC97Spectrum
+from audit.physics.oscillator import oscillator_history
+from audit.physics.rocking import simulate
+from audit.engine.runner import VERDICTS
 from records import one_pulse
 from reports import figures
 
@@ -240,8 +240,8 @@ def render_report(run, generated: datetime | None = None, processes: int = 2) ->
 
     Parameters
     ----------
-    run : audit.runner.AuditRun
-        Results of ``run_audit`` or of ``audit.results.load_run``.
+    run : audit.engine.runner.AuditRun
+        Results of ``run_audit`` or of ``audit.engine.results.load_run``.
     generated : datetime, optional
         Time stamp printed in the report (default: now, UTC).
     processes : int

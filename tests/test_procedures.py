@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from audit.block import coefficient_of_restitution, radius_from_p
-from audit.damping import housner_period
+from audit.physics.block import coefficient_of_restitution, radius_from_p
+from audit.physics.damping import housner_period
 from audit.errors import InputError
-from audit.runner import RecordContext, run_audit, size_grid
+from audit.engine.grid import size_grid
+from audit.engine.runner import RecordContext, run_audit
 from procedures import available_procedures, get_procedures, iterate_rotation
 from procedures.fema_356 import FEMA356
 from procedures.priestley_1978 import PriestleyEvisonCarr1978

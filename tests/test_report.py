@@ -9,8 +9,8 @@ from html.parser import HTMLParser
 
 import pytest
 
-from audit.results import load_run, save_run
-from audit.runner import run_audit
+from audit.engine.results import load_run, save_run
+from audit.engine.runner import run_audit
 from procedures import get_procedures
 from reports import render_report
 

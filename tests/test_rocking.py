@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 from audit import G
-from audit.block import RigidBlock, coefficient_of_restitution, frequency_parameter
-from audit.damping import housner_peak_ratio, housner_period
+from audit.physics.block import RigidBlock, coefficient_of_restitution, frequency_parameter
+from audit.physics.damping import housner_peak_ratio, housner_period
 from audit.errors import InputError
-from audit.reference import simulate_reference
-from audit.rocking import rocking_spectrum, simulate
+from audit.physics.reference import simulate_reference
+from audit.physics.rocking import rocking_spectrum, simulate
 from records import GroundMotion, one_pulse
 
 

@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from audit.block import coefficient_of_restitution
-from audit.damping import (damping_fema356, damping_free_rocking, damping_priestley,
+from audit.physics.block import coefficient_of_restitution
+from audit.physics.damping import (damping_fema356, damping_free_rocking, damping_priestley,
                            housner_period, housner_rotation_ratio)
-from audit.design_spectra import FEMA356_TABLE_1_6, FEMA356Spectrum, UBC97Spectrum, \
+from audit.physics.design_spectra import FEMA356_TABLE_1_6, FEMA356Spectrum, UBC97Spectrum, \
     fema356_damping_coefficients
-from audit.oscillator import oscillator_history, response_spectra
+from audit.physics.oscillator import oscillator_history, response_spectra
 from records import GroundMotion
 
 DT = 0.001

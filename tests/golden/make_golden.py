@@ -1,6 +1,6 @@
 """Derive the golden audit values of ``seed_blocks.csv`` by a path independent of the tool.
 
-- exact θ: :func:`audit.reference.simulate_reference` (scipy ``solve_ivp``, DOP853, events),
+- exact θ: :func:`audit.physics.reference.simulate_reference` (scipy ``solve_ivp``, DOP853, events),
   not the fast solver;
 - Priestley's spectrum: ``scipy.signal.lsim`` (first-order hold) at each period the iteration
   asks for, not the tool's recurrence and interpolation;
@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 from scipy import signal
 
-from audit.block import RigidBlock
-from audit.reference import simulate_reference
+from audit.physics.block import RigidBlock
+from audit.physics.reference import simulate_reference
 from records import load_records
 
 G = 9.81

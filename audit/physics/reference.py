@@ -1,6 +1,6 @@
 """A slow, independent reference solver of the rocking block, built on ``scipy.integrate``.
 
-It solves the same physics as :mod:`audit.rocking` (Eq. 4.3, uplift, impacts with √r,
+It solves the same physics as :mod:`audit.physics.rocking` (Eq. 4.3, uplift, impacts with √r,
 rest, overturning) by a different route: ``solve_ivp`` with DOP853 and its event location,
 the record interpolated by ``numpy.interp``. It exists to check the fast solver (tests, golden
 values, ``benchmarks/rocking_spectrum.py``), not for production runs: it is ~1000× slower.
@@ -13,7 +13,7 @@ import math
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from audit.rocking import DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE
+from audit.physics.rocking import DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE
 
 
 def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION_S,
@@ -23,7 +23,7 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
 
     Parameters
     ----------
-    block : audit.block.RigidBlock
+    block : audit.physics.block.RigidBlock
     motion : records.GroundMotion
         Ground acceleration [m/s²], linear between samples.
     free_motion_s : float

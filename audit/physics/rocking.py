@@ -32,7 +32,7 @@ import numba
 import numpy as np
 import pandas as pd
 
-from audit.block import RigidBlock, coefficient_of_restitution
+from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.errors import InputError
 
 #: Free motion simulated after the end of the excitation [s].

@@ -17,26 +17,24 @@ gets one verdict:
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from audit import G, __version__
-from audit.block import coefficient_of_restitution
-from audit.oscillator import response_spectra
-from audit.progress import Progress
-from audit.block import RigidBlock
-from audit.rocking import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
+from audit.physics.block import coefficient_of_restitution
+from audit.physics.oscillator import response_spectra
+from audit.engine.grid import DEFAULT_ALPHA_DEG, DEFAULT_SIZES, size_grid
+from audit.engine.progress import Progress
+from audit.physics.block import RigidBlock
+from audit.physics.rocking import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
                            DEFAULT_STEPS_PER_RADIAN, rocking_spectrum, simulate)
 from procedures.base import (INITIAL_ROTATION_RATIO, MAX_ITERATIONS, NO_UPLIFT,
                              NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO)
 
 VERDICTS = ("no-uplift", "both-overturn", "false-overturn", "missed-overturn", "conservative",
             "unconservative", "not-converged", "record-missing")
-DEFAULT_ALPHA_DEG = (10.0, 15.0, 20.0)
-DEFAULT_SIZES = (0.5, 8.0, 0.05)
 #: Damping ratios of the response spectra of Figures 5.x.
 FIGURE_5_DAMPING = (0.05, 0.10, 0.15)
 #: Periods on which procedures read record spectra (interpolated in between) [s].
@@ -46,11 +44,6 @@ PROCEDURE_SPECTRUM_PERIODS_S = SPECTRUM_PERIODS_S[SPECTRUM_PERIODS_S <= 20.0]
 #: Samples kept per stored time history.
 HISTORY_POINTS = 3000
 
-
-def size_grid(start: float, stop: float, step: float) -> np.ndarray:
-    """Sizes 2π/p from ``start`` to ``stop`` inclusive [s], rounded to the step's decimals."""
-    count = int(math.floor((stop - start) / step + 1e-9)) + 1
-    return np.round(start + step * np.arange(count), 10)
 
 
 class RecordContext:

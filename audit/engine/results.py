@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 
 from audit.errors import InputError
-from audit.runner import RESULT_COLUMNS, AuditRun
+from audit.engine.runner import RESULT_COLUMNS, AuditRun
 
 RESULTS_CSV = "results.csv"
 SUMMARY_JSON = "summary.json"

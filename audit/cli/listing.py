@@ -1,0 +1,31 @@
+"""``python -m audit list``: registered procedures and the records of the record source."""
+
+from __future__ import annotations
+
+from audit.cli import options
+
+
+def add_parser(sub):
+    p = sub.add_parser("list", help="registered procedures and the records of the record source")
+    options.add_records_option(p)
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from procedures import available_procedures
+    print("Procedures:")
+    for name, cls in available_procedures().items():
+        print(f"  {name:<16} {cls.title} — {cls.damping_law}; {cls.spectrum_source}")
+    suite = options.suite(args)
+    print(f"\nRecords ({suite.description}):")
+    for entry in suite:
+        if entry.missing:
+            state = f"MISSING: {entry.missing_reason}"
+        else:
+            m = entry.motion
+            state = (f"PGA {m.pga_g:.3f} g, PGV {m.pgv:.2f} m/s, dt {m.dt:g} s, "
+                     f"{m.duration:.1f} s — {m.source}")
+        site = (f" [FEMA site {entry.site.get('site_class') or '?'}: S_XS {entry.site['sxs_g']:g} g, "
+                f"S_X1 {entry.site['sx1_g']:g} g]" if entry.site.get("sxs_g") else "")
+        print(f"  {entry.id:<20} {entry.name}: {state}{site}")
+    return 0
