@@ -65,6 +65,16 @@ RESULT_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "p_rad_s", "exac
                   "approx_theta_rad", "approx_overturned", "approx_period_s", "approx_outcome",
                   "approx_fixed_points", "approx_cycle", "approx_detail", "iterations",
                   "beta_pct", "verdict", "ratio"]
+#: ``checks.csv``: limit-state checks of check-type procedures (e.g. NTC 2018), one row per
+#: procedure × record × α × size × limit state.
+CHECK_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "limit_state", "exact_event",
+                 "procedure_passes", "exact_exceeded", "verdict", "demand_m", "capacity_m"]
+#: ``suite.csv``: verdict statistics over the records, one row per procedure × α × size.
+SUITE_COLUMNS = (["procedure", "alpha_deg", "size_s", "records"]
+                 + [f"frac_{v.replace('-', '_')}" for v in VERDICTS]
+                 + ["frac_unsafe", "ratio_p16", "ratio_p50", "ratio_p84"])
+#: ``claims.csv``: the reproduction checklist of the reference report.
+CLAIM_COLUMNS = ["id", "section", "claim", "reference_value", "tool_value", "status", "note"]
 #: Columns holding booleans in ``results.csv`` (``exact_fragile`` is empty when not checked).
 BOOLEAN_COLUMNS = ("exact_overturned", "exact_uplifted", "exact_fragile", "approx_overturned")
 
@@ -184,6 +194,12 @@ class AuditRun:
         of ``results`` that an estimate has.
     summary : dict
         Settings, records, unauditable records, per-record statistics (``summary.json``).
+    checks : pandas.DataFrame
+        Limit-state checks (:data:`CHECK_COLUMNS`), empty when no procedure makes any.
+    suite : pandas.DataFrame
+        Verdict statistics across the records (:data:`SUITE_COLUMNS`).
+    claims : pandas.DataFrame
+        The reproduction checklist of the reference report (:data:`CLAIM_COLUMNS`).
     """
 
     results: pd.DataFrame
@@ -192,6 +208,9 @@ class AuditRun:
     rocking: pd.DataFrame
     estimates_only: pd.DataFrame
     summary: dict = field(default_factory=dict)
+    checks: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=CHECK_COLUMNS))
+    suite: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=SUITE_COLUMNS))
+    claims: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=CLAIM_COLUMNS))
 
 
 @dataclass
