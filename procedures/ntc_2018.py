@@ -141,7 +141,6 @@ class NTC2018(Procedure):
     spectrum_source = ("NTC 2018 elastic displacement spectrum S_De (Eqs. 3.2.2–3.2.12) of the "
                        "site, or the record's largest Sd over [0, T_LS]; read at T_SLV "
                        "[C8.7.1.10] and T_SLC [C8.7.1.11]")
-    figure_series = "10"
 
     def __post_init__(self):
         if self.demand not in (AUTO, RECORD_BASED, CODE_SPECTRUM):
