@@ -160,8 +160,8 @@ def test_run_and_rerender(tmp_path, monkeypatch, capsys):
     assert list(results.columns[:12]) == [
         "record", "procedure", "alpha_deg", "size_s", "p", "exact_theta", "exact_overturned",
         "approx_theta", "approx_overturned", "approx_period", "iterations", "verdict"]
-    # 7 pulse records × 4 sizes for Priestley, 5 with site parameters for FEMA
-    assert len(results) == 7 * 4 + 5 * 4
+    # 7 pulse records × 4 sizes for Priestley and NTC 2018, 5 with site parameters for FEMA
+    assert len(results) == 7 * 4 + 5 * 4 + 7 * 4
     overturn_rows = results[results["approx_overturned"]]
     assert overturn_rows["approx_theta"].isna().all()
     summary = json.loads((out / "summary.json").read_text())
