@@ -222,8 +222,8 @@ class Procedure:
 # ---------------------------------------------------------------------------------------------
 
 #: Exact events a check is audited against.
-EXACT_UPLIFT = "uplift"  #: the exact block uplifts
-EXACT_ROTATION = "rotation"  #: exact max θ ≥ the check's ``theta_limit_rad``, or overturning
+EXACT_UPLIFT = "uplift"  # the exact block uplifts
+EXACT_ROTATION = "rotation"  # exact max θ ≥ the check's ``theta_limit_rad``, or overturning
 
 # Verdicts of a check against the exact response.
 AGREES_SAFE = "agrees-safe"

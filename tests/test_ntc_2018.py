@@ -312,3 +312,17 @@ def test_runner_audits_the_rotation_on_a_pulse():
     # α = 30°: g tan α = 0.577 g > 0.5 g: neither rocks
     assert set(rows.loc[rows["alpha_deg"] == 30.0, "verdict"]) == {"no-uplift"}
     assert (rows.loc[rows["alpha_deg"] == 10.0, "beta"] == 0.08).all()
+
+
+def test_design_spectrum_cli_prints_the_ntc_spectrum(capsys):
+    from audit.cli import main
+    assert main(["design-spectrum", "ntc2018", "--ag", "0.25", "--f0", "2.4", "--tc-star", "0.3",
+                 "--soil", "B", "--topography", "T2", "--damping", "5,8",
+                 "--periods", "0:6:0.5"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "period_s,damping,sa_g,sd"
+    for line in lines[1:]:
+        period, damping, sa_g, sd = map(float, line.split(","))
+        se, sde = hand_ntc(period, 0.25, 2.4, 0.3, 100 * damping, s_t=1.2)
+        assert sa_g == pytest.approx(se, rel=1e-6) and sd == pytest.approx(sde, rel=1e-6, abs=1e-9)
+    assert len(lines) == 1 + 2 * 13
