@@ -166,8 +166,8 @@ def test_run_and_rerender(tmp_path, monkeypatch, capsys):
         assert results[column].dtype == bool, column
     guide = json.loads((out / "columns.json").read_text())
     assert set(guide["results.csv"]) == set(results.columns)
-    # 7 pulse records × 4 sizes for Priestley, 5 with site parameters for FEMA
-    assert len(results) == 7 * 4 + 5 * 4
+    # 7 pulse records × 4 sizes for Priestley and NTC 2018, 5 with site parameters for FEMA
+    assert len(results) == 7 * 4 + 5 * 4 + 7 * 4
     overturn_rows = results[results["approx_overturned"]]
     assert overturn_rows["approx_theta_rad"].isna().all()
     summary = json.loads((out / "summary.json").read_text())
