@@ -22,7 +22,39 @@ def add_parser(sub):
                    help="threads for the exact solver and processes drawing the report (default 2)")
     p.add_argument("--free-motion", type=float, default=10.0, metavar="S",
                    help="free motion after each record [s] (default 10)")
+    p.add_argument("--site", metavar="SXS,SX1",
+                   help="FEMA 356 design site S_XS,S_X1 [g] (§1.6) for every record without one")
+    p.add_argument("--site-override", action="store_true",
+                   help="with --site: also replace the sites records carry (Table 3.1)")
+    p.add_argument("--scale-to-site", action="store_true",
+                   help="with --site: scale the suite the FEMA P695 way to the design spectrum")
+    p.add_argument("--anchor-period", type=float, metavar="S",
+                   help="with --scale-to-site: period where the suite median meets the design "
+                        "spectrum [s] (default 1)")
     p.set_defaults(func=run)
+
+
+def design_site(args, suite):
+    """``suite`` with the design site and scaling of ``--site``, ``--site-override``,
+    ``--scale-to-site`` and ``--anchor-period``."""
+    from audit.errors import InputError
+    from records import scale_to_site, with_design_site
+    if args.anchor_period is not None and not args.scale_to_site:
+        raise InputError("--anchor-period: needs --scale-to-site")
+    if not args.site:
+        if args.site_override or args.scale_to_site:
+            raise InputError("--site-override and --scale-to-site need --site SXS,SX1")
+        return suite
+    site = options.float_list(args.site, "--site")
+    if len(site) != 2:
+        raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
+    sxs_g, sx1_g = (options.positive(value, "--site") for value in site)
+    suite = with_design_site(suite, sxs_g, sx1_g, override=args.site_override)
+    if args.scale_to_site:
+        anchor = options.positive(1.0 if args.anchor_period is None else args.anchor_period,
+                                  "--anchor-period")
+        suite = scale_to_site(suite, sxs_g, sx1_g, anchor)
+    return suite
 
 
 def run(args) -> int:
@@ -32,7 +64,7 @@ def run(args) -> int:
     from procedures import get_procedures
     from reports import render_report
     procedures = get_procedures(args.procedure)
-    suite = options.suite(args)
+    suite = design_site(args, options.suite(args))
     sizes = options.sizes(args.sizes)
     alphas = options.alphas_deg(args.alpha)
     out_dir = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
