@@ -235,7 +235,7 @@ def record_summary(entry) -> dict:
     motion, facts = entry.motion, entry.facts
     item = {"id": entry.id, "name": entry.name, "component": entry.component,
             "missing": entry.missing, "missing_reason": entry.missing_reason, "site": entry.site,
-            "metadata": dict(getattr(entry, "metadata", None) or {})}
+            "metadata": entry.metadata}
     if facts is not None:
         item["table_5_1"] = {"pga_g": facts.pga_g, "pgv_m_s": facts.pgv_ms,
                              "pulse_period_s": facts.pulse_period_s}
@@ -411,8 +411,9 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
         "records_source": suite.description,
         "pulse_idealised": suite.is_pulse_idealised,
         "records": [record_summary(entry) for entry in suite],
-        "rejected_records": list(getattr(suite, "rejected", ()) or ()),
-        "scaling": getattr(suite, "scaling", None),
+        "rejected_records": list(getattr(suite, "rejected", ())),
+        "design_site": suite.design_site,
+        "scaling": suite.scaling,
         "unauditable": [item for part in parts for item in part.unauditable],
         "grid": {"alpha_deg": list(settings.alpha_deg), "size_s": list(settings.size_s)},
         "settings": {
