@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import io
 import json
 import math
+import sys
+from pathlib import Path
 
 from audit.cli import options
 from audit.errors import InputError
@@ -44,7 +47,8 @@ def run(args) -> int:
         "peak_rotation": response.peak_rotation,
         "peak_rotation_ratio": response.peak_rotation_ratio,
         "peak_rotation_after_excitation": response.peak_rotation_after_excitation,
-        "peak_rotation_free_vibration": _number_or_none(response.peak_rotation_free_vibration),
+        "peak_rotation_free_vibration": None if math.isnan(response.peak_rotation_free_vibration)
+        else response.peak_rotation_free_vibration,
         "peak_angular_velocity": response.peak_angular_velocity,
         "impacts": response.n_impacts,
         "cycle_durations": response.cycle_durations.tolist(),
@@ -91,20 +95,12 @@ def run(args) -> int:
     return 0
 
 
-def _number_or_none(value: float):
-    return None if math.isnan(value) else value
-
-
 def write_history(path: str, response, motion) -> None:
     """The response at every solver output point as CSV, written atomically to ``path``.
 
     Columns ``time_s, theta_rad, theta_dot_rad_s, ground_acc_g``; an impact appears twice at
     its time (θ' before, then after); nothing after overturning.
     """
-    import io
-    import sys
-    from pathlib import Path
-
     import numpy as np
 
     from audit import G
