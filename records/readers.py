@@ -9,16 +9,21 @@ from __future__ import annotations
 import hashlib
 import math
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
 
 from audit import G
-from audit.errors import InputError
+from audit.errors import InputError, InputWarning
 from records.motion import GroundMotion
 
 #: No strong-motion record exceeds ~4.4 g; a larger PGA means the declared units are wrong.
 PLAUSIBLE_PGA_G = 6.0
+#: A record this weak rocks nothing; below it the declared units are probably wrong (warning).
+SMALL_PGA_G = 0.005
+#: Sampling steps accepted from files and manifests [s]: 10 kHz to 1 Hz.
+MIN_DT_S, MAX_DT_S = 1e-4, 1.0
 
 #: Factor from each accepted unit name to m/s².
 UNIT_FACTORS = {"g": G, "cm/s2": 0.01, "m/s2": 1.0}
@@ -58,38 +63,50 @@ def units_in_text(text: str) -> str | None:
 
 
 def _checked(motion: GroundMotion, units: str) -> GroundMotion:
-    """The motion, unless its PGA shows that ``units`` cannot be right."""
+    """The motion, unless its PGA shows that ``units`` cannot be right; a warning where the
+    PGA is implausibly small for them."""
     if motion.pga_g > PLAUSIBLE_PGA_G:
         raise InputError(f"{motion.source}: units: read as '{units}', the PGA would be "
                          f"{motion.pga_g:.3g} g, beyond any recorded motion; are the units right?")
+    if motion.pga_g < SMALL_PGA_G:
+        warnings.warn(f"{motion.source}: units: read as '{units}', the PGA is only "
+                      f"{motion.pga_g:.2g} g; are the units right?", InputWarning, stacklevel=3)
     return motion
 
 
 def _read_text(path: Path) -> list[str]:
     try:
-        text = Path(path).read_text(encoding="utf-8", errors="replace")
+        raw = Path(path).read_bytes()
     except FileNotFoundError:
         raise InputError(f"{path}: file not found") from None
+    except IsADirectoryError:
+        raise InputError(f"{path}: is a folder, expected a record file") from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror}") from None
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise InputError(f"{path}: encoding: UTF-16 text; save the record as ASCII or UTF-8")
+    if b"\0" in raw:
+        raise InputError(f"{path}: not a text file (it holds NUL bytes); is it binary?")
+    text = raw.decode("utf-8", errors="replace")
     if not text.strip():
         raise InputError(f"{path}: file is empty")
     return text.splitlines()
 
 
-def _parse_float(token: str, path: Path, line_no: int) -> float:
+def _parse_float(token: str, path: Path, line_no: int, name: str = "value") -> float:
     try:
         value = float(token.replace("D", "E").replace("d", "e"))
     except ValueError:
-        raise InputError(f"{path}: line {line_no}: '{token}' is not a number") from None
+        raise InputError(f"{path}: line {line_no}: {name}: '{token}' is not a number") from None
     if not math.isfinite(value):
-        raise InputError(f"{path}: line {line_no}: value '{token}' is not finite")
+        raise InputError(f"{path}: line {line_no}: {name}: '{token}' is not finite")
     return value
 
 
 def _check_dt(dt: float, path: Path) -> float:
-    if not (math.isfinite(dt) and dt > 0):
-        raise InputError(f"{path}: dt: must be a positive number of seconds, got {dt}")
+    if not (math.isfinite(dt) and MIN_DT_S <= dt <= MAX_DT_S):
+        raise InputError(f"{path}: dt: must be a number of seconds in [{MIN_DT_S:g}, "
+                         f"{MAX_DT_S:g}], got {dt:g}")
     return dt
 
 
@@ -125,7 +142,7 @@ def read_at2(path: str | Path, record_id: str | None = None, component: str = ""
         raise InputError(f"{path}: line 4: expected 'NPTS=..., DT=...' or '<npts> <dt> NPTS, DT', "
                          f"got '{lines[3].strip()}'")
     npts = int(match.group(1))
-    dt = _check_dt(_parse_float(match.group(2), path, 4), path)
+    dt = _check_dt(_parse_float(match.group(2), path, 4, "DT"), path)
     values = [_parse_float(token, path, line_no)
               for line_no, line in enumerate(lines[4:], start=5) for token in line.split()]
     if len(values) != npts:
@@ -174,7 +191,10 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
         found = _DT_COMMENT.search(comments)
         if found is None:
             raise InputError(f"{path}: dt: not stated in the file; give it in a manifest")
-        dt = float(found.group(1))
+        try:
+            dt = float(found.group(1))
+        except ValueError:
+            raise InputError(f"{path}: dt: '{found.group(1)}' in the comments is not a number") from None
     dt = _check_dt(float(dt), path)
     if units is None:
         units = units_in_text(comments)

@@ -11,27 +11,33 @@ from audit.errors import InputError
 
 def add_parser(sub):
     p = sub.add_parser("rock", help="exact rocking response of one block")
-    p.add_argument("--p", type=float, metavar="RAD_PER_S", help="frequency parameter p [rad/s]")
-    p.add_argument("--size", type=float, metavar="SECONDS", help="block size 2π/p [s]")
-    p.add_argument("--alpha", type=float, required=True, metavar="DEG", help="slenderness α [degrees]")
-    p.add_argument("--r", type=float, help="coefficient of restitution (default Eq. 4.8)")
+    p.add_argument("--p", type=options.POSITIVE, metavar="RAD_PER_S",
+                   help="frequency parameter p [rad/s]")
+    p.add_argument("--size", type=options.POSITIVE, metavar="SECONDS", help="block size 2π/p [s]")
+    p.add_argument("--alpha", type=options.number(0, 45, low_open=True, high_open=True),
+                   required=True, metavar="DEG", help="slenderness α [degrees]")
+    p.add_argument("--r", type=options.number(0, 1),
+                   help="coefficient of restitution (default Eq. 4.8)")
     options.add_excitation_options(p)
-    p.add_argument("--duration", type=float, default=10.0, metavar="S",
+    p.add_argument("--duration", type=options.NON_NEGATIVE, default=10.0, metavar="S",
                    help="free motion simulated after the excitation [s] (default 10)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw θ/α and θ' against time")
+    options.add_force_option(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from audit.physics.block import RigidBlock
     from audit.physics.rocking import simulate
+    plot = options.output_file(args.plot, "--plot")
     if (args.p is None) == (args.size is None):
         raise InputError("give the block size: exactly one of --p RAD_PER_S or --size SECONDS")
     alpha = math.radians(args.alpha)
     block = (RigidBlock(args.p, alpha, args.r) if args.p is not None
              else RigidBlock.from_size(args.size, alpha, args.r))
     motion = options.motion(args)
+    options.check_cost(args, [motion], args.duration, blocks=1)
     response = simulate(block, motion, free_motion_s=args.duration)
     result = {
         "record": motion.id, "p": block.p, "size_s": block.size_s, "alpha_deg": args.alpha,
@@ -46,16 +52,16 @@ def run(args) -> int:
         "cycle_durations": response.cycle_durations.tolist(),
         "uplifted": response.uplifted,
     }
-    if args.plot:
+    if plot:
         from reports.figures import draw_time_histories
-        options.plot_to(args.plot, lambda fig: draw_time_histories(fig, [{
+        options.write_outputs({plot: options.figure_png(lambda fig: draw_time_histories(fig, [{
             "time": response.time, "theta_ratio": response.theta / block.alpha,
             "omega": response.omega,
             "title": f"{motion.id}: 2π/p = {block.size_s:.3g} s, α = {args.alpha:g}°",
             "rocking_span": (response.impact_times[0], response.impact_times[-1])
             if response.n_impacts else None,
             "cycle_starts": response.cycle_starts, "cycle_durations": response.cycle_durations,
-            "excitation_end": motion.duration}]), height=3.9)
+            "excitation_end": motion.duration}]), height=3.9)})
     if args.json:
         print(json.dumps(result))
         return 0
