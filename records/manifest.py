@@ -212,17 +212,19 @@ def _collect(readers, description: str, skip_bad: bool) -> RecordSuite:
 
     Strict unless ``skip_bad``: the first bad record's error, with the count of the others.
     """
-    entries, rejected = [], []
+    entries, errors, rejected = [], [], []
     for record, file, read in readers:
         try:
             entries.append(read())
         except InputError as exc:
-            rejected.append({"record": record, "file": file, "reason": str(exc)})
-    if rejected and (not skip_bad or not entries):
-        others = len(rejected) - 1
+            errors.append(str(exc))
+            reason = str(exc).removeprefix(f"{file}: ") if file else str(exc)
+            rejected.append({"record": record, "file": file, "reason": reason})
+    if errors and (not skip_bad or not entries):
+        others = len(errors) - 1
         more = (f" ({others} other record(s) also bad; --skip-bad-records audits the rest)"
                 if others else "")
-        raise InputError(f"{rejected[0]['reason']}{more}")
+        raise InputError(f"{errors[0]}{more}")
     return RecordSuite(tuple(entries), description, rejected=tuple(rejected))
 
 
@@ -301,6 +303,9 @@ def resolve_motion(suite: RecordSuite, record: str) -> RecordEntry:
     """A record given as an id of ``suite`` or as a path to a file."""
     if Path(record).is_file():
         return load_path(record).entries[0]
+    if record not in {e.id for e in suite} and (Path(record).suffix or os.sep in record):
+        raise InputError(f"--record: {record}: file not found (and no record of that id in "
+                         f"{suite.description})")
     entry = suite.get(record)
     if entry.missing:
         raise InputError(f"record '{record}': missing from {suite.description} ({entry.missing_reason})")

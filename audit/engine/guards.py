@@ -58,7 +58,7 @@ def samples_with_tail(motion, free_motion_s: float) -> int:
 
 def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0,
              jobs: int = 1) -> Estimate:
-    """Cost of ``blocks`` exact rocking runs and ``oscillators`` (period × damping) runs per motion.
+    """Cost of ``blocks`` rocking runs and ``oscillators`` (period × damping) runs per motion.
 
     Parameters
     ----------

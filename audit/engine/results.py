@@ -81,7 +81,7 @@ def check_output_dir(out_dir: str | Path, what: str = "--out") -> Path:
 
 
 def check_output_file(path: str | Path, what: str) -> Path:
-    """``path`` if a file can be written there: not a folder, in a writable (or creatable) folder."""
+    """``path`` if a file can be written there: not a folder, in a writable or creatable one."""
     text = str(path)
     path = Path(path)
     if path.is_dir() or text.endswith(("/", os.sep)):
