@@ -100,6 +100,8 @@ def _check_field(fields: dict, key: str, where: str):
     if not isinstance(value, kind) or (isinstance(value, bool) and kind is not bool):
         raise InputError(f"{where}: {key}: expected {expected}, got {_toml_repr(value)}")
     if check is not None and not check(value):
+        if isinstance(value, str) and value:  # a name not in the list
+            raise InputError(f"{where}: {key}: unknown '{value}', expected {expected}")
         raise InputError(f"{where}: {key}: expected {expected}, got {_toml_repr(value)}")
     return value
 

@@ -105,7 +105,7 @@ def _parse_float(token: str, path: Path, line_no: int, name: str = "value") -> f
 
 def _check_dt(dt: float, path: Path) -> float:
     if not (math.isfinite(dt) and MIN_DT_S <= dt <= MAX_DT_S):
-        raise InputError(f"{path}: dt: must be a number of seconds in [{MIN_DT_S:g}, "
+        raise InputError(f"{path}: dt: must be a positive number of seconds in [{MIN_DT_S:g}, "
                          f"{MAX_DT_S:g}], got {dt:g}")
     return dt
 

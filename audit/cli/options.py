@@ -85,12 +85,13 @@ def sizes(text: str) -> np.ndarray:
     return time_grid(text, "--sizes")
 
 
-def number(low: float | None = None, high: float | None = None, *, low_open: bool = False,
-           high_open: bool = False):
+def number(rule: str, low: float | None = None, high: float | None = None, *,
+           low_open: bool = False, high_open: bool = False):
     """An argparse ``type`` for a finite number in [low, high] (open ends where asked).
 
     The range is checked while the command line is parsed, so a bad value stops the command
-    before anything is read or computed, with argparse's one line naming the option.
+    before anything is read or computed, with argparse's one line naming the option and
+    ``rule`` (e.g. "must lie between 0 and 1").
     """
     def parse(text: str) -> float:
         try:
@@ -100,23 +101,16 @@ def number(low: float | None = None, high: float | None = None, *, low_open: boo
         below = low is not None and (value <= low if low_open else value < low)
         above = high is not None and (value >= high if high_open else value > high)
         if not math.isfinite(value) or below or above:
-            bounds = []
-            if low is not None:
-                bounds.append(f"{'>' if low_open else '≥'} {low:g}")
-            if high is not None:
-                bounds.append(f"{'<' if high_open else '≤'} {high:g}")
-            raise argparse.ArgumentTypeError(
-                f"must be a finite number{' ' + ' and '.join(bounds) if bounds else ''}, "
-                f"got '{text}'")
+            raise argparse.ArgumentTypeError(f"{rule}, got '{text}'")
         return value
     parse.__name__ = "number"
     return parse
 
 
 #: ``type`` of options that must be a positive finite number (sizes, periods, g values).
-POSITIVE = number(0.0, low_open=True)
+POSITIVE = number("must be a positive number", 0.0, low_open=True)
 #: ``type`` of durations that may be zero [s].
-NON_NEGATIVE = number(0.0)
+NON_NEGATIVE = number("must be a number ≥ 0", 0.0)
 
 
 def jobs(text: str) -> int:

@@ -14,9 +14,10 @@ def add_parser(sub):
     p.add_argument("--p", type=options.POSITIVE, metavar="RAD_PER_S",
                    help="frequency parameter p [rad/s]")
     p.add_argument("--size", type=options.POSITIVE, metavar="SECONDS", help="block size 2π/p [s]")
-    p.add_argument("--alpha", type=options.number(0, 45, low_open=True, high_open=True),
+    p.add_argument("--alpha", type=options.number("must lie between 0 and 45 degrees", 0, 45,
+                                                      low_open=True, high_open=True),
                    required=True, metavar="DEG", help="slenderness α [degrees]")
-    p.add_argument("--r", type=options.number(0, 1),
+    p.add_argument("--r", type=options.number("must lie between 0 and 1", 0, 1),
                    help="coefficient of restitution (default Eq. 4.8)")
     options.add_excitation_options(p)
     p.add_argument("--duration", type=options.NON_NEGATIVE, default=10.0, metavar="S",
