@@ -103,6 +103,20 @@ def _parse_float(token: str, path: Path, line_no: int, name: str = "value") -> f
     return value
 
 
+def _floats(tokens: list[str], path: Path, numbered) -> np.ndarray:
+    """The numbers of ``tokens``, parsed in one vectorised pass; only when one of them is not
+    a finite number are they parsed one by one (``numbered()`` yields (token, line number)),
+    so that the error names the first bad token and its line."""
+    try:
+        values = np.array(tokens, dtype=float)
+        if np.all(np.isfinite(values)):
+            return values
+    except ValueError:  # e.g. Fortran exponents (1.0D+00) or a word
+        pass
+    return np.array([_parse_float(token, path, line_no) for token, line_no in numbered()],
+                    dtype=float)
+
+
 def _check_dt(dt: float, path: Path) -> float:
     if not (math.isfinite(dt) and MIN_DT_S <= dt <= MAX_DT_S):
         raise InputError(f"{path}: dt: must be a positive number of seconds in [{MIN_DT_S:g}, "
@@ -143,13 +157,15 @@ def read_at2(path: str | Path, record_id: str | None = None, component: str = ""
                          f"got '{lines[3].strip()}'")
     npts = int(match.group(1))
     dt = _check_dt(_parse_float(match.group(2), path, 4, "DT"), path)
-    values = [_parse_float(token, path, line_no)
-              for line_no, line in enumerate(lines[4:], start=5) for token in line.split()]
+    data = lines[4:]
+    values = _floats([token for line in data for token in line.split()], path,
+                     lambda: ((token, line_no) for line_no, line in enumerate(data, start=5)
+                              for token in line.split()))
     if len(values) != npts:
         raise InputError(f"{path}: NPTS: header says {npts} values, the file holds {len(values)}")
     return _checked(GroundMotion(
         id=record_id or path.stem,
-        acceleration=np.array(values) * unit_factor(units, str(path)),
+        acceleration=values * unit_factor(units, str(path)),
         dt=dt,
         component=component or lines[1].strip(),
         source=str(path),
@@ -203,7 +219,7 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
     factor = unit_factor(units, str(path))
     if not isinstance(column, int) or column < 1:
         raise InputError(f"{path}: column: must be a whole number ≥ 1, got {column!r}")
-    values = []
+    texts, line_nos = [], []
     for line_no, line in enumerate(lines, start=1):
         tokens = line.split()
         if not tokens or tokens[0][0] in "%#":
@@ -211,15 +227,17 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
         if len(tokens) < column:
             raise InputError(f"{path}: line {line_no}: column {column} missing "
                              f"(the line has {len(tokens)})")
-        values.append(_parse_float(tokens[column - 1], path, line_no))
-    if not values:
+        texts.append(tokens[column - 1])
+        line_nos.append(line_no)
+    values = _floats(texts, path, lambda: zip(texts, line_nos))
+    if not values.size:
         raise InputError(f"{path}: no data lines")
     npts = _NPTS_COMMENT.search(comments)
     if npts is not None and int(npts.group(1)) != len(values):
         raise InputError(f"{path}: npts: header says {npts.group(1)} values, the file holds {len(values)}")
     return _checked(GroundMotion(
         id=record_id or path.stem,
-        acceleration=np.array(values) * factor,
+        acceleration=values * factor,
         dt=dt,
         component=component or f"column {column}",
         source=str(path),

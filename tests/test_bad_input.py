@@ -43,6 +43,10 @@ def txt_text(comment="% test record. Acc. in g and dt=0.01 sec.", values=None):
                                       for v in (VALUES if values is None else values)) + "\n"
 
 
+class SymLink(str):
+    """A file of a case that is a symbolic link to this target."""
+
+
 GOOD_AT2 = at2_text()
 GOOD_TXT = txt_text()
 
@@ -334,6 +338,18 @@ CASES = [
     ("txt-empty", {"r.txt": ""}, [*ROCK, "--record", "r.txt"], ["r.txt", "empty"]),
     ("txt-binary-nul", {"r.txt": b"% in g, dt = 0.01\n0.1\x00\x00 0.2\n"},
      [*ROCK, "--record", "r.txt"], ["r.txt"]),
+    # ---------------------------------------------------------------- symbolic links
+    ("symlink-dangling-record", {"r.AT2": SymLink("gone.AT2")}, [*ROCK, "--record", "r.AT2"],
+     ["r.AT2"]),
+    ("symlink-loop-records", {"loop.toml": SymLink("loop.toml")}, ["list", "--records",
+                                                                   "loop.toml"], ["loop.toml"]),
+    ("symlink-out-to-file", {"taken": "x", "out": SymLink("taken")}, [*RUN, "--out", "out"],
+     ["--out", "out"]),
+    ("symlink-csv-to-folder", {"dir/keep": "", "out.csv": SymLink("dir")},
+     [*UBC, "--csv", "out.csv"], ["--csv", "out.csv"]),
+    ("symlink-manifest-file-dangling", with_manifest(manifest(file='"link.txt"'),
+                                                     **{"link.txt": SymLink("nowhere.txt")}),
+     LIST, ["file", "link.txt"]),
 ]
 
 
@@ -353,7 +369,9 @@ def _write(folder: Path, files: dict):
     for name, content in files.items():
         path = folder / name
         path.parent.mkdir(parents=True, exist_ok=True)
-        if isinstance(content, bytes):
+        if isinstance(content, SymLink):
+            path.symlink_to(str(content))
+        elif isinstance(content, bytes):
             path.write_bytes(content)
         else:
             path.write_text(content)
@@ -459,6 +477,16 @@ def test_long_history_is_decimated_with_exact_peaks(monkeypatch):
     np.testing.assert_array_equal(small.impact_times, full.impact_times)
     assert small.peak_rotation == full.peak_rotation
     assert small.peak_angular_velocity == full.peak_angular_velocity
+
+
+def test_five_million_sample_record_refused_before_work(workdir, capsys):
+    samples = 5_000_000
+    values = np.tile(np.array(["0.01", "-0.02", "0.03", "-0.01"]), samples // 4)
+    (workdir / "long.txt").write_text("% in g, dt = 0.01\n" + "\n".join(values) + "\n")
+    assert main([*RUN, "--records", "long.txt", "--out", "out"]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and "5,001,000 samples" in err[0] and "--force" in err[0]
+    assert not (workdir / "out").exists()
 
 
 # --- outputs: checked first, written together, staging cleaned ----------------------------------

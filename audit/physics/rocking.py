@@ -531,11 +531,13 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
                   steps_per_radian, rest_tolerance, part)
         out[chunk] = part
 
-    if len(chunks) == 1:
-        run(chunks[0])
-    else:
-        with ThreadPoolExecutor(len(chunks)) as pool:
-            list(pool.map(run, chunks))
+    # even one chunk runs in a worker thread, so that Ctrl-C reaches the main thread at once
+    # instead of after the compiled kernel returns; on an interrupt nothing waits for the rest
+    pool = ThreadPoolExecutor(len(chunks))
+    try:
+        list(pool.map(run, chunks))
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
     shape = grid_size.shape
     return RockingSpectrum(size_s, alpha_rad, out[:, 0].reshape(shape), out[:, 1].reshape(shape),
                            out[:, 2].reshape(shape), out[:, 3].reshape(shape).astype(bool),
