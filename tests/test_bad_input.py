@@ -192,6 +192,9 @@ CASES = [
     ("plot-ok-csv-folder", {}, [*SPEC, "--plot", "out.png", "--csv", "csvdir/"], ["--csv"]),
     ("plot-under-a-file", {"taken": "x"}, [*RESP, "--plot", "taken/p.png"], ["--plot", "taken"]),
     ("design-csv-folder", {"dir/keep": ""}, [*FEMA, "--csv", "dir"], ["--csv", "dir"]),
+    ("out-unwritable-fs", {}, [*RUN, "--out", "/proc/audit-out"], ["--out", "/proc"]),
+    ("csv-unwritable-fs", {}, [*UBC, "--csv", "/proc/ubc.csv"], ["--csv", "/proc"]),
+    ("plot-unwritable-fs", {}, [*ROCK, *PULSE, "--plot", "/sys/rock.png"], ["--plot", "/sys"]),
     # ---------------------------------------------------------------- procedures and report
     ("unknown-procedure", {}, ["run", "fema999"], ["fema999"]),
     ("report-absent", {}, ["report", "nowhere"], ["nowhere"]),
@@ -501,6 +504,13 @@ def test_plot_not_left_when_the_csv_cannot_be_written(workdir, capsys):
     assert (workdir / "out.png").read_bytes()[:4] == b"\x89PNG"
     assert (workdir / "new" / "out.csv").is_file()
     assert [p.name for p in workdir.rglob(".*")] == []
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
+def test_read_only_out_refused_before_work(workdir, capsys):
+    (workdir / "locked").mkdir(mode=0o555)
+    assert main([*RUN, "--out", "locked/run"]) == 2
+    assert "--out: locked/run: folder locked is not writable" in capsys.readouterr().err
 
 
 def test_non_empty_out_previous_files_replaced_others_kept(workdir):

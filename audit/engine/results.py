@@ -54,6 +54,16 @@ def _staging_prefix(out_dir: Path) -> str:
     return f".{out_dir.name}-staging-"
 
 
+def _writable(folder: Path, what: str, path: Path) -> None:
+    """InputError unless a folder can be created in ``folder`` (tried, then removed): the
+    permission bits say nothing for root or on a read-only file system."""
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=f".{path.name}-probe-", dir=folder))
+    except OSError as exc:
+        raise InputError(f"{what}: {path}: folder {folder} is not writable "
+                         f"({exc.strerror})") from None
+
+
 def _writable_ancestor(path: Path, what: str) -> None:
     """InputError unless the nearest existing ancestor of ``path`` is a writable folder."""
     ancestor = path.parent
@@ -61,8 +71,7 @@ def _writable_ancestor(path: Path, what: str) -> None:
         ancestor = ancestor.parent
     if not ancestor.is_dir():
         raise InputError(f"{what}: {path}: {ancestor} is a file, not a folder")
-    if not os.access(ancestor, os.W_OK | os.X_OK):
-        raise InputError(f"{what}: {path}: folder {ancestor} is not writable")
+    _writable(ancestor, what, path)
 
 
 def check_output_dir(out_dir: str | Path, what: str = "--out") -> Path:
@@ -75,8 +84,8 @@ def check_output_dir(out_dir: str | Path, what: str = "--out") -> Path:
     if out_dir.exists() and not out_dir.is_dir():
         raise InputError(f"{what}: {out_dir} is a file, expected a folder")
     _writable_ancestor(out_dir, what)
-    if out_dir.is_dir() and not os.access(out_dir, os.W_OK | os.X_OK):
-        raise InputError(f"{what}: folder {out_dir} is not writable")
+    if out_dir.is_dir():
+        _writable(out_dir, what, out_dir)
     return out_dir
 
 
