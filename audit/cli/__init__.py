@@ -75,6 +75,9 @@ def _run(args, previous_handler) -> int:
     except InputError as exc:
         print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader of standard output (e.g. `| head`) has gone
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return 0
     except OSError as exc:  # e.g. a folder without read permission
         where = exc.filename or ""
         print(f"error: {where}: {exc.strerror or exc}", file=sys.stderr)
