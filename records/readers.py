@@ -9,16 +9,21 @@ from __future__ import annotations
 import hashlib
 import math
 import re
+import warnings
 from pathlib import Path
 
 import numpy as np
 
 from audit import G
-from audit.errors import InputError
+from audit.errors import InputError, InputWarning
 from records.motion import GroundMotion
 
 #: No strong-motion record exceeds ~4.4 g; a larger PGA means the declared units are wrong.
 PLAUSIBLE_PGA_G = 6.0
+#: A record this weak rocks nothing; below it the declared units are probably wrong (warning).
+SMALL_PGA_G = 0.005
+#: Sampling steps accepted from files and manifests [s]: 10 kHz to 1 Hz.
+MIN_DT_S, MAX_DT_S = 1e-4, 1.0
 
 #: Factor from each accepted unit name to m/s².
 UNIT_FACTORS = {"g": G, "cm/s2": 0.01, "m/s2": 1.0}
@@ -58,38 +63,64 @@ def units_in_text(text: str) -> str | None:
 
 
 def _checked(motion: GroundMotion, units: str) -> GroundMotion:
-    """The motion, unless its PGA shows that ``units`` cannot be right."""
+    """The motion, unless its PGA shows that ``units`` cannot be right; a warning where the
+    PGA is implausibly small for them."""
     if motion.pga_g > PLAUSIBLE_PGA_G:
         raise InputError(f"{motion.source}: units: read as '{units}', the PGA would be "
                          f"{motion.pga_g:.3g} g, beyond any recorded motion; are the units right?")
+    if motion.pga_g < SMALL_PGA_G:
+        warnings.warn(f"{motion.source}: units: read as '{units}', the PGA is only "
+                      f"{motion.pga_g:.2g} g; are the units right?", InputWarning, stacklevel=3)
     return motion
 
 
 def _read_text(path: Path) -> list[str]:
     try:
-        text = Path(path).read_text(encoding="utf-8", errors="replace")
+        raw = Path(path).read_bytes()
     except FileNotFoundError:
         raise InputError(f"{path}: file not found") from None
+    except IsADirectoryError:
+        raise InputError(f"{path}: is a folder, expected a record file") from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror}") from None
+    if raw.startswith((b"\xff\xfe", b"\xfe\xff")):
+        raise InputError(f"{path}: encoding: UTF-16 text; save the record as ASCII or UTF-8")
+    if b"\0" in raw:
+        raise InputError(f"{path}: not a text file (it holds NUL bytes); is it binary?")
+    text = raw.decode("utf-8", errors="replace")
     if not text.strip():
         raise InputError(f"{path}: file is empty")
     return text.splitlines()
 
 
-def _parse_float(token: str, path: Path, line_no: int) -> float:
+def _parse_float(token: str, path: Path, line_no: int, name: str = "value") -> float:
     try:
         value = float(token.replace("D", "E").replace("d", "e"))
     except ValueError:
-        raise InputError(f"{path}: line {line_no}: '{token}' is not a number") from None
+        raise InputError(f"{path}: line {line_no}: {name}: '{token}' is not a number") from None
     if not math.isfinite(value):
-        raise InputError(f"{path}: line {line_no}: value '{token}' is not finite")
+        raise InputError(f"{path}: line {line_no}: {name}: '{token}' is not finite")
     return value
 
 
+def _floats(tokens: list[str], path: Path, numbered) -> np.ndarray:
+    """The numbers of ``tokens``, parsed in one vectorised pass; only when one of them is not
+    a finite number are they parsed one by one (``numbered()`` yields (token, line number)),
+    so that the error names the first bad token and its line."""
+    try:
+        values = np.array(tokens, dtype=float)
+        if np.all(np.isfinite(values)):
+            return values
+    except ValueError:  # e.g. Fortran exponents (1.0D+00) or a word
+        pass
+    return np.array([_parse_float(token, path, line_no) for token, line_no in numbered()],
+                    dtype=float)
+
+
 def _check_dt(dt: float, path: Path) -> float:
-    if not (math.isfinite(dt) and dt > 0):
-        raise InputError(f"{path}: dt: must be a positive number of seconds, got {dt}")
+    if not (math.isfinite(dt) and MIN_DT_S <= dt <= MAX_DT_S):
+        raise InputError(f"{path}: dt: must be a positive number of seconds in [{MIN_DT_S:g}, "
+                         f"{MAX_DT_S:g}], got {dt:g}")
     return dt
 
 
@@ -125,14 +156,16 @@ def read_at2(path: str | Path, record_id: str | None = None, component: str = ""
         raise InputError(f"{path}: line 4: expected 'NPTS=..., DT=...' or '<npts> <dt> NPTS, DT', "
                          f"got '{lines[3].strip()}'")
     npts = int(match.group(1))
-    dt = _check_dt(_parse_float(match.group(2), path, 4), path)
-    values = [_parse_float(token, path, line_no)
-              for line_no, line in enumerate(lines[4:], start=5) for token in line.split()]
+    dt = _check_dt(_parse_float(match.group(2), path, 4, "DT"), path)
+    data = lines[4:]
+    values = _floats([token for line in data for token in line.split()], path,
+                     lambda: ((token, line_no) for line_no, line in enumerate(data, start=5)
+                              for token in line.split()))
     if len(values) != npts:
         raise InputError(f"{path}: NPTS: header says {npts} values, the file holds {len(values)}")
     return _checked(GroundMotion(
         id=record_id or path.stem,
-        acceleration=np.array(values) * unit_factor(units, str(path)),
+        acceleration=values * unit_factor(units, str(path)),
         dt=dt,
         component=component or lines[1].strip(),
         source=str(path),
@@ -174,7 +207,10 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
         found = _DT_COMMENT.search(comments)
         if found is None:
             raise InputError(f"{path}: dt: not stated in the file; give it in a manifest")
-        dt = float(found.group(1))
+        try:
+            dt = float(found.group(1))
+        except ValueError:
+            raise InputError(f"{path}: dt: '{found.group(1)}' in the comments is not a number") from None
     dt = _check_dt(float(dt), path)
     if units is None:
         units = units_in_text(comments)
@@ -183,7 +219,7 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
     factor = unit_factor(units, str(path))
     if not isinstance(column, int) or column < 1:
         raise InputError(f"{path}: column: must be a whole number ≥ 1, got {column!r}")
-    values = []
+    texts, line_nos = [], []
     for line_no, line in enumerate(lines, start=1):
         tokens = line.split()
         if not tokens or tokens[0][0] in "%#":
@@ -191,15 +227,17 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
         if len(tokens) < column:
             raise InputError(f"{path}: line {line_no}: column {column} missing "
                              f"(the line has {len(tokens)})")
-        values.append(_parse_float(tokens[column - 1], path, line_no))
-    if not values:
+        texts.append(tokens[column - 1])
+        line_nos.append(line_no)
+    values = _floats(texts, path, lambda: zip(texts, line_nos))
+    if not values.size:
         raise InputError(f"{path}: no data lines")
     npts = _NPTS_COMMENT.search(comments)
     if npts is not None and int(npts.group(1)) != len(values):
         raise InputError(f"{path}: npts: header says {npts.group(1)} values, the file holds {len(values)}")
     return _checked(GroundMotion(
         id=record_id or path.stem,
-        acceleration=np.array(values) * factor,
+        acceleration=values * factor,
         dt=dt,
         component=component or f"column {column}",
         source=str(path),

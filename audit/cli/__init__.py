@@ -3,23 +3,37 @@
 One module per command, each with ``add_parser(subparsers)`` and ``run(args)``; a command's
 scientific imports happen inside its ``run``, so start-up and ``--help`` stay light. Angles are
 typed in degrees and accelerations in g; everything inside is SI. Bad input is reported on one
-line on stderr with exit status 2.
+line on stderr with exit status 2; Ctrl-C stops with one line and exit status 130.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
+import signal
 import sys
+import warnings
 
 from audit import __version__
-from audit.cli import design_spectrum, listing, report, rock, run, spectrum
-from audit.errors import InputError
+from audit.cli import design_spectrum, listing, options, report, rock, run, spectrum
+from audit.errors import InputError, InputWarning
 
 COMMANDS = (listing, rock, spectrum, design_spectrum, run, report)
+#: Exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it.
+EXIT_INTERRUPTED = 130
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with usage errors on one line (``error: COMMAND: what; see --help``), exit 2."""
+
+    def error(self, message):
+        message = " ".join(message.split())
+        print(f"error: {self.prog}: {message} (see {self.prog} --help)", file=sys.stderr)
+        raise SystemExit(2)
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="python -m audit",
         description="Audit seismic design-guideline procedures for rocking blocks against the "
                     "exact rocking response (Makris & Konstantinidis, PEER 2001/07).")
@@ -31,18 +45,48 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    args = build_parser().parse_args(argv)
-    if getattr(args, "jobs", 1) < 1:
-        print("error: --jobs: must be at least 1", file=sys.stderr)
-        return 2
     try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:  # usage error (one line printed), --help or --version
+        return exc.code if isinstance(exc.code, int) else 2
+    main_pid = os.getpid()
+
+    def on_interrupt(signum, frame):
+        if os.getpid() != main_pid:
+            os._exit(EXIT_INTERRUPTED)  # a worker process: the main process reports it, once
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, on_interrupt)
+    with warnings.catch_warnings():
+        warnings.simplefilter("always", InputWarning)
+        warnings.showwarning = _one_line_warning
+        return _run(args, previous)
+
+
+def _one_line_warning(message, category, filename, lineno, file=None, line=None):
+    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
+
+
+def _run(args, previous_handler) -> int:
+    try:
+        if getattr(args, "jobs", None) is not None:
+            args.jobs = options.cap_jobs(args.jobs)
         return args.func(args)
     except InputError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2
-    except OSError as exc:  # e.g. --out is a file, or a folder without write permission
-        print(f"error: {exc.filename or ''}: {exc.strerror or exc}", file=sys.stderr)
+    except BrokenPipeError:  # the reader of standard output (e.g. `| head`) has gone
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit
+        return 0
+    except OSError as exc:  # e.g. a folder without read permission
+        where = exc.filename or ""
+        print(f"error: {where}: {exc.strerror or exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("interrupted; nothing written", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    finally:
+        signal.signal(signal.SIGINT, previous_handler)
 
 
-__all__ = ["main", "build_parser"]
+__all__ = ["main", "build_parser", "EXIT_INTERRUPTED"]

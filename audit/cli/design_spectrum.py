@@ -10,13 +10,15 @@ def add_parser(sub):
     p = sub.add_parser("design-spectrum",
                        help="code design spectrum (FEMA 356, UBC 97, NTC 2018)")
     p.add_argument("code", choices=("fema356", "ubc97", "ntc2018"))
-    p.add_argument("--sxs", type=float, metavar="G", help="FEMA 356 S_XS [g]")
-    p.add_argument("--sx1", type=float, metavar="G", help="FEMA 356 S_X1 [g]")
-    p.add_argument("--na", type=float, default=1.0, help="UBC 97 near-source factor N_a")
-    p.add_argument("--nv", type=float, default=1.0, help="UBC 97 near-source factor N_v")
-    p.add_argument("--ag", type=float, metavar="G", help="NTC 2018 a_g on rock [g]")
-    p.add_argument("--f0", type=float, help="NTC 2018 amplification F0 [-]")
-    p.add_argument("--tc-star", type=float, metavar="S", help="NTC 2018 T_C* [s]")
+    p.add_argument("--sxs", type=options.POSITIVE, metavar="G", help="FEMA 356 S_XS [g]")
+    p.add_argument("--sx1", type=options.POSITIVE, metavar="G", help="FEMA 356 S_X1 [g]")
+    p.add_argument("--na", type=options.POSITIVE, default=1.0,
+                   help="UBC 97 near-source factor N_a")
+    p.add_argument("--nv", type=options.POSITIVE, default=1.0,
+                   help="UBC 97 near-source factor N_v")
+    p.add_argument("--ag", type=options.POSITIVE, metavar="G", help="NTC 2018 a_g on rock [g]")
+    p.add_argument("--f0", type=options.POSITIVE, help="NTC 2018 amplification F0 [-]")
+    p.add_argument("--tc-star", type=options.POSITIVE, metavar="S", help="NTC 2018 T_C* [s]")
     p.add_argument("--soil", default="A", choices=("A", "B", "C", "D", "E"),
                    help="NTC 2018 soil category (Tab. 3.2.IV)")
     p.add_argument("--topography", default="T1", choices=("T1", "T2", "T3", "T4"),
@@ -28,6 +30,9 @@ def add_parser(sub):
 
 
 def run(args) -> int:
+    csv = options.output_file(args.csv, "--csv")
+    damping = options.damping_pct(args.damping)
+    periods = options.time_grid(args.periods, "--periods", allow_zero=True)
     from audit.physics.design_spectra import FEMA356Spectrum, NTC2018Spectrum, UBC97Spectrum
     if args.code == "fema356":
         if args.sxs is None or args.sx1 is None:
@@ -39,12 +44,11 @@ def run(args) -> int:
         spectrum = NTC2018Spectrum(args.ag, args.f0, args.tc_star, args.soil, args.topography)
     else:
         spectrum = UBC97Spectrum(args.na, args.nv)
-    periods = options.time_grid(args.periods, "--periods", allow_zero=True)
     import pandas as pd
     frame = pd.concat([pd.DataFrame({
-        "period_s": periods, "damping_pct": d,
-        "sa_g": spectrum.acceleration(periods, d / 100.0),
-        "sd_m": spectrum.displacement(periods, d / 100.0)})
-        for d in options.float_list(args.damping, "--damping")])
-    options.write_csv(frame, args.csv)
+        "period_s": periods, "damping_pct": 100.0 * d,
+        "sa_g": spectrum.acceleration(periods, d),
+        "sd_m": spectrum.displacement(periods, d)})
+        for d in damping])
+    options.write_csv(frame, csv)
     return 0

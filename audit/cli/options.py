@@ -6,13 +6,20 @@ so ``--help`` and option errors cost no scientific import.
 
 from __future__ import annotations
 
+import argparse
 import math
+import os
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from audit.errors import InputError
+
+
+#: Most points a START:STOP:STEP grid may have; beyond it the grid itself would not fit in memory.
+MAX_GRID_POINTS = 1_000_000
 
 
 def float_list(text: str, option: str) -> list[float]:
@@ -35,6 +42,15 @@ def alphas_deg(text: str) -> np.ndarray:
     return np.array(values)
 
 
+def damping_pct(text: str, option: str = "--damping") -> np.ndarray:
+    """Damping ratios typed in percent, checked to lie in [0 %, 100 %), returned as ratios [-]."""
+    values = float_list(text, option)
+    for value in values:
+        if not 0 <= value < 100:
+            raise InputError(f"{option}: damping must lie in 0 ≤ β < 100 %, got {value:g}")
+    return np.array(values) / 100.0
+
+
 def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     """START:STOP:STEP (inclusive) or a comma list of times [s] given to ``option``."""
     from audit.engine.grid import size_grid
@@ -46,8 +62,14 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
         numbers = None
     if len(parts) == 3 and numbers is not None:
         start, stop, step = numbers
+        if not all(math.isfinite(n) for n in numbers):
+            raise InputError(f"{option}: START, STOP and STEP must be finite numbers, got '{text}'")
         if not ((start >= 0 if allow_zero else start > 0) and stop >= start and step > 0):
             raise InputError(f"{option}: need {low} ≤ STOP and STEP > 0, got '{text}'")
+        count = (stop - start) / step + 1
+        if count > MAX_GRID_POINTS:
+            raise InputError(f"{option}: '{text}' gives {count:.3g} points, more than "
+                             f"{MAX_GRID_POINTS:,}; use a larger STEP")
         return size_grid(start, stop, step)
     if len(parts) == 1:
         values = np.array(float_list(text, option))
@@ -63,16 +85,89 @@ def sizes(text: str) -> np.ndarray:
     return time_grid(text, "--sizes")
 
 
-def positive(value: float, option: str) -> float:
-    if not (math.isfinite(value) and value > 0):
-        raise InputError(f"{option}: must be a positive number, got {value:g}")
+def number(rule: str, low: float | None = None, high: float | None = None, *,
+           low_open: bool = False, high_open: bool = False):
+    """An argparse ``type`` for a finite number in [low, high] (open ends where asked).
+
+    The range is checked while the command line is parsed, so a bad value stops the command
+    before anything is read or computed, with argparse's one line naming the option and
+    ``rule`` (e.g. "must lie between 0 and 1").
+    """
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a number, got '{text}'") from None
+        below = low is not None and (value <= low if low_open else value < low)
+        above = high is not None and (value >= high if high_open else value > high)
+        if not math.isfinite(value) or below or above:
+            raise argparse.ArgumentTypeError(f"{rule}, got '{text}'")
+        return value
+    parse.__name__ = "number"
+    return parse
+
+
+#: ``type`` of options that must be a positive finite number (sizes, periods, g values).
+POSITIVE = number("must be a positive number", 0.0, low_open=True)
+#: ``type`` of durations that may be zero [s].
+NON_NEGATIVE = number("must be a number ≥ 0", 0.0)
+
+
+def jobs(text: str) -> int:
+    """An argparse ``type`` for ``--jobs``: a whole number ≥ 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got '{text}'") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
     return value
 
 
+def available_cores() -> int:
+    """Cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def cap_jobs(requested: int) -> int:
+    """``requested`` threads, capped at the cores available (with a note on stderr)."""
+    cores = available_cores()
+    if requested > cores:
+        print(f"note: --jobs {requested}: only {cores} core(s) available; using {cores}",
+              file=sys.stderr)
+        return cores
+    return requested
+
+
 def suite(args):
-    """The record suite of ``--records`` (or its defaults)."""
+    """The record suite of ``--records`` (or its defaults); with ``--skip-bad-records`` the
+    unreadable records are listed on stderr and left out."""
     from records import load_records
-    return load_records(args.records)
+    loaded = load_records(args.records, skip_bad=getattr(args, "skip_bad_records", False))
+    for bad in getattr(loaded, "rejected", ()):
+        print(f"warning: not audited: {bad['record']} ({bad['file']}): {bad['reason']}",
+              file=sys.stderr)
+    return loaded
+
+
+#: Periods of the record spectra an audit computes per damping ratio (runner.SPECTRUM_PERIODS_S).
+AUDIT_SPECTRA = 801
+
+
+def add_force_option(parser):
+    parser.add_argument("--force", action="store_true",
+                        help="start even when the estimated work is beyond the limits "
+                             f"(see audit/engine/guards.py)")
+
+
+def check_cost(args, motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0):
+    """Refuse (unless ``--force``) or announce the estimated work, before it starts."""
+    from audit.engine import guards
+    guards.check(guards.estimate(motions, free_motion_s, blocks, oscillators,
+                                 getattr(args, "jobs", 1)), args.force)
 
 
 def motion(args):
@@ -101,24 +196,59 @@ def add_excitation_options(parser):
     add_records_option(parser)
     parser.add_argument("--record", metavar="ID_OR_PATH", help="record id of the suite, or a file")
     parser.add_argument("--pulse", choices=("cosine", "sine"), help="analytic one-cycle pulse")
-    parser.add_argument("--amplitude", type=float, metavar="G", help="pulse amplitude a_p [g]")
-    parser.add_argument("--pulse-period", type=float, metavar="S", help="pulse period T_p [s]")
+    parser.add_argument("--amplitude", type=POSITIVE, metavar="G", help="pulse amplitude a_p [g]")
+    parser.add_argument("--pulse-period", type=POSITIVE, metavar="S", help="pulse period T_p [s]")
 
 
-def plot_to(path: str, draw, height: float = 6.0) -> None:
-    """Draw a matplotlib figure with ``draw(fig)`` and save it atomically to ``path``."""
-    from reports.figures import save_figure
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    save_figure(draw, path, height=height)
-
-
-def write_csv(frame, path):
-    """``frame`` as CSV to ``path`` (atomically) or to standard output for None or ``-``."""
+def output_file(path: str | None, option: str) -> Path | None:
+    """The file of an output option, checked before any work; None for standard output."""
     if path in (None, "-"):
+        return None
+    from audit.engine.files import check_output_file
+    return check_output_file(path, option)
+
+
+def figure_png(draw, height: float = 6.0) -> bytes:
+    """A PNG of the matplotlib figure drawn by ``draw(fig)``."""
+    from reports.figures import new_figure, png_bytes
+    fig = new_figure(10.0, height)
+    draw(fig)
+    return png_bytes(fig)
+
+
+def csv_bytes(frame) -> bytes:
+    return frame.to_csv(index=False, float_format="%.8g").encode()
+
+
+def write_outputs(files: dict[Path, bytes]) -> None:
+    """Write every output file of a command together: all are staged beside their targets
+    first and renamed into place only when every one is complete, so a failure leaves none."""
+    staged = []
+    try:
+        for path, content in files.items():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            handle, temp = tempfile.mkstemp(prefix=f".{path.name}-staging-{os.getpid()}-",
+                                            dir=path.parent)
+            staged.append(temp)
+            with os.fdopen(handle, "wb") as stream:
+                stream.write(content)
+        for temp, path in zip(staged, files):
+            os.replace(temp, path)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write: {exc.strerror}") from None
+    finally:
+        for temp in staged:
+            if os.path.exists(temp):
+                os.remove(temp)
+
+
+def write_csv(frame, path: Path | None, extra: dict[Path, bytes] | None = None) -> None:
+    """``frame`` as CSV to ``path`` or standard output (None), with the ``extra`` files."""
+    files = dict(extra or {})
+    if path is not None:
+        files[path] = csv_bytes(frame)
+    write_outputs(files)
+    if path is None:
         frame.to_csv(sys.stdout, index=False, float_format="%.8g")
-        return
-    from audit.engine.results import write_files_atomically
-    target = Path(path)
-    write_files_atomically(target.parent if str(target.parent) else Path("."),
-                           {target.name: frame.to_csv(index=False, float_format="%.8g").encode()})
-    print(f"Wrote {len(frame)} rows to {path}", file=sys.stderr)
+    else:
+        print(f"Wrote {len(frame)} rows to {path}", file=sys.stderr)

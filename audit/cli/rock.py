@@ -6,7 +6,6 @@ import io
 import json
 import math
 import sys
-from pathlib import Path
 
 from audit.cli import options
 from audit.errors import InputError
@@ -14,30 +13,38 @@ from audit.errors import InputError
 
 def add_parser(sub):
     p = sub.add_parser("rock", help="exact rocking response of one block")
-    p.add_argument("--p", type=float, metavar="RAD_PER_S", help="frequency parameter p [rad/s]")
-    p.add_argument("--size", type=float, metavar="SECONDS", help="block size 2π/p [s]")
-    p.add_argument("--alpha", type=float, required=True, metavar="DEG", help="slenderness α [degrees]")
-    p.add_argument("--r", type=float, help="coefficient of restitution (default Eq. 4.8)")
+    p.add_argument("--p", type=options.POSITIVE, metavar="RAD_PER_S",
+                   help="frequency parameter p [rad/s]")
+    p.add_argument("--size", type=options.POSITIVE, metavar="SECONDS", help="block size 2π/p [s]")
+    p.add_argument("--alpha", type=options.number("must lie between 0 and 45 degrees", 0, 45,
+                                                      low_open=True, high_open=True),
+                   required=True, metavar="DEG", help="slenderness α [degrees]")
+    p.add_argument("--r", type=options.number("must lie between 0 and 1", 0, 1),
+                   help="coefficient of restitution (default Eq. 4.8)")
     options.add_excitation_options(p)
-    p.add_argument("--duration", type=float, default=10.0, metavar="S",
+    p.add_argument("--duration", type=options.NON_NEGATIVE, default=10.0, metavar="S",
                    help="free motion simulated after the excitation [s] (default 10)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw θ/α and θ' against time")
     p.add_argument("--history", metavar="FILE.csv",
                    help="write time_s, theta_rad, theta_dot_rad_s, ground_acc_g at every solver "
                         "output point (sampling grid, turning points, both sides of each impact)")
+    options.add_force_option(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     from audit.physics.block import RigidBlock
     from audit.physics.rocking import simulate
+    plot = options.output_file(args.plot, "--plot")
+    history = options.output_file(args.history, "--history")
     if (args.p is None) == (args.size is None):
         raise InputError("give the block size: exactly one of --p RAD_PER_S or --size SECONDS")
     alpha = math.radians(args.alpha)
     block = (RigidBlock(args.p, alpha, args.r) if args.p is not None
              else RigidBlock.from_size(args.size, alpha, args.r))
     motion = options.motion(args)
+    options.check_cost(args, [motion], args.duration, blocks=1)
     response = simulate(block, motion, free_motion_s=args.duration)
     result = {
         "record": motion.id, "p": block.p, "size_s": block.size_s, "alpha_deg": args.alpha,
@@ -54,9 +61,12 @@ def run(args) -> int:
         "cycle_durations": response.cycle_durations.tolist(),
         "uplifted": response.uplifted,
     }
-    if args.plot:
+    outputs = {}
+    if history:
+        outputs[history] = history_csv(response, motion)
+    if plot:
         from reports.figures import draw_time_histories
-        options.plot_to(args.plot, lambda fig: draw_time_histories(fig, [{
+        outputs[plot] = options.figure_png(lambda fig: draw_time_histories(fig, [{
             "time": response.time, "theta_ratio": response.theta / block.alpha,
             "omega": response.omega,
             "title": f"{motion.id}: 2π/p = {block.size_s:.3g} s, α = {args.alpha:g}°",
@@ -64,8 +74,9 @@ def run(args) -> int:
             if response.n_impacts else None,
             "cycle_starts": response.cycle_starts, "cycle_durations": response.cycle_durations,
             "excitation_end": motion.duration}]), height=3.9)
-    if args.history:
-        write_history(args.history, response, motion)
+    options.write_outputs(outputs)  # all or nothing
+    if history:
+        print(f"History written to {args.history}", file=sys.stderr)
     if args.json:
         print(json.dumps(result))
         return 0
@@ -95,8 +106,8 @@ def run(args) -> int:
     return 0
 
 
-def write_history(path: str, response, motion) -> None:
-    """The response at every solver output point as CSV, written atomically to ``path``.
+def history_csv(response, motion) -> bytes:
+    """The response at every solver output point as CSV bytes.
 
     Columns ``time_s, theta_rad, theta_dot_rad_s, ground_acc_g``; an impact appears twice at
     its time (θ' before, then after); nothing after overturning.
@@ -104,12 +115,9 @@ def write_history(path: str, response, motion) -> None:
     import numpy as np
 
     from audit import G
-    from audit.engine.files import write_files_atomically
     time, theta, omega = response.history()
     table = np.column_stack((time, theta, omega, motion.acceleration_at(time) / G))
     text = io.StringIO()
     np.savetxt(text, table, fmt="%.10g", delimiter=",", comments="",
                header="time_s,theta_rad,theta_dot_rad_s,ground_acc_g")
-    target = Path(path)
-    write_files_atomically(target.parent, {target.name: text.getvalue().encode()})
-    print(f"Wrote {len(table)} rows to {path}", file=sys.stderr)
+    return text.getvalue().encode()

@@ -19,14 +19,17 @@ def add_parser(sub):
     p.add_argument("--sizes", default="0.5:8:0.05", metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s]")
     p.add_argument("--out", metavar="DIR", help=f"output directory (default {DEFAULT_OUT}/PROCEDURE)")
-    p.add_argument("--jobs", type=int, default=2,
+    p.add_argument("--jobs", type=options.jobs, default=2,
                    help="threads for the exact solver and processes drawing the report (default 2)")
-    p.add_argument("--free-motion", type=float, default=10.0, metavar="S",
+    p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=10.0, metavar="S",
                    help="free motion after each record [s] (default 10)")
-    p.add_argument("--agree-band", type=float, default=0.10, metavar="FRACTION",
+    p.add_argument("--agree-band", type=options.number("must lie in [0, 1)", 0, 1, high_open=True),
+                   default=0.10, metavar="FRACTION",
                    help="verdict 'agrees' when both survive and |approx/exact − 1| ≤ FRACTION "
                         "(default 0.10)")
-    p.add_argument("--robustness", type=float, default=0.03, metavar="EPSILON",
+    p.add_argument("--robustness", type=options.number("must lie in [0, 0.5)", 0, 0.5,
+                                                       high_open=True),
+                   default=0.03, metavar="EPSILON",
                    help="flag blocks whose exact overturning changes with the record scaled by "
                         "1 ± EPSILON (default 0.03; 0 turns it off)")
     p.add_argument("--site", metavar="SXS,SX1",
@@ -35,13 +38,17 @@ def add_parser(sub):
                    help="with --site: also replace the sites records carry (Table 3.1)")
     p.add_argument("--scale-to-site", action="store_true",
                    help="with --site: scale the suite the FEMA P695 way to the design spectrum")
-    p.add_argument("--anchor-period", type=float, metavar="S",
+    p.add_argument("--anchor-period", type=options.POSITIVE, metavar="S",
                    help="with --scale-to-site: period where the suite median meets the design "
                         "spectrum [s] (default 1)")
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record: a_g [g], F0, T_C* [s], soil category "
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
                         "its demand off this code spectrum instead of the record's")
+    options.add_force_option(p)
+    p.add_argument("--skip-bad-records", action="store_true",
+                   help="audit the readable records of a suite and list the unreadable ones "
+                        "(default: stop at the first)")
     p.set_defaults(func=run)
 
 
@@ -65,31 +72,34 @@ def design_site(args, suite):
     site = options.float_list(args.site, "--site")
     if len(site) != 2:
         raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
-    sxs_g, sx1_g = (options.positive(value, "--site") for value in site)
+    sxs_g, sx1_g = site
+    if not (sxs_g > 0 and sx1_g > 0):
+        raise InputError(f"--site: S_XS and S_X1 must be positive accelerations in g, "
+                         f"got '{args.site}'")
     suite = with_design_site(suite, sxs_g, sx1_g, override=args.site_override)
     if args.scale_to_site:
-        anchor = options.positive(1.0 if args.anchor_period is None else args.anchor_period,
-                                  "--anchor-period")
-        suite = scale_to_site(suite, sxs_g, sx1_g, anchor)
+        suite = scale_to_site(suite, sxs_g, sx1_g,
+                              1.0 if args.anchor_period is None else args.anchor_period)
     return suite
 
 
 def run(args) -> int:
+    from audit.engine.files import check_output_dir
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML, save_run
     from audit.engine.runner import run_audit
     from procedures import get_procedures
     from reports import render_report
+    out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
     procedures = get_procedures(args.procedure)
-    suite = design_site(args, options.suite(args))
     sizes = options.sizes(args.sizes)
     alphas = options.alphas_deg(args.alpha)
-    out_dir = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
+    suite = design_site(args, options.suite(args))
+    # the fragility flag solves every block twice more (record × (1 ± ε))
+    options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
+                       blocks=sizes.size * alphas.size * (3 if args.robustness else 1),
+                       oscillators=options.AUDIT_SPECTRA * (3 + alphas.size * len(procedures)))
     start = time.perf_counter()
-    if not (0 <= args.agree_band < 1):
-        raise InputError(f"--agree-band: must lie in [0, 1), got {args.agree_band:g}")
-    if not (0 <= args.robustness < 0.5):
-        raise InputError(f"--robustness: must lie in [0, 0.5), got {args.robustness:g}")
     run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
                     free_motion_s=args.free_motion, progress=Progress(len(suite), "records"),
                     agree_band=args.agree_band, robustness=args.robustness)

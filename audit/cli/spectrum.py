@@ -18,36 +18,40 @@ def add_parser(sub):
                    help="damping ratios [%%] (response)")
     p.add_argument("--periods", default="0.02:10:0.02", metavar="START:STOP:STEP",
                    help="oscillator periods [s] (response)")
-    p.add_argument("--free-motion", type=float, metavar="S",
+    p.add_argument("--free-motion", type=options.NON_NEGATIVE, metavar="S",
                    help="free motion after the record [s] (default: 10 for rocking, "
                         "0 for response spectra)")
-    p.add_argument("--jobs", type=int, default=2, help="threads")
+    p.add_argument("--jobs", type=options.jobs, default=2, help="threads")
     p.add_argument("--csv", metavar="FILE", help="CSV output (default: standard output)")
     p.add_argument("--plot", metavar="FILE.png", help="draw the spectra")
+    options.add_force_option(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    motion = options.motion(args)
+    csv = options.output_file(args.csv, "--csv")
+    plot = options.output_file(args.plot, "--plot")
     if args.free_motion is None:
         args.free_motion = 10.0 if args.kind == "rocking" else 0.0
     if args.kind == "response":
-        from audit.physics.oscillator import response_spectra
-        damping = np.array(options.float_list(args.damping, "--damping")) / 100.0
+        damping = options.damping_pct(args.damping)
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)
-        spectra = response_spectra(motion, periods, damping, args.free_motion)
-        frame = spectra.to_frame()
-        if args.plot:
-            from reports.figures import draw_response_spectra
-            options.plot_to(args.plot, lambda fig: draw_response_spectra(fig, frame, motion.id))
+        motion = options.motion(args)
+        options.check_cost(args, [motion], args.free_motion,
+                           oscillators=periods.size * damping.size)
+        from audit.physics.oscillator import response_spectra
+        frame = response_spectra(motion, periods, damping, args.free_motion).to_frame()
+        from reports.figures import draw_response_spectra as draw
     else:
-        from audit.physics.rocking import rocking_spectrum
         alphas = np.radians(options.alphas_deg(args.alpha))
-        spectrum = rocking_spectrum(motion, options.sizes(args.sizes), alphas,
-                                    free_motion_s=args.free_motion, jobs=args.jobs)
-        frame = spectrum.to_frame()
-        if args.plot:
-            from reports.figures import draw_rocking_spectra
-            options.plot_to(args.plot, lambda fig: draw_rocking_spectra(fig, frame, motion.id))
-    options.write_csv(frame, args.csv)
+        sizes = options.sizes(args.sizes)
+        motion = options.motion(args)
+        options.check_cost(args, [motion], args.free_motion, blocks=sizes.size * alphas.size)
+        from audit.physics.rocking import rocking_spectrum
+        frame = rocking_spectrum(motion, sizes, alphas, free_motion_s=args.free_motion,
+                                 jobs=args.jobs).to_frame()
+        from reports.figures import draw_rocking_spectra as draw
+    figure = ({plot: options.figure_png(lambda fig: draw(fig, frame, motion.id))}
+              if plot else {})
+    options.write_csv(frame, csv, figure)
     return 0

@@ -1,27 +1,120 @@
-"""Writing output files all or nothing; light on purpose (no pandas), so every command can use it."""
+"""Output files and folders: checked before any work, written all or nothing.
+
+Light on purpose (no pandas, no numpy), so every command can validate and write its outputs
+without loading the scientific stack.
+"""
 
 from __future__ import annotations
 
 import os
 import shutil
 import tempfile
+import time
 from pathlib import Path
+
+from audit.errors import InputError
+
+
+#: Start of this run: staging folders older than it, of processes no longer alive, are stale.
+_RUN_STARTED = time.time()
+
+
+def _staging_prefix(out_dir: Path) -> str:
+    return f".{out_dir.name}-staging-"
+
+
+def _writable(folder: Path, what: str, path: Path) -> None:
+    """InputError unless a folder can be created in ``folder`` (tried, then removed): the
+    permission bits say nothing for root or on a read-only file system."""
+    try:
+        os.rmdir(tempfile.mkdtemp(prefix=f".{path.name}-probe-", dir=folder))
+    except OSError as exc:
+        raise InputError(f"{what}: {path}: folder {folder} is not writable "
+                         f"({exc.strerror})") from None
+
+
+def _writable_ancestor(path: Path, what: str) -> None:
+    """InputError unless the nearest existing ancestor of ``path`` is a writable folder."""
+    ancestor = path.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise InputError(f"{what}: {path}: {ancestor} is a file, not a folder")
+    _writable(ancestor, what, path)
+
+
+def check_output_dir(out_dir: str | Path, what: str = "--out") -> Path:
+    """``out_dir`` if it can receive a run's files: a writable folder, or one that can be made.
+
+    Called before any computation, so a bad output path costs nothing; ``what`` names the
+    option in the one-line InputError.
+    """
+    out_dir = Path(out_dir)
+    if out_dir.exists() and not out_dir.is_dir():
+        raise InputError(f"{what}: {out_dir} is a file, expected a folder")
+    _writable_ancestor(out_dir, what)
+    if out_dir.is_dir():
+        _writable(out_dir, what, out_dir)
+    return out_dir
+
+
+def check_output_file(path: str | Path, what: str) -> Path:
+    """``path`` if a file can be written there: not a folder, in a writable or creatable one."""
+    text = str(path)
+    path = Path(path)
+    if path.is_dir() or text.endswith(("/", os.sep)):
+        raise InputError(f"{what}: {text} is a folder, expected a file name")
+    _writable_ancestor(path, what)
+    return path
+
+
+def clean_stale_staging(out_dir: Path) -> None:
+    """Remove staging folders of ``out_dir`` left by a run that was killed while saving.
+
+    Only folders named with this tool's staging prefix, older than the current run, whose
+    process is no longer alive.
+    """
+    prefix = _staging_prefix(out_dir)
+    if not out_dir.parent.is_dir():
+        return
+    for folder in out_dir.parent.glob(prefix + "*"):
+        pid = folder.name[len(prefix):].split("-")[0]
+        if not (folder.is_dir() and pid.isdigit() and folder.stat().st_mtime < _RUN_STARTED):
+            continue
+        try:
+            os.kill(int(pid), 0)
+            continue  # its process still runs
+        except ProcessLookupError:
+            shutil.rmtree(folder, ignore_errors=True)
+        except PermissionError:
+            continue
 
 
 def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None:
     """Write ``files`` (name → content) into ``out_dir``, all or nothing.
 
-    Everything is written into a temporary directory next to ``out_dir`` first; each file is
-    then moved into place with an atomic rename.
+    Everything is written into a staging folder next to ``out_dir`` first (named
+    ``.NAME-staging-PID-…``; stale ones of killed runs are removed here); each file is then
+    moved into place with an atomic rename. Files of ``out_dir`` that are not in ``files`` are
+    left alone. An OS error names ``out_dir``, never the staging folder.
     """
-    out_dir = Path(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}-", dir=out_dir.parent))
+    out_dir = check_output_dir(out_dir, "output folder")
+    clean_stale_staging(out_dir)
+    try:
+        out_dir.parent.mkdir(parents=True, exist_ok=True)
+        staging = Path(tempfile.mkdtemp(prefix=f"{_staging_prefix(out_dir)}{os.getpid()}-",
+                                        dir=out_dir.parent))
+    except OSError as exc:
+        raise InputError(f"{out_dir}: cannot write: {exc.strerror}") from None
     try:
         for name, content in files.items():
             (staging / name).write_bytes(content)
         out_dir.mkdir(exist_ok=True)
         for name in files:
+            if (out_dir / name).is_dir():
+                raise InputError(f"{out_dir / name}: is a folder, cannot be replaced by a file")
             os.replace(staging / name, out_dir / name)
+    except OSError as exc:
+        raise InputError(f"{out_dir}: cannot write: {exc.strerror}") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)

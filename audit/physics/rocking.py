@@ -42,6 +42,9 @@ DEFAULT_STEPS_PER_RADIAN = 40.0
 DEFAULT_REST_TOLERANCE = 1e-6
 #: Impacts whose times are kept by :func:`simulate`.
 IMPACT_CAPACITY = 100_000
+#: Most samples of θ(t) and θ'(t) kept by :func:`simulate` (longer histories are decimated, so
+#: one block's history stays within ~10 MB; peaks and impacts are located exactly regardless).
+HISTORY_CAPACITY = 400_000
 
 # Ground-motion kinds understood by the kernel.
 _SAMPLED, _COSINE, _SINE = 0, 1, 2
@@ -117,8 +120,9 @@ def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
 @numba.njit(cache=True, nogil=True)
 def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out,
-              turns_out):
-    """Simulate one block; see :func:`simulate`. History arrays of length 0 store nothing.
+              turns_out, stride=1):
+    """Simulate one block; see :func:`simulate`. History arrays of length 0 store nothing;
+    otherwise every ``stride``-th sample is stored.
 
     ``impacts_out`` rows: time, episode, θ' just before and just after the impact;
     ``turns_out`` rows: time and θ of each turning point (θ' = 0).
@@ -272,10 +276,10 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
                 peak_after = abs(theta)
         if overturned:
             break
-        if store:
-            theta_out[k + 1] = theta
-            omega_out[k + 1] = omega
-            filled = k + 2
+        if store and (k + 1) % stride == 0:
+            theta_out[(k + 1) // stride] = theta
+            omega_out[(k + 1) // stride] = omega
+            filled = (k + 1) // stride + 1
 
     if store:
         # after overturning nothing is defined; after a final rest the block stays at rest
@@ -323,7 +327,8 @@ class RockingResponse:
     ----------
     time, theta, omega : numpy.ndarray
         θ(t) [rad] and θ'(t) [rad/s] on the motion's sampling grid, extended over the free
-        motion; NaN after overturning.
+        motion (every k-th sample where that would exceed :data:`HISTORY_CAPACITY`); NaN
+        after overturning.
     impact_times : numpy.ndarray
         Times of the impacts [s] (the first :data:`IMPACT_CAPACITY`).
     impact_episode : numpy.ndarray
@@ -465,18 +470,20 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
         raise InputError(f"initial rotation: |θ0| must be below α = {block.alpha:g} rad, "
                          f"got {initial_rotation:g}")
     args = _motion_arguments(motion, free_motion_s)
-    n_out = motion.acceleration.size + args[2]
+    n_samples = motion.acceleration.size + args[2]
+    stride = -(-n_samples // HISTORY_CAPACITY)
+    n_out = (n_samples - 1) // stride + 1
     theta = np.empty(n_out)
     omega = np.empty(n_out)
     impacts = np.empty((IMPACT_CAPACITY, 4))
     turns = np.empty((IMPACT_CAPACITY, 2))
     res = _simulate(*args, block.p, block.alpha, math.sqrt(block.r), block.g,
                     steps_per_radian, rest_tolerance, initial_rotation, initial_velocity,
-                    theta, omega, impacts, turns)
+                    theta, omega, impacts, turns, stride)
     n_kept = min(int(res[5]), IMPACT_CAPACITY)
     n_turns = min(int(res[8]), IMPACT_CAPACITY)
     return RockingResponse(
-        time=np.arange(n_out) * motion.dt, theta=theta, omega=omega,
+        time=np.arange(n_out) * (stride * motion.dt), theta=theta, omega=omega,
         impact_times=impacts[:n_kept, 0].copy(), impact_episode=impacts[:n_kept, 1].astype(int),
         impact_velocities=impacts[:n_kept, 2:].copy(), turning_times=turns[:n_turns, 0].copy(),
         turning_rotations=turns[:n_turns, 1].copy(),
@@ -588,11 +595,13 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
                   steps_per_radian, rest_tolerance, part)
         out[chunk] = part
 
-    if len(chunks) == 1:
-        run(chunks[0])
-    else:
-        with ThreadPoolExecutor(len(chunks)) as pool:
-            list(pool.map(run, chunks))
+    # even one chunk runs in a worker thread, so that Ctrl-C reaches the main thread at once
+    # instead of after the compiled kernel returns; on an interrupt nothing waits for the rest
+    pool = ThreadPoolExecutor(len(chunks))
+    try:
+        list(pool.map(run, chunks))
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
     shape = grid_size.shape
     return RockingSpectrum(size_s, alpha_rad, out[:, 0].reshape(shape), out[:, 1].reshape(shape),
                            out[:, 2].reshape(shape), out[:, 3].reshape(shape).astype(bool),
