@@ -28,11 +28,10 @@ def run(args) -> int:
     else:
         spectrum = UBC97Spectrum(args.na, args.nv)
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
-    import pandas as pd
-    frame = pd.concat([pd.DataFrame({
-        "period_s": periods, "damping": d / 100.0,
-        "sa_g": spectrum.acceleration(periods, d / 100.0),
-        "sd": spectrum.displacement(periods, d / 100.0)})
-        for d in options.float_list(args.damping, "--damping")])
-    options.write_csv(frame, args.csv)
+    import numpy as np
+    dampings = np.array(options.float_list(args.damping, "--damping")) / 100.0
+    options.write_csv({
+        "period_s": np.tile(periods, dampings.size), "damping": np.repeat(dampings, periods.size),
+        "sa_g": np.concatenate([spectrum.acceleration(periods, d) for d in dampings]),
+        "sd": np.concatenate([spectrum.displacement(periods, d) for d in dampings])}, args.csv)
     return 0

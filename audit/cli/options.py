@@ -1,7 +1,7 @@
 """Parsing and checking of the options shared by several commands, and writing their outputs.
 
-Light on purpose: importing this module loads numpy and the project's error type, nothing else,
-so ``--help`` and option errors cost no scientific import.
+Light on purpose: importing this module loads the project's error type and nothing else (numpy
+only when a grid is parsed), so ``--help`` and option errors cost no scientific import.
 """
 
 from __future__ import annotations
@@ -9,8 +9,6 @@ from __future__ import annotations
 import math
 import sys
 from pathlib import Path
-
-import numpy as np
 
 from audit.errors import InputError
 
@@ -28,6 +26,7 @@ def float_list(text: str, option: str) -> list[float]:
 
 def alphas_deg(text: str) -> np.ndarray:
     """Slendernesses typed in degrees, checked to lie in (0°, 45°)."""
+    import numpy as np
     values = float_list(text, "--alpha")
     for value in values:
         if not 0 < value < 45:
@@ -37,6 +36,8 @@ def alphas_deg(text: str) -> np.ndarray:
 
 def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     """START:STOP:STEP (inclusive) or a comma list of times [s] given to ``option``."""
+    import numpy as np
+
     from audit.engine.grid import size_grid
     parts = text.split(":")
     low = "0 ≤ START" if allow_zero else "0 < START"
@@ -110,13 +111,25 @@ def plot_to(path: str, draw, height: float = 6.0) -> None:
     save_figure(draw, path, height=height)
 
 
-def write_csv(frame, path):
-    """``frame`` as CSV to ``path`` (atomically) or to standard output for None or ``-``."""
+def write_csv(table, path):
+    """``table`` as CSV to ``path`` (atomically) or to standard output for None or ``-``.
+
+    ``table`` is a pandas DataFrame or, for commands that need no pandas, a dict of equal-length
+    numeric columns; numbers are written with ``%.8g`` either way.
+    """
+    if isinstance(table, dict):
+        columns = list(table.values())
+        text = "".join([",".join(table) + "\n"] + [",".join(f"{value:.8g}" for value in row) + "\n"
+                                                  for row in zip(*columns)])
+        rows = len(columns[0]) if columns else 0
+    else:
+        text = table.to_csv(index=False, float_format="%.8g")
+        rows = len(table)
     if path in (None, "-"):
-        frame.to_csv(sys.stdout, index=False, float_format="%.8g")
+        sys.stdout.write(text)
         return
-    from audit.engine.results import write_files_atomically
+    from audit.files import write_files_atomically
     target = Path(path)
     write_files_atomically(target.parent if str(target.parent) else Path("."),
-                           {target.name: frame.to_csv(index=False, float_format="%.8g").encode()})
-    print(f"Wrote {len(frame)} rows to {path}", file=sys.stderr)
+                           {target.name: text.encode()})
+    print(f"Wrote {rows} rows to {path}", file=sys.stderr)

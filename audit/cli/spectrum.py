@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from audit.cli import options
 
 
@@ -28,6 +26,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
+    import numpy as np
     motion = options.motion(args)
     if args.free_motion is None:
         args.free_motion = 10.0 if args.kind == "rocking" else 0.0

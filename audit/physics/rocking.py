@@ -30,7 +30,6 @@ from dataclasses import dataclass
 
 import numba
 import numpy as np
-import pandas as pd
 
 from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.errors import InputError
@@ -463,9 +462,10 @@ class RockingSpectrum:
         """max |θ| / α [-]."""
         return self.theta_peak / self.alpha_rad[:, None]
 
-    def to_frame(self) -> pd.DataFrame:
+    def to_frame(self):
         """One row per block: ``alpha_deg, size_s, p, theta_peak, theta_ratio, overturned,
         omega_peak, theta_after, uplifted`` (the CSV of ``spectrum`` and ``rocking.csv``)."""
+        import pandas as pd  # only tables need pandas: keeps ``rock`` light
         alpha_deg = np.round(np.degrees(self.alpha_rad), 10)  # 15, not 14.999999999999998
         return pd.concat([pd.DataFrame({
             "alpha_deg": alpha_deg[i], "size_s": self.size_s, "p": self.p,
