@@ -29,9 +29,11 @@ def run(args) -> int:
         spectrum = UBC97Spectrum(args.na, args.nv)
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
     import numpy as np
-    dampings = np.array(options.float_list(args.damping, "--damping")) / 100.0
-    options.write_csv({
-        "period_s": np.tile(periods, dampings.size), "damping": np.repeat(dampings, periods.size),
-        "sa_g": np.concatenate([spectrum.acceleration(periods, d) for d in dampings]),
-        "sd": np.concatenate([spectrum.displacement(periods, d) for d in dampings])}, args.csv)
+    dampings_pct = np.array(options.float_list(args.damping, "--damping"))
+    options.write_csv({  # a dict of columns: no pandas for this command
+        "period_s": np.tile(periods, dampings_pct.size),
+        "damping_pct": np.repeat(dampings_pct, periods.size),
+        "sa_g": np.concatenate([spectrum.acceleration(periods, d / 100.0) for d in dampings_pct]),
+        "sd_m": np.concatenate([spectrum.displacement(periods, d / 100.0) for d in dampings_pct])},
+        args.csv)
     return 0

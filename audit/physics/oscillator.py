@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
+from audit import G
 from audit.errors import InputError
 
 #: Terms of the Taylor series of φ₂ used for |z| < 1 (the next term is below 1e-19).
@@ -302,11 +303,13 @@ class ResponseSpectra:
                             self.sa)
 
     def to_frame(self):
-        """One row per (damping, period): ``period_s, damping, sd, sv, sa, psv, psa``."""
+        """One row per (damping, period): ``period_s, damping_pct, sd_m, sv_m_s, sa_g, psv_m_s,
+        psa_g`` (accelerations in g and damping in %, the units of every CSV and figure)."""
         import pandas as pd  # only tables need pandas: keeps the solver's import light
         return pd.concat([pd.DataFrame({
-            "period_s": self.period_s, "damping": damping, "sd": self.sd[i], "sv": self.sv[i],
-            "sa": self.sa[i], "psv": self.pseudo_velocity[i], "psa": self.pseudo_acceleration[i]})
+            "period_s": self.period_s, "damping_pct": 100.0 * damping, "sd_m": self.sd[i],
+            "sv_m_s": self.sv[i], "sa_g": self.sa[i] / G, "psv_m_s": self.pseudo_velocity[i],
+            "psa_g": self.pseudo_acceleration[i] / G})
             for i, damping in enumerate(self.damping)], ignore_index=True)
 
     def displacement_at(self, period_s, damping_index: int) -> np.ndarray:
