@@ -169,7 +169,7 @@ def _extremum(form, low, g_low, high, xi_omega, omega_d):
 
 
 @numba.njit(cache=True, nogil=True)
-def _may_peak_inside(f0, g0, f2, f3, f1, g1, f2_end, length, xi_omega, omega_d, peak):
+def _may_peak_inside(f0, g0, f2, f3, f1, g1, f2_end, reach, xi_omega, inv_omega_d, peak):
     """Whether f may have an extremum strictly inside a segment with |f| above ``peak``.
 
     f0, g0, f2, f3 are f, f', f'', f''' at the segment's start and f1, g1, f2_end f, f', f'' at
@@ -178,12 +178,13 @@ def _may_peak_inside(f0, g0, f2, f3, f1, g1, f2_end, length, xi_omega, omega_d, 
     ω_d·length < π it has at most one zero inside, hence f' at most two: one if f' changes sign
     between the ends; two only if it does not but heads for zero first (f'·f'' < 0 at the start)
     and f'' changes sign. An extremum at τ* has f'(τ*) = 0, so |f'| ≤ max|f''|·|τ − τ*| and
-    |f(τ*)| ≤ max(|f(0)|, |f(L)|) + max|f''|·L²/8, with max|f''| ≤ √(P² + Q²) ≤ |P| + |Q|.
+    |f(τ*)| ≤ max(|f(0)|, |f(L)|) + max|f''|·L²/8, with max|f''| ≤ √(P² + Q²) ≤ |P| + |Q|
+    (``reach`` = L²/8, ``inv_omega_d`` = 1/ω_d: no division in this hot test).
     """
     # the bound first: once the peak is established it almost always fails, a branch the CPU
     # predicts, unlike the signs of f'; √(P² + Q²) ≤ |P| + |Q| spares the square root
-    amplitude = abs(f2) + abs((f3 + xi_omega * f2) / omega_d)
-    if max(abs(f0), abs(f1)) + amplitude * length * length / 8.0 <= peak:
+    amplitude = abs(f2) + abs((f3 + xi_omega * f2) * inv_omega_d)
+    if max(abs(f0), abs(f1)) + amplitude * reach <= peak:
         return False
     return g0 * g1 < 0.0 or (g0 * f2 < 0.0 and f2 * f2_end < 0.0)
 
@@ -220,6 +221,9 @@ def _peaks(acc, dt, coeffs, omega, damping, between_samples, out):
         # sub-segments short enough that f'' has at most one zero in each (ω_d·length < 3 < π)
         n_segments = int(omega_d * dt / 3.0) + 1
         length = dt / n_segments
+        reach = length * length / 8.0
+        inv_omega_d = 1.0 / omega_d
+        inv_dt = 1.0 / dt
         u = 0.0
         v = 0.0
         sd = 0.0
@@ -227,7 +231,7 @@ def _peaks(acc, dt, coeffs, omega, damping, between_samples, out):
         sa = 0.0
         for k in range(acc.size - 1):
             u_next, v_next = _step(c, u, v, acc[k], acc[k + 1])
-            slope = (acc[k + 1] - acc[k]) / dt
+            slope = (acc[k + 1] - acc[k]) * inv_dt
             if between_samples:
                 d_start = _derivatives(u, v, acc[k], slope, two_xi_omega, omega2)
                 acc_start = acc[k]
@@ -242,17 +246,17 @@ def _peaks(acc, dt, coeffs, omega, damping, between_samples, out):
                         u_j, v_j, _ = _evaluate((j + 1) * length, displacement, xi_omega, omega_d)
                     d_end = _derivatives(u_j, v_j, acc_end, slope, two_xi_omega, omega2)
                     if _may_peak_inside(d_start[0], d_start[1], d_start[2], d_start[3], d_end[0],
-                                        d_end[1], d_end[2], length, xi_omega, omega_d, sd):
+                                        d_end[1], d_end[2], reach, xi_omega, inv_omega_d, sd):
                         sd = max(sd, _segment_peak(d_start[0], d_start[1], d_start[2], d_start[3],
                                                    d_end[1], length, xi_omega, omega_d, omega2))
                     if _may_peak_inside(d_start[1], d_start[2], d_start[3], d_start[4], d_end[1],
-                                        d_end[2], d_end[3], length, xi_omega, omega_d, sv):
+                                        d_end[2], d_end[3], reach, xi_omega, inv_omega_d, sv):
                         sv = max(sv, _segment_peak(d_start[1], d_start[2], d_start[3], d_start[4],
                                                    d_end[2], length, xi_omega, omega_d, omega2))
                     sa_start = d_start[2] + acc_start
                     if _may_peak_inside(sa_start, d_start[3] + slope, d_start[4], d_start[5],
-                                        d_end[2] + acc_end, d_end[3] + slope, d_end[4], length,
-                                        xi_omega, omega_d, sa):
+                                        d_end[2] + acc_end, d_end[3] + slope, d_end[4], reach,
+                                        xi_omega, inv_omega_d, sa):
                         sa = max(sa, _segment_peak(sa_start, d_start[3] + slope, d_start[4],
                                                    d_start[5], d_end[3] + slope, length, xi_omega,
                                                    omega_d, omega2))
