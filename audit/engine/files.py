@@ -1,4 +1,4 @@
-"""Atomic file output shared by the CLI commands and the audit run (light: standard library only)."""
+"""Writing output files all or nothing; light on purpose (no pandas), so every command can use it."""
 
 from __future__ import annotations
 
