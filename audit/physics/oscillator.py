@@ -181,8 +181,7 @@ def _may_peak_inside(f0, g0, f2, f3, f1, g1, f2_end, reach, xi_omega, inv_omega_
     |f(τ*)| ≤ max(|f(0)|, |f(L)|) + max|f''|·L²/8, with max|f''| ≤ √(P² + Q²) ≤ |P| + |Q|
     (``reach`` = L²/8, ``inv_omega_d`` = 1/ω_d: no division in this hot test).
     """
-    # the bound first: once the peak is established it almost always fails, a branch the CPU
-    # predicts, unlike the signs of f'; √(P² + Q²) ≤ |P| + |Q| spares the square root
+    # the bound first: once the peak is established it almost always rules the step out
     amplitude = abs(f2) + abs((f3 + xi_omega * f2) * inv_omega_d)
     if max(abs(f0), abs(f1)) + amplitude * reach <= peak:
         return False
