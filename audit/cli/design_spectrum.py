@@ -44,11 +44,10 @@ def run(args) -> int:
         spectrum = NTC2018Spectrum(args.ag, args.f0, args.tc_star, args.soil, args.topography)
     else:
         spectrum = UBC97Spectrum(args.na, args.nv)
-    import pandas as pd
-    frame = pd.concat([pd.DataFrame({
-        "period_s": periods, "damping_pct": 100.0 * d,
-        "sa_g": spectrum.acceleration(periods, d),
-        "sd_m": spectrum.displacement(periods, d)})
-        for d in damping])
-    options.write_csv(frame, csv)
+    import numpy as np
+    options.write_csv({  # a dict of columns: no pandas for this command
+        "period_s": np.tile(periods, damping.size),
+        "damping_pct": np.repeat(100.0 * damping, periods.size),
+        "sa_g": np.concatenate([spectrum.acceleration(periods, d) for d in damping]),
+        "sd_m": np.concatenate([spectrum.displacement(periods, d) for d in damping])}, csv)
     return 0

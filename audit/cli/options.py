@@ -1,7 +1,7 @@
 """Parsing and checking of the options shared by several commands, and writing their outputs.
 
-Light on purpose: importing this module loads numpy and the project's error type, nothing else,
-so ``--help`` and option errors cost no scientific import.
+Light on purpose: importing this module loads the project's error type and nothing else (numpy
+only when a grid is parsed), so ``--help`` and option errors cost no scientific import.
 """
 
 from __future__ import annotations
@@ -12,8 +12,6 @@ import os
 import sys
 import tempfile
 from pathlib import Path
-
-import numpy as np
 
 from audit.errors import InputError
 
@@ -35,6 +33,7 @@ def float_list(text: str, option: str) -> list[float]:
 
 def alphas_deg(text: str) -> np.ndarray:
     """Slendernesses typed in degrees, checked to lie in (0°, 45°)."""
+    import numpy as np
     values = float_list(text, "--alpha")
     for value in values:
         if not 0 < value < 45:
@@ -48,11 +47,14 @@ def damping_pct(text: str, option: str = "--damping") -> np.ndarray:
     for value in values:
         if not 0 <= value < 100:
             raise InputError(f"{option}: damping must lie in 0 ≤ β < 100 %, got {value:g}")
+    import numpy as np
     return np.array(values) / 100.0
 
 
 def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     """START:STOP:STEP (inclusive) or a comma list of times [s] given to ``option``."""
+    import numpy as np
+
     from audit.engine.grid import size_grid
     parts = text.split(":")
     low = "0 ≤ START" if allow_zero else "0 < START"
@@ -216,8 +218,15 @@ def figure_png(draw, height: float = 6.0) -> bytes:
     return png_bytes(fig)
 
 
-def csv_bytes(frame) -> bytes:
-    return frame.to_csv(index=False, float_format="%.8g").encode()
+def csv_text(table) -> tuple[str, int]:
+    """CSV text and row count of ``table``: a pandas DataFrame or, for commands that need no
+    pandas, a dict of equal-length numeric columns; numbers written with ``%.8g`` either way."""
+    if isinstance(table, dict):
+        columns = list(table.values())
+        text = "".join([",".join(table) + "\n"] + [",".join(f"{value:.8g}" for value in row) + "\n"
+                                                  for row in zip(*columns)])
+        return text, len(columns[0]) if columns else 0
+    return table.to_csv(index=False, float_format="%.8g"), len(table)
 
 
 def write_outputs(files: dict[Path, bytes]) -> None:
@@ -242,13 +251,15 @@ def write_outputs(files: dict[Path, bytes]) -> None:
                 os.remove(temp)
 
 
-def write_csv(frame, path: Path | None, extra: dict[Path, bytes] | None = None) -> None:
-    """``frame`` as CSV to ``path`` or standard output (None), with the ``extra`` files."""
+def write_csv(table, path: Path | None, extra: dict[Path, bytes] | None = None) -> None:
+    """``table`` (see :func:`csv_text`) as CSV to ``path`` or standard output (None), with the
+    ``extra`` files, all or nothing."""
+    text, rows = csv_text(table)
     files = dict(extra or {})
     if path is not None:
-        files[path] = csv_bytes(frame)
+        files[path] = text.encode()
     write_outputs(files)
     if path is None:
-        frame.to_csv(sys.stdout, index=False, float_format="%.8g")
+        sys.stdout.write(text)
     else:
-        print(f"Wrote {len(frame)} rows to {path}", file=sys.stderr)
+        print(f"Wrote {rows} rows to {path}", file=sys.stderr)

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from audit.cli import options
 
 
@@ -29,6 +27,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
+    import numpy as np
     csv = options.output_file(args.csv, "--csv")
     plot = options.output_file(args.plot, "--plot")
     if args.free_motion is None:

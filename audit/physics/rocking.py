@@ -533,7 +533,7 @@ class RockingSpectrum:
         """max |θ| / α [-]."""
         return self.theta_peak / self.alpha_rad[:, None]
 
-    def to_frame(self) -> pd.DataFrame:
+    def to_frame(self):
         """One row per block: ``alpha_deg, size_s, p_rad_s, theta_peak_rad, theta_ratio,
         overturned, omega_peak_rad_s, theta_after_rad, uplifted`` (the CSV of ``spectrum`` and
         ``rocking.csv``)."""
