@@ -482,8 +482,9 @@ def procedure_region(ctx, quantity: str, procedure: str, records: list[str],
     elif quantity == "fraction_unconservative":
         hit = (exact_over & ~approx_over) | (both_survive & (factor < 1.0))
     elif quantity == "fraction_good":
-        hit = (approx_over & exact_over) | (both_survive & (np.abs(np.log(factor))
-                                                            <= math.log(GOOD_RATIO)))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            within = np.abs(np.log(factor)) <= math.log(GOOD_RATIO)
+        hit = (approx_over & exact_over) | (both_survive & within)
     else:
         raise InputError(f"{CLAIMS_FILE}: procedure_region: unknown quantity '{quantity}'")
     if not keep.any():
