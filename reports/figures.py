@@ -31,7 +31,7 @@ _EXTRA_COLOURS = ("#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf")
 VERDICT_COLOURS = {
     "no-uplift": "#eeeeee", "both-overturn": "#4d4d4d", "false-overturn": "#fdbf6f",
     "missed-overturn": "#b2182b", "conservative": "#a6cee3", "unconservative": "#fb9a99",
-    "not-converged": "#cab2d6", "record-missing": "#ffffff",
+    "not-converged": "#cab2d6", "agrees": "#b2df8a",
 }
 DPI = 80
 
@@ -149,27 +149,27 @@ def _draw_history(ax_theta, ax_omega, time, theta_ratio, omega, title, rocking_s
 def draw_response_spectra(fig, frame, title, design=None, axes=None, max_period=8.0):
     """True Sd [m], Sv [m/s], Sa [g] against T, one curve per damping (left of Figures 5.x).
 
-    ``frame`` has columns ``period_s, damping, sd, sv, sa`` (SI); ``design`` is an optional
-    DataFrame ``code, period_s, damping, sd, sa_g`` of code spectra: FEMA 356 dashed in the
+    ``frame`` has columns ``period_s, damping_pct, sd_m, sv_m_s, sa_g``; ``design`` is an
+    optional DataFrame ``code, period_s, damping_pct, sd_m, sa_g`` of code spectra: FEMA 356 dashed in the
     damping's colour, others dotted black.
     """
     if axes is None:
         axes = fig.subplots(3, 1, sharex=True)
         _margins(fig, fig.get_figheight(), hspace=0.1)
     frame = frame[frame["period_s"] <= max_period]
-    for damping, group in frame.groupby("damping"):
-        colour = damping_colour(damping)
-        label = f"ξ = {100 * damping:g} %"
-        axes[0].plot(group["period_s"], group["sd"], color=colour, lw=1, label=label)
-        axes[1].plot(group["period_s"], group["sv"], color=colour, lw=1, label=label)
-        axes[2].plot(group["period_s"], group["sa"] / G, color=colour, lw=1, label=label)
+    for damping, group in frame.groupby("damping_pct"):
+        colour = damping_colour(damping / 100.0)
+        label = f"ξ = {damping:g} %"
+        axes[0].plot(group["period_s"], group["sd_m"], color=colour, lw=1, label=label)
+        axes[1].plot(group["period_s"], group["sv_m_s"], color=colour, lw=1, label=label)
+        axes[2].plot(group["period_s"], group["sa_g"], color=colour, lw=1, label=label)
     if design is not None:
         design = design[design["period_s"] <= max_period]
-        for (code, damping), group in design.groupby(["code", "damping"], sort=False):
+        for (code, damping), group in design.groupby(["code", "damping_pct"], sort=False):
             fema = code.startswith("FEMA")
-            style = {"color": damping_colour(damping) if fema else "#000000", "lw": 1,
-                     "ls": "--" if fema else ":", "label": f"{code}, β = {100 * damping:g} %"}
-            axes[0].plot(group["period_s"], group["sd"], **style)
+            style = {"color": damping_colour(damping / 100.0) if fema else "#000000", "lw": 1,
+                     "ls": "--" if fema else ":", "label": f"{code}, β = {damping:g} %"}
+            axes[0].plot(group["period_s"], group["sd_m"], **style)
             axes[2].plot(group["period_s"], group["sa_g"], **style)
     axes[0].set_title(title, fontsize=9)
     axes[0].set_ylabel("Sd = max|u| [m]")
@@ -185,7 +185,7 @@ def draw_response_spectra(fig, frame, title, design=None, axes=None, max_period=
 def draw_rocking_spectra(fig, frame, title, axes=None):
     """Rotation θ/α and angular-velocity spectra against 2π/p, one curve per α (Figures 5.x).
 
-    ``frame`` has columns ``alpha_deg, size_s, theta_ratio, overturned, omega_peak``;
+    ``frame`` has columns ``alpha_deg, size_s, theta_ratio, overturned, omega_peak_rad_s``;
     overturning is marked with × at θ/α = 1.
     """
     if axes is None:
@@ -198,7 +198,7 @@ def draw_rocking_spectra(fig, frame, title, axes=None):
         ratio = np.where(over, np.nan, group["theta_ratio"].to_numpy())
         axes[0].plot(size, ratio, color=colour, lw=1, label=f"α = {alpha:g}°")
         _mark_overturned(axes[0], size, np.ones_like(size), over, colour)
-        axes[1].plot(size, np.where(over, np.nan, group["omega_peak"]), color=colour, lw=1)
+        axes[1].plot(size, np.where(over, np.nan, group["omega_peak_rad_s"]), color=colour, lw=1)
     axes[0].set_title(f"{title}: rocking spectra (× overturns)", fontsize=9)
     axes[0].set_ylabel("max|θ|/α [-]")
     axes[0].set_ylim(0, 1.08)
@@ -223,7 +223,7 @@ def draw_procedure_comparison(fig, results, spectra, title, procedure_title):
     """Figures 8.x / 9.x: Sd at β(α) | exact vs approximate θ/α | converged T(θ); a row per α.
 
     ``results`` are the result rows of one record and procedure; ``spectra`` a DataFrame
-    ``alpha_deg, period_s, sd`` of the displacement spectrum the procedure read.
+    ``alpha_deg, period_s, sd_m`` of the displacement spectrum the procedure read.
     """
     alphas = sorted(results["alpha_deg"].unique())
     axes = fig.subplots(len(alphas), 3, squeeze=False, sharex="col")
@@ -231,20 +231,20 @@ def draw_procedure_comparison(fig, results, spectra, title, procedure_title):
     for row, alpha in enumerate(alphas):
         colour = alpha_colour(alpha)
         rows = results[results["alpha_deg"] == alpha].sort_values("size_s")
-        beta = rows["beta"].iloc[0]
+        beta = rows["beta_pct"].iloc[0]
         spec = spectra[(spectra["alpha_deg"] == alpha) & (spectra["period_s"] <= 20)]
         ax = axes[row, 0]
-        ax.plot(spec["period_s"], spec["sd"], color=colour, lw=1)
+        ax.plot(spec["period_s"], spec["sd_m"], color=colour, lw=1)
         ax.set_ylabel(f"α = {alpha:g}°\nSd [m]")
-        ax.set_title(f"Sd at β = {100 * beta:.2f} %", fontsize=8)
+        ax.set_title(f"Sd at β = {beta:.2f} %", fontsize=8)
         size = rows["size_s"].to_numpy()
         alpha_rad = np.radians(alpha)
         exact_over = rows["exact_overturned"].eq(True).to_numpy()  # NaN: no record file
         approx_over = rows["approx_overturned"].eq(True).to_numpy()
-        exact = np.where(exact_over, np.nan, rows["exact_theta"].to_numpy() / alpha_rad)
-        approx = rows["approx_theta"].to_numpy(dtype=float) / alpha_rad
+        exact = np.where(exact_over, np.nan, rows["exact_theta_rad"].to_numpy() / alpha_rad)
+        approx = rows["approx_theta_rad"].to_numpy(dtype=float) / alpha_rad
         ax = axes[row, 1]
-        no_file = rows["exact_theta"].isna().all()
+        no_file = rows["exact_theta_rad"].isna().all()
         ax.plot(size, exact, color="#333333", lw=1.2,
                 label="exact: no record file" if no_file else "exact")
         ax.plot(size, approx, color=colour, lw=1, ls="--", label=procedure_title)
@@ -259,7 +259,7 @@ def draw_procedure_comparison(fig, results, spectra, title, procedure_title):
         ax.set_title("exact (× overturns) vs procedure (▲ predicts overturning, | no convergence)",
                      fontsize=8)
         ax = axes[row, 2]
-        period = rows["approx_period"].to_numpy(dtype=float)
+        period = rows["approx_period_s"].to_numpy(dtype=float)
         ax.plot(size, period, color=colour, lw=1)
         if not np.isfinite(period).any():
             ax.set_yticks([])

@@ -34,10 +34,10 @@ VERDICT_MEANING = {
     "both-overturn": "both the exact response and the procedure overturn",
     "false-overturn": "the procedure predicts overturning; the block survives",
     "missed-overturn": "the block overturns; the procedure says it survives",
-    "conservative": "the procedure's rotation is at least the exact one",
-    "unconservative": "the procedure's rotation is below the exact one",
+    "conservative": "the procedure's rotation exceeds the exact one beyond the agreement band",
+    "unconservative": "the procedure's rotation is below the exact one beyond the agreement band",
     "not-converged": "the procedure's iteration has no fixed point (oscillates)",
-    "record-missing": "estimate only: no record file for the exact response",
+    "agrees": "both survive and approx/exact lies within the agreement band",
 }
 
 
@@ -77,8 +77,7 @@ def _draw_job(job) -> str:
 
 def _procedure_summary(procedure: dict, results: pd.DataFrame, names: dict) -> dict:
     """Plain-language verdict of one procedure, with the numbers behind it."""
-    rows = results[(results["procedure"] == procedure["name"])
-                   & (results["verdict"] != "record-missing")]
+    rows = results[results["procedure"] == procedure["name"]]
     total = len(rows)
     counts = rows["verdict"].value_counts()
     share = {v: (int(counts.get(v, 0)), 100.0 * counts.get(v, 0) / total if total else 0.0)
@@ -106,8 +105,8 @@ def _conclusion(rows: pd.DataFrame) -> str:
     """What a procedure concluded for one block, in a few words."""
     row = rows.iloc[0]
     if row["approx_outcome"] == "converged":
-        ratio = row["approx_theta"] / np.radians(row["alpha_deg"])
-        return f"T(θ) = {row['approx_period']:.2f} s, θ/α = {ratio:.3f}"
+        ratio = row["approx_theta_rad"] / np.radians(row["alpha_deg"])
+        return f"T(θ) = {row['approx_period_s']:.2f} s, θ/α = {ratio:.3f}"
     return {"overturn": "predicts overturning", "no-uplift": "predicts no rocking",
             "not-converged": "no fixed point"}.get(row["approx_outcome"], row["approx_outcome"])
 
@@ -115,19 +114,21 @@ def _conclusion(rows: pd.DataFrame) -> str:
 def _design_frame(site: dict, dampings, periods) -> pd.DataFrame:
     """Design spectra overlaid on Figure 5.x: FEMA 356 at each damping where the record has
     site parameters, and UBC 97 (zone 4, soil S_D, N_a = N_v = 1) at 5 % on every record."""
-    frames = [pd.DataFrame({"code": "UBC 97 zone 4, S_D", "period_s": periods, "damping": 0.05,
+    frames = [pd.DataFrame({"code": "UBC 97 zone 4, S_D", "period_s": periods, "damping_pct": 5.0,
                             "sa_g": UBC97Spectrum().acceleration(periods, 0.05),
-                            "sd": UBC97Spectrum().displacement(periods, 0.05)})]
+                            "sd_m": UBC97Spectrum().displacement(periods, 0.05)})]
     if site.get("sxs_g") and site.get("sx1_g"):
         spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
-        frames += [pd.DataFrame({"code": "FEMA 356", "period_s": periods, "damping": d,
+        frames += [pd.DataFrame({"code": "FEMA 356", "period_s": periods, "damping_pct": 100.0 * d,
                                  "sa_g": spectrum.acceleration(periods, d),
-                                 "sd": spectrum.displacement(periods, d)}) for d in dampings]
+                                 "sd_m": spectrum.displacement(periods, d)}) for d in dampings]
     return pd.concat(frames, ignore_index=True)
 
 
 def _record_sections(run, procedures, pending: _Figures) -> list[dict]:
-    results, spectra, histories = run.results, run.spectra, run.histories
+    # records without a file still show the estimate of a procedure that needs none
+    results = pd.concat([run.results, run.estimates_only], ignore_index=True)
+    spectra, histories = run.spectra, run.histories
     summary = run.summary
     sections = []
     for number, record in enumerate(summary["records"], start=1):
@@ -139,7 +140,7 @@ def _record_sections(run, procedures, pending: _Figures) -> list[dict]:
             response = spectra[(spectra["record"] == rid) & (spectra["procedure"] == "")]
             rocking = run.rocking[run.rocking["record"] == rid]
             has_site = bool((record.get("site") or {}).get("sxs_g"))
-            design = _design_frame(record.get("site") or {}, summary["settings"]["figure_5_damping"],
+            design = _design_frame(record.get("site") or {}, [d / 100.0 for d in summary["settings"]["figure_5_damping_pct"]],
                                    np.linspace(0.0, 8.0, 321))
             section["figures"].append({
                 "id": f"fig-5-{number}", "caption": f"Figure 5.{number} — {record['name']}: true "
@@ -176,17 +177,17 @@ def _record_sections(run, procedures, pending: _Figures) -> list[dict]:
                 match = rows[np.isclose(rows["size_s"], meta["size_s"])
                              & np.isclose(rows["alpha_deg"], meta["alpha_deg"])]
                 drawn.append({
-                    "time": h["t"].to_numpy(), "theta_ratio": h["theta_ratio"].to_numpy(),
-                    "omega": h["omega"].to_numpy(),
+                    "time": h["time_s"].to_numpy(), "theta_ratio": h["theta_ratio"].to_numpy(),
+                    "omega": h["omega_rad_s"].to_numpy(),
                     "title": f"2π/p = {meta['size_s']:.2f} s, α = {meta['alpha_deg']:g}°: "
                              f"exact peak θ/α = {meta['peak_rotation_ratio']:.3f}",
-                    "rocking_span": (None if meta["first_impact"] is None
-                                     else (meta["first_impact"], meta["last_impact"])),
-                    "cycle_starts": meta["cycle_starts"],
-                    "cycle_durations": meta["cycle_durations"],
+                    "rocking_span": (None if meta["first_impact_s"] is None
+                                     else (meta["first_impact_s"], meta["last_impact_s"])),
+                    "cycle_starts": meta["cycle_starts_s"],
+                    "cycle_durations": meta["cycle_durations_s"],
                     "procedures": {p["title"]: _conclusion(match[match["procedure"] == p["name"]])
                                    for p in procedures if (match["procedure"] == p["name"]).any()},
-                    "excitation_end": meta["excitation_end"]})
+                    "excitation_end": meta["excitation_end_s"]})
             section["figures"].append({
                 "id": f"fig-th-{number}", "caption": f"Time histories of representative blocks "
                 f"under {record['name']} (as Figures 8.2, 8.5, 8.7, 8.9): θ/α and θ' against "
@@ -256,8 +257,7 @@ def render_report(run, generated: datetime | None = None, processes: int = 2) ->
     verdict_maps = []
     for procedure in procedures:
         rows = run.results[run.results["procedure"] == procedure["name"]]
-        records = [r for r in audited if (rows["record"] == r).any()
-                   and (rows[rows["record"] == r]["verdict"] != "record-missing").any()]
+        records = [r for r in audited if (rows["record"] == r).any()]
         if records:
             verdict_maps.append({"procedure": procedure, "src": pending.add(
                 figures.draw_verdict_map, (rows, records, names), 11, 1.3 + 1.0 * len(records))})

@@ -81,8 +81,8 @@ def test_rocking_spectrum_csv(tmp_path, capsys):
                  "--alpha", "10,20", "--sizes", "0.5:2:0.5", "--csv", str(csv),
                  "--plot", str(plot)]) == 0
     frame = pd.read_csv(csv)
-    assert {"alpha_deg", "size_s", "p", "theta_peak", "theta_ratio", "overturned",
-            "omega_peak"} <= set(frame.columns)
+    assert {"alpha_deg", "size_s", "p_rad_s", "theta_peak_rad", "theta_ratio", "overturned",
+            "omega_peak_rad_s"} <= set(frame.columns)
     assert len(frame) == 8 and plot.read_bytes()[:8] == PNG_SIGNATURE
 
 
@@ -92,8 +92,8 @@ def test_response_and_design_spectrum_csv(tmp_path):
                  "--pulse-period", "1", "--damping", "5,10", "--periods", "0.1:2:0.1",
                  "--csv", str(csv)]) == 0
     frame = pd.read_csv(csv)
-    assert {"period_s", "damping", "sd", "sv", "sa"} <= set(frame.columns)
-    assert sorted(frame["damping"].unique()) == [0.05, 0.10]
+    assert {"period_s", "damping_pct", "sd_m", "sv_m_s", "sa_g"} <= set(frame.columns)
+    assert sorted(frame["damping_pct"].unique()) == [5.0, 10.0]
     design = tmp_path / "design.csv"
     assert main(["design-spectrum", "fema356", "--sxs", "1.59", "--sx1", "0.50", "--damping", "5",
                  "--csv", str(design)]) == 0
@@ -154,16 +154,22 @@ def test_run_and_rerender(tmp_path, monkeypatch, capsys):
     out = tmp_path / "audit"
     assert main(["run", "all", "--alpha", "15", "--sizes", "1:4:1", "--out", str(out)]) == 0
     assert "pulse-idealised" in capsys.readouterr().out
-    assert sorted(p.name for p in out.iterdir()) == ["histories.csv", "report.html", "results.csv",
-                                                     "rocking.csv", "spectra.csv", "summary.json"]
+    assert sorted(p.name for p in out.iterdir()) == [
+        "columns.json", "estimates-only.csv", "histories.csv", "report.html", "results.csv",
+        "rocking.csv", "spectra.csv", "summary.json"]
     results = pd.read_csv(out / "results.csv")
-    assert list(results.columns[:12]) == [
-        "record", "procedure", "alpha_deg", "size_s", "p", "exact_theta", "exact_overturned",
-        "approx_theta", "approx_overturned", "approx_period", "iterations", "verdict"]
+    assert list(results.columns[:8]) == [
+        "record", "procedure", "alpha_deg", "size_s", "p_rad_s", "exact_theta_rad",
+        "exact_overturned", "exact_uplifted"]
+    # real booleans: pandas reads them as bool, so results[results.exact_overturned] works
+    for column in ("exact_overturned", "exact_uplifted", "approx_overturned"):
+        assert results[column].dtype == bool, column
+    guide = json.loads((out / "columns.json").read_text())
+    assert set(guide["results.csv"]) == set(results.columns)
     # 7 pulse records × 4 sizes for Priestley, 5 with site parameters for FEMA
     assert len(results) == 7 * 4 + 5 * 4
     overturn_rows = results[results["approx_overturned"]]
-    assert overturn_rows["approx_theta"].isna().all()
+    assert overturn_rows["approx_theta_rad"].isna().all()
     summary = json.loads((out / "summary.json").read_text())
     assert summary["pulse_idealised"] is True
     first = (out / "report.html").read_text()
@@ -203,5 +209,5 @@ def test_third_party_plugin_runs_through_the_cli(tmp_path):
     assert result.returncode == 0, result.stderr
     results = pd.read_csv(out / "results.csv")
     assert set(results["procedure"]) == {"halfpriestley"}
-    assert results["beta"].iloc[0] == pytest.approx(0.5 * 0.1311976, rel=1e-5)
+    assert results["beta_pct"].iloc[0] == pytest.approx(0.5 * 13.11976, rel=1e-5)
     assert "Half-damped Priestley (plug-in)" in (out / "report.html").read_text()

@@ -34,12 +34,18 @@ def test_golden_blocks(seed_suite, record):
         got = run.results.set_index("size_s").loc[rows["size_s"]]
         for (_, want), (_, have) in zip(rows.iterrows(), got.iterrows()):
             where = f"{record} {procedure} α={alpha} 2π/p={want['size_s']}"
-            assert have["verdict"] == want["verdict"], where
+            # the golden file predates the agreement band (±10 % by default): a survivor's
+            # verdict follows from its independent approx/exact ratio
+            expected = want["verdict"]
+            if expected in ("conservative", "unconservative") and abs(
+                    want["approx_theta"] / want["exact_theta"] - 1) <= 0.1:
+                expected = "agrees"
+            assert have["verdict"] == expected, where
             assert bool(have["exact_overturned"]) == bool(want["exact_overturned"]), where
-            assert have["exact_theta"] == pytest.approx(want["exact_theta"], rel=1e-4, abs=1e-12), where
+            assert have["exact_theta_rad"] == pytest.approx(want["exact_theta"], rel=1e-4, abs=1e-12), where
             if np.isnan(want["approx_theta"]):
-                assert np.isnan(have["approx_theta"]), where
+                assert np.isnan(have["approx_theta_rad"]), where
             else:
                 # the tool reads Sd interpolated on 800 periods; the golden path at exact T
-                assert have["approx_theta"] == pytest.approx(want["approx_theta"], rel=2e-3,
+                assert have["approx_theta_rad"] == pytest.approx(want["approx_theta"], rel=2e-3,
                                                              abs=1e-12), where

@@ -120,8 +120,7 @@ def seed_audit(seed_suite):
 def test_fema_predicts_overturning_of_every_slender_block(seed_audit):
     """SPEC §6 / Section 9: FEMA 356 overturns every α = 10° block up to 2π/p = 8 s."""
     rows = seed_audit.results
-    fema = rows[(rows["procedure"] == "fema356") & (rows["alpha_deg"] == 10.0)
-                & (rows["verdict"] != "record-missing")]
+    fema = rows[(rows["procedure"] == "fema356") & (rows["alpha_deg"] == 10.0)]
     assert set(fema["record"]) == {"pacoima_dam_1971", "rinaldi_1994", "sylmar_1994"}
     assert fema["approx_overturned"].all() and len(fema) == 3 * 151
 
@@ -139,17 +138,18 @@ def test_missing_and_unauditable_records_are_named(seed_audit):
     assert ("fema356", "erzincan_1992") in reasons and ("fema356", "takatori_1995") in reasons
     assert ("priestley1978", "el_centro_5_1979") in reasons
     assert ("priestley1978", "los_gatos_1989") in reasons
-    rows = seed_audit.results
-    missing = rows[rows["record"] == "el_centro_5_1979"]
-    assert set(missing["procedure"]) == {"fema356"} and set(missing["verdict"]) == {"record-missing"}
-    audited = rows[rows["verdict"] != "record-missing"]
+    # FEMA 356 estimates without the file; those rows have no exact response and no verdict
+    missing = seed_audit.estimates_only
+    assert set(missing["record"]) == {"el_centro_5_1979", "los_gatos_1989"}
+    assert set(missing["procedure"]) == {"fema356"} and set(missing["verdict"]) == {""}
+    audited = seed_audit.results
+    assert not audited["record"].isin(["el_centro_5_1979", "los_gatos_1989"]).any()
     assert set(audited[audited["procedure"] == "priestley1978"]["record"]) == {
         "pacoima_dam_1971", "rinaldi_1994", "sylmar_1994", "erzincan_1992", "takatori_1995"}
 
 
 def test_verdicts_agree_with_their_definitions(seed_audit):
     rows = seed_audit.results
-    rows = rows[rows["verdict"] != "record-missing"]
     exact_over = rows["exact_overturned"].astype(bool)
     for verdict, expected in {
         "both-overturn": exact_over & rows["approx_overturned"],
@@ -158,9 +158,12 @@ def test_verdicts_agree_with_their_definitions(seed_audit):
         & (rows["approx_outcome"] != "not-converged"),
     }.items():
         assert ((rows["verdict"] == verdict) == expected).all(), verdict
-    survivors = rows[rows["verdict"].isin(["conservative", "unconservative"])]
-    assert ((survivors["approx_theta"] >= survivors["exact_theta"])
-            == (survivors["verdict"] == "conservative")).all()
+    survivors = rows[rows["verdict"].isin(["agrees", "conservative", "unconservative"])]
+    ratio = survivors["approx_theta_rad"] / survivors["exact_theta_rad"]
+    assert ((ratio > 1.1) == (survivors["verdict"] == "conservative")).all()
+    assert ((ratio < 0.9) == (survivors["verdict"] == "unconservative")).all()
+    assert ((abs(ratio - 1) <= 0.1) == (survivors["verdict"] == "agrees")).all()
+    assert (survivors["ratio"] == ratio).all()
 
 
 def test_an_audit_of_an_empty_suite_is_empty():

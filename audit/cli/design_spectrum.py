@@ -30,9 +30,9 @@ def run(args) -> int:
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
     import pandas as pd
     frame = pd.concat([pd.DataFrame({
-        "period_s": periods, "damping": d / 100.0,
+        "period_s": periods, "damping_pct": d,
         "sa_g": spectrum.acceleration(periods, d / 100.0),
-        "sd": spectrum.displacement(periods, d / 100.0)})
+        "sd_m": spectrum.displacement(periods, d / 100.0)})
         for d in options.float_list(args.damping, "--damping")])
     options.write_csv(frame, args.csv)
     return 0

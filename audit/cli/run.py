@@ -6,6 +6,7 @@ import time
 from pathlib import Path
 
 from audit.cli import options
+from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out"
 
@@ -22,6 +23,12 @@ def add_parser(sub):
                    help="threads for the exact solver and processes drawing the report (default 2)")
     p.add_argument("--free-motion", type=float, default=10.0, metavar="S",
                    help="free motion after each record [s] (default 10)")
+    p.add_argument("--agree-band", type=float, default=0.10, metavar="FRACTION",
+                   help="verdict 'agrees' when both survive and |approx/exact − 1| ≤ FRACTION "
+                        "(default 0.10)")
+    p.add_argument("--robustness", type=float, default=0.03, metavar="EPSILON",
+                   help="flag blocks whose exact overturning changes with the record scaled by "
+                        "1 ± EPSILON (default 0.03; 0 turns it off)")
     p.set_defaults(func=run)
 
 
@@ -37,8 +44,13 @@ def run(args) -> int:
     alphas = options.alphas_deg(args.alpha)
     out_dir = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
     start = time.perf_counter()
+    if not (0 <= args.agree_band < 1):
+        raise InputError(f"--agree-band: must lie in [0, 1), got {args.agree_band:g}")
+    if not (0 <= args.robustness < 0.5):
+        raise InputError(f"--robustness: must lie in [0, 0.5), got {args.robustness:g}")
     run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
-                    free_motion_s=args.free_motion, progress=Progress(len(suite), "records"))
+                    free_motion_s=args.free_motion, progress=Progress(len(suite), "records"),
+                    agree_band=args.agree_band, robustness=args.robustness)
     computed = time.perf_counter() - start
     save_run(run, out_dir, lambda saved: render_report(saved, processes=args.jobs))
     total = time.perf_counter() - start

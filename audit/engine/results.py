@@ -20,13 +20,15 @@ import numpy as np
 import pandas as pd
 
 from audit.errors import InputError
-from audit.engine.runner import RESULT_COLUMNS, AuditRun
+from audit.engine.runner import BOOLEAN_COLUMNS, RESULT_COLUMNS, AuditRun
 
 RESULTS_CSV = "results.csv"
 SUMMARY_JSON = "summary.json"
 SPECTRA_CSV = "spectra.csv"
 HISTORIES_CSV = "histories.csv"
 ROCKING_CSV = "rocking.csv"
+ESTIMATES_ONLY_CSV = "estimates-only.csv"
+COLUMNS_JSON = "columns.json"
 REPORT_HTML = "report.html"
 
 
@@ -64,19 +66,32 @@ def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None
         shutil.rmtree(staging, ignore_errors=True)
 
 
-def run_files(run: AuditRun) -> dict[str, bytes]:
-    """The data files of a run, as bytes."""
-    results = run.results.copy()
-    for column in ("exact_overturned", "approx_overturned", "exact_uplifted"):
-        results[column] = results[column].map(
+def _with_booleans(frame):
+    """True/False in the boolean columns, empty only where undefined (NaN)."""
+    frame = frame.copy()
+    for column in BOOLEAN_COLUMNS:
+        frame[column] = frame[column].map(
             lambda v: "" if v is None or (isinstance(v, float) and math.isnan(v)) else bool(v))
+    return frame
+
+
+def run_files(run: AuditRun) -> dict[str, bytes]:
+    """The data files of a run, as bytes (``columns.json`` describes every column)."""
+    from audit.engine.columns import column_guide
     return {
-        RESULTS_CSV: results.to_csv(index=False, float_format="%.10g").encode(),
+        RESULTS_CSV: _with_booleans(run.results).to_csv(index=False, float_format="%.10g").encode(),
+        ESTIMATES_ONLY_CSV: _with_booleans(run.estimates_only).to_csv(
+            index=False, float_format="%.10g").encode(),
         SUMMARY_JSON: json.dumps(_json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
         SPECTRA_CSV: run.spectra.to_csv(index=False, float_format="%.8g").encode(),
         HISTORIES_CSV: run.histories.to_csv(index=False, float_format="%.7g").encode(),
         ROCKING_CSV: run.rocking.to_csv(index=False, float_format="%.10g").encode(),
+        COLUMNS_JSON: json.dumps(column_guide(), indent=1, ensure_ascii=False).encode(),
     }
+
+
+DATA_FILES = (RESULTS_CSV, ESTIMATES_ONLY_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV,
+              ROCKING_CSV)
 
 
 def load_run(run_dir: str | Path) -> AuditRun:
@@ -85,11 +100,26 @@ def load_run(run_dir: str | Path) -> AuditRun:
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a directory of audit results")
     files = {}
-    for name in (RESULTS_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV, ROCKING_CSV):
+    for name in DATA_FILES:
         if not (run_dir / name).is_file():
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
         files[name] = (run_dir / name).read_bytes()
     return parse_run(files, str(run_dir))
+
+
+def _read_results(content: bytes, name: str, where: str) -> pd.DataFrame:
+    keep_text = ("verdict", "approx_outcome", "approx_detail", "approx_fixed_points",
+                 "approx_cycle")
+    frame = pd.read_csv(io.BytesIO(content), keep_default_na=False,
+                        na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
+    missing = [c for c in RESULT_COLUMNS if c not in frame.columns]
+    if missing:
+        raise InputError(f"{where}/{name}: columns missing: {', '.join(missing)}")
+    for column in BOOLEAN_COLUMNS:
+        frame[column] = frame[column].map({True: True, False: False, "True": True,
+                                           "False": False}).astype(object)
+    frame["procedure"] = frame["procedure"].astype(str)
+    return frame
 
 
 def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
@@ -98,26 +128,18 @@ def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
         summary = json.loads(files[SUMMARY_JSON].decode("utf-8"))
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
-    keep_text = ("verdict", "approx_outcome", "approx_detail")
     try:
-        results = pd.read_csv(io.BytesIO(files[RESULTS_CSV]), keep_default_na=False,
-                              na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
+        results = _read_results(files[RESULTS_CSV], RESULTS_CSV, where)
+        estimates_only = _read_results(files[ESTIMATES_ONLY_CSV], ESTIMATES_ONLY_CSV, where)
         spectra = pd.read_csv(io.BytesIO(files[SPECTRA_CSV]), keep_default_na=False,
-                              na_values={c: [""] for c in ("alpha_deg", "damping", "period_s",
-                                                           "sd", "sv", "sa")})
+                              na_values={c: [""] for c in ("alpha_deg", "damping_pct", "period_s",
+                                                           "sd_m", "sv_m_s", "sa_g")})
         histories = pd.read_csv(io.BytesIO(files[HISTORIES_CSV]))
         rocking = pd.read_csv(io.BytesIO(files[ROCKING_CSV]))
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}: cannot read the results: {exc}") from None
-    missing = [c for c in RESULT_COLUMNS if c not in results.columns]
-    if missing:
-        raise InputError(f"{where}/{RESULTS_CSV}: columns missing: {', '.join(missing)}")
-    for column in ("exact_overturned", "approx_overturned", "exact_uplifted"):
-        results[column] = results[column].map({True: True, False: False, "True": True,
-                                               "False": False}).astype(object)
-    results["procedure"] = results["procedure"].astype(str)
     spectra["procedure"] = spectra["procedure"].astype(str)
-    return AuditRun(results, spectra, histories, rocking, summary)
+    return AuditRun(results, spectra, histories, rocking, estimates_only, summary)
 
 
 def save_run(run: AuditRun, out_dir: str | Path, render) -> AuditRun:

@@ -1,41 +1,52 @@
 """The audit: exact rocking spectra against guideline estimates, block by block (SPEC §5–8).
 
-For every record of a suite the exact rocking spectra are computed once and shared by all the
-procedures of the run; each procedure then estimates every block of the grid, and each block
-gets one verdict:
+The unit of work is one record (:func:`audit_record`): its response spectra, its exact rocking
+spectra (also at the record scaled by 1 ± ε, for the fragility flag), and every procedure's
+estimates for every block of the grid. :func:`run_audit` runs it for each record of a suite and
+combines the parts. Each block gets one verdict:
 
 ``no-uplift``        PGA ≤ g tan α: neither rocks.
 ``both-overturn``    both say the block overturns.
 ``false-overturn``   the procedure predicts overturning; the block survives.
 ``missed-overturn``  the block overturns; the procedure says it survives.
-``conservative``     approx θ ≥ exact θ.
-``unconservative``   approx θ < exact θ.
-``not-converged``    the procedure's iteration found no fixed point.
-``record-missing``   the procedure could estimate (it needs no record), but there is no file
-                     to compute the exact response from.
+``agrees``           both survive and |approx/exact − 1| ≤ the agreement band.
+``conservative``     approx/exact > 1 + band.
+``unconservative``   approx/exact < 1 − band.
+``not-converged``    the procedure's iteration settles in a cycle or does not settle.
+
+A procedure that can estimate without the recorded motion (FEMA 356 reads a design spectrum)
+still estimates for a record whose file is missing; those estimates have no exact response to be
+compared with, so they are kept apart (``AuditRun.estimates_only``), not given a verdict.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from audit import G, __version__
-from audit.physics.block import coefficient_of_restitution
-from audit.physics.oscillator import response_spectra
 from audit.engine.grid import DEFAULT_ALPHA_DEG, DEFAULT_SIZES, size_grid
 from audit.engine.progress import Progress
-from audit.physics.block import RigidBlock
+from audit.physics.block import RigidBlock, coefficient_of_restitution
+from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
-                           DEFAULT_STEPS_PER_RADIAN, rocking_spectrum, simulate)
+                                   DEFAULT_STEPS_PER_RADIAN, rocking_spectrum, simulate)
 from procedures.base import (INITIAL_ROTATION_RATIO, MAX_ITERATIONS, NO_UPLIFT,
                              NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO)
 
-VERDICTS = ("no-uplift", "both-overturn", "false-overturn", "missed-overturn", "conservative",
-            "unconservative", "not-converged", "record-missing")
-#: Damping ratios of the response spectra of Figures 5.x.
+VERDICTS = ("no-uplift", "both-overturn", "false-overturn", "missed-overturn", "agrees",
+            "conservative", "unconservative", "not-converged")
+#: Verdicts where the guideline errs on the unsafe side.
+UNSAFE_VERDICTS = ("missed-overturn", "unconservative")
+#: Verdicts where the guideline errs on the safe side.
+UNECONOMIC_VERDICTS = ("false-overturn", "conservative")
+#: Default half-width of the agreement band on approx/exact [-].
+DEFAULT_AGREE_BAND = 0.10
+#: Default relative scaling ε of the record for the fragility flag [-] (0 turns it off).
+DEFAULT_ROBUSTNESS = 0.03
+#: Damping ratios of the response spectra of Figures 5.x [-].
 FIGURE_5_DAMPING = (0.05, 0.10, 0.15)
 #: Periods on which procedures read record spectra (interpolated in between) [s].
 SPECTRUM_PERIODS_S = np.concatenate(([0.0], np.geomspace(0.01, 100.0, 800)))
@@ -44,6 +55,56 @@ PROCEDURE_SPECTRUM_PERIODS_S = SPECTRUM_PERIODS_S[SPECTRUM_PERIODS_S <= 20.0]
 #: Samples kept per stored time history.
 HISTORY_POINTS = 3000
 
+SPECTRA_COLUMNS = ["record", "procedure", "alpha_deg", "damping_pct", "period_s", "sd_m",
+                   "sv_m_s", "sa_g"]
+HISTORY_COLUMNS = ["record", "alpha_deg", "size_s", "time_s", "theta_ratio", "omega_rad_s"]
+ROCKING_COLUMNS = ["record", "alpha_deg", "size_s", "p_rad_s", "theta_peak_rad", "theta_ratio",
+                   "overturned", "omega_peak_rad_s", "theta_after_rad", "uplifted"]
+RESULT_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "p_rad_s", "exact_theta_rad",
+                  "exact_overturned", "exact_uplifted", "exact_fragile", "exact_omega_rad_s",
+                  "approx_theta_rad", "approx_overturned", "approx_period_s", "approx_outcome",
+                  "approx_fixed_points", "approx_cycle", "approx_detail", "iterations",
+                  "beta_pct", "verdict", "ratio"]
+#: Columns holding booleans in ``results.csv`` (``exact_fragile`` is empty when not checked).
+BOOLEAN_COLUMNS = ("exact_overturned", "exact_uplifted", "exact_fragile", "approx_overturned")
+
+
+@dataclass(frozen=True)
+class AuditSettings:
+    """What a run computes, the same for every record (and hashed for resumable runs).
+
+    Attributes
+    ----------
+    alpha_deg : tuple of float
+        Slendernesses [degrees].
+    size_s : tuple of float
+        Block sizes 2π/p [s].
+    free_motion_s : float
+        Free motion after each record, for the exact solver and the record spectra [s].
+    agree_band : float
+        Half-width of the agreement band on approx/exact [-].
+    robustness : float
+        ε of the fragility flag: exact spectra also at the record × (1 ± ε) [-]; 0 = off.
+    g : float
+        Acceleration of gravity [m/s²].
+    jobs : int
+        Threads of the exact solver.
+    """
+
+    alpha_deg: tuple = DEFAULT_ALPHA_DEG
+    size_s: tuple = tuple(size_grid(*DEFAULT_SIZES))
+    free_motion_s: float = DEFAULT_FREE_MOTION_S
+    agree_band: float = DEFAULT_AGREE_BAND
+    robustness: float = DEFAULT_ROBUSTNESS
+    g: float = G
+    jobs: int = 1
+
+    def as_dict(self) -> dict:
+        """Plain values for ``summary.json`` (angles in degrees, sizes in s)."""
+        values = asdict(self)
+        values.pop("jobs")
+        values.update(alpha_deg=list(self.alpha_deg), size_s=list(self.size_s))
+        return values
 
 
 class RecordContext:
@@ -62,7 +123,7 @@ class RecordContext:
         self._spectra = {}
 
     def true_spectra(self, damping: float):
-        """True response spectra of the record at damping β on :data:`SPECTRUM_PERIODS_S`."""
+        """True response spectra of the record at damping β [-] on :data:`SPECTRUM_PERIODS_S`."""
         key = round(float(damping), 12)
         if key not in self._spectra:
             self._spectra[key] = response_spectra(self.entry.motion, SPECTRUM_PERIODS_S, [key],
@@ -70,24 +131,37 @@ class RecordContext:
         return self._spectra[key]
 
     def true_displacement(self, damping: float):
-        """Sd(T) [m] at damping β, linear in T between the tabulated periods."""
+        """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""
         spectra = self.true_spectra(damping)
         return lambda period_s: spectra.displacement_at(period_s, 0)
 
 
-def classify(exact_theta, exact_overturned, exact_uplifted, approx_theta, outcome):
-    """Verdict of each block (see the module docstring); arrays in, array of str out."""
-    exact_missing = np.isnan(exact_theta)
+def classify(exact_theta, exact_overturned, exact_uplifted, approx_theta, outcome,
+             agree_band: float = DEFAULT_AGREE_BAND):
+    """Verdict of each block (see the module docstring); arrays in, array of str out.
+
+    Parameters
+    ----------
+    exact_theta : array
+        Exact peak rotation [rad].
+    exact_overturned, exact_uplifted : array of bool
+    approx_theta : array
+        The procedure's rotation [rad] (NaN where it predicts overturning or does not settle).
+    outcome : array of str
+        The procedure's outcome (``converged``, ``overturn``, ``no-uplift``, ``not-converged``).
+    agree_band : float
+        Half-width of the agreement band on approx/exact [-].
+    """
     approx_over = outcome == OVERTURN
-    exact_over = exact_overturned.astype(bool)
-    with np.errstate(invalid="ignore"):
-        conservative = approx_theta >= exact_theta
+    exact_over = np.asarray(exact_overturned, dtype=bool)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = approx_theta / exact_theta
     return np.select(
-        [exact_missing, (outcome == NO_UPLIFT) & ~exact_uplifted.astype(bool),
+        [(outcome == NO_UPLIFT) & ~np.asarray(exact_uplifted, dtype=bool),
          outcome == NOT_CONVERGED, approx_over & exact_over, approx_over, exact_over,
-         conservative],
-        ["record-missing", "no-uplift", "not-converged", "both-overturn", "false-overturn",
-         "missed-overturn", "conservative"],
+         np.abs(ratio - 1.0) <= agree_band, ratio > 1.0],
+        ["no-uplift", "not-converged", "both-overturn", "false-overturn", "missed-overturn",
+         "agrees", "conservative"],
         default="unconservative").astype(object)
 
 
@@ -98,13 +172,16 @@ class AuditRun:
     Attributes
     ----------
     results : pandas.DataFrame
-        One row per procedure × record × α × size (the columns of ``results.csv``).
+        One row per procedure × record × α × size with an exact response (``results.csv``).
     spectra : pandas.DataFrame
-        Record response spectra (kind ``response``, Figures 5.x and 8.x).
+        Record response spectra (procedure "") and the spectra each procedure read.
     histories : pandas.DataFrame
         Time histories of the representative blocks.
     rocking : pandas.DataFrame
         Exact rocking spectra of every record with a file, whatever the procedures.
+    estimates_only : pandas.DataFrame
+        Estimates for records without a file (no exact response, no verdict); the columns
+        of ``results`` that an estimate has.
     summary : dict
         Settings, records, unauditable records, per-record statistics (``summary.json``).
     """
@@ -113,24 +190,41 @@ class AuditRun:
     spectra: pd.DataFrame
     histories: pd.DataFrame
     rocking: pd.DataFrame
+    estimates_only: pd.DataFrame
     summary: dict = field(default_factory=dict)
 
 
-def _record_summary(entry) -> dict:
+@dataclass
+class RecordAudit:
+    """The part of an audit that one record contributes (see :func:`audit_record`)."""
+
+    record_id: str
+    results: pd.DataFrame
+    estimates_only: pd.DataFrame
+    spectra: pd.DataFrame
+    histories: pd.DataFrame
+    rocking: pd.DataFrame
+    unauditable: list
+    histories_meta: list
+
+
+def record_summary(entry) -> dict:
+    """Provenance of one record for ``summary.json``: facts, site, file, PGA/PGV recomputed."""
     motion, facts = entry.motion, entry.facts
     item = {"id": entry.id, "name": entry.name, "component": entry.component,
-            "missing": entry.missing, "missing_reason": entry.missing_reason, "site": entry.site}
+            "missing": entry.missing, "missing_reason": entry.missing_reason, "site": entry.site,
+            "metadata": dict(getattr(entry, "metadata", None) or {})}
     if facts is not None:
-        item["table_5_1"] = {"pga_g": facts.pga_g, "pgv_ms": facts.pgv_ms,
+        item["table_5_1"] = {"pga_g": facts.pga_g, "pgv_m_s": facts.pgv_ms,
                              "pulse_period_s": facts.pulse_period_s}
     if motion is not None:
-        item.update(source=motion.source, sha256=motion.sha256, dt=motion.dt,
-                    duration_s=motion.duration, pga_g=motion.pga_g, pgv_ms=motion.pgv,
+        item.update(source=motion.source, sha256=motion.sha256, dt_s=motion.dt,
+                    duration_s=motion.duration, pga_g=motion.pga_g, pgv_m_s=motion.pgv,
                     npts=int(motion.acceleration.size))
     return item
 
 
-def _statistics(frame: pd.DataFrame) -> list[dict]:
+def statistics(frame: pd.DataFrame) -> list[dict]:
     """Counts and approx/exact ratios per procedure, record and α."""
     stats = []
     for (procedure, record, alpha), group in frame.groupby(["procedure", "record", "alpha_deg"],
@@ -141,6 +235,7 @@ def _statistics(frame: pd.DataFrame) -> list[dict]:
             "procedure": procedure, "record": record, "alpha_deg": float(alpha),
             "blocks": int(len(group)),
             "counts": {v: int(counts.get(v, 0)) for v in VERDICTS},
+            "fragile": int(group["exact_fragile"].eq(True).sum()),
             "median_ratio": float(ratio.median()) if len(ratio) else None,
             "min_ratio": float(ratio.min()) if len(ratio) else None,
             "max_ratio": float(ratio.max()) if len(ratio) else None,
@@ -164,14 +259,155 @@ def _history_rows(response, record_id, alpha_deg, size_s):
     stride = max(1, response.time.size // HISTORY_POINTS)
     return pd.DataFrame({
         "record": record_id, "alpha_deg": alpha_deg, "size_s": size_s,
-        "t": response.time[::stride], "theta_ratio": response.theta[::stride] / response.block.alpha,
-        "omega": response.omega[::stride],
+        "time_s": response.time[::stride],
+        "theta_ratio": response.theta[::stride] / response.block.alpha,
+        "omega_rad_s": response.omega[::stride],
     })
+
+
+def fragile_overturning(motion, settings: AuditSettings, overturned: np.ndarray):
+    """Blocks whose overturning verdict changes when the record is scaled by 1 ± ε.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+    settings : AuditSettings
+        ``robustness`` is ε [-]; 0 means not checked.
+    overturned : numpy.ndarray of bool
+        Exact overturning under the record as given, shaped (α, size).
+
+    Returns
+    -------
+    numpy.ndarray of bool, or None when not checked
+    """
+    if not settings.robustness:
+        return None
+    from records import GroundMotion
+    fragile = np.zeros(overturned.shape, dtype=bool)
+    for factor in (1.0 - settings.robustness, 1.0 + settings.robustness):
+        scaled = GroundMotion(motion.id, motion.acceleration * factor, motion.dt,
+                              pulse=None if motion.pulse is None else
+                              type(motion.pulse)(motion.pulse.shape, motion.pulse.amplitude * factor,
+                                                 motion.pulse.period_s))
+        other = rocking_spectrum(scaled, np.asarray(settings.size_s),
+                                 np.radians(settings.alpha_deg), g=settings.g,
+                                 free_motion_s=settings.free_motion_s, jobs=settings.jobs)
+        fragile |= other.overturned != overturned
+    return fragile
+
+
+def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
+    """Audit every procedure on one record over the (α, 2π/p) grid: the unit of work.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+    procedures : list of procedures.Procedure
+    settings : AuditSettings
+
+    Returns
+    -------
+    RecordAudit
+    """
+    sizes = np.asarray(settings.size_s, dtype=float)
+    alpha_deg = np.asarray(settings.alpha_deg, dtype=float)
+    alpha_rad = np.radians(alpha_deg)
+    p = 2.0 * np.pi / sizes
+    g = settings.g
+    motion = entry.motion
+    context = RecordContext(entry, settings.free_motion_s) if motion is not None else None
+    results, estimates_only, spectra, histories, rocking = [], [], [], [], []
+    unauditable, histories_meta = [], []
+    exact = fragile = None
+    if motion is not None:
+        exact = rocking_spectrum(motion, sizes, alpha_rad, g=g,
+                                 free_motion_s=settings.free_motion_s, jobs=settings.jobs)
+        fragile = fragile_overturning(motion, settings, exact.overturned)
+        rocking.append(exact.to_frame().assign(record=entry.id)[ROCKING_COLUMNS])
+        for damping in FIGURE_5_DAMPING:
+            spectra.append(context.true_spectra(damping).to_frame()
+                           .assign(record=entry.id, procedure="", alpha_deg=np.nan)
+                           [SPECTRA_COLUMNS])
+    for procedure in procedures:
+        reason = procedure.unmet_requirements(entry)
+        if reason is not None:
+            unauditable.append({"procedure": procedure.name, "record": entry.id, "reason": reason})
+            continue
+        if exact is None:
+            unauditable.append({"procedure": procedure.name, "record": entry.id,
+                                "reason": f"no record file ({entry.missing_reason}): "
+                                          "estimate shown, no exact comparison"})
+        for i, alpha in enumerate(alpha_rad):
+            r = float(coefficient_of_restitution(alpha))
+            estimate = procedure.estimate(entry, p, alpha, r, context, g)
+            # the spectrum this procedure read, whatever its source (Figures 8.x, 9.x)
+            sd = procedure.displacement_spectrum(entry, estimate.damping,
+                                                 context)(PROCEDURE_SPECTRUM_PERIODS_S)
+            spectra.append(pd.DataFrame({
+                "record": entry.id, "procedure": procedure.name, "alpha_deg": alpha_deg[i],
+                "damping_pct": 100.0 * estimate.damping, "period_s": PROCEDURE_SPECTRUM_PERIODS_S,
+                "sd_m": sd, "sv_m_s": np.nan, "sa_g": np.nan}))
+            rows = _result_rows(entry.id, procedure.name, alpha_deg[i], sizes, p, estimate,
+                                exact, fragile, i, settings.agree_band)
+            (results if exact is not None else estimates_only).append(rows)
+    if exact is not None:
+        alpha_index = int(np.argmin(np.abs(alpha_deg - 15.0)))
+        for size in _representative_sizes(exact, alpha_index):
+            block = RigidBlock.from_size(size, alpha_rad[alpha_index], g=g)
+            response = simulate(block, motion, settings.free_motion_s)
+            histories.append(_history_rows(response, entry.id, alpha_deg[alpha_index], size))
+            histories_meta.append({
+                "record": entry.id, "alpha_deg": float(alpha_deg[alpha_index]),
+                "size_s": size, "cycle_starts_s": response.cycle_starts.tolist(),
+                "cycle_durations_s": response.cycle_durations.tolist(),
+                "first_impact_s": float(response.impact_times[0]) if response.n_impacts else None,
+                "last_impact_s": float(response.impact_times[-1]) if response.n_impacts else None,
+                "peak_rotation_ratio": response.peak_rotation_ratio,
+                "excitation_end_s": response.excitation_end})
+    return RecordAudit(entry.id, _concat(results, RESULT_COLUMNS),
+                       _concat(estimates_only, RESULT_COLUMNS), _concat(spectra, SPECTRA_COLUMNS),
+                       _concat(histories, HISTORY_COLUMNS), _concat(rocking, ROCKING_COLUMNS),
+                       unauditable, histories_meta)
+
+
+def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings) -> AuditRun:
+    """One :class:`AuditRun` from the per-record parts, in the suite's order."""
+    def cat(name, columns):
+        return _concat([getattr(part, name) for part in parts if len(getattr(part, name))],
+                       columns)
+
+    results = cat("results", RESULT_COLUMNS)
+    summary = {
+        "version": __version__,
+        "procedures": [{"name": proc.name, "title": proc.title, "reference": proc.reference,
+                        "damping_law": proc.damping_law, "spectrum_source": proc.spectrum_source,
+                        "figure_series": proc.figure_series} for proc in procedures],
+        "records_source": suite.description,
+        "pulse_idealised": suite.is_pulse_idealised,
+        "records": [record_summary(entry) for entry in suite],
+        "rejected_records": list(getattr(suite, "rejected", ()) or ()),
+        "scaling": getattr(suite, "scaling", None),
+        "unauditable": [item for part in parts for item in part.unauditable],
+        "grid": {"alpha_deg": list(settings.alpha_deg), "size_s": list(settings.size_s)},
+        "settings": {
+            **settings.as_dict(),
+            "steps_per_radian": DEFAULT_STEPS_PER_RADIAN, "rest_tolerance": DEFAULT_REST_TOLERANCE,
+            "initial_rotation_ratio": INITIAL_ROTATION_RATIO, "tolerance_ratio": TOLERANCE_RATIO,
+            "max_iterations": MAX_ITERATIONS,
+            "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING],
+        },
+        "statistics": statistics(results),
+        "histories": [item for part in parts for item in part.histories_meta],
+    }
+    return AuditRun(results, cat("spectra", SPECTRA_COLUMNS), cat("histories", HISTORY_COLUMNS),
+                    cat("rocking", ROCKING_COLUMNS), cat("estimates_only", RESULT_COLUMNS),
+                    summary)
 
 
 def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: int = 1,
               free_motion_s: float = DEFAULT_FREE_MOTION_S, progress: Progress | None = None,
-              g: float = G) -> AuditRun:
+              g: float = G, agree_band: float = DEFAULT_AGREE_BAND,
+              robustness: float = DEFAULT_ROBUSTNESS) -> AuditRun:
     """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid.
 
     Parameters
@@ -186,91 +422,26 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
         Threads for the exact solver.
     free_motion_s : float
         Free motion after each record, for the exact solver and the record spectra [s].
+    agree_band : float
+        Half-width of the agreement band on approx/exact [-].
+    robustness : float
+        ε of the fragility flag [-]; 0 turns it off.
 
     Returns
     -------
     AuditRun
     """
     sizes = size_grid(*DEFAULT_SIZES) if sizes is None else np.asarray(sizes, dtype=float)
-    alpha_deg = np.asarray(alpha_deg, dtype=float)
-    alpha_rad = np.radians(alpha_deg)
-    p = 2.0 * np.pi / sizes
+    settings = AuditSettings(tuple(float(a) for a in alpha_deg), tuple(float(s) for s in sizes),
+                             float(free_motion_s), float(agree_band), float(robustness), float(g),
+                             int(jobs))
     progress = progress or Progress(len(suite), "records", enabled=False)
-    frames, spectra_frames, history_frames, rocking_frames = [], [], [], []
-    unauditable, histories_meta = [], []
+    parts = []
     for entry in suite:
         progress.step(entry.id)
-        motion = entry.motion
-        context = RecordContext(entry, free_motion_s) if motion is not None else None
-        exact = None
-        if motion is not None:
-            exact = rocking_spectrum(motion, sizes, alpha_rad, g=g, free_motion_s=free_motion_s,
-                                     jobs=jobs)
-            rocking_frames.append(exact.to_frame().assign(record=entry.id)[ROCKING_COLUMNS])
-            for damping in FIGURE_5_DAMPING:
-                spectra_frames.append(_spectra_rows(entry.id, "", context.true_spectra(damping)))
-        for procedure in procedures:
-            reason = procedure.unmet_requirements(entry)
-            if reason is not None:
-                unauditable.append({"procedure": procedure.name, "record": entry.id,
-                                    "reason": reason})
-                continue
-            if exact is None:
-                unauditable.append({"procedure": procedure.name, "record": entry.id,
-                                    "reason": f"no record file ({entry.missing_reason}): "
-                                              "estimate shown, no exact comparison"})
-            for i, alpha in enumerate(alpha_rad):
-                r = float(coefficient_of_restitution(alpha))
-                estimate = procedure.estimate(entry, p, alpha, r, context, g)
-                # the spectrum this procedure read, whatever its source (Figures 8.x, 9.x)
-                sd = procedure.displacement_spectrum(entry, estimate.damping,
-                                                     context)(PROCEDURE_SPECTRUM_PERIODS_S)
-                spectra_frames.append(pd.DataFrame({
-                    "record": entry.id, "procedure": procedure.name, "alpha_deg": alpha_deg[i],
-                    "damping": estimate.damping, "period_s": PROCEDURE_SPECTRUM_PERIODS_S,
-                    "sd": sd, "sv": np.nan, "sa": np.nan}))
-                frames.append(_result_rows(entry.id, procedure.name, alpha_deg[i], sizes, p,
-                                           estimate, exact, i))
-        if exact is not None:
-            alpha_index = int(np.argmin(np.abs(alpha_deg - 15.0)))
-            for size in _representative_sizes(exact, alpha_index):
-                block = RigidBlock.from_size(size, alpha_rad[alpha_index], g=g)
-                response = simulate(block, motion, free_motion_s)
-                history_frames.append(_history_rows(response, entry.id,
-                                                    alpha_deg[alpha_index], size))
-                histories_meta.append({
-                    "record": entry.id, "alpha_deg": float(alpha_deg[alpha_index]),
-                    "size_s": size, "cycle_starts": response.cycle_starts.tolist(),
-                    "cycle_durations": response.cycle_durations.tolist(),
-                    "first_impact": float(response.impact_times[0]) if response.n_impacts else None,
-                    "last_impact": float(response.impact_times[-1]) if response.n_impacts else None,
-                    "peak_rotation_ratio": response.peak_rotation_ratio,
-                    "excitation_end": response.excitation_end})
+        parts.append(audit_record(entry, procedures, settings))
     progress.done()
-    results = _concat(frames, RESULT_COLUMNS)
-    summary = {
-        "version": __version__,
-        "procedures": [{"name": proc.name, "title": proc.title, "reference": proc.reference,
-                        "damping_law": proc.damping_law, "spectrum_source": proc.spectrum_source,
-                        "figure_series": proc.figure_series} for proc in procedures],
-        "records_source": suite.description,
-        "pulse_idealised": suite.is_pulse_idealised,
-        "records": [_record_summary(entry) for entry in suite],
-        "unauditable": unauditable,
-        "grid": {"alpha_deg": alpha_deg.tolist(), "size_s": sizes.tolist()},
-        "settings": {
-            "g": g, "free_motion_s": free_motion_s,
-            "steps_per_radian": DEFAULT_STEPS_PER_RADIAN, "rest_tolerance": DEFAULT_REST_TOLERANCE,
-            "initial_rotation_ratio": INITIAL_ROTATION_RATIO, "tolerance_ratio": TOLERANCE_RATIO,
-            "max_iterations": MAX_ITERATIONS,
-            "figure_5_damping": list(FIGURE_5_DAMPING),
-        },
-        "statistics": _statistics(results),
-        "histories": histories_meta,
-    }
-    return AuditRun(results, _concat(spectra_frames, SPECTRA_COLUMNS),
-                    _concat(history_frames, HISTORY_COLUMNS),
-                    _concat(rocking_frames, ROCKING_COLUMNS), summary)
+    return combine(parts, procedures, suite, settings)
 
 
 def _concat(frames, columns) -> pd.DataFrame:
@@ -278,45 +449,37 @@ def _concat(frames, columns) -> pd.DataFrame:
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=columns)
 
 
-def _spectra_rows(record_id, procedure_name, spectra):
-    return spectra.to_frame().assign(record=record_id, procedure=procedure_name,
-                                     alpha_deg=np.nan)[SPECTRA_COLUMNS]
-
-
-SPECTRA_COLUMNS = ["record", "procedure", "alpha_deg", "damping", "period_s", "sd", "sv", "sa"]
-HISTORY_COLUMNS = ["record", "alpha_deg", "size_s", "t", "theta_ratio", "omega"]
-ROCKING_COLUMNS = ["record", "alpha_deg", "size_s", "p", "theta_peak", "theta_ratio",
-                   "overturned", "omega_peak", "theta_after", "uplifted"]
-RESULT_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "p", "exact_theta",
-                  "exact_overturned", "approx_theta", "approx_overturned", "approx_period",
-                  "iterations", "verdict", "ratio", "exact_omega", "exact_uplifted",
-                  "approx_outcome", "approx_detail", "beta"]
-
-
-def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact, i):
+def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact, fragile, i,
+                 agree_band):
+    nan = np.full(sizes.shape, np.nan)
     if exact is None:
-        nan = np.full(sizes.shape, np.nan)
-        exact_theta, exact_over, exact_omega, exact_up = nan, nan, nan, nan
+        exact_theta, exact_over, exact_omega, exact_up, verdict = nan, nan, nan, nan, ""
+        exact_fragile = nan
     else:
         exact_theta = exact.theta_peak[i]
         exact_over = exact.overturned[i]
         exact_omega = exact.omega_peak[i]
         exact_up = exact.uplifted[i]
-    verdict = classify(exact_theta, np.nan_to_num(exact_over).astype(bool),
-                       np.nan_to_num(exact_up).astype(bool), estimate.theta, estimate.outcome)
+        exact_fragile = nan if fragile is None else fragile[i]
+        verdict = classify(exact_theta, exact_over, exact_up, estimate.theta, estimate.outcome,
+                           agree_band)
     with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(np.isin(verdict, ["conservative", "unconservative"]),
+        ratio = np.where(np.isin(verdict, ["agrees", "conservative", "unconservative"]),
                          estimate.theta / exact_theta, np.nan)
+    empty = np.full(sizes.shape, "", dtype=object)
     return pd.DataFrame({
         "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
-        "size_s": sizes, "p": p, "exact_theta": exact_theta,
-        "exact_overturned": exact_over, "approx_theta": estimate.theta,
-        "approx_overturned": estimate.outcome == OVERTURN, "approx_period": estimate.period_s,
-        "iterations": estimate.iterations, "verdict": verdict, "ratio": ratio,
-        "exact_omega": exact_omega, "exact_uplifted": exact_up,
-        "approx_outcome": estimate.outcome, "approx_detail": estimate.detail,
-        "beta": estimate.damping,
+        "size_s": sizes, "p_rad_s": p, "exact_theta_rad": exact_theta,
+        "exact_overturned": exact_over, "exact_uplifted": exact_up,
+        "exact_fragile": exact_fragile, "exact_omega_rad_s": exact_omega,
+        "approx_theta_rad": estimate.theta, "approx_overturned": estimate.outcome == OVERTURN,
+        "approx_period_s": estimate.period_s, "approx_outcome": estimate.outcome,
+        "approx_fixed_points": getattr(estimate, "fixed_points", empty),
+        "approx_cycle": getattr(estimate, "cycle", empty),
+        "approx_detail": estimate.detail, "iterations": estimate.iterations,
+        "beta_pct": 100.0 * estimate.damping, "verdict": verdict, "ratio": ratio,
     })[RESULT_COLUMNS]
 
 
-__all__ = ["run_audit", "AuditRun", "classify", "RecordContext", "VERDICTS", "size_grid"]
+__all__ = ["run_audit", "audit_record", "combine", "AuditRun", "AuditSettings", "RecordAudit",
+           "classify", "RecordContext", "VERDICTS", "UNSAFE_VERDICTS", "UNECONOMIC_VERDICTS"]

@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 from scipy.linalg import expm
 
+from audit import G
 from audit.errors import InputError
 
 
@@ -115,10 +116,12 @@ class ResponseSpectra:
                             self.sa)
 
     def to_frame(self) -> pd.DataFrame:
-        """One row per (damping, period): ``period_s, damping, sd, sv, sa, psv, psa``."""
+        """One row per (damping, period): ``period_s, damping_pct, sd_m, sv_m_s, sa_g, psv_m_s,
+        psa_g`` (accelerations in g and damping in %, the units of every CSV and figure)."""
         return pd.concat([pd.DataFrame({
-            "period_s": self.period_s, "damping": damping, "sd": self.sd[i], "sv": self.sv[i],
-            "sa": self.sa[i], "psv": self.pseudo_velocity[i], "psa": self.pseudo_acceleration[i]})
+            "period_s": self.period_s, "damping_pct": 100.0 * damping, "sd_m": self.sd[i],
+            "sv_m_s": self.sv[i], "sa_g": self.sa[i] / G, "psv_m_s": self.pseudo_velocity[i],
+            "psa_g": self.pseudo_acceleration[i] / G})
             for i, damping in enumerate(self.damping)], ignore_index=True)
 
     def displacement_at(self, period_s, damping_index: int) -> np.ndarray:

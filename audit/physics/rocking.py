@@ -464,14 +464,15 @@ class RockingSpectrum:
         return self.theta_peak / self.alpha_rad[:, None]
 
     def to_frame(self) -> pd.DataFrame:
-        """One row per block: ``alpha_deg, size_s, p, theta_peak, theta_ratio, overturned,
-        omega_peak, theta_after, uplifted`` (the CSV of ``spectrum`` and ``rocking.csv``)."""
+        """One row per block: ``alpha_deg, size_s, p_rad_s, theta_peak_rad, theta_ratio,
+        overturned, omega_peak_rad_s, theta_after_rad, uplifted`` (the CSV of ``spectrum`` and
+        ``rocking.csv``)."""
         alpha_deg = np.round(np.degrees(self.alpha_rad), 10)  # 15, not 14.999999999999998
         return pd.concat([pd.DataFrame({
-            "alpha_deg": alpha_deg[i], "size_s": self.size_s, "p": self.p,
-            "theta_peak": self.theta_peak[i], "theta_ratio": self.theta_ratio[i],
-            "overturned": self.overturned[i], "omega_peak": self.omega_peak[i],
-            "theta_after": self.theta_after[i], "uplifted": self.uplifted[i]})
+            "alpha_deg": alpha_deg[i], "size_s": self.size_s, "p_rad_s": self.p,
+            "theta_peak_rad": self.theta_peak[i], "theta_ratio": self.theta_ratio[i],
+            "overturned": self.overturned[i], "omega_peak_rad_s": self.omega_peak[i],
+            "theta_after_rad": self.theta_after[i], "uplifted": self.uplifted[i]})
             for i in range(self.alpha_rad.size)], ignore_index=True)
 
 

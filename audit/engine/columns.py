@@ -1,0 +1,80 @@
+"""The column guide of the files an audit writes (``columns.json``, and the README's table).
+
+One entry per column: its unit (``-`` for dimensionless, ``text``, ``bool``) and its meaning.
+Column names carry their unit (``_rad``, ``_s``, ``_deg``, ``_g``, ``_m``, ``_m_s``,
+``_rad_s``, ``_pct``), so a CSV read on its own still says what it holds.
+"""
+
+from __future__ import annotations
+
+_RESULTS = {
+    "record": ("text", "record id"),
+    "procedure": ("text", "guideline procedure (registry name)"),
+    "alpha_deg": ("deg", "slenderness α"),
+    "size_s": ("s", "block size 2π/p"),
+    "p_rad_s": ("rad/s", "frequency parameter p = sqrt(3g/(4R))"),
+    "exact_theta_rad": ("rad", "exact peak |θ| (α where the block overturns)"),
+    "exact_overturned": ("bool", "the exact response overturns"),
+    "exact_uplifted": ("bool", "the block uplifts at all (PGA > g tan α)"),
+    "exact_fragile": ("bool", "the overturning verdict changes with the record scaled by "
+                              "1 ± ε (summary.json settings.robustness); empty when not checked"),
+    "exact_omega_rad_s": ("rad/s", "exact peak |θ'|"),
+    "approx_theta_rad": ("rad", "the procedure's rotation (its iteration from θ₀/α = 0.1); "
+                                "empty where it predicts overturning or does not settle"),
+    "approx_overturned": ("bool", "the procedure predicts overturning"),
+    "approx_period_s": ("s", "T(θ) of Eq. 8.1 at the procedure's rotation"),
+    "approx_outcome": ("text", "converged, overturn, no-uplift or not-converged"),
+    "approx_fixed_points": ("text", "every fixed point of the procedure's map as θ/α, ascending, "
+                                    "';'-separated, suffixed s (attracting) or u (repelling)"),
+    "approx_cycle": ("text", "θ/α values of the cycle the iteration settles in, ascending, "
+                             "';'-separated; empty when it converges"),
+    "approx_detail": ("text", "what the iteration did when it did not converge"),
+    "iterations": ("-", "iterations used"),
+    "beta_pct": ("%", "equivalent damping β of the procedure"),
+    "verdict": ("text", "no-uplift, both-overturn, false-overturn, missed-overturn, agrees, "
+                        "conservative, unconservative, not-converged"),
+    "ratio": ("-", "approx_theta_rad / exact_theta_rad where both survive"),
+}
+
+GUIDE = {
+    "results.csv": _RESULTS,
+    "estimates-only.csv": {**_RESULTS, "verdict": ("text", "empty: no record file, no verdict")},
+    "rocking.csv": {
+        "record": ("text", "record id"),
+        "alpha_deg": ("deg", "slenderness α"),
+        "size_s": ("s", "block size 2π/p"),
+        "p_rad_s": ("rad/s", "frequency parameter p"),
+        "theta_peak_rad": ("rad", "exact peak |θ| (α where the block overturns)"),
+        "theta_ratio": ("-", "exact peak |θ| / α"),
+        "overturned": ("bool", "the block overturns"),
+        "omega_peak_rad_s": ("rad/s", "exact peak |θ'|"),
+        "theta_after_rad": ("rad", "exact peak |θ| after the excitation ends"),
+        "uplifted": ("bool", "the block uplifts at all"),
+    },
+    "spectra.csv": {
+        "record": ("text", "record id"),
+        "procedure": ("text", "empty: the record's true spectra; else the spectrum that "
+                              "procedure read"),
+        "alpha_deg": ("deg", "slenderness whose β the procedure's spectrum is at"),
+        "damping_pct": ("%", "damping ratio ξ"),
+        "period_s": ("s", "oscillator period T"),
+        "sd_m": ("m", "true displacement spectrum max|u|"),
+        "sv_m_s": ("m/s", "true relative-velocity spectrum max|u'| (not pseudo)"),
+        "sa_g": ("g", "true absolute-acceleration spectrum max|u'' + üg| (not pseudo)"),
+    },
+    "histories.csv": {
+        "record": ("text", "record id"),
+        "alpha_deg": ("deg", "slenderness α"),
+        "size_s": ("s", "block size 2π/p"),
+        "time_s": ("s", "time"),
+        "theta_ratio": ("-", "θ/α"),
+        "omega_rad_s": ("rad/s", "θ'"),
+    },
+}
+
+
+def column_guide() -> dict:
+    """``{file: {column: {"unit": ..., "meaning": ...}}}`` for ``columns.json``."""
+    return {name: {column: {"unit": unit, "meaning": meaning}
+                   for column, (unit, meaning) in columns.items()}
+            for name, columns in GUIDE.items()}
