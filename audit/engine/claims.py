@@ -442,7 +442,8 @@ def procedure_region(ctx, quantity: str, procedure: str, records: list[str],
     ``fraction_gross_overestimate`` (of the exact survivors: overturning predicted or approx
     ≥ 2× exact). ``fraction_approx_overturned`` counts every block, with or without a file.
     """
-    results = ctx.run.results
+    # records without a file still have the procedure's estimates, kept apart from the verdicts
+    results = pd.concat([ctx.run.results, ctx.run.estimates_only], ignore_index=True)
     if results.empty or procedure not in set(results["procedure"]):
         raise CannotCheck(f"procedure {procedure} is not part of this run")
     rows = _window(results[(results["procedure"] == procedure) & results["record"].isin(records)
