@@ -175,3 +175,17 @@ def test_grid_lookup_gives_the_simulated_value_on_the_grid(seed_claims):
         assert frame.loc[claim_id, "tool_value"] == pytest.approx(
             with_suite.loc[claim_id, "tool_value"], rel=1e-6), claim_id
     assert checklist(["s8-transformer-exact"], run).iloc[0]["status"] == "cannot-check"
+
+
+def test_a_two_cycle_read_as_converged_is_close_at_best():
+    """Figure 8.1, 2π/p = 6 s: the report's T(θ) = 5.7 s is the lower branch of a 2-cycle."""
+    row = {"record": "pacoima_dam_1971", "procedure": "priestley1978", "alpha_deg": 10.0,
+           "size_s": 6.0, "approx_outcome": "not-converged", "approx_theta_rad": float("nan"),
+           "approx_cycle": "0.5753;0.8854", "approx_detail": "a 2-cycle"}
+    run = AuditRun(pd.DataFrame([row]), pd.DataFrame(), pd.DataFrame(), pd.DataFrame(),
+                   pd.DataFrame(), {"records": [{"id": "pacoima_dam_1971", "missing": False}]})
+    result = checklist(["s8-fig81-period-6s"], run).iloc[0]
+    p = 2 * math.pi / 6.0
+    assert result["tool_value"] == pytest.approx(4 / p * math.acosh(1 / (1 - 0.5753)), rel=1e-5)
+    assert result["status"] == "close"
+    assert "0.5753 ↔ 0.8854" in result["note"]
