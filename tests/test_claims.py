@@ -189,3 +189,10 @@ def test_a_two_cycle_read_as_converged_is_close_at_best():
     assert result["tool_value"] == pytest.approx(4 / p * math.acosh(1 / (1 - 0.5753)), rel=1e-5)
     assert result["status"] == "close"
     assert "0.5753 ↔ 0.8854" in result["note"]
+
+
+def test_scaled_records_are_not_the_reports():
+    run = empty_run()
+    run.summary = {"scaling": "to 0.5 g", "records": [{"id": "pacoima_dam_1971", "missing": False}]}
+    row = checklist(["s8-transformer-exact"], run).iloc[0]
+    assert row["status"] == "cannot-check" and "scaled" in row["note"]

@@ -146,16 +146,24 @@ class ClaimContext:
         self.g = settings.get("g", G)
         self.free_motion_s = settings.get("free_motion_s", DEFAULT_FREE_MOTION_S)
         self.records = {item["id"]: item for item in run.summary.get("records", [])}
+        self.scaling = run.summary.get("scaling")
         self._contexts = {}
 
     def require(self, record_id: str) -> None:
-        """CannotCheck unless the run holds ``record_id`` with a file."""
+        """CannotCheck unless the run holds ``record_id`` with a file, as recorded."""
+        self.require_unscaled()
         item = self.records.get(record_id)
         if item is None:
             raise CannotCheck(f"record {record_id} is absent from this run")
         if item.get("missing"):
             raise CannotCheck(f"record {record_id} has no file in this run "
                               f"({item.get('missing_reason') or 'missing'})")
+
+    def require_unscaled(self) -> None:
+        """CannotCheck when the run's records are scaled: the report's are as recorded."""
+        if self.scaling:
+            raise CannotCheck(f"the records of this run are scaled ({self.scaling}); the "
+                              "report's claims are about the records as recorded")
 
     def entry(self, record_id: str):
         """The suite's entry of a record with a file, or None without a suite."""
@@ -455,6 +463,7 @@ def procedure_region(ctx, quantity: str, procedure: str, records: list[str],
     approx_over = rows["approx_outcome"].to_numpy() == OVERTURN
     if quantity == "fraction_approx_overturned":
         return Value(float(approx_over.mean()), "; ".join(notes + [f"{len(rows)} blocks"]))
+    ctx.require_unscaled()
     exact_theta = rows["exact_theta_rad"].to_numpy(dtype=float)
     has_file = np.isfinite(exact_theta)
     if not has_file.any():
