@@ -161,6 +161,15 @@ class Procedure:
             return f"no {self.title} site parameters ({', '.join(missing)})"
         return None
 
+    def checks(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> list[Check]:
+        """Limit-state checks of blocks (p [rad/s], α [rad], r) under the record ``entry``.
+
+        Same arguments as :meth:`estimate`. A procedure that verifies limit states returns one
+        :class:`Check` per limit state (see the end of this module); the default, for
+        procedures that only estimate a rotation, is none.
+        """
+        return []
+
     def damping(self, r):
         """Equivalent damping β [-] for a coefficient of restitution r [-]."""
         raise NotImplementedError
@@ -203,3 +212,139 @@ class Procedure:
             theta = np.where(undefined, np.nan, ratio * alpha_rad)
             period = np.where(undefined, np.nan, housner_period(ratio, p))
         return Estimate(theta, period, iterations, outcome, detail, beta)
+
+
+# ---------------------------------------------------------------------------------------------
+# Limit-state checks: procedures that verify a block rather than (or besides) estimating θ.
+#
+# A check names its limit state, the event of the exact response it is audited against, and the
+# procedure's pass/fail per block; the audit needs nothing else to build a confusion matrix.
+# ---------------------------------------------------------------------------------------------
+
+#: Exact events a check is audited against.
+EXACT_UPLIFT = "uplift"  # the exact block uplifts
+EXACT_ROTATION = "rotation"  # exact max θ ≥ the check's ``theta_limit_rad``, or overturning
+
+# Verdicts of a check against the exact response.
+AGREES_SAFE = "agrees-safe"
+AGREES_UNSAFE = "agrees-unsafe"
+MISSED = "missed"  # the procedure passes the block, the exact response exceeds: unsafe
+FALSE_ALARM = "false-alarm"  # the procedure fails the block, the exact response does not exceed
+CHECK_VERDICTS = (AGREES_SAFE, AGREES_UNSAFE, MISSED, FALSE_ALARM)
+
+
+@dataclass(frozen=True)
+class Check:
+    """One limit-state check of a procedure, arrays over the block sizes of one slenderness.
+
+    A check is either in accelerations (``demand_m_s2`` ≤ ``capacity_m_s2``) or in
+    displacements (``demand_m`` ≤ ``capacity_m``); the other pair is NaN.
+
+    Attributes
+    ----------
+    limit_state : str
+        Name of the limit state, e.g. ``SLD``, ``SLV-linear``, ``SLV``, ``SLC``.
+    exact_event : str
+        :data:`EXACT_UPLIFT` or :data:`EXACT_ROTATION`: the exact response's "exceeded".
+    passes : numpy.ndarray of bool
+        The procedure's verdict per block.
+    demand_m, capacity_m : numpy.ndarray
+        Displacement demand and capacity [m] (NaN for an acceleration check).
+    demand_m_s2, capacity_m_s2 : numpy.ndarray
+        Acceleration demand and capacity [m/s²] (NaN for a displacement check).
+    demand_theta_rad : numpy.ndarray
+        Rotation θ(demand_m) of the demand displacement [rad]; NaN where undefined (an
+        acceleration check, or a demand at or beyond instability).
+    theta_limit_rad : numpy.ndarray
+        Exact max θ at and above which the exact response exceeds [rad] (NaN for uplift).
+    period_s : numpy.ndarray
+        Period the demand was read at [s] (NaN for an acceleration check).
+    detail : str
+        The check in words, with the equations implemented (for the report).
+    """
+
+    limit_state: str
+    exact_event: str
+    passes: np.ndarray
+    demand_m: np.ndarray
+    capacity_m: np.ndarray
+    demand_m_s2: np.ndarray
+    capacity_m_s2: np.ndarray
+    demand_theta_rad: np.ndarray
+    theta_limit_rad: np.ndarray
+    period_s: np.ndarray
+    detail: str
+
+
+def centroid_displacement(theta_rad, alpha_rad, radius_m):
+    """Horizontal displacement of the centroid d = R [sin α − sin(α − θ)] [m] (§1).
+
+    Parameters
+    ----------
+    theta_rad : float or array
+        Rotation about the pivot corner θ [rad].
+    alpha_rad : float or array
+        Slenderness α [rad].
+    radius_m : float or array
+        R, centroid to corner [m].
+    """
+    return radius_m * (np.sin(alpha_rad) - np.sin(alpha_rad - np.asarray(theta_rad, dtype=float)))
+
+
+def rotation_at_displacement(displacement_m, alpha_rad, radius_m):
+    """θ(d) = α − asin(sin α − d/R) [rad], the inverse of :func:`centroid_displacement` (§1).
+
+    NaN for d outside [0, R(1 + sin α)]; d ≥ R sin α = b is at or beyond instability (θ ≥ α).
+    """
+    with np.errstate(invalid="ignore"):
+        return alpha_rad - np.arcsin(np.sin(alpha_rad)
+                                     - np.asarray(displacement_m, dtype=float) / radius_m)
+
+
+def exact_exceeded(check: Check, theta_peak, overturned, uplifted) -> np.ndarray:
+    """Whether the exact response exceeds the check's limit state, per block (§2.5).
+
+    Parameters
+    ----------
+    check : Check
+    theta_peak : array
+        Exact max |θ| [rad] of the same blocks.
+    overturned, uplifted : array of bool
+        Exact overturning and uplift of the same blocks.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        ``uplifted`` for :data:`EXACT_UPLIFT`; θ_peak ≥ θ_limit or overturned for
+        :data:`EXACT_ROTATION`. Blocks with no exact response (NaN) are the caller's to mask.
+    """
+    if check.exact_event == EXACT_UPLIFT:
+        return np.asarray(uplifted, dtype=bool)
+    if check.exact_event == EXACT_ROTATION:
+        with np.errstate(invalid="ignore"):
+            return (np.asarray(theta_peak) >= check.theta_limit_rad) | np.asarray(overturned,
+                                                                                   dtype=bool)
+    raise ValueError(f"check {check.limit_state}: unknown exact event {check.exact_event!r}")
+
+
+def check_verdicts(passes, exceeded) -> np.ndarray:
+    """Verdict of each block on one check: procedure's pass/fail against the exact event.
+
+    Parameters
+    ----------
+    passes : array of bool
+        The procedure passes the block.
+    exceeded : array of bool
+        The exact response exceeds the limit state (:func:`exact_exceeded`).
+
+    Returns
+    -------
+    numpy.ndarray of str
+        ``agrees-safe`` (passes, not exceeded), ``agrees-unsafe`` (fails, exceeded), ``missed``
+        (passes, exceeded: unconservative) or ``false-alarm`` (fails, not exceeded).
+    """
+    passes = np.asarray(passes, dtype=bool)
+    exceeded = np.asarray(exceeded, dtype=bool)
+    return np.where(passes, np.where(exceeded, MISSED, AGREES_SAFE),
+                    np.where(exceeded, AGREES_UNSAFE, FALSE_ALARM)).astype(object)
+

@@ -155,8 +155,8 @@ def test_run_and_rerender(tmp_path, monkeypatch, capsys):
     assert main(["run", "all", "--alpha", "15", "--sizes", "1:4:1", "--out", str(out)]) == 0
     assert "pulse-idealised" in capsys.readouterr().out
     assert sorted(p.name for p in out.iterdir()) == [
-        "columns.json", "estimates-only.csv", "histories.csv", "report.html", "results.csv",
-        "rocking.csv", "spectra.csv", "summary.json"]
+        "checks.csv", "claims.csv", "columns.json", "estimates-only.csv", "histories.csv",
+        "report.html", "results.csv", "rocking.csv", "spectra.csv", "suite.csv", "summary.json"]
     results = pd.read_csv(out / "results.csv")
     assert list(results.columns[:8]) == [
         "record", "procedure", "alpha_deg", "size_s", "p_rad_s", "exact_theta_rad",
@@ -166,8 +166,8 @@ def test_run_and_rerender(tmp_path, monkeypatch, capsys):
         assert results[column].dtype == bool, column
     guide = json.loads((out / "columns.json").read_text())
     assert set(guide["results.csv"]) == set(results.columns)
-    # 7 pulse records × 4 sizes for Priestley, 5 with site parameters for FEMA
-    assert len(results) == 7 * 4 + 5 * 4
+    # 7 pulse records × 4 sizes for Priestley and NTC 2018, 5 with site parameters for FEMA
+    assert len(results) == 7 * 4 + 5 * 4 + 7 * 4
     overturn_rows = results[results["approx_overturned"]]
     assert overturn_rows["approx_theta_rad"].isna().all()
     summary = json.loads((out / "summary.json").read_text())

@@ -28,6 +28,9 @@ SPECTRA_CSV = "spectra.csv"
 HISTORIES_CSV = "histories.csv"
 ROCKING_CSV = "rocking.csv"
 ESTIMATES_ONLY_CSV = "estimates-only.csv"
+CHECKS_CSV = "checks.csv"
+SUITE_CSV = "suite.csv"
+CLAIMS_CSV = "claims.csv"
 COLUMNS_JSON = "columns.json"
 REPORT_HTML = "report.html"
 
@@ -86,12 +89,15 @@ def run_files(run: AuditRun) -> dict[str, bytes]:
         SPECTRA_CSV: run.spectra.to_csv(index=False, float_format="%.8g").encode(),
         HISTORIES_CSV: run.histories.to_csv(index=False, float_format="%.7g").encode(),
         ROCKING_CSV: run.rocking.to_csv(index=False, float_format="%.10g").encode(),
+        CHECKS_CSV: run.checks.to_csv(index=False, float_format="%.10g").encode(),
+        SUITE_CSV: run.suite.to_csv(index=False, float_format="%.6g").encode(),
+        CLAIMS_CSV: run.claims.to_csv(index=False).encode(),
         COLUMNS_JSON: json.dumps(column_guide(), indent=1, ensure_ascii=False).encode(),
     }
 
 
 DATA_FILES = (RESULTS_CSV, ESTIMATES_ONLY_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV,
-              ROCKING_CSV)
+              ROCKING_CSV, CHECKS_CSV, SUITE_CSV, CLAIMS_CSV)
 
 
 def load_run(run_dir: str | Path) -> AuditRun:
@@ -136,10 +142,16 @@ def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
                                                            "sd_m", "sv_m_s", "sa_g")})
         histories = pd.read_csv(io.BytesIO(files[HISTORIES_CSV]))
         rocking = pd.read_csv(io.BytesIO(files[ROCKING_CSV]))
+        checks = pd.read_csv(io.BytesIO(files[CHECKS_CSV]), keep_default_na=False,
+                             na_values={c: [""] for c in ("alpha_deg", "size_s", "demand_m",
+                                                          "capacity_m")})
+        suite = pd.read_csv(io.BytesIO(files[SUITE_CSV]))
+        claims = pd.read_csv(io.BytesIO(files[CLAIMS_CSV]), keep_default_na=False, dtype=str)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}: cannot read the results: {exc}") from None
     spectra["procedure"] = spectra["procedure"].astype(str)
-    return AuditRun(results, spectra, histories, rocking, estimates_only, summary)
+    return AuditRun(results, spectra, histories, rocking, estimates_only, summary, checks, suite,
+                    claims)
 
 
 def save_run(run: AuditRun, out_dir: str | Path, render) -> AuditRun:

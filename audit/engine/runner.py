@@ -34,7 +34,8 @@ from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
                                    DEFAULT_STEPS_PER_RADIAN, rocking_spectrum, simulate)
 from procedures.base import (INITIAL_ROTATION_RATIO, MAX_ITERATIONS, NO_UPLIFT,
-                             NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO)
+                             NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO, check_verdicts,
+                             exact_exceeded)
 
 VERDICTS = ("no-uplift", "both-overturn", "false-overturn", "missed-overturn", "agrees",
             "conservative", "unconservative", "not-converged")
@@ -65,6 +66,17 @@ RESULT_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "p_rad_s", "exac
                   "approx_theta_rad", "approx_overturned", "approx_period_s", "approx_outcome",
                   "approx_fixed_points", "approx_cycle", "approx_detail", "iterations",
                   "beta_pct", "verdict", "ratio"]
+#: ``checks.csv``: limit-state checks of check-type procedures (e.g. NTC 2018), one row per
+#: procedure × record × α × size × limit state.
+CHECK_COLUMNS = ["record", "procedure", "alpha_deg", "size_s", "limit_state", "exact_event",
+                 "procedure_passes", "exact_exceeded", "verdict", "demand_m", "capacity_m",
+                 "demand_g", "capacity_g", "demand_theta_rad", "theta_limit_rad", "period_s"]
+#: ``suite.csv``: verdict statistics over the records, one row per procedure × α × size.
+SUITE_COLUMNS = (["procedure", "alpha_deg", "size_s", "records"]
+                 + [f"frac_{v.replace('-', '_')}" for v in VERDICTS]
+                 + ["frac_unsafe", "ratio_p16", "ratio_p50", "ratio_p84"])
+#: ``claims.csv``: the reproduction checklist of the reference report.
+CLAIM_COLUMNS = ["id", "section", "claim", "reference_value", "tool_value", "status", "note"]
 #: Columns holding booleans in ``results.csv`` (``exact_fragile`` is empty when not checked).
 BOOLEAN_COLUMNS = ("exact_overturned", "exact_uplifted", "exact_fragile", "approx_overturned")
 
@@ -184,6 +196,12 @@ class AuditRun:
         of ``results`` that an estimate has.
     summary : dict
         Settings, records, unauditable records, per-record statistics (``summary.json``).
+    checks : pandas.DataFrame
+        Limit-state checks (:data:`CHECK_COLUMNS`), empty when no procedure makes any.
+    suite : pandas.DataFrame
+        Verdict statistics across the records (:data:`SUITE_COLUMNS`).
+    claims : pandas.DataFrame
+        The reproduction checklist of the reference report (:data:`CLAIM_COLUMNS`).
     """
 
     results: pd.DataFrame
@@ -192,6 +210,9 @@ class AuditRun:
     rocking: pd.DataFrame
     estimates_only: pd.DataFrame
     summary: dict = field(default_factory=dict)
+    checks: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=CHECK_COLUMNS))
+    suite: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=SUITE_COLUMNS))
+    claims: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=CLAIM_COLUMNS))
 
 
 @dataclass
@@ -204,6 +225,7 @@ class RecordAudit:
     spectra: pd.DataFrame
     histories: pd.DataFrame
     rocking: pd.DataFrame
+    checks: pd.DataFrame
     unauditable: list
     histories_meta: list
 
@@ -316,7 +338,7 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     g = settings.g
     motion = entry.motion
     context = RecordContext(entry, settings.free_motion_s) if motion is not None else None
-    results, estimates_only, spectra, histories, rocking = [], [], [], [], []
+    results, estimates_only, spectra, histories, rocking, checks = [], [], [], [], [], []
     unauditable, histories_meta = [], []
     exact = fragile = None
     if motion is not None:
@@ -350,6 +372,10 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
             rows = _result_rows(entry.id, procedure.name, alpha_deg[i], sizes, p, estimate,
                                 exact, fragile, i, settings.agree_band)
             (results if exact is not None else estimates_only).append(rows)
+            if exact is not None:  # a check is audited only against an exact response
+                checks += [_check_rows(entry.id, procedure.name, alpha_deg[i], sizes, check,
+                                       exact, i, g)
+                           for check in procedure.checks(entry, p, alpha, r, context, g)]
     if exact is not None:
         alpha_index = int(np.argmin(np.abs(alpha_deg - 15.0)))
         for size in _representative_sizes(exact, alpha_index):
@@ -367,7 +393,7 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     return RecordAudit(entry.id, _concat(results, RESULT_COLUMNS),
                        _concat(estimates_only, RESULT_COLUMNS), _concat(spectra, SPECTRA_COLUMNS),
                        _concat(histories, HISTORY_COLUMNS), _concat(rocking, ROCKING_COLUMNS),
-                       unauditable, histories_meta)
+                       _concat(checks, CHECK_COLUMNS), unauditable, histories_meta)
 
 
 def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings) -> AuditRun:
@@ -401,7 +427,7 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
     }
     return AuditRun(results, cat("spectra", SPECTRA_COLUMNS), cat("histories", HISTORY_COLUMNS),
                     cat("rocking", ROCKING_COLUMNS), cat("estimates_only", RESULT_COLUMNS),
-                    summary)
+                    summary, checks=cat("checks", CHECK_COLUMNS))
 
 
 def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: int = 1,
@@ -479,6 +505,20 @@ def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact
         "approx_detail": estimate.detail, "iterations": estimate.iterations,
         "beta_pct": 100.0 * estimate.damping, "verdict": verdict, "ratio": ratio,
     })[RESULT_COLUMNS]
+
+
+def _check_rows(record_id, procedure_name, alpha_deg, sizes, check, exact, i, g):
+    """One row per block of a limit-state check, with the exact event it is audited against."""
+    exceeded = exact_exceeded(check, exact.theta_peak[i], exact.overturned[i], exact.uplifted[i])
+    return pd.DataFrame({
+        "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
+        "size_s": sizes, "limit_state": check.limit_state, "exact_event": check.exact_event,
+        "procedure_passes": np.asarray(check.passes, dtype=bool), "exact_exceeded": exceeded,
+        "verdict": check_verdicts(check.passes, exceeded), "demand_m": check.demand_m,
+        "capacity_m": check.capacity_m, "demand_g": check.demand_m_s2 / g,
+        "capacity_g": check.capacity_m_s2 / g, "demand_theta_rad": check.demand_theta_rad,
+        "theta_limit_rad": check.theta_limit_rad, "period_s": check.period_s,
+    })[CHECK_COLUMNS]
 
 
 __all__ = ["run_audit", "audit_record", "combine", "AuditRun", "AuditSettings", "RecordAudit",

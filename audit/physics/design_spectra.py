@@ -1,4 +1,5 @@
-"""Code design spectra: FEMA 356 general horizontal spectrum and UBC 97 (SPEC §6).
+"""Code design spectra: FEMA 356 general horizontal spectrum, UBC 97 (SPEC §6) and the
+NTC 2018 elastic spectrum (§3.2.3.2).
 
 Each code is a small object with ``acceleration(T, β)`` [g]; the displacement follows from
 Eq. 3.5 in the shared base class, so another code's spectrum (ASCE 7, Eurocode 8) is one more
@@ -152,5 +153,106 @@ class UBC97Spectrum(DesignSpectrum):
         return sa / np.interp(damping, UBC97_TABLE_A_16_C[:, 0], UBC97_TABLE_A_16_C[:, 1])
 
 
+#: NTC 2018 Tab. 3.2.IV: soil → (S_S lower bound, intercept, slope on F₀·a_g/g, upper bound,
+#: C_C coefficient, C_C exponent on T_C*); S_S = clip(intercept − slope·F₀·a_g/g).
+NTC2018_TABLE_3_2_IV = {
+    "A": (1.00, 1.00, 0.00, 1.00, 1.00, 0.00),
+    "B": (1.00, 1.40, 0.40, 1.20, 1.10, -0.20),
+    "C": (1.00, 1.70, 0.60, 1.50, 1.05, -0.33),
+    "D": (0.90, 2.40, 1.50, 1.80, 1.25, -0.50),
+    "E": (1.00, 2.00, 1.10, 1.60, 1.15, -0.40),
+}
+#: NTC 2018 Tab. 3.2.V: topographic category → S_T.
+NTC2018_TABLE_3_2_V = {"T1": 1.0, "T2": 1.2, "T3": 1.2, "T4": 1.4}
+#: NTC 2018 Tab. 3.2.VII: soil → T_E [s]; T_F = 10 s for every soil.
+NTC2018_TABLE_3_2_VII_TE_S = {"A": 4.5, "B": 5.0, "C": 6.0, "D": 6.0, "E": 6.0}
+NTC2018_TF_S = 10.0
+
+
+@dataclass(frozen=True)
+class NTC2018Spectrum(DesignSpectrum):
+    """NTC 2018 horizontal elastic spectrum at a site (§3.2.3.2.1 and §3.2.3.2.3).
+
+    Attributes
+    ----------
+    ag_g : float
+        a_g, peak acceleration on rock for the limit state's return period [g].
+    f0 : float
+        F₀, maximum amplification of the spectrum [-].
+    tc_star_s : float
+        T_C*, start of the constant-velocity branch on rock [s].
+    soil : str
+        Soil category A–E (Tab. 3.2.IV).
+    topography : str
+        Topographic category T1–T4 (Tab. 3.2.V).
+    """
+
+    ag_g: float
+    f0: float
+    tc_star_s: float
+    soil: str = "A"
+    topography: str = "T1"
+    name = "NTC 2018"
+
+    def __post_init__(self):
+        _positive(self.ag_g, "NTC a_g")
+        for value, field in ((self.f0, "NTC F0"), (self.tc_star_s, "NTC T_C* [s]")):
+            if not (value is not None and math.isfinite(value) and value > 0):
+                raise InputError(f"{field}: must be a positive number, got {value}")
+        if self.soil not in NTC2018_TABLE_3_2_IV:
+            raise InputError(f"NTC soil: must be one of {', '.join(NTC2018_TABLE_3_2_IV)}, "
+                             f"got {self.soil!r}")
+        if self.topography not in NTC2018_TABLE_3_2_V:
+            raise InputError(f"NTC topography: must be one of {', '.join(NTC2018_TABLE_3_2_V)}, "
+                             f"got {self.topography!r}")
+
+    @property
+    def soil_factor(self) -> float:
+        """S = S_S·S_T (Eq. 3.2.3), S_S of Tab. 3.2.IV within its bounds [-]."""
+        low, intercept, slope, high, _, _ = NTC2018_TABLE_3_2_IV[self.soil]
+        s_s = min(max(intercept - slope * self.f0 * self.ag_g, low), high)
+        return s_s * NTC2018_TABLE_3_2_V[self.topography]
+
+    def corner_periods(self):
+        """(T_B, T_C, T_D) [s]: T_C = C_C·T_C* (Eq. 3.2.7, Tab. 3.2.IV), T_B = T_C/3 (Eq. 3.2.8),
+        T_D = 4.0·a_g/g + 1.6 (Eq. 3.2.9)."""
+        _, _, _, _, coefficient, exponent = NTC2018_TABLE_3_2_IV[self.soil]
+        t_c = coefficient * self.tc_star_s ** exponent * self.tc_star_s
+        return t_c / 3.0, t_c, 4.0 * self.ag_g + 1.6
+
+    @staticmethod
+    def damping_factor(damping):
+        """η = √(10/(5 + ξ)) ≥ 0.55 with ξ in percent (Eq. 3.2.6), for β [-]."""
+        return np.maximum(np.sqrt(10.0 / (5.0 + 100.0 * np.asarray(damping, dtype=float))), 0.55)
+
+    def acceleration(self, period_s, damping):
+        """S_e(T) [g] in the four branches of Eq. 3.2.2, for damping β [-]."""
+        period = np.asarray(period_s, dtype=float)
+        t_b, t_c, t_d = self.corner_periods()
+        amplification = self.damping_factor(damping) * self.f0
+        plateau = self.ag_g * self.soil_factor * amplification
+        with np.errstate(divide="ignore"):
+            return np.select(
+                [period < t_b, period < t_c, period < t_d],
+                [plateau * (period / t_b + (1.0 - period / t_b) / amplification),
+                 plateau, plateau * t_c / period],
+                default=plateau * t_c * t_d / period ** 2)
+
+    def displacement(self, period_s, damping, g=G):
+        """S_De(T) [m]: Eq. 3.2.10 up to T_E, then Eq. 3.2.11 to T_F and d_g (Eq. 3.2.12)."""
+        period = np.asarray(period_s, dtype=float)
+        _, t_c, t_d = self.corner_periods()
+        t_e = NTC2018_TABLE_3_2_VII_TE_S[self.soil]
+        amplification = self.f0 * self.damping_factor(damping)
+        d_g = 0.025 * self.ag_g * g * self.soil_factor * t_c * t_d
+        fraction = (period - t_e) / (NTC2018_TF_S - t_e)
+        return np.select(
+            [period <= t_e, period <= NTC2018_TF_S],
+            [super().displacement(period, damping, g),
+             d_g * (amplification + (1.0 - amplification) * fraction)],
+            default=d_g)
+
+
 #: Design spectra by the name used on the command line.
-DESIGN_SPECTRA = {"fema356": FEMA356Spectrum, "ubc97": UBC97Spectrum}
+DESIGN_SPECTRA = {"fema356": FEMA356Spectrum, "ubc97": UBC97Spectrum,
+                  "ntc2018": NTC2018Spectrum}
