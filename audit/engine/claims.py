@@ -26,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.engine.runner import RecordContext
+from audit.engine.runner import CLAIM_COLUMNS, RecordContext
 from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution, radius_from_p
 from audit.physics.damping import (damping_fema356, damping_free_rocking, damping_priestley,
@@ -41,7 +41,6 @@ CLAIMS_FILE = "claims.toml"
 CLAIM_FIELDS = ("id", "section", "claim", "reference_value", "records", "method", "tolerance",
                 "note")
 STATUSES = ("agrees", "close", "differs", "cannot-check")
-COLUMNS = ["id", "section", "claim", "reference_value", "tool_value", "status", "note"]
 TOLERANCE_KINDS = ("relative", "absolute", "at_least", "at_most", "exact")
 #: Duration of the one-cosine pulses of Figures 4.1, 4.2 and 7.2 [s] and the free motion after.
 PULSE_PERIOD_S = 2.0
@@ -539,7 +538,7 @@ def _cycle_branch(ctx, claim: dict) -> Value:
 
 
 def evaluate_claim(ctx: ClaimContext, claim: dict) -> dict:
-    """One row of the checklist (see :data:`COLUMNS`)."""
+    """One row of the checklist (columns :data:`audit.engine.runner.CLAIM_COLUMNS`)."""
     row = {key: claim[key] for key in ("id", "section", "claim", "reference_value")}
     notes = [claim["note"]] if claim["note"] else []
     try:
@@ -584,7 +583,7 @@ def evaluate_claims(run, suite=None, claims: list[dict] | None = None) -> pd.Dat
     """
     ctx = ClaimContext(run, suite)
     rows = [evaluate_claim(ctx, claim) for claim in (load_claims() if claims is None else claims)]
-    return pd.DataFrame(rows, columns=COLUMNS)
+    return pd.DataFrame(rows, columns=CLAIM_COLUMNS)
 
 
-__all__ = ["evaluate_claims", "load_claims", "grade", "STATUSES", "COLUMNS", "EVALUATORS"]
+__all__ = ["evaluate_claims", "load_claims", "grade", "STATUSES", "EVALUATORS"]
