@@ -10,6 +10,10 @@ Priestley, Evison & Carr (1978) is common to all of them:
 2. guess θ, T(θ) = (4/p) acosh(1/(1 − θ/α)) (Eq. 8.1);
 3. δ = Sd(T(θ), β);
 4. θ ← δ / (R cos α) (Eq. 8.2); repeat until |Δθ|/α ≤ tolerance.
+
+The literal iteration decides the estimate; :func:`fixed_points` lists every fixed point of the
+same map on (0, α) with its stability, so a report can say which branch the iteration took and
+why it did not settle (a cycle around a repelling fixed point).
 """
 
 from __future__ import annotations
@@ -28,9 +32,30 @@ from audit.physics.damping import housner_period
 INITIAL_ROTATION_RATIO = 0.1
 #: Convergence when successive iterates differ by at most this much in θ/α.
 TOLERANCE_RATIO = 1e-6
-#: A settled 2-cycle re-reads the same two periods, so its iterates repeat to round-off; a
-#: slowly contracting alternation differs by far more than this between every other iterate.
-CYCLE_TOLERANCE_RATIO = 1e-12
+#: Longest cycle of the iteration that is recognised as such.
+MAX_CYCLE_LENGTH = 8
+#: A cycle of length L has settled when the last L iterates repeat the L before them to this
+#: fraction of the cycle's spread (max − min). Relative, because cycles settle geometrically at
+#: their own rate and amplitude; a contracting alternation towards a fixed point (slope −0.99)
+#: differs by ~1 % of its spread between every other iterate, far above this.
+CYCLE_TOLERANCE_RATIO = 1e-6
+#: A settled cycle of length L is read as one of length d | L when its iterates repeat after d
+#: steps to this fraction of its spread (see :func:`_cycle_length`).
+SUBCYCLE_TOLERANCE_RATIO = 1e-3
+#: Fixed points are scanned on a grid uniform in ln v, v = pT/4 = acosh(1/(1 − θ/α)) (Eq. 8.1),
+#: with this step: successive periods 0.25 % apart. The record spectra are linear in T between
+#: tabulated periods 1.16 % apart (``audit.engine.runner.SPECTRUM_PERIODS_S``), so every linear
+#: piece holds ≥ 4 grid points and, on it, F(θ) − θ is linear in T minus the smooth inverse of
+#: Eq. 8.1: each simple root changes sign between two grid points; only two roots less than a
+#: grid step apart (a near tangency) can be missed. A grid in θ/α would not do: T ∝ sqrt(θ/α)
+#: near 0 and T → ∞ as θ → α, so its steps in T would be coarse at both ends.
+SCAN_STEP_LOG_PERIOD = 0.0025
+#: Range of v scanned: θ/α from 5e-9 to 1 − 3e-11.
+SCAN_V_RANGE = (1e-4, 25.0)
+#: Fixed points are polished to this absolute tolerance in θ/α.
+ROOT_TOLERANCE_RATIO = 1e-10
+#: Step of the central difference for F'(θ*) in θ/α, well inside one linear piece of a spectrum.
+SLOPE_STEP_RATIO = 1e-6
 #: Iterations allowed: enough for slowly alternating iterations (slope near −1 at the fixed
 #: point) to converge, which on the seed records take up to ~300.
 MAX_ITERATIONS = 2000
@@ -58,9 +83,17 @@ class Estimate:
     outcome : numpy.ndarray of str
         ``converged``, ``overturn``, ``no-uplift`` or ``not-converged``.
     detail : numpy.ndarray of str
-        For non-converged iterations, the range the iterates kept oscillating in.
+        For non-converged iterations, the cycle the iterates settled in, or that they settled
+        in none.
     damping : float
         β used [-].
+    fixed_points : numpy.ndarray of str
+        Every fixed point of the map on (0, α) as θ/α, ascending, ``;``-separated, 4 decimals,
+        each suffixed ``s`` (attracting, |F'| < 1) or ``u`` (repelling), e.g.
+        ``0.2397s;0.2551u;0.4821s``; empty where there is none or the block does not uplift.
+    cycle : numpy.ndarray of str
+        The values θ/α of the cycle the iteration settled in, ascending, ``;``-separated,
+        4 decimals (e.g. ``0.5753;0.8854``); empty otherwise.
     """
 
     theta: np.ndarray
@@ -69,6 +102,132 @@ class Estimate:
     outcome: np.ndarray
     detail: np.ndarray
     damping: float
+    fixed_points: np.ndarray
+    cycle: np.ndarray
+
+
+def _rotation_map(displacement, ratio, p, scale):
+    """F(θ)/α = Sd(T(θ)) / (R cos α α) of Eqs. 8.1–8.2 at θ/α = ``ratio`` [-]."""
+    return displacement(housner_period(ratio, p)) * scale
+
+
+def _map_scale(p, alpha_rad: float, g: float):
+    """1 / (R cos α α) [1/m]: turns Sd [m] into θ/α by Eq. 8.2."""
+    return 1.0 / (radius_from_p(p, g) * np.cos(alpha_rad) * alpha_rad)
+
+
+def _ratios_text(values, suffixes=None) -> str:
+    """θ/α values as ``0.2397s;0.2551u`` (4 decimals, ``;``-separated, optional suffixes)."""
+    suffixes = [""] * len(values) if suffixes is None else suffixes
+    return ";".join(f"{value:.4f}{suffix}" for value, suffix in zip(values, suffixes))
+
+
+@dataclass(frozen=True)
+class FixedPoints:
+    """Fixed points of the map of Eqs. 8.1–8.2, flat over the blocks (see :func:`fixed_points`).
+
+    Attributes
+    ----------
+    block : numpy.ndarray of int
+        Index of the block each fixed point belongs to (ascending).
+    ratio : numpy.ndarray
+        θ*/α [-], ascending within a block.
+    slope : numpy.ndarray
+        F'(θ*) [-] by a central difference.
+    """
+
+    block: np.ndarray
+    ratio: np.ndarray
+    slope: np.ndarray
+
+    @property
+    def stable(self) -> np.ndarray:
+        """True where the fixed point attracts the iteration, |F'(θ*)| < 1."""
+        return np.abs(self.slope) < 1.0
+
+    def text(self, n_blocks: int) -> np.ndarray:
+        """Per block, the fixed points as ``0.2397s;0.2551u;0.4821s`` (empty where none)."""
+        out = np.full(n_blocks, "", dtype=object)
+        suffix = np.where(self.stable, "s", "u")
+        for i in np.unique(self.block):
+            mine = self.block == i
+            out[i] = _ratios_text(self.ratio[mine], suffix[mine])
+        return out
+
+
+def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
+                 g: float = G) -> FixedPoints:
+    """Every fixed point θ* = F(θ*) on (0, α) of the map of Eqs. 8.1–8.2, with its stability.
+
+    F(θ) = Sd(T(θ)) / (R cos α), T(θ) = (4/p) acosh(1/(1 − θ/α)). F(θ) − θ is evaluated for
+    all blocks at once on a grid uniform in ln(pT/4) (:data:`SCAN_STEP_LOG_PERIOD` explains the
+    step), every sign change is polished by Brent's method to :data:`ROOT_TOLERANCE_RATIO` in
+    θ/α, and F'(θ*) is taken by a central difference. The trivial fixed point θ = 0 is left out.
+
+    Parameters
+    ----------
+    displacement : callable
+        Sd [m] as a function of the period T [s] (array in, array out).
+    p : array
+        Frequency parameters of the blocks [rad/s], 1-D.
+    alpha_rad : float
+        Slenderness α [rad].
+    g : float
+        Acceleration of gravity [m/s²] (R = 3g/(4p²)).
+
+    Returns
+    -------
+    FixedPoints
+    """
+    from scipy.optimize import brentq
+
+    p = np.atleast_1d(np.asarray(p, dtype=float))
+    scale = _map_scale(p, alpha_rad, g)
+    low, high = SCAN_V_RANGE
+    v = np.exp(np.arange(np.log(low), np.log(high), SCAN_STEP_LOG_PERIOD))
+    grid = 1.0 - 1.0 / np.cosh(v)  # θ/α at v (inverse of Eq. 8.1)
+    excess = (displacement(4.0 * v / p[:, None]) * scale[:, None] - grid) > 0.0
+    blocks, left = np.nonzero(excess[:, :-1] != excess[:, 1:])
+    ratios, slopes = np.empty(blocks.size), np.empty(blocks.size)
+    for k, (i, j) in enumerate(zip(blocks, left)):
+        def excess_of(x, i=i):
+            return float(_rotation_map(displacement, x, p[i], scale[i])) - x
+        root = brentq(excess_of, grid[j], grid[j + 1], xtol=ROOT_TOLERANCE_RATIO)
+        step = min(SLOPE_STEP_RATIO, 0.5 * root, 0.5 * (1.0 - root))
+        ratios[k] = root
+        slopes[k] = (excess_of(root + step) - excess_of(root - step)) / (2.0 * step) + 1.0
+    return FixedPoints(blocks, ratios, slopes)
+
+
+# All cycle lengths L are tested at once: row L − 2 of _PERIOD_INDEX picks the last L iterates
+# of ``recent`` (its oldest repeated up to MAX_CYCLE_LENGTH columns, harmless for max, min and
+# the comparison), and _PERIOD_INDEX − L the L iterates before them.
+_CYCLE_SIZES = np.arange(2, MAX_CYCLE_LENGTH + 1)[:, None]
+_PERIOD_INDEX = -1 - np.minimum(np.arange(MAX_CYCLE_LENGTH), _CYCLE_SIZES - 1)
+
+
+def _cycle_length(recent: np.ndarray) -> np.ndarray:
+    """Length L ≤ :data:`MAX_CYCLE_LENGTH` of the cycle the rows of ``recent`` settled in, or 0.
+
+    ``recent`` holds the last 2·MAX_CYCLE_LENGTH iterates θ/α of each block, newest last (NaN
+    before the first). A cycle of length L has settled when a whole period, the last L iterates,
+    repeats the L before it to :data:`CYCLE_TOLERANCE_RATIO` of its spread; the shortest such L
+    counts. A cycle that settles from alternate sides (multiplier of F∘F near −1) repeats at 2L
+    before it does at L, so the period found is reduced to its shortest divisor whose iterates
+    already repeat to :data:`SUBCYCLE_TOLERANCE_RATIO` of the spread.
+    """
+    period, before = recent[:, _PERIOD_INDEX], recent[:, _PERIOD_INDEX - _CYCLE_SIZES]
+    spread = period.max(axis=2) - period.min(axis=2)
+    repeats = (np.all(np.abs(period - before) <= CYCLE_TOLERANCE_RATIO * spread[..., None], axis=2)
+               & (spread > 0.0))
+    length = np.where(repeats.any(axis=1), _CYCLE_SIZES[np.argmax(repeats, axis=1), 0], 0)
+    for row in np.flatnonzero(length):
+        window = recent[row, -length[row]:]
+        bound = SUBCYCLE_TOLERANCE_RATIO * np.ptp(window)
+        length[row] = next(size for size in range(2, length[row] + 1)
+                           if length[row] % size == 0
+                           and np.all(np.abs(window[size:] - window[:-size]) <= bound))
+    return length
 
 
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
@@ -81,7 +240,7 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     displacement : callable
         Sd [m] as a function of the period T [s] (array in, array out).
     p : array
-        Frequency parameters of the blocks [rad/s].
+        Frequency parameters of the blocks [rad/s], 1-D.
     alpha_rad : float
         Slenderness α [rad].
     g : float
@@ -91,42 +250,46 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
 
     Returns
     -------
-    ratio, outcome, iterations, detail : numpy.ndarray
+    ratio, outcome, iterations, detail, cycle : numpy.ndarray
         Final θ/α, outcome (``converged``, ``overturn``, ``not-converged``), iterations used,
-        and for non-converged blocks what the iterates did: an exact 2-cycle (detected as soon
-        as it settles) or no settled value within the cap.
+        what a non-converged iteration did (settled in a cycle of length ≤
+        :data:`MAX_CYCLE_LENGTH`, detected as soon as one whole period repeats, or no settled
+        value or cycle within the cap), and the settled cycle's θ/α ascending
+        (``0.5753;0.8854``, empty when there is none).
     """
     p = np.asarray(p, dtype=float)
-    scale = 1.0 / (radius_from_p(p, g) * np.cos(alpha_rad) * alpha_rad)
-    ratio = np.full(p.shape, initial_ratio)
-    previous = np.full(p.shape, np.nan)  # the iterate before ``ratio``
+    scale = _map_scale(p, alpha_rad, g)
+    recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
+    recent[:, -1] = initial_ratio
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
     detail = np.full(p.shape, "", dtype=object)
+    cycle = np.full(p.shape, "", dtype=object)
     active = np.ones(p.shape, dtype=bool)
     for i in range(1, max_iterations + 1):
         idx = np.flatnonzero(active)
-        new = displacement(housner_period(ratio[idx], p[idx])) * scale[idx]
+        new = _rotation_map(displacement, recent[idx, -1], p[idx], scale[idx])
         over = new >= 1.0
-        done = ~over & (np.abs(new - ratio[idx]) <= tolerance)
-        # a settled 2-cycle: back where it was two steps ago, yet still jumping
-        cycle = ~over & ~done & (np.abs(new - previous[idx]) <= CYCLE_TOLERANCE_RATIO)
+        done = ~over & (np.abs(new - recent[idx, -1]) <= tolerance)
+        recent[idx, :-1] = recent[idx, 1:]
+        recent[idx, -1] = np.where(over, 1.0, new)
+        length = np.where(over | done, 0, _cycle_length(recent[idx]))
         outcome[idx[over]] = OVERTURN
         outcome[idx[done]] = CONVERGED
-        iterations[idx[over | done | cycle]] = i
-        for j, low, high in zip(idx[cycle], np.minimum(new, ratio[idx])[cycle],
-                                np.maximum(new, ratio[idx])[cycle]):
-            detail[j] = (f"iterates alternate between θ/α = {low:.4f} and {high:.4f} "
-                         f"(a 2-cycle: no attracting fixed point)")
-        previous[idx] = ratio[idx]
-        ratio[idx] = np.where(over, 1.0, new)
-        active[idx[over | done | cycle]] = False
+        for j, size in zip(idx[length > 0], length[length > 0]):
+            values = np.sort(recent[j, -size:])
+            cycle[j] = _ratios_text(values)
+            detail[j] = (f"iterates settle in a {size}-cycle between θ/α = {values[0]:.4f} and "
+                         f"{values[-1]:.4f} (no fixed point reached from θ₀/α = {initial_ratio:g})")
+        settled = over | done | (length > 0)
+        iterations[idx[settled]] = i
+        active[idx[settled]] = False
         if not active.any():
             break
     for j in np.flatnonzero(active):
-        detail[j] = (f"no convergence after {max_iterations} iterations "
-                     f"(last iterates θ/α = {previous[j]:.4f}, {ratio[j]:.4f})")
-    return ratio, outcome, iterations, detail
+        detail[j] = (f"no settled value or cycle after {max_iterations} iterations "
+                     f"(last iterates θ/α = {recent[j, -2]:.4f}, {recent[j, -1]:.4f})")
+    return recent[:, -1].copy(), outcome, iterations, detail, cycle
 
 
 class Procedure:
@@ -204,14 +367,18 @@ class Procedure:
         iterations = np.zeros(p.shape, dtype=int)
         outcome = np.full(p.shape, NO_UPLIFT, dtype=object)
         detail = np.full(p.shape, "", dtype=object)
+        cycle = np.full(p.shape, "", dtype=object)
+        roots = np.full(p.shape, "", dtype=object)
         if self.peak_ground_acceleration(entry, context) > g * np.tan(alpha_rad):
             spectrum = self.displacement_spectrum(entry, beta, context)
-            ratio, outcome, iterations, detail = iterate_rotation(spectrum, p, alpha_rad, g)
+            ratio, outcome, iterations, detail, cycle = iterate_rotation(spectrum, p, alpha_rad, g)
+            roots = fixed_points(spectrum, p, alpha_rad, g).text(p.size)
             # no single rotation to report when overturning is predicted or nothing converged
             undefined = outcome != CONVERGED
             theta = np.where(undefined, np.nan, ratio * alpha_rad)
             period = np.where(undefined, np.nan, housner_period(ratio, p))
-        return Estimate(theta, period, iterations, outcome, detail, beta)
+        return Estimate(theta, period, iterations, outcome, detail, beta, fixed_points=roots,
+                        cycle=cycle)
 
 
 # ---------------------------------------------------------------------------------------------

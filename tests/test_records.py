@@ -127,7 +127,8 @@ def test_pulse_suite_is_table_5_1():
 
 def test_source_precedence(monkeypatch, tmp_path):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
-    assert load_records().is_pulse_idealised
+    assert [e.id for e in load_records() if not e.missing] == ["rinaldi_1994", "sylmar_1994",
+                                                               "erzincan_1992"]
     manifest = tmp_path / "m.toml"
     data = tmp_path / "x.txt"
     data.write_text("1\n2\n3\n")

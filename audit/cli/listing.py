@@ -1,4 +1,5 @@
-"""``python -m audit list``: registered procedures and the records of the record source."""
+"""``python -m audit list``: registered procedures, the built-in suites and the records of the
+record source."""
 
 from __future__ import annotations
 
@@ -6,7 +7,8 @@ from audit.cli import options
 
 
 def add_parser(sub):
-    p = sub.add_parser("list", help="registered procedures and the records of the record source")
+    p = sub.add_parser("list", help="registered procedures, built-in suites and the records of the "
+                                    "record source")
     options.add_records_option(p)
     p.set_defaults(func=run)
 
@@ -16,6 +18,18 @@ def run(args) -> int:
     print("Procedures:")
     for name, cls in available_procedures().items():
         print(f"  {name:<16} {cls.title} — {cls.damping_law}; {cls.spectrum_source}")
+    from audit.errors import InputError
+    from records import P695_SUITES, PULSE_SUITE
+    from records.p695 import overview
+    print("\nBuilt-in suites (--records NAME):")
+    print(f"  {PULSE_SUITE:<26} 7 one-cosine pulses idealising the seed records of Table 5.1 "
+          "(not recorded motions)")
+    for name in P695_SUITES:
+        try:
+            holds = overview(name)
+        except InputError as exc:  # the other sources still work without the package
+            holds = f"unavailable: {exc}"
+        print(f"  {name:<26} {holds}")
     suite = options.suite(args)
     print(f"\nRecords ({suite.description}):")
     for entry in suite:

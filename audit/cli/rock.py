@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import io
 import json
 import math
+import sys
+from pathlib import Path
 
 from audit.cli import options
 from audit.errors import InputError
@@ -20,6 +23,9 @@ def add_parser(sub):
                    help="free motion simulated after the excitation [s] (default 10)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw θ/α and θ' against time")
+    p.add_argument("--history", metavar="FILE.csv",
+                   help="write time_s, theta_rad, theta_dot_rad_s, ground_acc_g at every solver "
+                        "output point (sampling grid, turning points, both sides of each impact)")
     p.set_defaults(func=run)
 
 
@@ -41,6 +47,8 @@ def run(args) -> int:
         "peak_rotation": response.peak_rotation,
         "peak_rotation_ratio": response.peak_rotation_ratio,
         "peak_rotation_after_excitation": response.peak_rotation_after_excitation,
+        "peak_rotation_free_vibration": None if math.isnan(response.peak_rotation_free_vibration)
+        else response.peak_rotation_free_vibration,
         "peak_angular_velocity": response.peak_angular_velocity,
         "impacts": response.n_impacts,
         "cycle_durations": response.cycle_durations.tolist(),
@@ -56,12 +64,19 @@ def run(args) -> int:
             if response.n_impacts else None,
             "cycle_starts": response.cycle_starts, "cycle_durations": response.cycle_durations,
             "excitation_end": motion.duration}]), height=3.9)
+    if args.history:
+        write_history(args.history, response, motion)
     if args.json:
         print(json.dumps(result))
         return 0
     state = (f"OVERTURNS at t = {response.overturn_time:.3f} s" if response.overturned
              else "survives" if response.uplifted else "does not uplift (PGA ≤ g tan α)")
     source = "" if motion.source in ("", "analytic pulse") else f" — {motion.source}"
+    # after overturning there is no "after the excitation"
+    after = ("n/a" if response.overturned
+             else f"{response.peak_rotation_after_excitation / block.alpha:.4f} α")
+    free = ("n/a" if math.isnan(response.peak_rotation_free_vibration)
+            else f"{response.peak_rotation_free_vibration / block.alpha:.4f} α (largest turning point)")
     cycles = ", ".join(f"{d:.3f}" for d in response.cycle_durations[:8]) or "—"
     more = " …" if response.cycle_durations.size > 8 else ""
     print(f"Block p = {block.p:.4g} rad/s (2π/p = {block.size_s:.4g} s, R = {block.radius:.3g} m), "
@@ -70,11 +85,31 @@ def run(args) -> int:
           f"Result: {state}\n"
           f"  peak |θ|                   {response.peak_rotation:.6g} rad = "
           f"{response.peak_rotation_ratio:.4f} α\n"
-          f"  peak |θ| after excitation  "
-          f"{response.peak_rotation_after_excitation / block.alpha:.4f} α\n"
+          f"  peak |θ| after excitation  {after}\n"
+          f"  free-vibration peak |θ|    {free}\n"
           f"  peak |θ'|                  {response.peak_angular_velocity:.6g} rad/s\n"
           f"  impacts                    {response.n_impacts}\n"
           f"  full rocking cycles [s]    {cycles}{more}")
     if args.plot:
         print(f"Plot written to {args.plot}")
     return 0
+
+
+def write_history(path: str, response, motion) -> None:
+    """The response at every solver output point as CSV, written atomically to ``path``.
+
+    Columns ``time_s, theta_rad, theta_dot_rad_s, ground_acc_g``; an impact appears twice at
+    its time (θ' before, then after); nothing after overturning.
+    """
+    import numpy as np
+
+    from audit import G
+    from audit.engine.files import write_files_atomically
+    time, theta, omega = response.history()
+    table = np.column_stack((time, theta, omega, motion.acceleration_at(time) / G))
+    text = io.StringIO()
+    np.savetxt(text, table, fmt="%.10g", delimiter=",", comments="",
+               header="time_s,theta_rad,theta_dot_rad_s,ground_acc_g")
+    target = Path(path)
+    write_files_atomically(target.parent, {target.name: text.getvalue().encode()})
+    print(f"Wrote {len(table)} rows to {path}", file=sys.stderr)

@@ -29,7 +29,49 @@ def add_parser(sub):
     p.add_argument("--robustness", type=float, default=0.03, metavar="EPSILON",
                    help="flag blocks whose exact overturning changes with the record scaled by "
                         "1 ± EPSILON (default 0.03; 0 turns it off)")
+    p.add_argument("--site", metavar="SXS,SX1",
+                   help="FEMA 356 design site S_XS,S_X1 [g] (§1.6) for every record without one")
+    p.add_argument("--site-override", action="store_true",
+                   help="with --site: also replace the sites records carry (Table 3.1)")
+    p.add_argument("--scale-to-site", action="store_true",
+                   help="with --site: scale the suite the FEMA P695 way to the design spectrum")
+    p.add_argument("--anchor-period", type=float, metavar="S",
+                   help="with --scale-to-site: period where the suite median meets the design "
+                        "spectrum [s] (default 1)")
+    p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
+                   help="NTC 2018 site for every record: a_g [g], F0, T_C* [s], soil category "
+                        "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
+                        "its demand off this code spectrum instead of the record's")
     p.set_defaults(func=run)
+
+
+def design_site(args, suite):
+    """``suite`` with the design sites and scaling of ``--ntc-site``, ``--site``,
+    ``--site-override``, ``--scale-to-site`` and ``--anchor-period``."""
+    from records import scale_to_site, with_design_site, with_ntc_site
+    if args.ntc_site:
+        fields = args.ntc_site.split(",")
+        if len(fields) != 5:
+            raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
+        ag_g, f0, tc_star_s = options.float_list(",".join(fields[:3]), "--ntc-site")
+        suite = with_ntc_site(suite, ag_g, f0, tc_star_s, fields[3].strip().upper(),
+                              fields[4].strip().upper())
+    if args.anchor_period is not None and not args.scale_to_site:
+        raise InputError("--anchor-period: needs --scale-to-site")
+    if not args.site:
+        if args.site_override or args.scale_to_site:
+            raise InputError("--site-override and --scale-to-site need --site SXS,SX1")
+        return suite
+    site = options.float_list(args.site, "--site")
+    if len(site) != 2:
+        raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
+    sxs_g, sx1_g = (options.positive(value, "--site") for value in site)
+    suite = with_design_site(suite, sxs_g, sx1_g, override=args.site_override)
+    if args.scale_to_site:
+        anchor = options.positive(1.0 if args.anchor_period is None else args.anchor_period,
+                                  "--anchor-period")
+        suite = scale_to_site(suite, sxs_g, sx1_g, anchor)
+    return suite
 
 
 def run(args) -> int:
@@ -39,7 +81,7 @@ def run(args) -> int:
     from procedures import get_procedures
     from reports import render_report
     procedures = get_procedures(args.procedure)
-    suite = options.suite(args)
+    suite = design_site(args, options.suite(args))
     sizes = options.sizes(args.sizes)
     alphas = options.alphas_deg(args.alpha)
     out_dir = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure

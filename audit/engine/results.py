@@ -11,15 +11,13 @@ from __future__ import annotations
 import io
 import json
 import math
-import os
-import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from audit.errors import InputError
+from audit.engine.files import write_files_atomically
 from audit.engine.runner import BOOLEAN_COLUMNS, RESULT_COLUMNS, AuditRun
 
 RESULTS_CSV = "results.csv"
@@ -48,25 +46,6 @@ def _json_ready(value):
     if isinstance(value, (float, np.floating)):
         return float(value) if math.isfinite(value) else None
     return value
-
-
-def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None:
-    """Write ``files`` (name → content) into ``out_dir``, all or nothing.
-
-    Everything is written into a temporary directory next to ``out_dir`` first; each file is
-    then moved into place with an atomic rename.
-    """
-    out_dir = Path(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}-", dir=out_dir.parent))
-    try:
-        for name, content in files.items():
-            (staging / name).write_bytes(content)
-        out_dir.mkdir(exist_ok=True)
-        for name in files:
-            os.replace(staging / name, out_dir / name)
-    finally:
-        shutil.rmtree(staging, ignore_errors=True)
 
 
 def _with_booleans(frame):

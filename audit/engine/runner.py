@@ -33,9 +33,9 @@ from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
                                    DEFAULT_STEPS_PER_RADIAN, rocking_spectrum, simulate)
-from procedures.base import (INITIAL_ROTATION_RATIO, MAX_ITERATIONS, NO_UPLIFT,
-                             NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO, check_verdicts,
-                             exact_exceeded)
+from procedures.base import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
+                             MAX_ITERATIONS, NO_UPLIFT, NOT_CONVERGED, OVERTURN, TOLERANCE_RATIO,
+                             check_verdicts, exact_exceeded)
 
 VERDICTS = ("no-uplift", "both-overturn", "false-overturn", "missed-overturn", "agrees",
             "conservative", "unconservative", "not-converged")
@@ -235,7 +235,7 @@ def record_summary(entry) -> dict:
     motion, facts = entry.motion, entry.facts
     item = {"id": entry.id, "name": entry.name, "component": entry.component,
             "missing": entry.missing, "missing_reason": entry.missing_reason, "site": entry.site,
-            "metadata": dict(getattr(entry, "metadata", None) or {})}
+            "metadata": entry.metadata}
     if facts is not None:
         item["table_5_1"] = {"pga_g": facts.pga_g, "pgv_m_s": facts.pgv_ms,
                              "pulse_period_s": facts.pulse_period_s}
@@ -411,15 +411,17 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
         "records_source": suite.description,
         "pulse_idealised": suite.is_pulse_idealised,
         "records": [record_summary(entry) for entry in suite],
-        "rejected_records": list(getattr(suite, "rejected", ()) or ()),
-        "scaling": getattr(suite, "scaling", None),
+        "rejected_records": list(getattr(suite, "rejected", ())),
+        "design_site": suite.design_site,
+        "scaling": suite.scaling,
         "unauditable": [item for part in parts for item in part.unauditable],
         "grid": {"alpha_deg": list(settings.alpha_deg), "size_s": list(settings.size_s)},
         "settings": {
             **settings.as_dict(),
             "steps_per_radian": DEFAULT_STEPS_PER_RADIAN, "rest_tolerance": DEFAULT_REST_TOLERANCE,
             "initial_rotation_ratio": INITIAL_ROTATION_RATIO, "tolerance_ratio": TOLERANCE_RATIO,
-            "max_iterations": MAX_ITERATIONS,
+            "max_iterations": MAX_ITERATIONS, "max_cycle_length": MAX_CYCLE_LENGTH,
+            "cycle_tolerance_ratio": CYCLE_TOLERANCE_RATIO,
             "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING],
         },
         "statistics": statistics(results),
@@ -492,7 +494,6 @@ def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(np.isin(verdict, ["agrees", "conservative", "unconservative"]),
                          estimate.theta / exact_theta, np.nan)
-    empty = np.full(sizes.shape, "", dtype=object)
     return pd.DataFrame({
         "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
         "size_s": sizes, "p_rad_s": p, "exact_theta_rad": exact_theta,
@@ -500,8 +501,7 @@ def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact
         "exact_fragile": exact_fragile, "exact_omega_rad_s": exact_omega,
         "approx_theta_rad": estimate.theta, "approx_overturned": estimate.outcome == OVERTURN,
         "approx_period_s": estimate.period_s, "approx_outcome": estimate.outcome,
-        "approx_fixed_points": getattr(estimate, "fixed_points", empty),
-        "approx_cycle": getattr(estimate, "cycle", empty),
+        "approx_fixed_points": estimate.fixed_points, "approx_cycle": estimate.cycle,
         "approx_detail": estimate.detail, "iterations": estimate.iterations,
         "beta_pct": 100.0 * estimate.damping, "verdict": verdict, "ratio": ratio,
     })[RESULT_COLUMNS]

@@ -34,7 +34,8 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
     Returns
     -------
     dict
-        ``peak_rotation`` [rad], ``overturned`` (bool), ``n_impacts``.
+        ``peak_rotation`` [rad], ``overturned`` (bool), ``n_impacts``, and the time [s] and
+        θ [rad] of every turning point θ' = 0 (``turning_times``, ``turning_rotations``).
     """
     time = motion.time
     acc = motion.acceleration
@@ -61,6 +62,12 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
         return max(t_from, time[j - 1] + (level - a0) / (a1 - a0) * (time[j] - time[j - 1]))
 
     peak, n_impacts = 0.0, 0
+    turns = []  # (t, θ) of every turning point
+
+    def result(peak_rotation, overturned):
+        times, rotations = np.array(turns).reshape(-1, 2).T
+        return {"peak_rotation": peak_rotation, "overturned": overturned,
+                "n_impacts": n_impacts, "turning_times": times, "turning_rotations": rotations}
     t = next_uplift(0.0)
     theta, omega = 0.0, 0.0
     side = -math.copysign(1.0, ground(t)) if t is not None else 1.0
@@ -84,8 +91,9 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
                         max_step=motion.dt, events=(impact, overturn, turning))
         peak = max(peak, float(np.max(np.abs(sol.y[0]))),
                    *(abs(y[0]) for y in sol.y_events[2]))
+        turns.extend(zip(sol.t_events[2], (y[0] for y in sol.y_events[2])))
         if sol.t_events[1].size:
-            return {"peak_rotation": alpha, "overturned": True, "n_impacts": n_impacts}
+            return result(alpha, True)
         if not sol.t_events[0].size:
             break
         n_impacts += 1
@@ -98,4 +106,4 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
             if t is not None:
                 omega = 0.0
                 side = -math.copysign(1.0, ground(t))
-    return {"peak_rotation": peak, "overturned": False, "n_impacts": n_impacts}
+    return result(peak, False)

@@ -30,7 +30,6 @@ from dataclasses import dataclass
 
 import numba
 import numpy as np
-import pandas as pd
 
 from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.errors import InputError
@@ -117,11 +116,15 @@ def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
 
 @numba.njit(cache=True, nogil=True)
 def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
-              steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out):
+              steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out,
+              turns_out):
     """Simulate one block; see :func:`simulate`. History arrays of length 0 store nothing.
 
+    ``impacts_out`` rows: time, episode, θ' just before and just after the impact;
+    ``turns_out`` rows: time and θ of each turning point (θ' = 0).
+
     Returns (peak |θ|, peak |θ'|, peak |θ| after the excitation, overturned, overturn time,
-    number of impacts, uplifted, peak θ signed).
+    number of impacts, uplifted, peak θ signed, number of turning points).
     """
     n_rec = acc.size
     n_seg = n_rec - 1 + n_tail
@@ -149,6 +152,7 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
     peak_omega = 0.0
     peak_after = 0.0
     n_impacts = 0
+    n_turns = 0
     episode = 0
     filled = 0  # history samples written so far
     if store:
@@ -212,6 +216,10 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
                     th_n = th_e  # overturned before the turning point: handled below
                     h = tau
                 else:
+                    if n_turns < turns_out.shape[0]:
+                        turns_out[n_turns, 0] = t + tau
+                        turns_out[n_turns, 1] = th_e
+                    n_turns += 1
                     if abs(th_e) > peak:
                         peak = abs(th_e)
                         peak_signed = th_e
@@ -239,7 +247,6 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
                 if n_impacts < impacts_out.shape[0]:
                     impacts_out[n_impacts, 0] = t_imp
                     impacts_out[n_impacts, 1] = episode
-                n_impacts += 1
                 omega = velocity_ratio * om_i
                 theta = 0.0
                 side = 1.0 if omega > 0.0 else -1.0
@@ -248,6 +255,10 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
                         abs(_ground(t, seg_kind, a0, slope, t0, amp, omega_p)) <= threshold):
                     resting = True
                     omega = 0.0
+                if n_impacts < impacts_out.shape[0]:
+                    impacts_out[n_impacts, 2] = om_i
+                    impacts_out[n_impacts, 3] = omega
+                n_impacts += 1
                 continue
             theta = th_n
             omega = om_n
@@ -271,7 +282,8 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
         fill = math.nan if overturned else 0.0
         theta_out[filled:] = fill
         omega_out[filled:] = fill
-    return peak, peak_omega, peak_after, overturned, t_over, n_impacts, uplifted, peak_signed
+    return (peak, peak_omega, peak_after, overturned, t_over, n_impacts, uplifted, peak_signed,
+            n_turns)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -279,10 +291,11 @@ def _spectrum(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, out):
     """Peaks of many blocks under one motion; fills ``out`` (n_blocks × 5)."""
     empty = np.empty(0)
-    no_impacts = np.empty((0, 2))
+    no_events = np.empty((0, 4))
     for i in range(p.size):
         res = _simulate(acc, dt, n_tail, kind, amp, omega_p, p[i], alpha[i], velocity_ratio[i], g,
-                        steps_per_radian, rest_tolerance, 0.0, 0.0, empty, empty, no_impacts)
+                        steps_per_radian, rest_tolerance, 0.0, 0.0, empty, empty, no_events,
+                        no_events)
         out[i, 0] = res[0]
         out[i, 1] = res[1]
         out[i, 2] = res[2]
@@ -315,6 +328,12 @@ class RockingResponse:
         Times of the impacts [s] (the first :data:`IMPACT_CAPACITY`).
     impact_episode : numpy.ndarray
         Rocking episode (1, 2, …; a return to rest ends one) of each impact.
+    impact_velocities : numpy.ndarray
+        θ' just before and just after each impact [rad/s], shape (n, 2) (Eq. 4.6–4.8; 0 after
+        an impact that ends in rest).
+    turning_times, turning_rotations : numpy.ndarray
+        Time [s] and θ [rad] of every turning point θ' = 0 (the first
+        :data:`IMPACT_CAPACITY`), located inside the solver's steps.
     overturned : bool
     overturn_time : float
         NaN when the block survives.
@@ -338,6 +357,9 @@ class RockingResponse:
     omega: np.ndarray
     impact_times: np.ndarray
     impact_episode: np.ndarray
+    impact_velocities: np.ndarray
+    turning_times: np.ndarray
+    turning_rotations: np.ndarray
     overturned: bool
     overturn_time: float
     peak_rotation: float
@@ -353,6 +375,43 @@ class RockingResponse:
     def peak_rotation_ratio(self) -> float:
         """max |θ| / α [-]."""
         return self.peak_rotation / self.block.alpha
+
+    @property
+    def peak_rotation_free_vibration(self) -> float:
+        """Largest |θ| at a turning point (θ' = 0) strictly after the excitation ends [rad].
+
+        The peak of the free vibration of Figures 4.1–4.2 (0.38α in Figure 4.2); NaN when the
+        block overturns or has no turning point after the excitation.
+        """
+        after = self.turning_times > self.excitation_end
+        if self.overturned or not after.any():
+            return math.nan
+        return float(np.max(np.abs(self.turning_rotations[after])))
+
+    def history(self):
+        """The response at every solver output point, in time order.
+
+        The motion's sampling grid (up to overturning) merged with every turning point
+        (θ' = 0) and every impact, which appears twice at its time: θ' just before, then just
+        after.
+
+        Returns
+        -------
+        time, theta, omega : numpy.ndarray
+            t [s], θ [rad], θ' [rad/s].
+        """
+        defined = np.isfinite(self.theta)
+        n_impacts, n_turns = self.impact_times.size, self.turning_times.size
+        time = np.concatenate((self.time[defined], self.turning_times, self.impact_times,
+                               self.impact_times))
+        theta = np.concatenate((self.theta[defined], self.turning_rotations,
+                                np.zeros(2 * n_impacts)))
+        omega = np.concatenate((self.omega[defined], np.zeros(n_turns),
+                                self.impact_velocities[:, 0], self.impact_velocities[:, 1]))
+        # ties at one time: grid point and turning point, then before, then after an impact
+        rank = np.repeat([0, 0, 1, 2], [int(defined.sum()), n_turns, n_impacts, n_impacts])
+        order = np.lexsort((rank, time))
+        return time[order], theta[order], omega[order]
 
     @property
     def cycle_starts(self) -> np.ndarray:
@@ -409,14 +468,18 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
     n_out = motion.acceleration.size + args[2]
     theta = np.empty(n_out)
     omega = np.empty(n_out)
-    impacts = np.zeros((IMPACT_CAPACITY, 2))
+    impacts = np.empty((IMPACT_CAPACITY, 4))
+    turns = np.empty((IMPACT_CAPACITY, 2))
     res = _simulate(*args, block.p, block.alpha, math.sqrt(block.r), block.g,
                     steps_per_radian, rest_tolerance, initial_rotation, initial_velocity,
-                    theta, omega, impacts)
+                    theta, omega, impacts, turns)
     n_kept = min(int(res[5]), IMPACT_CAPACITY)
+    n_turns = min(int(res[8]), IMPACT_CAPACITY)
     return RockingResponse(
         time=np.arange(n_out) * motion.dt, theta=theta, omega=omega,
         impact_times=impacts[:n_kept, 0].copy(), impact_episode=impacts[:n_kept, 1].astype(int),
+        impact_velocities=impacts[:n_kept, 2:].copy(), turning_times=turns[:n_turns, 0].copy(),
+        turning_rotations=turns[:n_turns, 1].copy(),
         overturned=bool(res[3]), overturn_time=float(res[4]), peak_rotation=float(res[0]),
         peak_rotation_signed=float(res[7]), peak_angular_velocity=float(res[1]),
         peak_rotation_after_excitation=float(res[2]), n_impacts=int(res[5]),
@@ -467,6 +530,7 @@ class RockingSpectrum:
         """One row per block: ``alpha_deg, size_s, p_rad_s, theta_peak_rad, theta_ratio,
         overturned, omega_peak_rad_s, theta_after_rad, uplifted`` (the CSV of ``spectrum`` and
         ``rocking.csv``)."""
+        import pandas as pd  # here, so that one simulation (``rock``) does not load pandas
         alpha_deg = np.round(np.degrees(self.alpha_rad), 10)  # 15, not 14.999999999999998
         return pd.concat([pd.DataFrame({
             "alpha_deg": alpha_deg[i], "size_s": self.size_s, "p_rad_s": self.p,
