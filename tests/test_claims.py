@@ -197,3 +197,13 @@ def test_scaled_records_are_not_the_reports():
     run.summary = {"scaling": "to 0.5 g", "records": [{"id": "pacoima_dam_1971", "missing": False}]}
     row = checklist(["s8-transformer-exact"], run).iloc[0]
     assert row["status"] == "cannot-check" and "scaled" in row["note"]
+
+
+def test_seed_suite_figure_8_1_period_is_a_cycle_branch(seed_claims):
+    """Pacoima, α = 10°, 2π/p = 6 s: the iteration alternates 0.5753 ↔ 0.8854 (issue 9)."""
+    _, frame = seed_claims
+    row = frame.loc["s8-fig81-period-6s"]
+    p = 2 * math.pi / 6.0
+    low, high = (4 / p * math.acosh(1 / (1 - x)) for x in (0.5748, 0.5758))
+    assert row["status"] == "close" and low < row["tool_value"] < high
+    assert "0.5753 ↔ 0.8854" in row["note"]

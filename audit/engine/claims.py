@@ -6,7 +6,7 @@ precision. :func:`evaluate_claims` runs every claim and grades it:
 
 ``agrees``        within the claim's tolerance;
 ``close``         within its wider ``close`` tolerance, or the number matches but not what the
-                  report says it is (a branch of a 2-cycle read as a converged value);
+                  report says it is (a branch of a cycle of the iteration read as converged);
 ``differs``       outside both;
 ``cannot-check``  a record the claim needs is absent from the run or has no file.
 
@@ -33,7 +33,7 @@ from audit.physics.damping import (damping_fema356, damping_free_rocking, dampin
                                    housner_peak_ratio, housner_period)
 from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import DEFAULT_FREE_MOTION_S, simulate
-from procedures.base import CONVERGED, OVERTURN
+from procedures.base import CONVERGED, NO_UPLIFT, OVERTURN
 from procedures.registry import available_procedures
 from records import GroundMotion, one_pulse
 
@@ -59,11 +59,12 @@ class CannotCheck(Exception):
 
 @dataclass(frozen=True)
 class Value:
-    """An evaluator's answer: the number (or yes/no), a note, and the best status it allows."""
+    """An evaluator's answer: the number (or yes/no), a note, or the branches of a cycle."""
 
     value: float | bool | None
     note: str = ""
-    best: str = "agrees"
+    #: Values of the branches of a cycle the procedure settled in instead of a fixed point.
+    branches: tuple = ()
 
 
 def load_claims(path=None) -> list[dict]:
@@ -184,18 +185,6 @@ def _block(alpha_deg: float, size_s: float | None = None, p_rad_s: float | None 
     return RigidBlock(p, math.radians(alpha_deg), g=g)
 
 
-def _turning_points(response, after: float) -> np.ndarray:
-    """|θ| [rad] at the turning points (θ' changes sign) of a history strictly after ``after``.
-
-    Of the two samples around a sign change the one with the larger |θ| is kept: at a turning
-    point θ' = 0, so the sampled value is off by O(θ''·dt²) only.
-    """
-    keep = (response.time > after) & np.isfinite(response.theta)
-    theta, omega = np.abs(response.theta[keep]), response.omega[keep]
-    turns = np.flatnonzero(omega[:-1] * omega[1:] < 0.0)
-    return np.maximum(theta[turns], theta[turns + 1])
-
-
 # ------------------------------------------------------------------------------ evaluators
 
 def closed_form(ctx, quantity: str, **params) -> Value:
@@ -251,8 +240,8 @@ def pulse_block(ctx, quantity: str, p_rad_s: float, alpha_deg: float,
     if quantity == "impacts_after_pulse":
         return Value(int(impacts.size))
     if quantity == "free_peak_ratio":
-        peaks = _turning_points(response, end)
-        return Value(float(peaks.max() / response.block.alpha) if peaks.size else None)
+        peak = response.peak_rotation_free_vibration
+        return Value(peak / response.block.alpha if math.isfinite(peak) else None)
     cycles = impacts[2::2] - impacts[:-2:2]
     if quantity == "first_free_cycle_s":
         return Value(float(cycles[0]) if cycles.size else None)
@@ -280,8 +269,8 @@ def free_rocking(ctx, alpha_deg: float, size_s: float, theta0_ratio: float,
     response = simulate(block, still, duration, initial_rotation=theta0_ratio * block.alpha)
     if response.n_impacts < n_impacts + 1:
         return Value(None, f"only {response.n_impacts} impacts")
-    peaks = _turning_points(response, response.impact_times[n_impacts - 1])
-    simulated = peaks[0] / block.alpha
+    after = response.turning_times > response.impact_times[n_impacts - 1]
+    simulated = abs(response.turning_rotations[after][0]) / block.alpha
     return Value(float(simulated / housner_peak_ratio(theta0_ratio, n_impacts, block.r) - 1.0))
 
 
@@ -333,28 +322,35 @@ def procedure_block(ctx, quantity: str, procedure: str, record: str, alpha_deg: 
                     size_s: float) -> Value:
     """A procedure's estimate for one block: ``theta_rad`` or ``period_s`` (T(θ), Eq. 8.1).
 
-    Where the iteration settles on a cycle instead of a fixed point, the value is the cycle's
-    branch nearest the report's number (read from the run's ``approx_cycle``), and the claim
-    can at best be ``close``: the report reads that branch as converged.
+    Where the iteration settles on a cycle instead of a fixed point, the answer is the cycle's
+    branches: the claim is graded on the branch nearest the report's number, and at best
+    ``close``, since the report reads that branch as converged.
     """
     entry = ctx.entry(record)
     alpha = math.radians(alpha_deg)
     p = 2.0 * math.pi / size_s
     if entry is None:
-        row = _grid_row(ctx.run.results, size_s, f"the {procedure} estimate",
-                        procedure=procedure, record=record, alpha_deg=alpha_deg)
+        row = _grid_row(pd.concat([ctx.run.results, ctx.run.estimates_only]), size_s,
+                        f"the {procedure} estimate", procedure=procedure, record=record,
+                        alpha_deg=alpha_deg)
         outcome, theta = row["approx_outcome"], row["approx_theta_rad"]
-        detail = row["approx_detail"]
+        detail, cycle = row["approx_detail"], row["approx_cycle"]
     else:
         estimate = available_procedures()[procedure]().estimate(
             entry, np.array([p]), alpha, float(coefficient_of_restitution(alpha)),
             ctx.record_context(entry), ctx.g)
-        outcome, theta, detail = estimate.outcome[0], estimate.theta[0], estimate.detail[0]
+        outcome, theta = estimate.outcome[0], estimate.theta[0]
+        detail, cycle = estimate.detail[0], estimate.cycle[0]
     if outcome == OVERTURN:
         return Value(None, "the procedure predicts overturning")
-    if outcome == CONVERGED or outcome == "no-uplift":
+    if outcome in (CONVERGED, NO_UPLIFT):
         return Value(float(theta if quantity == "theta_rad" else housner_period(theta / alpha, p)))
-    return Value(None, detail, best="cycle")
+    if not isinstance(cycle, str) or not cycle:
+        return Value(None, detail)
+    ratios = np.array([float(x) for x in cycle.split(";")])
+    branches = ratios * alpha if quantity == "theta_rad" else housner_period(ratios, p)
+    return Value(None, f"not converged: a cycle θ/α = {cycle.replace(';', ' ↔ ')}; the value is "
+                       "its branch nearest the report's", tuple(float(b) for b in branches))
 
 
 def ratio(ctx, numerator: dict, denominator: dict, percent_change: bool = False) -> Value:
@@ -515,28 +511,6 @@ def evaluate_method(ctx: ClaimContext, method: dict) -> Value:
 
 # ------------------------------------------------------------------------------ checklist
 
-def _cycle_branch(ctx, claim: dict) -> Value:
-    """For a procedure value that is a cycle: the run's cycle branch nearest the report's."""
-    method = claim["method"]
-    try:
-        row = _grid_row(ctx.run.results, method["size_s"], f"the {method['procedure']} cycle",
-                        procedure=method["procedure"], record=method["record"],
-                        alpha_deg=method["alpha_deg"])
-    except CannotCheck:
-        return Value(None)
-    cycle = str(row.get("approx_cycle", "") or "")
-    if not cycle or cycle == "nan":
-        return Value(None)
-    branches = np.array([float(x) for x in cycle.split(";")])
-    alpha = math.radians(method["alpha_deg"])
-    p = 2.0 * math.pi / method["size_s"]
-    values = (branches * alpha if method["quantity"] == "theta_rad"
-              else housner_period(branches, p))
-    nearest = float(values[np.argmin(np.abs(values - claim["reference_value"]))])
-    return Value(nearest, f"not converged: a cycle θ/α = {cycle.replace(';', ' ↔ ')}; the value "
-                          "is its branch nearest the report's", best="close")
-
-
 def evaluate_claim(ctx: ClaimContext, claim: dict) -> dict:
     """One row of the checklist (columns :data:`audit.engine.runner.CLAIM_COLUMNS`)."""
     row = {key: claim[key] for key in ("id", "section", "claim", "reference_value")}
@@ -545,18 +519,17 @@ def evaluate_claim(ctx: ClaimContext, claim: dict) -> dict:
         for record in claim["records"]:
             ctx.require(record)
         result = evaluate_method(ctx, claim["method"])
-        if result.best == "cycle":
-            branch = _cycle_branch(ctx, claim)
-            result = Value(branch.value, branch.note or result.note, "close")
     except CannotCheck as reason:
         row.update(tool_value=None, status="cannot-check", note="; ".join([str(reason)] + notes))
         return row
-    status = grade(result.value, claim["reference_value"], claim["tolerance"])
-    if result.best == "close" and status == "agrees":
+    value = result.value
+    if result.branches:  # a cycle: the report read one of its branches as converged
+        value = min(result.branches, key=lambda b: abs(b - claim["reference_value"]))
+    status = grade(value, claim["reference_value"], claim["tolerance"])
+    if result.branches and status == "agrees":
         status = "close"
     if result.note:
         notes.insert(0, result.note)
-    value = result.value
     row.update(tool_value=round(value, 6) if isinstance(value, float) else value,
                status=status, note="; ".join(notes))
     return row
