@@ -103,6 +103,8 @@ def run(args) -> int:
     run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
                     free_motion_s=args.free_motion, progress=Progress(len(suite), "records"),
                     agree_band=args.agree_band, robustness=args.robustness)
+    from audit.engine.claims import evaluate_claims
+    run.claims = evaluate_claims(run, suite)  # the reproduction checklist of the reference report
     computed = time.perf_counter() - start
     save_run(run, out_dir, lambda saved: render_report(saved, processes=args.jobs))
     total = time.perf_counter() - start
