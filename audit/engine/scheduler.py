@@ -118,6 +118,8 @@ class DaskScheduler:
 
     def __init__(self, client, description: str):
         self.client, self.description = client, description
+        #: Ids of the records sent by value (no file the workers could read back).
+        self.by_value = []
 
     def audit(self, entries, procedures, settings):
         """Yield ``(index, RecordAudit, seconds)`` in order of completion.
@@ -128,14 +130,17 @@ class DaskScheduler:
         from distributed import as_completed
         settings = replace(settings, jobs=1)
         procedures = self.client.scatter(list(procedures), broadcast=True)
-        futures = [self.client.submit(timed_audit, by_reference(entry), procedures, settings,
-                                      pure=False) for entry in entries]
+        items = [by_reference(entry) for entry in entries]
+        self.by_value += [entry.id for entry, item in zip(entries, items) if item is entry]
+        futures = [self.client.submit(timed_audit, item, procedures, settings, pure=False)
+                   for item in items]
         index_of = {future.key: index for index, future in enumerate(futures)}
         pending = as_completed(futures)
         for future in pending:
             index, outcome = index_of[future.key], future.result()
             future.release()
             if outcome is None:
+                self.by_value.append(entries[index].id)
                 retry = self.client.submit(timed_audit, entries[index], procedures, settings,
                                            pure=False)
                 index_of[retry.key] = index
