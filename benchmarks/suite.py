@@ -7,6 +7,9 @@ mode runs in a fresh child process, after a warm-up that loads the compiled solv
 memory is its own: ``resource.getrusage`` maxrss of the child, and of each Dask worker (asked on
 the worker before the cluster closes). Reports wall time, time per record and per block, the
 size of a record's results, and a projection for the ~21,000 NGA-West2 components.
+Both modes run with one BLAS thread (``--blas-threads``), as Dask's nanny starts its workers:
+OpenBLAS threads spinning on the oscillator's tiny 4×4 ``expm`` calls otherwise slow a record
+several times on a busy machine, which would be measured as a Dask speed-up.
 
     python benchmarks/suite.py                       # FEMA P695 far-field, --site 1.5,0.9
     python benchmarks/suite.py --records ../shared/records/seed-suite.toml \\
@@ -34,6 +37,8 @@ SHARED = Path(os.environ.get("ROCKING_AUDIT_RECORDS") or Path(__file__).resolve(
               / "shared" / "records" / "seed-suite.toml").parent
 FALLBACK = [str(SHARED / "seed-suite.toml"), str(SHARED / "extras.toml")]
 NGA_WEST2_COMPONENTS = 21_000
+#: Dask's nanny starts workers with these at 1; the local mode gets the same (--blas-threads).
+BLAS_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 
 def load_suite(sources, site):
@@ -115,7 +120,8 @@ def child(mode, args):
     command = [sys.executable, __file__, "--child", mode, "--workers", str(args.workers)]
     command += [item for source in args.records for item in ("--records", source)]
     command += ["--site", args.site] if args.site else []
-    done = subprocess.run(command, capture_output=True, text=True)
+    blas = {name: str(args.blas_threads) for name in BLAS_VARIABLES} if args.blas_threads else {}
+    done = subprocess.run(command, capture_output=True, text=True, env={**os.environ, **blas})
     if done.returncode:
         sys.exit(f"{mode} run failed:\n{done.stderr[-3000:]}")
     return json.loads(done.stdout.strip().splitlines()[-1])
@@ -129,6 +135,8 @@ def main():
                         help="FEMA 356 design site [g] ('' for none; default 1.5,0.9)")
     parser.add_argument("--workers", type=int, default=2, help="threads / Dask workers")
     parser.add_argument("--repeat", type=int, default=1, help="runs of each mode (medians)")
+    parser.add_argument("--blas-threads", type=int, default=1,
+                        help="BLAS threads of both modes, as Dask workers have (0: leave unset)")
     parser.add_argument("--child", choices=("local", "dask"), help=argparse.SUPPRESS)
     args = parser.parse_args()
     args.records = args.records or ["p695-far-field"]
@@ -144,7 +152,7 @@ def main():
     print(f"suite: {first['suite']}")
     print(f"{first['records']} records (mean length {first['duration_s']:.1f} s), "
           f"{first['blocks']} exact blocks, both procedures, {args.workers} workers/threads, "
-          f"{args.repeat} run(s) each, medians")
+          f"{args.repeat} run(s) each, medians, BLAS threads {args.blas_threads or 'unset'}")
     print(f"{'mode':<6} {'wall s':>8} {'s/record':>9} {'ms/block':>9} {'core-s/rec':>11} "
           f"{'maxrss MB':>10} {'workers MB':>14}")
     per_record_cost = {}

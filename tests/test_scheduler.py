@@ -10,6 +10,7 @@ import pytest
 from audit.engine.runner import SUITE_COLUMNS, AuditSettings, audit_record, run_audit
 from audit.engine.scheduler import (RecordReference, by_reference, check_scheduler,
                                     open_scheduler, resolve)
+from audit.cli import main
 from audit.errors import InputError
 from procedures import get_procedures
 from records import RecordSuite, one_pulse
@@ -27,7 +28,7 @@ def three_records(seed_suite):
 
 @pytest.fixture(scope="module")
 def local_run(three_records):
-    return run_audit(get_procedures("all"), three_records, jobs=2, **GRID)
+    return run_audit(get_procedures("all"), three_records, jobs=2, detail=["sylmar_1994"], **GRID)
 
 
 def _assert_same_run(run, reference):
@@ -47,10 +48,12 @@ def test_local_run_fills_suite_statistics(local_run):
     fractions = suite.filter(like="frac_").drop(columns="frac_unsafe").sum(axis=1)
     np.testing.assert_allclose(fractions, 1.0, atol=1e-12)
     assert local_run.summary["scheduler"] == "this process"
+    assert local_run.summary["detail"] == ["sylmar_1994"] and local_run.summary["resumed"] == []
 
 
 def test_dask_local_cluster_gives_identical_values(three_records, local_run):
-    run = run_audit(get_procedures("all"), three_records, jobs=2, scheduler="dask", **GRID)
+    run = run_audit(get_procedures("all"), three_records, jobs=2, scheduler="dask",
+                    detail=["sylmar_1994"], **GRID)
     assert "LocalCluster of 2" in run.summary["scheduler"]
     _assert_same_run(run, local_run)
 
@@ -120,3 +123,15 @@ def test_missing_dask_is_one_line_naming_the_package(monkeypatch):
         with open_scheduler("dask", 2):
             pass
     assert "\n" not in str(error.value)
+
+
+@pytest.mark.parametrize("option, message", [
+    (["--scheduler", "threads"], "--scheduler: expected local, dask or tcp://HOST:PORT"),
+    (["--detail", "pacoima_dam_1971,nowhere"], "--detail: unknown record(s) nowhere"),
+])
+def test_cli_refuses_bad_scheduler_and_detail_before_writing(seed_manifest, tmp_path, capsys,
+                                                             option, message):
+    out = tmp_path / "out"
+    assert main(["run", "all", "--records", str(seed_manifest), "--out", str(out), *option]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()

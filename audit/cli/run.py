@@ -58,11 +58,16 @@ def run(args) -> int:
     if not (0 <= args.robustness < 0.5):
         raise InputError(f"--robustness: must lie in [0, 0.5), got {args.robustness:g}")
     detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
-    run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
-                    free_motion_s=args.free_motion, progress=_progress_line,
-                    agree_band=args.agree_band, robustness=args.robustness,
-                    scheduler=check_scheduler(args.scheduler), partial_dir=out_dir / PARTIAL_DIR,
-                    resume=args.resume, detail=detail)
+    try:
+        run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
+                        free_motion_s=args.free_motion, progress=_progress_line,
+                        agree_band=args.agree_band, robustness=args.robustness,
+                        scheduler=check_scheduler(args.scheduler),
+                        partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, detail=detail)
+    except KeyboardInterrupt:
+        print(f"interrupted: the records done are kept in {out_dir / PARTIAL_DIR}; "
+              "the same command with --resume completes the run", file=sys.stderr)
+        return 130
     computed = time.perf_counter() - start
     save_run(run, out_dir, lambda saved: render_report(saved, processes=args.jobs))
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)

@@ -390,7 +390,11 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
 
 
 def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings) -> AuditRun:
-    """One :class:`AuditRun` from the per-record parts, in the suite's order."""
+    """One :class:`AuditRun` from the per-record parts, in the suite's order.
+
+    Adds the suite statistics (:func:`audit.engine.suite.suite_statistics`, ``AuditRun.suite``)
+    and their summary (``summary["suite"]``).
+    """
     def cat(name, columns):
         return _concat([getattr(part, name) for part in parts if len(getattr(part, name))],
                        columns)
