@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import shutil
+import sys
 import time
 from pathlib import Path
 
@@ -49,6 +51,12 @@ def add_parser(sub):
     p.add_argument("--skip-bad-records", action="store_true",
                    help="audit the readable records of a suite and list the unreadable ones "
                         "(default: stop at the first)")
+    p.add_argument("--scheduler", default="local", metavar="local|dask|tcp://HOST:PORT",
+                   help="where records are audited: this process (default), a Dask LocalCluster "
+                        "of --jobs worker processes, or an existing Dask cluster")
+    p.add_argument("--resume", action="store_true",
+                   help="reuse the per-record results that an interrupted run left in OUT/.partial")
+    p.add_argument("--detail", metavar="ID,...", help="records whose detail the report shows")
     p.set_defaults(func=run)
 
 
@@ -85,12 +93,14 @@ def design_site(args, suite):
 
 def run(args) -> int:
     from audit.engine.files import check_output_dir
-    from audit.engine.progress import Progress
+    from audit.engine.partial import PARTIAL_DIR
     from audit.engine.results import REPORT_HTML, save_run
     from audit.engine.runner import run_audit
+    from audit.engine.scheduler import check_scheduler
     from procedures import get_procedures
     from reports import render_report
     out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
+    scheduler = check_scheduler(args.scheduler)
     procedures = get_procedures(args.procedure)
     sizes = options.sizes(args.sizes)
     alphas = options.alphas_deg(args.alpha)
@@ -100,15 +110,29 @@ def run(args) -> int:
                        blocks=sizes.size * alphas.size * (3 if args.robustness else 1),
                        oscillators=options.AUDIT_SPECTRA * (3 + alphas.size * len(procedures)))
     start = time.perf_counter()
-    run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
-                    free_motion_s=args.free_motion, progress=Progress(len(suite), "records"),
-                    agree_band=args.agree_band, robustness=args.robustness)
+    detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
+    try:
+        run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
+                        free_motion_s=args.free_motion, progress=_progress_line,
+                        agree_band=args.agree_band, robustness=args.robustness,
+                        scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
+                        resume=args.resume, detail=detail)
+    except KeyboardInterrupt:
+        kept = sorted((out_dir / PARTIAL_DIR).glob("*")) if (out_dir / PARTIAL_DIR).is_dir() else []
+        print(f"interrupted; {len(kept)} record(s) kept in {out_dir / PARTIAL_DIR}: the same "
+              "command with --resume completes the run" if kept else
+              "interrupted; nothing written", file=sys.stderr)
+        return 130
     from audit.engine.claims import evaluate_claims
     run.claims = evaluate_claims(run, suite)  # the reproduction checklist of the reference report
     computed = time.perf_counter() - start
     save_run(run, out_dir, lambda saved: render_report(saved, processes=args.jobs))
+    shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     total = time.perf_counter() - start
-    print(f"Audited {', '.join(p.name for p in procedures)} on {suite.description}")
+    print(f"Audited {', '.join(p.name for p in procedures)} on {suite.description} "
+          f"in {run.summary['scheduler']}"
+          + (f"; reused {len(run.summary['resumed'])} records of an interrupted run"
+             if run.summary["resumed"] else ""))
     for item in run.summary["unauditable"]:
         print(f"  not audited: {item['procedure']} × {item['record']}: {item['reason']}")
     counts = run.results["verdict"].value_counts()
@@ -116,3 +140,8 @@ def run(args) -> int:
     print(f"Wrote {out_dir / REPORT_HTML} and results.csv, summary.json "
           f"({computed:.1f} s computing, {total:.1f} s in all)")
     return 0
+
+
+def _progress_line(done: int, total: int, record_id: str, how: str) -> None:
+    """One line on stderr per completed record."""
+    print(f"[{done}/{total}] {record_id}: {how}", file=sys.stderr, flush=True)

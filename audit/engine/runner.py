@@ -28,7 +28,7 @@ import pandas as pd
 
 from audit import G, __version__
 from audit.engine.grid import DEFAULT_ALPHA_DEG, DEFAULT_SIZES, size_grid
-from audit.engine.progress import Progress
+from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
@@ -397,12 +397,18 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
 
 
 def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings) -> AuditRun:
-    """One :class:`AuditRun` from the per-record parts, in the suite's order."""
+    """One :class:`AuditRun` from the per-record parts, in the suite's order.
+
+    Adds the suite statistics (:func:`audit.engine.suite.suite_statistics`, ``AuditRun.suite``)
+    and their summary (``summary["suite"]``).
+    """
     def cat(name, columns):
         return _concat([getattr(part, name) for part in parts if len(getattr(part, name))],
                        columns)
 
+    from audit.engine.suite import suite_statistics, suite_summary
     results = cat("results", RESULT_COLUMNS)
+    suite_frame = suite_statistics(results)
     summary = {
         "version": __version__,
         "procedures": [{"name": proc.name, "title": proc.title, "reference": proc.reference,
@@ -425,17 +431,19 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
             "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING],
         },
         "statistics": statistics(results),
+        "suite": suite_summary(suite_frame, {proc.name: proc.title for proc in procedures}),
         "histories": [item for part in parts for item in part.histories_meta],
     }
     return AuditRun(results, cat("spectra", SPECTRA_COLUMNS), cat("histories", HISTORY_COLUMNS),
                     cat("rocking", ROCKING_COLUMNS), cat("estimates_only", RESULT_COLUMNS),
-                    summary, checks=cat("checks", CHECK_COLUMNS))
+                    summary, checks=cat("checks", CHECK_COLUMNS), suite=suite_frame)
 
 
 def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: int = 1,
-              free_motion_s: float = DEFAULT_FREE_MOTION_S, progress: Progress | None = None,
-              g: float = G, agree_band: float = DEFAULT_AGREE_BAND,
-              robustness: float = DEFAULT_ROBUSTNESS) -> AuditRun:
+              free_motion_s: float = DEFAULT_FREE_MOTION_S, progress=None, g: float = G,
+              agree_band: float = DEFAULT_AGREE_BAND, robustness: float = DEFAULT_ROBUSTNESS,
+              scheduler: str = "local", partial_dir=None, resume: bool = False,
+              detail=()) -> AuditRun:
     """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid.
 
     Parameters
@@ -447,29 +455,59 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
     sizes : array, optional
         Block sizes 2π/p [s]; default 0.5 … 8.0 step 0.05.
     jobs : int
-        Threads for the exact solver.
+        ``local``: threads of the exact solver; ``dask``: worker processes of the LocalCluster.
     free_motion_s : float
         Free motion after each record, for the exact solver and the record spectra [s].
+    progress : callable, optional
+        ``progress(done, total, record_id, how)`` after each record (``how`` in words).
     agree_band : float
         Half-width of the agreement band on approx/exact [-].
     robustness : float
         ε of the fragility flag [-]; 0 turns it off.
+    scheduler : str
+        ``local``, ``dask`` or ``tcp://HOST:PORT`` (:mod:`audit.engine.scheduler`).
+    partial_dir : str or Path, optional
+        Folder for per-record results as they complete (:mod:`audit.engine.partial`).
+    resume : bool
+        Reuse the matching per-record results already in ``partial_dir``.
+    detail : sequence of str
+        Record ids whose per-record detail the report should show (``summary["detail"]``).
 
     Returns
     -------
     AuditRun
+        ``summary["resumed"]`` lists the records taken from ``partial_dir``.
     """
+    from audit.engine.partial import PartialStore
+    from audit.engine.scheduler import open_scheduler
     sizes = size_grid(*DEFAULT_SIZES) if sizes is None else np.asarray(sizes, dtype=float)
     settings = AuditSettings(tuple(float(a) for a in alpha_deg), tuple(float(s) for s in sizes),
                              float(free_motion_s), float(agree_band), float(robustness), float(g),
                              int(jobs))
-    progress = progress or Progress(len(suite), "records", enabled=False)
-    parts = []
-    for entry in suite:
-        progress.step(entry.id)
-        parts.append(audit_record(entry, procedures, settings))
-    progress.done()
-    return combine(parts, procedures, suite, settings)
+    entries = list(suite)
+    known = {entry.id for entry in entries}
+    unknown = [record_id for record_id in detail if record_id not in known]
+    if unknown:
+        raise InputError(f"--detail: unknown record(s) {', '.join(unknown)} in "
+                         f"{suite.description}")
+    store = PartialStore(partial_dir, procedures, settings, resume) if partial_dir else None
+    progress = progress or (lambda done, total, record_id, how: None)
+    parts = [store.load(entry) if store and resume else None for entry in entries]
+    resumed = [entry.id for entry, part in zip(entries, parts) if part is not None]
+    for count, record_id in enumerate(resumed, start=1):
+        progress(count, len(entries), record_id, "reused from an interrupted run")
+    todo = [i for i, part in enumerate(parts) if part is None]
+    with open_scheduler(scheduler, jobs) as executor:
+        for count, (k, part, seconds) in enumerate(
+                executor.audit([entries[i] for i in todo], procedures, settings),
+                start=len(resumed) + 1):
+            parts[todo[k]] = part
+            if store:
+                store.save(entries[todo[k]], part)
+            progress(count, len(entries), part.record_id, f"computed in {seconds:.1f} s")
+    run = combine(parts, procedures, suite, settings)
+    run.summary.update(scheduler=executor.description, resumed=resumed, detail=list(detail))
+    return run
 
 
 def _concat(frames, columns) -> pd.DataFrame:

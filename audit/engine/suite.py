@@ -1,0 +1,102 @@
+"""Verdict statistics across the records of a suite (``suite.csv``, ``summary["suite"]``).
+
+The question a code committee asks is not "what happens under Pacoima" but "over a suite of
+records consistent with the design, how often is the guideline unsafe, for which blocks, and by
+how much". For every procedure × α × size the records audited are counted, each verdict class
+as a fraction of them, and the approx/exact ratio where both survive as a median and a
+16–84 % band.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from audit.engine.runner import SUITE_COLUMNS, UNSAFE_VERDICTS, VERDICTS
+
+#: Percentiles of approx/exact written to ``suite.csv`` [%].
+RATIO_PERCENTILES = (16, 50, 84)
+_KEYS = ["procedure", "alpha_deg", "size_s"]
+
+
+def verdict_column(verdict: str) -> str:
+    """``suite.csv`` column of a verdict class: ``missed-overturn`` → ``frac_missed_overturn``."""
+    return f"frac_{verdict.replace('-', '_')}"
+
+
+def suite_statistics(results: pd.DataFrame) -> pd.DataFrame:
+    """Verdict fractions and approx/exact percentiles per procedure × α × size.
+
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``results.csv`` rows (columns ``procedure, alpha_deg, size_s, verdict, ratio``), one
+        per record for each procedure × α × size.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`~audit.engine.runner.SUITE_COLUMNS`: ``records`` counted, the fraction
+        of them in each verdict class (the fractions sum to 1), ``frac_unsafe`` (missed
+        overturning + unconservative), and the 16th/50th/84th percentiles of approx/exact over
+        the records where both survive (linear interpolation between order statistics; NaN
+        where there is none). Groups keep the order of first appearance.
+    """
+    if results.empty:
+        return pd.DataFrame(columns=SUITE_COLUMNS)
+    unknown = set(results["verdict"]) - set(VERDICTS)
+    if unknown:
+        raise ValueError(f"suite statistics: unknown verdicts {sorted(unknown)}")
+    indicators = pd.DataFrame({verdict_column(v): (results["verdict"] == v).astype(float)
+                               for v in VERDICTS})
+    indicators[_KEYS] = results[_KEYS]
+    indicators["ratio"] = results["ratio"].astype(float).replace([np.inf, -np.inf], np.nan)
+    grouped = indicators.groupby(_KEYS, sort=False)
+    table = grouped[[verdict_column(v) for v in VERDICTS]].mean()
+    table.insert(0, "records", grouped.size())
+    table["frac_unsafe"] = table[[verdict_column(v) for v in UNSAFE_VERDICTS]].sum(axis=1)
+    for q in RATIO_PERCENTILES:
+        table[f"ratio_p{q}"] = grouped["ratio"].quantile(q / 100.0)
+    return table.reset_index()[SUITE_COLUMNS]
+
+
+def suite_summary(suite: pd.DataFrame, titles: dict | None = None) -> list[dict]:
+    """Per procedure and α: mean unsafe fraction, worst size, and a sentence to quote.
+
+    Parameters
+    ----------
+    suite : pandas.DataFrame
+        Output of :func:`suite_statistics`.
+    titles : dict, optional
+        Procedure name → title used in the sentence (default: the name).
+
+    Returns
+    -------
+    list of dict
+        ``procedure, alpha_deg, records, blocks, mean_unsafe, worst_size_s, worst_unsafe,
+        sentence``; ``mean_unsafe`` is the unsafe fraction over every record × size (blocks
+        weighted by their record count), ``worst_size_s`` the size 2π/p [s] with the largest
+        unsafe fraction (the smallest such size on ties; None when never unsafe).
+    """
+    titles = titles or {}
+    summary = []
+    for (procedure, alpha), group in suite.groupby(["procedure", "alpha_deg"], sort=False):
+        records = int(group["records"].max())
+        counts = group["records"].to_numpy(dtype=float)
+        unsafe = group["frac_unsafe"].to_numpy(dtype=float)
+        mean_unsafe = float(np.sum(unsafe * counts) / np.sum(counts))
+        worst = int(np.argmax(unsafe))
+        worst_size = float(group["size_s"].iloc[worst]) if unsafe[worst] > 0 else None
+        where = (f"worst at 2π/p ≈ {worst_size:.3g} s ({100 * unsafe[worst]:.0f} % of records)"
+                 if worst_size is not None else "at no block size")
+        sentence = (f"over {records} record{'s' if records != 1 else ''}, "
+                    f"{titles.get(procedure, procedure)} is unsafe for {100 * mean_unsafe:.0f} % "
+                    f"of blocks with α = {alpha:g}°, {where}")
+        summary.append({"procedure": procedure, "alpha_deg": float(alpha), "records": records,
+                        "blocks": int(counts.sum()), "mean_unsafe": mean_unsafe,
+                        "worst_size_s": worst_size, "worst_unsafe": float(unsafe[worst]),
+                        "sentence": sentence})
+    return summary
+
+
+__all__ = ["suite_statistics", "suite_summary", "verdict_column", "RATIO_PERCENTILES"]

@@ -1,0 +1,181 @@
+"""Suite-scale audit: the local scheduler against a Dask LocalCluster, on one suite of records.
+
+Both procedures on every record of the suite over the default grid (α = 10, 15, 20°;
+2π/p = 0.5 … 8 s step 0.05), computed (a) in one process with the solver on ``--workers``
+threads and (b) on a Dask LocalCluster of ``--workers`` single-threaded worker processes. Each
+mode runs in a fresh child process, after a warm-up that loads the compiled solver, so its peak
+memory is its own: ``resource.getrusage`` maxrss of the child, and of each Dask worker (asked on
+the worker before the cluster closes). Reports wall time, time per record and per block, the
+size of a record's results, and a projection for the ~21,000 NGA-West2 components.
+Both modes run with one BLAS thread (``--blas-threads``), as Dask's nanny starts its workers:
+OpenBLAS threads spinning on the oscillator's tiny 4×4 ``expm`` calls otherwise slow a record
+several times on a busy machine, which would be measured as a Dask speed-up.
+
+    python benchmarks/suite.py                       # FEMA P695 far-field, --site 1.5,0.9
+    python benchmarks/suite.py --records ../shared/records/seed-suite.toml \\
+        --records ../shared/records/extras.toml --repeat 2
+
+The default suite ``p695-far-field`` (44 components) needs the FEMA P695 suites; where the
+records package does not provide it, the benchmark says so and uses the seed and extra records.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import pickle
+import resource
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+#: The shared records folder: that of $ROCKING_AUDIT_RECORDS, else ../shared/records.
+SHARED = Path(os.environ.get("ROCKING_AUDIT_RECORDS") or Path(__file__).resolve().parents[2]
+              / "shared" / "records" / "seed-suite.toml").parent
+FALLBACK = [str(SHARED / "seed-suite.toml"), str(SHARED / "extras.toml")]
+NGA_WEST2_COMPONENTS = 21_000
+#: Dask's nanny starts workers with these at 1; the local mode gets the same (--blas-threads).
+BLAS_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def load_suite(sources, site):
+    """The records of every source in one suite, with the design site applied where possible."""
+    from audit.errors import InputError
+    from records import RecordSuite, load_records
+    suites = []
+    for source in sources:
+        try:
+            suites.append(load_records(source))
+        except InputError as exc:
+            if sources == FALLBACK:
+                raise
+            print(f"# {source}: not available here ({exc}); using {', '.join(FALLBACK)}",
+                  file=sys.stderr)
+            return load_suite(FALLBACK, site)
+    entries = tuple(entry for suite in suites for entry in suite if not entry.missing)
+    suite = RecordSuite(entries, " + ".join(s.description for s in suites))
+    if site:
+        try:
+            from records import with_design_site
+        except ImportError:
+            print("# --site: this records package cannot set a design site; records keep their own",
+                  file=sys.stderr)
+        else:
+            suite = with_design_site(suite, *site)
+    return suite
+
+
+def measure(mode, sources, site, workers):
+    """One timed audit in this process (run as a child): a JSON line on stdout."""
+    from audit.engine.runner import AuditSettings, audit_record, run_audit
+    from audit.engine.scheduler import open_scheduler
+    from procedures import get_procedures
+    suite = load_suite(sources, site)
+    procedures = get_procedures("all")
+    warm = AuditSettings(alpha_deg=(15.0,), size_s=(2.0,))
+    audit_record(suite.entries[0], procedures, warm)   # compiled solver loaded before timing
+    seconds, worker_rss = {}, []
+
+    def progress(done, total, record_id, how):
+        seconds[record_id] = float(how.split()[-2])
+        print(f"#   [{done}/{total}] {record_id}: {how}", file=sys.stderr, flush=True)
+
+    start = time.perf_counter()
+    if mode == "local":
+        run = run_audit(procedures, suite, jobs=workers, progress=progress)
+        cluster_start = 0.0
+    else:
+        import logging
+
+        from distributed import Client, LocalCluster
+        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                          dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+                Client(cluster) as client:
+            client.run(audit_record, suite.entries[0], procedures, warm)
+            cluster_start = time.perf_counter() - start
+            start = time.perf_counter()
+            run = run_audit(procedures, suite, jobs=workers, progress=progress,
+                            scheduler=cluster.scheduler_address)
+            wall = time.perf_counter() - start
+            worker_rss = list(client.run(
+                lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss).values())
+    if mode == "local":
+        wall = time.perf_counter() - start
+    part = audit_record(suite.entries[0], procedures, AuditSettings())
+    blocks = len(run.rocking)
+    print(json.dumps({
+        "mode": mode, "suite": suite.description, "records": len(suite), "blocks": blocks,
+        "wall_s": wall, "cluster_start_s": cluster_start, "record_s": seconds,
+        "self_maxrss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "worker_maxrss_mb": [rss / 1024 for rss in worker_rss],
+        "record_result_mb": len(pickle.dumps(part)) / 2**20,
+        "duration_s": statistics.mean(e.motion.duration for e in suite),
+    }), flush=True)
+
+
+def child(mode, args):
+    command = [sys.executable, __file__, "--child", mode, "--workers", str(args.workers)]
+    command += [item for source in args.records for item in ("--records", source)]
+    command += ["--site", args.site] if args.site else []
+    blas = {name: str(args.blas_threads) for name in BLAS_VARIABLES} if args.blas_threads else {}
+    done = subprocess.run(command, capture_output=True, text=True, env={**os.environ, **blas})
+    if done.returncode:
+        sys.exit(f"{mode} run failed:\n{done.stderr[-3000:]}")
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--records", action="append", metavar="SUITE",
+                        help="suite name or path, repeatable (default p695-far-field)")
+    parser.add_argument("--site", default="1.5,0.9", metavar="SXS,SX1",
+                        help="FEMA 356 design site [g] ('' for none; default 1.5,0.9)")
+    parser.add_argument("--workers", type=int, default=2, help="threads / Dask workers")
+    parser.add_argument("--repeat", type=int, default=1, help="runs of each mode (medians)")
+    parser.add_argument("--blas-threads", type=int, default=1,
+                        help="BLAS threads of both modes, as Dask workers have (0: leave unset)")
+    parser.add_argument("--child", choices=("local", "dask"), help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    args.records = args.records or ["p695-far-field"]
+    site = [float(v) for v in args.site.split(",")] if args.site else None
+    if args.child:
+        return measure(args.child, args.records, site, args.workers)
+
+    runs = {"local": [], "dask": []}
+    for _ in range(args.repeat):
+        for mode in runs:       # side by side, alternating
+            runs[mode].append(child(mode, args))
+    first = runs["local"][0]
+    print(f"suite: {first['suite']}")
+    print(f"{first['records']} records (mean length {first['duration_s']:.1f} s), "
+          f"{first['blocks']} exact blocks, both procedures, {args.workers} workers/threads, "
+          f"{args.repeat} run(s) each, medians, BLAS threads {args.blas_threads or 'unset'}")
+    print(f"{'mode':<6} {'wall s':>8} {'s/record':>9} {'ms/block':>9} {'core-s/rec':>11} "
+          f"{'maxrss MB':>10} {'workers MB':>14}")
+    per_record_cost = {}
+    for mode, items in runs.items():
+        wall = statistics.median(item["wall_s"] for item in items)
+        cost = statistics.median(s for item in items for s in item["record_s"].values())
+        per_record_cost[mode] = cost
+        workers = ", ".join(f"{rss:.0f}" for rss in items[-1]["worker_maxrss_mb"]) or "-"
+        print(f"{mode:<6} {wall:8.1f} {wall / first['records']:9.2f} "
+              f"{1000 * wall / first['blocks']:9.2f} {cost:11.2f} "
+              f"{max(i['self_maxrss_mb'] for i in items):10.0f} {workers:>14}")
+    print(f"dask cluster start-up {statistics.median(i['cluster_start_s'] for i in runs['dask']):.1f} s "
+          "(not in the wall time); a record's results pickled: "
+          f"{first['record_result_mb']:.2f} MB")
+    cost = per_record_cost["dask"]      # one record on one single-threaded worker
+    print(f"\nprojection, {NGA_WEST2_COMPONENTS} NGA-West2 components at the default grid, "
+          f"{cost:.1f} core-s per record (records of ~{first['duration_s']:.0f} s):")
+    for workers in (2, 16, 64, 256, 1024):
+        minutes = NGA_WEST2_COMPONENTS * cost / workers / 60
+        print(f"  {workers:5d} Dask workers: {minutes:8.1f} min ({minutes / 60:.2f} h)")
+    print(f"  driver memory to combine every record's results: "
+          f"~{NGA_WEST2_COMPONENTS * first['record_result_mb'] / 1024:.0f} GB")
+
+
+if __name__ == "__main__":
+    main()

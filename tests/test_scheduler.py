@@ -1,0 +1,137 @@
+"""Schedulers: the same values whatever computes the records; records by reference or by value."""
+
+import sys
+from dataclasses import replace
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from audit.engine.runner import SUITE_COLUMNS, AuditSettings, audit_record, run_audit
+from audit.engine.scheduler import (RecordReference, by_reference, check_scheduler,
+                                    open_scheduler, resolve)
+from audit.cli import main
+from audit.errors import InputError
+from procedures import get_procedures
+from records import RecordSuite, one_pulse
+
+GRID = dict(alpha_deg=[15.0, 20.0], sizes=np.arange(3.0, 8.01, 1.0))
+FRAMES = ("results", "rocking", "spectra", "histories", "estimates_only", "suite")
+
+
+@pytest.fixture(scope="module")
+def three_records(seed_suite):
+    """Three real records (two AT2 files, one column file) and one missing record."""
+    ids = ("pacoima_dam_1971", "el_centro_5_1979", "sylmar_1994", "takatori_1995")
+    return RecordSuite(tuple(seed_suite.get(i) for i in ids), "three seed records")
+
+
+@pytest.fixture(scope="module")
+def local_run(three_records):
+    return run_audit(get_procedures("all"), three_records, jobs=2, detail=["sylmar_1994"], **GRID)
+
+
+def _assert_same_run(run, reference):
+    for name in FRAMES:
+        pd.testing.assert_frame_equal(getattr(run, name), getattr(reference, name),
+                                      check_exact=True)
+    assert run.summary["suite"] == reference.summary["suite"]
+    assert run.summary["statistics"] == reference.summary["statistics"]
+
+
+def test_local_run_fills_suite_statistics(local_run):
+    suite = local_run.suite
+    assert list(suite.columns) == SUITE_COLUMNS
+    # one row per procedure × α × size (Priestley, FEMA 356, NTC 2018), over the records with a file
+    assert len(suite) == 3 * len(GRID["alpha_deg"]) * len(GRID["sizes"])  # priestley, fema, ntc
+    assert suite.loc[suite["procedure"] == "priestley1978", "records"].eq(3).all()
+    fractions = suite.filter(like="frac_").drop(columns="frac_unsafe").sum(axis=1)
+    np.testing.assert_allclose(fractions, 1.0, atol=1e-12)
+    assert local_run.summary["scheduler"] == "this process"
+    assert local_run.summary["detail"] == ["sylmar_1994"] and local_run.summary["resumed"] == []
+
+
+def test_dask_local_cluster_gives_identical_values(three_records, local_run):
+    run = run_audit(get_procedures("all"), three_records, jobs=2, scheduler="dask",
+                    detail=["sylmar_1994"], **GRID)
+    assert "LocalCluster of 2" in run.summary["scheduler"]
+    _assert_same_run(run, local_run)
+
+
+def test_existing_cluster_by_address_gives_identical_values(three_records, local_run):
+    from distributed import LocalCluster
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=True,
+                      dashboard_address=None) as cluster:
+        address = cluster.scheduler_address
+        assert address.startswith("tcp://")
+        run = run_audit(get_procedures("all"), three_records, scheduler=address, **GRID)
+        # a record scaled after reading cannot be read back by reference: sent again by value
+        pacoima = three_records.get("pacoima_dam_1971")
+        scaled = replace(pacoima, motion=replace(pacoima.motion,
+                                                 acceleration=0.5 * pacoima.motion.acceleration))
+        settings = AuditSettings(alpha_deg=(20.0,), size_s=(6.0,))
+        with open_scheduler(address, 1) as scheduler:
+            [(_, remote, _), (_, unscaled, _)] = sorted(
+                scheduler.audit([scaled, pacoima], get_procedures("all"), settings),
+                key=lambda done: done[0])
+        assert scheduler.by_value == ["pacoima_dam_1971"]       # the scaled one, once
+    assert address in run.summary["scheduler"]
+    _assert_same_run(run, local_run)
+    pd.testing.assert_frame_equal(remote.rocking,
+                                  audit_record(scaled, get_procedures("all"), settings).rocking,
+                                  check_exact=True)
+    assert not unscaled.rocking.equals(remote.rocking)
+
+
+def test_file_records_travel_by_reference_and_read_back_identical(seed_suite):
+    for entry in seed_suite:
+        item = by_reference(entry)
+        if entry.missing:
+            assert item is entry
+            continue
+        assert isinstance(item, RecordReference) and item.entry.motion is None
+        back = resolve(item)
+        assert back == replace(entry, motion=back.motion)
+        for name in ("id", "dt", "component", "source", "sha256", "metadata"):
+            assert getattr(back.motion, name) == getattr(entry.motion, name)
+        assert np.array_equal(back.motion.acceleration, entry.motion.acceleration)
+
+
+def test_scaled_or_unreadable_records_are_not_resolved_and_pulses_go_by_value(seed_suite):
+    entry = seed_suite.get("pacoima_dam_1971")
+    scaled = replace(entry, motion=replace(entry.motion,
+                                           acceleration=entry.motion.acceleration * 1.5))
+    assert resolve(by_reference(scaled)) is None          # same file, other samples
+    elsewhere = by_reference(entry)
+    moved = replace(elsewhere, motion_fields={**elsewhere.motion_fields,
+                                              "source": "/nonexistent/RSN77.AT2"})
+    assert resolve(moved) is None
+    pulse = replace(entry, motion=one_pulse("cosine", 0.5, 1.0, record_id="p"))
+    assert by_reference(pulse) is pulse
+
+
+def test_scheduler_option_is_checked():
+    assert check_scheduler("tcp://10.0.0.5:8786") == "tcp://10.0.0.5:8786"
+    for bad in ("threads", "tcp://host", "tcp://:8786", "10.0.0.5:8786"):
+        with pytest.raises(InputError, match="^--scheduler: "):
+            check_scheduler(bad)
+
+
+def test_missing_dask_is_one_line_naming_the_package(monkeypatch):
+    monkeypatch.setitem(sys.modules, "distributed", None)   # import distributed → ImportError
+    with pytest.raises(InputError, match=r"dask\[distributed\]") as error:
+        with open_scheduler("dask", 2):
+            pass
+    assert "\n" not in str(error.value)
+
+
+@pytest.mark.parametrize("option, message", [
+    (["--scheduler", "threads"], "--scheduler: expected local, dask or tcp://HOST:PORT"),
+    (["--detail", "pacoima_dam_1971,nowhere"], "--detail: unknown record(s) nowhere"),
+])
+def test_cli_refuses_bad_scheduler_and_detail_before_writing(seed_manifest, tmp_path, capsys,
+                                                             option, message):
+    out = tmp_path / "out"
+    assert main(["run", "all", "--records", str(seed_manifest), "--out", str(out), *option]) == 2
+    assert message in capsys.readouterr().err
+    assert not out.exists()
