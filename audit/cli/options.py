@@ -7,6 +7,7 @@ so ``--help`` and option errors cost no scientific import.
 from __future__ import annotations
 
 import math
+import os
 import sys
 from pathlib import Path
 
@@ -71,8 +72,10 @@ def positive(value: float, option: str) -> float:
 
 def suite(args):
     """The record suite of ``--records`` (or its defaults)."""
-    from records import load_records
-    return load_records(args.records)
+    from records import ENV_VARIABLE, load_records
+    # absolute, so the files an audit writes name the records wherever they are read from
+    path = args.records or os.environ.get(ENV_VARIABLE)
+    return load_records(os.path.abspath(path) if path else None)
 
 
 def motion(args):
