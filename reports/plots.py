@@ -20,7 +20,7 @@ from reports.palette import VERDICT_COLOURS, alpha_colour, damping_colour
 #: Significant digits of the numbers embedded in the page.
 SIGNIFICANT_DIGITS = 5
 #: Samples of a time history drawn in the page (decimated by a stride).
-HISTORY_SAMPLES = 1200
+HISTORY_SAMPLES = 900
 CHECK_COLOURS = {"agrees-safe": "#b2df8a", "agrees-unsafe": "#4d4d4d", "missed": "#b2182b",
                  "false-alarm": "#fdbf6f"}
 _FONT = {"family": "DejaVu Sans, Helvetica, Arial, sans-serif", "size": 12}
@@ -153,8 +153,8 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
         if fragile_x:
             data.append({"type": "scatter", "mode": "markers", "x": fragile_x, "y": fragile_y,
                          "xaxis": f"x{_ref(n)}", "yaxis": f"y{_ref(n)}", "hoverinfo": "skip",
-                         "marker": {"symbol": "x-thin", "size": 7, "line": {"width": 1.5,
-                                                                            "color": "#000000"}},
+                         "marker": {"symbol": "x", "size": 7, "color": "#ffffff",
+                                    "line": {"width": 1, "color": "#000000"}},
                          "name": "fragile overturning (×)", "showlegend": False,
                          "legendgroup": "fragile"})
         layout[f"xaxis{_ref(n)}"] = _axis("2π/p [s]" if n == len(records) else "",
@@ -241,7 +241,9 @@ def response_and_rocking_figure(response: pd.DataFrame, rocking: pd.DataFrame, d
         layout[f"yaxis{_ref(n)}"] = _axis(titles[n - 1], domain=left[n - 1],
                                           anchor=f"x{_ref(n)}", rangemode="tozero")
     layout["xaxis"].pop("matches")
-    layout["xaxis4"] = _axis("", domain=[0.56, 1], anchor="y4", showticklabels=False)
+    span = [rocking["size_s"].min() - 0.1, rocking["size_s"].max() + 0.1] if len(rocking) else None
+    layout["xaxis4"] = _axis("", domain=[0.56, 1], anchor="y4", showticklabels=False,
+                             **({"range": span} if span else {}))
     layout["xaxis5"] = _axis("2π/p [s]", domain=[0.56, 1], anchor="y5", matches="x4")
     layout["yaxis4"] = _axis("max|θ|/α [-] (× overturns)", domain=right[0], anchor="x4",
                              range=[0, top])
@@ -405,7 +407,9 @@ def history_figure(history: pd.DataFrame, meta: dict, estimates: list) -> dict:
     window = window.iloc[::stride]
     theta = window["theta_ratio"].to_numpy(dtype=float)
     peak = np.nanmax(np.abs(theta)) if np.isfinite(theta).any() else 1.0
-    limit = 1.1 if meta.get("overturned") else min(1.1, max(0.25, 1.3 * peak))
+    drawn = [abs(ratio) for _, ratio, _, _ in estimates if ratio is not None]
+    limit = 1.1 if meta.get("overturned") else min(1.1, max(0.25, 1.3 * peak,
+                                                             1.15 * max(drawn, default=0)))
     data = [{"type": "scatter", "mode": "lines", "x": window["time_s"], "y": theta,
              "line": {"color": "#333333", "width": 1.2}, "name": "exact θ/α",
              "hovertemplate": "t = %{x:.3f} s<br>θ/α = %{y:.4f}<extra></extra>"},
@@ -424,11 +428,15 @@ def history_figure(history: pd.DataFrame, meta: dict, estimates: list) -> dict:
         mid_x.append(begin + duration / 2)
         mid_text.append(f"{duration:.2f} s" if duration > 0.07 * (stop - start) else "")
     if mid_x:
-        data.append({"type": "scatter", "mode": "text", "x": mid_x,
+        data.append({"type": "scatter", "mode": "markers+text", "x": mid_x,
                      "y": [0.93 * limit] * len(mid_x), "text": mid_text,
-                     "textfont": {"size": 10, "color": "#1f4e79"}, "name": "full rocking cycle "
-                     "(shaded, its duration)", "hovertemplate": "full rocking cycle centred at "
-                     "%{x:.2f} s<extra></extra>"})
+                     "textposition": "middle right", "textfont": {"size": 10, "color": "#1f4e79"},
+                     "marker": {"symbol": "square", "size": 9, "color": "#9ecae1"},
+                     "name": "full rocking cycle (shaded; hover for its duration)",
+                     "customdata": [d for b, d in zip(meta["cycle_starts_s"],
+                                                       meta["cycle_durations_s"])
+                                    if not (b + d < start or b > stop)],
+                     "hovertemplate": "full rocking cycle: %{customdata:.3f} s<extra></extra>"})
     if meta.get("excitation_end_s") is not None and start < meta["excitation_end_s"] < stop:
         for yref in ("y domain", "y2 domain"):
             shapes.append({"type": "line", "xref": "x" if yref[1] == " " else "x2",

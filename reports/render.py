@@ -94,7 +94,8 @@ def _where(row, names) -> str:
 def _worst_case(rows: pd.DataFrame):
     """The block the bottom line names: a missed overturning where the procedure's rotation is
     smallest, else the largest underestimate, else the largest overestimate."""
-    for verdict, column, largest, _ in WORST_CLASSES:
+    order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
+    for verdict, column, largest, _ in order:
         hits = rows[rows["verdict"] == verdict]
         if len(hits):
             return hits.sort_values(column, ascending=not largest, kind="stable").iloc[0]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 from audit.cli import options
 from audit.errors import InputError
 
@@ -27,6 +29,8 @@ def run(args) -> int:
         spectrum = FEMA356Spectrum(args.sxs, args.sx1)
     else:
         spectrum = UBC97Spectrum(args.na, args.nv)
+        print(f"UBC 97: seismic zone 4, soil profile S_D, N_a = {args.na:g}, N_v = {args.nv:g} "
+              f"(C_a = {spectrum.ca:.3f}, C_v = {spectrum.cv:.3f})", file=sys.stderr)
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
     import pandas as pd
     frame = pd.concat([pd.DataFrame({
