@@ -302,6 +302,9 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
         approx = rows["approx_theta_rad"].to_numpy(dtype=float) / alpha_rad
         no_file = rows["exact_theta_rad"].isna().all()
         axes = {"xaxis": f"x{_ref(b)}", "yaxis": f"y{_ref(b)}"}
+        if no_file and not np.isfinite(approx).any():
+            data.append({"type": "scatter", "x": [], "y": [], **axes, "showlegend": False,
+                         "hoverinfo": "skip"})
         if no_file:
             annotations.append(_note("no record file: no exact response", f"x{_ref(b)}",
                                      f"y{_ref(b)}", y=0.92))
@@ -364,15 +367,19 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
                          "line": {"color": colour, "width": 1.3}, "showlegend": False,
                          "hovertemplate": "2π/p = %{x:.2f} s<br>T(θ) = %{y:.3f} s"
                                           "<extra></extra>"})
-        else:
+        else:  # an empty trace creates the panel that carries the words
+            data.append({"type": "scatter", "x": [], "y": [], "xaxis": f"x{_ref(c)}",
+                         "yaxis": f"y{_ref(c)}", "showlegend": False, "hoverinfo": "skip"})
             annotations.append(_note("no converged T(θ): no block settles below α",
                                      f"x{_ref(c)}", f"y{_ref(c)}"))
         domain = rows_dom[r]
         last = r == len(alphas) - 1
-        for n, dom, title in ((a, [0, 0.28], "T [s]"), (b, [0.36, 0.66], "2π/p [s]"),
-                              (c, [0.74, 1.0], "2π/p [s]")):
+        span = [size.min() - 0.1, size.max() + 0.1]
+        for n, dom, title, extent in ((a, [0, 0.28], "T [s]", [0, spec["period_s"].max()]),
+                                      (b, [0.36, 0.66], "2π/p [s]", span),
+                                      (c, [0.74, 1.0], "2π/p [s]", span)):
             layout[f"xaxis{_ref(n)}"] = _axis(title if last else "", domain=dom,
-                                              anchor=f"y{_ref(n)}")
+                                              anchor=f"y{_ref(n)}", range=extent)
             if r:
                 layout[f"xaxis{_ref(n)}"]["matches"] = f"x{_ref(n - 3 * r)}"
         layout[f"yaxis{_ref(a)}"] = _axis(f"α = {alpha:g}°<br>Sd [m] at β = {beta:.2f} %",
@@ -480,10 +487,10 @@ def lines_figure(series, x_title, y_title, height=420, y_range=None, legend_belo
     layout["xaxis"] = _axis(x_title)
     layout["yaxis"] = _axis(y_title, **({"range": y_range} if y_range else {}))
     if legend_below:
-        layout["legend"] = {"orientation": "h", "x": 0, "y": -0.18, "yanchor": "top",
-                            "font": {"size": 11}}
-        layout["margin"]["b"] = 110
-        layout["height"] = height + 60
+        layout["margin"]["b"] = 190
+        layout["height"] = height + 140
+        layout["legend"] = {"orientation": "h", "x": 0, "yanchor": "top", "font": {"size": 11},
+                            "y": -60 / (layout["height"] - 230)}
     return {"data": data, "layout": layout}
 
 
@@ -493,7 +500,7 @@ def sensitivity_figure(rocking: dict, oscillator: dict, title_rocking, title_osc
     data = []
     for colour, (label, (t, value)) in zip(colours, rocking.items()):
         data.append({"type": "scatter", "mode": "lines", "x": t, "y": value, "name": label,
-                     "line": {"color": colour, "width": 1.3}, "legendgroup": label,
+                     "line": {"color": colour, "width": 1.3}, "legendgroup": label.split(" (")[0],
                      "hovertemplate": f"{label}<br>t = %{{x:.3f}} s<br>θ/α = %{{y:.4f}}"
                                       "<extra></extra>"})
     for colour, (label, (t, value)) in zip(colours, oscillator.items()):

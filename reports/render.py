@@ -265,7 +265,8 @@ def _mechanics(pending) -> list[dict]:
                {"x": r, "y": 100 * damping_fema356(r), "colour": "#000000", "width": 3,
                 "name": "Eq. 9.1: β = 0.4 (1 − √r)"}]
     fig_7_1 = pending.add("fig-7-1", plots.lines_figure(
-        series, "coefficient of restitution r [-]", "equivalent damping β [%]", height=460))
+        series, "coefficient of restitution r [-]", "equivalent damping β [%]", height=460,
+        legend_below=True))
     fig_7_1["caption"] = (
         "Figure 7.1 — Equivalent damping β versus the coefficient of restitution r from the "
         "free-rocking decay (Eq. 7.9) for θ₀/α = 0.1 … 0.7 (colour) and n = 2 … 8 impacts "

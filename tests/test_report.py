@@ -232,7 +232,7 @@ def test_report_renders_offline_in_headless_chromium(seed_report, parsed, tmp_pa
     shutil.copy(seed_report / "report.html", moved)
     done = _browse(moved, tmp_path, "--dump-dom")
     assert f'data-plotted="{len(parsed.plots)}"' in done.stdout, done.stderr[-2000:]
-    assert "data-plot-error" not in done.stdout
+    assert 'data-plot-error="' not in done.stdout
     drawn = re.findall(r'<div class="plot" id="([^"]+)"[^>]*>\s*<div class="plot-container',
                        done.stdout)
     assert sorted(drawn) == sorted(parsed.plots)
