@@ -74,6 +74,13 @@ def _domains(count, gap):
     return [[1.0 - (i + 1) * height - i * gap, 1.0 - i * height - i * gap] for i in range(count)]
 
 
+def _stacked(count, panel_px=78, gap_px=26, margins_px=70):
+    """Height [px] of a figure of ``count`` stacked map panels and the gap between them as a
+    fraction of the plot area (room for each panel's title)."""
+    height = margins_px + count * panel_px + (count - 1) * gap_px
+    return height, gap_px / (height - margins_px)
+
+
 def _ref(n):
     return "" if n == 1 else str(n)
 
@@ -121,9 +128,9 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
     for i, verdict in enumerate(verdicts):
         colour = VERDICT_COLOURS[verdict]
         colourscale += [[i / len(verdicts), colour], [(i + 1) / len(verdicts), colour]]
-    domains = _domains(len(records), 0.12 / max(1, len(records) - 1) if len(records) > 1 else 0)
-    data, layout = [], _layout(90 + 95 * len(records),
-                                margin={"l": 60, "r": 20, "t": 20, "b": 50})
+    height, gap = _stacked(len(records))
+    domains = _domains(len(records), gap)
+    data, layout = [], _layout(height, margin={"l": 60, "r": 20, "t": 20, "b": 50})
     present = set()
     for n, record in enumerate(records, start=1):
         rows = results[results["record"] == record].sort_values(["alpha_deg", "size_s"])
@@ -159,7 +166,7 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
                          "legendgroup": "fragile"})
         layout[f"xaxis{_ref(n)}"] = _axis("2π/p [s]" if n == len(records) else "",
                                           anchor=f"y{_ref(n)}", matches="x" if n > 1 else None,
-                                          showticklabels=True)
+                                          showticklabels=n == len(records))
         layout[f"yaxis{_ref(n)}"] = _axis("α [°]", domain=domains[n - 1], anchor=f"x{_ref(n)}",
                                           tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas],
                                           fixedrange=True)
@@ -530,9 +537,10 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
     (``frame`` rows selected by ``panels[i][1]``, a boolean mask); for suite statistics and
     limit-state checks. ``hover`` is the hover template (``customdata`` = the panel's title,
     ``text`` = ``labels[z]`` when ``labels`` name the integer codes of ``value``)."""
-    domains = _domains(len(panels), 0.12 / max(1, len(panels) - 1) if len(panels) > 1 else 0)
+    height, gap = _stacked(len(panels))
+    domains = _domains(len(panels), gap)
     data, annotations = [], []
-    layout = _layout(90 + 95 * len(panels), margin={"l": 60, "r": 20, "t": 20, "b": 50})
+    layout = _layout(height, margin={"l": 60, "r": 20, "t": 20, "b": 50})
     for n, (key, mask) in enumerate(panels, start=1):
         rows = frame[mask]
         pivot = rows.pivot_table(index="alpha_deg", columns="size_s", values=value,
@@ -550,7 +558,7 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
                                 for row in pivot.to_numpy(dtype=float)]
         alphas = pivot.index.to_numpy(dtype=float)
         layout[f"xaxis{_ref(n)}"] = _axis("2π/p [s]" if n == len(panels) else "",
-                                          anchor=f"y{_ref(n)}")
+                                          anchor=f"y{_ref(n)}", showticklabels=n == len(panels))
         if n > 1:
             layout[f"xaxis{_ref(n)}"]["matches"] = "x"
         layout[f"yaxis{_ref(n)}"] = _axis("α [°]", domain=domains[n - 1], anchor=f"x{_ref(n)}",

@@ -16,7 +16,8 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from audit import G
 from audit.engine.columns import GUIDE
-from audit.engine.runner import (UNECONOMIC_VERDICTS, UNSAFE_VERDICTS, VERDICTS, WORST_CLASSES)
+from audit.engine.runner import (UNECONOMIC_VERDICTS, UNSAFE_VERDICTS, VERDICTS, WORST_CLASSES,
+                                 rank_worst)
 from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.physics.damping import damping_fema356, damping_free_rocking, damping_priestley
 from audit.physics.design_spectra import FEMA356Spectrum, UBC97Spectrum
@@ -93,12 +94,13 @@ def _where(row, names) -> str:
 
 def _worst_case(rows: pd.DataFrame):
     """The block the bottom line names: a missed overturning where the procedure's rotation is
-    smallest, else the largest underestimate, else the largest overestimate."""
+    smallest (robust before fragile), else the largest underestimate, else the largest
+    overestimate."""
     order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
     for verdict, column, largest, _ in order:
         hits = rows[rows["verdict"] == verdict]
         if len(hits):
-            return hits.sort_values(column, ascending=not largest, kind="stable").iloc[0]
+            return rank_worst(hits, column, largest).iloc[0]
     return None
 
 
@@ -173,8 +175,7 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     for procedure in procedures:
         rows = run.results[run.results["procedure"] == procedure["name"]]
         for verdict, column, largest, reason in WORST_CLASSES:
-            hits = rows[rows["verdict"] == verdict].sort_values(column, ascending=not largest,
-                                                                kind="stable")
+            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest)
             keys = [_key(r, a, s) for r, a, s in
                     zip(hits["record"], hits["alpha_deg"], hits["size_s"])]
             hits = hits[[k in drawn for k in keys]].head(WORST_ROWS)

@@ -233,8 +233,8 @@ def test_report_renders_offline_in_headless_chromium(seed_report, parsed, tmp_pa
     done = _browse(moved, tmp_path, "--dump-dom")
     assert f'data-plotted="{len(parsed.plots)}"' in done.stdout, done.stderr[-2000:]
     assert 'data-plot-error="' not in done.stdout
-    drawn = re.findall(r'<div class="plot" id="([^"]+)"[^>]*>\s*<div class="plot-container',
-                       done.stdout)
+    drawn = re.findall(r'<div class="plot js-plotly-plot" id="([^"]+)"[^>]*>\s*'
+                       r'<div class="plot-container', done.stdout)
     assert sorted(drawn) == sorted(parsed.plots)
     assert done.stdout.count('class="main-svg"') >= len(parsed.plots)
     console = [line for line in done.stderr.splitlines() if "CONSOLE" in line]

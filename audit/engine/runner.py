@@ -285,6 +285,15 @@ WORST_CLASSES = (("unconservative", "ratio", False, "largest underestimate"),
                  ("conservative", "ratio", True, "largest overestimate"))
 
 
+def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
+    """``rows`` worst first by ``column``, blocks with a robust exact verdict before fragile ones
+    (a missed overturning that a 3 % change of the record undoes is a weaker case)."""
+    fragile = rows["exact_fragile"].eq(True)
+    return rows.assign(_fragile=fragile).sort_values(
+        ["_fragile", column], ascending=[True, not largest], kind="stable").drop(
+        columns="_fragile")
+
+
 def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 1) -> list[dict]:
     """The blocks of one record worth a time history: each procedure's worst ones per class
     (:data:`WORST_CLASSES`) and representative rocking blocks at α ≈ 15°.
@@ -303,8 +312,7 @@ def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 
 
     for procedure, rows in results.groupby("procedure", sort=False):
         for verdict, column, largest, reason in WORST_CLASSES:
-            hits = rows[rows["verdict"] == verdict].sort_values(column, ascending=not largest,
-                                                                kind="stable")
+            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest)
             for _, row in hits.head(per_class).iterrows():
                 pick(row["alpha_deg"], row["size_s"], f"{reason}, {procedure}")
     alpha_index = int(np.argmin(np.abs(np.asarray(alpha_deg) - 15.0)))
