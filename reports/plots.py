@@ -263,6 +263,13 @@ def response_and_rocking_figure(response: pd.DataFrame, rocking: pd.DataFrame, d
     return {"data": data, "layout": layout}
 
 
+def _placeholder(size, axes) -> dict:
+    """An invisible point that makes plotly create a panel which only carries words (a panel
+    without any trace is not laid out; an empty trace leaves its grid undefined)."""
+    return {"type": "scatter", "mode": "markers", "x": [float(np.mean(size))], "y": [0.5],
+            **axes, "marker": {"opacity": 0}, "showlegend": False, "hoverinfo": "skip"}
+
+
 def _split(text):
     """``'0.24s;0.25u'`` → [(0.24, 's'), (0.25, 'u')]; ``'0.57;0.88'`` → [(0.57, ''), …]."""
     items = []
@@ -310,8 +317,7 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
         no_file = rows["exact_theta_rad"].isna().all()
         axes = {"xaxis": f"x{_ref(b)}", "yaxis": f"y{_ref(b)}"}
         if no_file and not np.isfinite(approx).any():
-            data.append({"type": "scatter", "x": [], "y": [], **axes, "showlegend": False,
-                         "hoverinfo": "skip"})
+            data.append(_placeholder(size, axes))
         if no_file:
             annotations.append(_note("no record file: no exact response", f"x{_ref(b)}",
                                      f"y{_ref(b)}", y=0.92))
@@ -374,9 +380,8 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
                          "line": {"color": colour, "width": 1.3}, "showlegend": False,
                          "hovertemplate": "2π/p = %{x:.2f} s<br>T(θ) = %{y:.3f} s"
                                           "<extra></extra>"})
-        else:  # an empty trace creates the panel that carries the words
-            data.append({"type": "scatter", "x": [], "y": [], "xaxis": f"x{_ref(c)}",
-                         "yaxis": f"y{_ref(c)}", "showlegend": False, "hoverinfo": "skip"})
+        else:
+            data.append(_placeholder(size, {"xaxis": f"x{_ref(c)}", "yaxis": f"y{_ref(c)}"}))
             annotations.append(_note("no converged T(θ): no block settles below α",
                                      f"x{_ref(c)}", f"y{_ref(c)}"))
         domain = rows_dom[r]
@@ -396,7 +401,8 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
         layout[f"yaxis{_ref(c)}"] = _axis("converged T(θ) [s]", domain=domain,
                                           anchor=f"x{_ref(c)}",
                                           **({} if np.isfinite(period).any() else
-                                             {"showticklabels": False, "showgrid": False}))
+                                             {"showticklabels": False, "showgrid": False,
+                                              "range": [0, 1]}))
     layout["annotations"] = annotations
     layout["legend"] = {"orientation": "h", "x": 0, "y": -60 / layout["height"] - 0.02,
                         "yanchor": "top", "font": {"size": 11}}
