@@ -364,3 +364,31 @@ def test_large_suite_puts_statistics_first_and_details_only_where_asked():
     sections = {i for i in parsed.ids if i.startswith("record-") and i != "record-source"}
     assert sections == {"record-rinaldi_1994_b"}
     assert f"{len(run.summary['records']) - 1} records of the suite have no detail section" in html
+
+
+def test_procedure_figure_draws_cycles_and_repelling_fixed_points():
+    """A cycle is a vertical band between its branches, a repelling fixed point is marked,
+    and empty columns (no cycle, no fixed points) draw nothing."""
+    from reports.plots import procedure_figure
+    alpha = math.radians(10.0)
+    rows = pd.DataFrame({
+        "alpha_deg": 10.0, "size_s": [6.0, 8.0, 7.0], "beta_pct": 5.0,
+        "exact_theta_rad": [0.5 * alpha, 0.3 * alpha, 0.4 * alpha],
+        "exact_overturned": False, "approx_overturned": False,
+        "approx_theta_rad": [np.nan, 0.2397 * alpha, 0.3 * alpha],
+        "approx_period_s": [np.nan, 5.0, 5.5],
+        "approx_outcome": ["not-converged", "converged", "converged"],
+        "approx_cycle": ["0.5753;0.8854", "", ""],
+        "approx_fixed_points": ["0.737u", "0.2397s;0.2551u;0.4821s", ""]})
+    spectrum = pd.DataFrame({"alpha_deg": 10.0, "period_s": [0.0, 10.0], "sd_m": [0.0, 1.0]})
+    spec = procedure_figure(rows, spectrum, "P")
+    traces = {t.get("name"): t for t in spec["data"]}
+    band = traces["cycle: band between its branches"]
+    assert band["x"] == [6.0, 6.0, None] and band["y"] == [0.5753, 0.8854, None]
+    repelling = traces["repelling fixed point (○)"]
+    assert sorted(zip(repelling["x"], repelling["y"])) == [(6.0, 0.737), (8.0, 0.2551)]
+    # every legend entry names a trace that draws something
+    for trace in spec["data"]:
+        if trace.get("showlegend", True) and trace.get("name"):
+            assert any(v is not None and not (isinstance(v, float) and math.isnan(v))
+                       for v in trace["y"]), trace["name"]
