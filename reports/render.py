@@ -25,7 +25,7 @@ from audit.physics.oscillator import oscillator_history
 from audit.physics.rocking import simulate
 from records import one_pulse
 from reports import plots
-from reports.palette import VERDICT_COLOURS, alpha_colour
+from reports.palette import VERDICT_COLOURS
 
 #: Figure 4.1 vs 7.2: block p = 2 rad/s, α = 15°, one-cosine pulses of T_p = 2 s (SPEC §2).
 SENSITIVITY_PULSES_G = (0.310, 0.315, 0.316)
@@ -441,6 +441,6 @@ def render_report(run, generated: datetime | None = None) -> str:
         unsafe_verdicts=UNSAFE_VERDICTS, records=records, g=G, band_pct=100.0 * band,
         omitted=len(records) - len(detail), guide=GUIDE["results.csv"],
         specs={k: plots.to_json(v) for k, v in pending.specs.items()},
-        plotly_js=get_plotlyjs(), alpha_colour=alpha_colour,
+        plotly_js=get_plotlyjs(),
         generated=(generated or datetime.now(timezone.utc)).strftime("%Y-%m-%d %H:%M UTC"))
     return html

@@ -20,11 +20,10 @@ def run(args) -> int:
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML, load_run, write_files_atomically
     from reports import render_report
+    run = load_run(args.results_dir)  # bad input fails here, before anything is said
     progress = Progress(0, "step")
-    progress.stage(f"reading the results in {args.results_dir}")
-    run = load_run(args.results_dir)
-    progress.stage(f"rendering the report of {len(run.summary['records'])} records, "
-                   f"{len(run.results)} blocks")
+    progress.stage(f"read the results in {args.results_dir}; rendering the report of "
+                   f"{len(run.summary['records'])} records, {len(run.results)} blocks")
     html = render_report(run).encode()
     write_files_atomically(Path(args.results_dir), {REPORT_HTML: html})
     progress.stage(f"wrote {Path(args.results_dir) / REPORT_HTML} ({len(html) / 1e6:.1f} MB)")

@@ -64,6 +64,8 @@ def run(args) -> int:
         raise InputError(f"--agree-band: must lie in [0, 1), got {args.agree_band:g}")
     if not (0 <= args.robustness < 0.5):
         raise InputError(f"--robustness: must lie in [0, 0.5), got {args.robustness:g}")
+    if out_dir.exists() and not out_dir.is_dir():  # fail before the computing, not after it
+        raise InputError(f"--out {out_dir}: exists and is not a directory")
     progress = Progress(len(suite), "record")
     progress.stage(f"auditing {', '.join(p.name for p in procedures)} on {len(suite)} records")
     run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
