@@ -546,7 +546,7 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
     height, gap = _stacked(len(panels))
     domains = _domains(len(panels), gap)
     data, annotations = [], []
-    layout = _layout(height, margin={"l": 60, "r": 20, "t": 20, "b": 50})
+    layout = _layout(height, margin={"l": 60, "r": 90 if colourbar else 20, "t": 20, "b": 50})
     for n, (key, mask) in enumerate(panels, start=1):
         rows = frame[mask]
         pivot = rows.pivot_table(index="alpha_deg", columns="size_s", values=value,
@@ -557,7 +557,8 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
                      "customdata": [[title] * pivot.shape[1] for _ in range(pivot.shape[0])],
                      "colorscale": colourscale, "zmin": zmin, "zmax": zmax,
                      "showscale": bool(colourbar) and n == 1, "ygap": 1,
-                     "colorbar": {"title": {"text": colourbar or ""}, "len": 0.6, "x": 1.01},
+                     "colorbar": {"title": {"text": colourbar or ""}, "len": 1, "x": 1.01,
+                                  "thickness": 12, "tickformat": ".0%"},
                      "xaxis": f"x{_ref(n)}", "yaxis": f"y{_ref(n)}", "hovertemplate": hover})
         if labels is not None:
             data[-1]["text"] = [[labels[int(v)] if np.isfinite(v) else "" for v in row]
