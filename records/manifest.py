@@ -308,16 +308,17 @@ def pulse_suite() -> RecordSuite:
 
 def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
     """A suite from a manifest, a single record file, or a folder of ``.AT2`` files
-    (``skip_bad``: see :func:`load_manifest`)."""
-    path = Path(path)
+    (``skip_bad``: see :func:`load_manifest`). Sources are kept as absolute paths, so the files
+    an audit writes name the records wherever they are read from."""
+    if not Path(path).exists():
+        raise InputError(f"{path}: file not found")
+    path = Path(os.path.abspath(path))
     if path.is_dir():
         files = sorted(p for p in path.iterdir() if p.suffix.lower() == ".at2")
         if not files:
             raise InputError(f"{path}: folder holds no .AT2 files")
         return _collect([(f.stem, str(f), lambda f=f: _file_entry(f)) for f in files],
                         f"the .AT2 files of folder {path}", skip_bad)
-    if not path.exists():
-        raise InputError(f"{path}: file not found")
     if path.suffix.lower() == ".toml":
         return load_manifest(path, skip_bad)
     return RecordSuite((_file_entry(path),), f"the record file {path}")

@@ -1,44 +1,62 @@
 """The self-contained HTML audit report (SPEC §8), rendered from an :class:`~audit.engine.runner.AuditRun`.
 
-Figures are drawn with matplotlib and embedded as base64 PNG; the page references nothing
-outside itself, so it opens offline and can be attached to a design review.
+Figures are plotly.js specifications drawn by the browser from data embedded in the page;
+plotly.js itself is inlined once, so the page references nothing outside itself, opens offline
+and can be attached to a design review. Nothing is drawn on the server.
 """
 
 from __future__ import annotations
 
 import math
-from concurrent.futures import ProcessPoolExecutor
 from datetime import datetime, timezone
-from multiprocessing import get_context
 
 import numpy as np
 import pandas as pd
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from audit import G
+from audit.engine.columns import GUIDE
+from audit.engine.runner import (UNECONOMIC_VERDICTS, UNSAFE_VERDICTS, VERDICTS, WORST_CLASSES,
+                                 rank_worst)
 from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.physics.damping import damping_fema356, damping_free_rocking, damping_priestley
 from audit.physics.design_spectra import FEMA356Spectrum, UBC97Spectrum
 from audit.physics.oscillator import oscillator_history
 from audit.physics.rocking import simulate
-from audit.engine.runner import VERDICTS
 from records import one_pulse
-from reports import figures
+from reports import plots
+from reports.palette import VERDICT_COLOURS
 
 #: Figure 4.1 vs 7.2: block p = 2 rad/s, α = 15°, one-cosine pulses of T_p = 2 s (SPEC §2).
 SENSITIVITY_PULSES_G = (0.310, 0.315, 0.316)
 SENSITIVITY_BLOCK = {"p": 2.0, "alpha_deg": 15.0, "pulse_period_s": 2.0, "free_motion_s": 8.0}
+#: Above this many records the suite statistics come first and per-record detail is given only
+#: for the records asked for (``summary["detail"]``) or the :data:`WORST_RECORDS` worst ones.
+LARGE_SUITE = 10
+WORST_RECORDS = 3
+#: Rows per procedure and class in the worst-cases table.
+WORST_ROWS = 5
+#: Colours of the guidelines' estimates in the time histories.
+PROCEDURE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
 
 VERDICT_MEANING = {
     "no-uplift": "PGA ≤ g tan α: neither the block nor the procedure rocks",
     "both-overturn": "both the exact response and the procedure overturn",
-    "false-overturn": "the procedure predicts overturning; the block survives",
-    "missed-overturn": "the block overturns; the procedure says it survives",
-    "conservative": "the procedure's rotation exceeds the exact one beyond the agreement band",
-    "unconservative": "the procedure's rotation is below the exact one beyond the agreement band",
-    "not-converged": "the procedure's iteration has no fixed point (oscillates)",
+    "false-overturn": "the procedure predicts overturning; the block survives (uneconomic)",
+    "missed-overturn": "the block overturns; the procedure says it survives (unsafe)",
     "agrees": "both survive and approx/exact lies within the agreement band",
+    "conservative": "the procedure's rotation exceeds the exact one beyond the band (uneconomic)",
+    "unconservative": "the procedure's rotation is below the exact one beyond the band (unsafe)",
+    "not-converged": "the procedure's iteration settles in a cycle or does not settle: no "
+                     "estimate, counted neither safe nor unsafe",
 }
+CHECK_MEANING = {
+    "agrees-safe": "the procedure passes and the exact response does not exceed the limit state",
+    "agrees-unsafe": "the procedure fails and the exact response exceeds it",
+    "missed": "the procedure passes but the exact response exceeds the limit state (unsafe)",
+    "false-alarm": "the procedure fails but the exact response does not exceed it (uneconomic)",
+}
+CLAIM_STATUSES = ("agrees", "close", "differs", "cannot-check")
 
 
 def _environment() -> Environment:
@@ -51,64 +69,126 @@ def _environment() -> Environment:
 
 
 class _Figures:
-    """Collects figure jobs (a module-level ``draw(fig, *args)`` and a size in inches) and
-    draws them together, in worker processes when there are several cores to use."""
+    """The figures of the page: a div id and a plotly spec each, in page order."""
 
     def __init__(self):
-        self.jobs = []
+        self.specs = {}
 
-    def add(self, draw, args, width, height) -> int:
-        self.jobs.append((draw, args, width, height))
-        return len(self.jobs) - 1
-
-    def render(self, processes: int) -> list[str]:
-        if processes > 1 and len(self.jobs) > 1:
-            with ProcessPoolExecutor(processes, mp_context=get_context("fork")) as pool:
-                return list(pool.map(_draw_job, self.jobs))
-        return [_draw_job(job) for job in self.jobs]
+    def add(self, figure_id: str, spec: dict) -> dict:
+        self.specs[figure_id] = spec
+        return {"id": figure_id, "height": spec["layout"]["height"]}
 
 
-def _draw_job(job) -> str:
-    draw, args, width, height = job
-    fig = figures.new_figure(width, height)
-    draw(fig, *args)
-    return figures.data_uri(fig)
+def _key(record, alpha, size) -> tuple:
+    return record, round(float(alpha), 6), round(float(size), 6)
 
 
-def _procedure_summary(procedure: dict, results: pd.DataFrame, names: dict) -> dict:
-    """Plain-language verdict of one procedure, with the numbers behind it."""
+def _history_id(record, alpha, size) -> str:
+    return f"th-{record}-{alpha:g}-{size:.2f}".replace(".", "_")
+
+
+def _where(row, names) -> str:
+    return (f"{names.get(row['record'], row['record'])}, α = {row['alpha_deg']:g}°, "
+            f"2π/p = {row['size_s']:.2f} s")
+
+
+def _worst_case(rows: pd.DataFrame):
+    """The block the bottom line names: a missed overturning where the procedure's rotation is
+    smallest (robust before fragile), else the largest underestimate, else the largest
+    overestimate."""
+    order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
+    for verdict, column, largest, _ in order:
+        hits = rows[rows["verdict"] == verdict]
+        if len(hits):
+            return rank_worst(hits, column, largest).iloc[0]
+    return None
+
+
+def _bottom_line(procedure: dict, results: pd.DataFrame, names: dict, band: float) -> dict:
+    """One sentence per procedure: unsafe and uneconomic shares, not-converged, worst case."""
     rows = results[results["procedure"] == procedure["name"]]
     total = len(rows)
     counts = rows["verdict"].value_counts()
-    share = {v: (int(counts.get(v, 0)), 100.0 * counts.get(v, 0) / total if total else 0.0)
-             for v in VERDICTS}
-    ratios = rows.dropna(subset=["ratio"])
-    ratios = ratios[np.isfinite(ratios["ratio"])]
+    count = {v: int(counts.get(v, 0)) for v in VERDICTS}
+    pct = {v: 100.0 * n / total if total else 0.0 for v, n in count.items()}
+    unsafe = sum(count[v] for v in UNSAFE_VERDICTS)
+    uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
+    worst = _worst_case(rows)
+    worst_text = ""
+    if worst is not None:
+        worst_text = (f"{_where(worst, names)}: the guideline gives "
+                      f"{plots.describe_guideline(worst)}, the exact response "
+                      f"{plots.describe_exact(worst)} ({worst['verdict']})")
+    ratios = rows["ratio"].replace([np.inf, -np.inf], np.nan).dropna()
+    return {**procedure, "blocks": total, "records": int(rows["record"].nunique()),
+            "count": count, "pct": pct, "unsafe": unsafe, "uneconomic": uneconomic,
+            "unsafe_pct": 100.0 * unsafe / total if total else 0.0,
+            "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
+            "band_pct": 100.0 * band, "worst": worst_text,
+            "worst_link": (_history_id(worst["record"], worst["alpha_deg"], worst["size_s"])
+                           if worst is not None else None),
+            "median_ratio": float(ratios.median()) if len(ratios) else None}
 
-    def where(row):
-        return (f"{names.get(row['record'], row['record'])}, α = {row['alpha_deg']:g}°, "
-                f"2π/p = {row['size_s']:.2f} s")
 
-    worst_low = ratios.loc[ratios["ratio"].idxmin()] if len(ratios) else None
-    worst_high = ratios.loc[ratios["ratio"].idxmax()] if len(ratios) else None
-    return {
-        **procedure, "blocks": total, "records": int(rows["record"].nunique()), "share": share,
-        "median_ratio": float(ratios["ratio"].median()) if len(ratios) else None,
-        "min_ratio": float(worst_low["ratio"]) if worst_low is not None else None,
-        "min_where": where(worst_low) if worst_low is not None else "",
-        "max_ratio": float(worst_high["ratio"]) if worst_high is not None else None,
-        "max_where": where(worst_high) if worst_high is not None else "",
-    }
+def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
+    """The guidelines' estimates for one block: lines to draw and words for the caption."""
+    lines, words = [], []
+    for colour, procedure in zip(PROCEDURE_COLOURS, procedures):
+        rows = match[match["procedure"] == procedure["name"]]
+        if rows.empty:
+            continue
+        row = rows.iloc[0]
+        words.append(f"{procedure['title']}: {plots.describe_guideline(row)} ({row['verdict']})")
+        if row["approx_outcome"] == "converged":
+            lines.append((procedure["title"],
+                          row["approx_theta_rad"] / math.radians(row["alpha_deg"]),
+                          row["approx_period_s"], colour))
+    return lines, words
 
 
-def _conclusion(rows: pd.DataFrame) -> str:
-    """What a procedure concluded for one block, in a few words."""
-    row = rows.iloc[0]
-    if row["approx_outcome"] == "converged":
-        ratio = row["approx_theta_rad"] / np.radians(row["alpha_deg"])
-        return f"T(θ) = {row['approx_period_s']:.2f} s, θ/α = {ratio:.3f}"
-    return {"overturn": "predicts overturning", "no-uplift": "predicts no rocking",
-            "not-converged": "no fixed point"}.get(row["approx_outcome"], row["approx_outcome"])
+def _history_figure(pending, run, meta, results, procedures, names) -> dict:
+    rid = meta["record"]
+    h = run.histories[(run.histories["record"] == rid)
+                      & np.isclose(run.histories["size_s"], meta["size_s"])
+                      & np.isclose(run.histories["alpha_deg"], meta["alpha_deg"])]
+    match = results[(results["record"] == rid) & np.isclose(results["size_s"], meta["size_s"])
+                    & np.isclose(results["alpha_deg"], meta["alpha_deg"])]
+    lines, words = _estimates(match, procedures)
+    exact = (f"overturns at t = {meta['overturn_time_s']:.2f} s" if meta.get("overturned")
+             else f"peak θ/α = {meta['peak_rotation_ratio']:.3f}")
+    figure = pending.add(_history_id(rid, meta["alpha_deg"], meta["size_s"]),
+                         plots.history_figure(h, meta, lines))
+    figure["caption"] = (
+        f"{names.get(rid, rid)}, α = {meta['alpha_deg']:g}°, 2π/p = {meta['size_s']:.2f} s "
+        f"({meta['reason']}). Exact: {exact}. " + "; ".join(words) + ". Shaded spans are full "
+        "rocking cycles (every second impact), to compare with the converged T(θ); the dashed "
+        "grey line marks the end of the record.")
+    figure["title"] = (f"{names.get(rid, rid)}, α = {meta['alpha_deg']:g}°, "
+                       f"2π/p = {meta['size_s']:.2f} s")
+    return figure
+
+
+def _worst_cases(run, procedures, names, metas) -> list[dict]:
+    """Per procedure and class, the worst blocks whose time history the run simulated."""
+    drawn = {_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
+    tables = []
+    for procedure in procedures:
+        rows = run.results[run.results["procedure"] == procedure["name"]]
+        for verdict, column, largest, reason in WORST_CLASSES:
+            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest)
+            keys = [_key(r, a, s) for r, a, s in
+                    zip(hits["record"], hits["alpha_deg"], hits["size_s"])]
+            hits = hits[[k in drawn for k in keys]].head(WORST_ROWS)
+            tables.append({"procedure": procedure, "reason": reason, "verdict": verdict,
+                           "total": int((rows["verdict"] == verdict).sum()), "rows": [{
+                               "where": _where(row, names), "exact": plots.describe_exact(row),
+                               "guideline": plots.describe_guideline(row),
+                               "ratio": row["ratio"], "fragile": row["exact_fragile"] is True,
+                               "link": _history_id(row["record"], row["alpha_deg"],
+                                                   row["size_s"]),
+                               "key": _key(row["record"], row["alpha_deg"], row["size_s"])}
+                               for _, row in hits.iterrows()]})
+    return tables
 
 
 def _design_frame(site: dict, dampings, periods) -> pd.DataFrame:
@@ -125,87 +205,74 @@ def _design_frame(site: dict, dampings, periods) -> pd.DataFrame:
     return pd.concat(frames, ignore_index=True)
 
 
-def _record_sections(run, procedures, pending: _Figures) -> list[dict]:
-    # records without a file still show the estimate of a procedure that needs none
-    results = pd.concat([run.results, run.estimates_only], ignore_index=True)
-    spectra, histories = run.spectra, run.histories
-    summary = run.summary
+def _record_sections(run, procedures, pending, results, records, names, drawn) -> list[dict]:
+    spectra, summary = run.spectra, run.summary
     sections = []
-    for number, record in enumerate(summary["records"], start=1):
-        rid = record["id"]
-        section = {"record": record, "number": number, "figures": [],
+    for record in records:
+        rid, number = record["id"], record["number"]
+        section = {"record": record, "number": number, "figures": [], "histories": [],
                    "unauditable": [u for u in summary["unauditable"] if u["record"] == rid]}
         rows = results[results["record"] == rid]
         if not record["missing"]:
             response = spectra[(spectra["record"] == rid) & (spectra["procedure"] == "")]
             rocking = run.rocking[run.rocking["record"] == rid]
             has_site = bool((record.get("site") or {}).get("sxs_g"))
-            design = _design_frame(record.get("site") or {}, [d / 100.0 for d in summary["settings"]["figure_5_damping_pct"]],
-                                   np.linspace(0.0, 8.0, 321))
-            section["figures"].append({
-                "id": f"fig-5-{number}", "caption": f"Figure 5.{number} — {record['name']}: true "
-                f"response spectra Sd, Sv, Sa (relative displacement, relative velocity, absolute "
-                f"acceleration; not pseudo-spectra) for ξ = 5/10/15 % with the design spectra "
+            design = _design_frame(record.get("site") or {},
+                                   [d / 100.0 for d in summary["settings"]["figure_5_damping_pct"]],
+                                   np.linspace(0.0, 8.0, 161))
+            figure = pending.add(f"fig-5-{number}",
+                                 plots.response_and_rocking_figure(response, rocking, design))
+            figure["caption"] = (
+                f"Figure 5.{number} — {record['name']}: true response spectra Sd, Sv, Sa "
+                f"(relative displacement, relative velocity, absolute acceleration; not "
+                f"pseudo-spectra) for ξ = 5/10/15 % with the design spectra "
                 f"{'of FEMA 356 (dashed, site parameters of Table 3.1) and ' if has_site else ''}"
-                f"of UBC 97 (dotted, zone 4, soil S_D, 5 %) "
-                f"(left), and the exact rocking spectra for α = "
-                f"{'/'.join(f'{a:g}' for a in summary['grid']['alpha_deg'])}° (right).",
-                "src": pending.add(figures.draw_figure_5,
-                                   (response, rocking, record["name"], design), 11, 7.5)})
+                f"of UBC 97 (dotted, zone 4, soil S_D, 5 %) (left), and the exact rocking "
+                f"spectra per α (right; × above the curves: the block overturns, one row of × "
+                f"per α). Drag to zoom, double-click to reset.")
+            section["figures"].append(figure)
         for procedure in procedures:
             prows = rows[rows["procedure"] == procedure["name"]]
             if prows.empty:
                 continue
             pspec = spectra[(spectra["record"] == rid) & (spectra["procedure"] == procedure["name"])]
             series = procedure["figure_series"] or "P"
-            section["figures"].append({
-                "id": f"fig-{series}-{number}-{procedure['name']}",
-                "caption": f"Figure {series}.{number} — {procedure['title']} on {record['name']}: "
-                f"displacement spectrum the procedure reads at its β(α) (left), exact peak rotation "
-                f"against the procedure's converged rotation (centre), converged T(θ) of Eq. 8.1 "
-                f"(right); one row per α.",
-                "src": pending.add(figures.draw_procedure_comparison,
-                                   (prows, pspec, record["name"], procedure["title"]),
-                                   11, 1.2 + 2.2 * prows["alpha_deg"].nunique())})
-        blocks = [h for h in summary["histories"] if h["record"] == rid]
-        if blocks:
-            drawn = []
-            for meta in blocks:
-                h = histories[(histories["record"] == rid)
-                              & np.isclose(histories["size_s"], meta["size_s"])
-                              & np.isclose(histories["alpha_deg"], meta["alpha_deg"])]
-                match = rows[np.isclose(rows["size_s"], meta["size_s"])
-                             & np.isclose(rows["alpha_deg"], meta["alpha_deg"])]
-                drawn.append({
-                    "time": h["time_s"].to_numpy(), "theta_ratio": h["theta_ratio"].to_numpy(),
-                    "omega": h["omega_rad_s"].to_numpy(),
-                    "title": f"2π/p = {meta['size_s']:.2f} s, α = {meta['alpha_deg']:g}°: "
-                             f"exact peak θ/α = {meta['peak_rotation_ratio']:.3f}",
-                    "rocking_span": (None if meta["first_impact_s"] is None
-                                     else (meta["first_impact_s"], meta["last_impact_s"])),
-                    "cycle_starts": meta["cycle_starts_s"],
-                    "cycle_durations": meta["cycle_durations_s"],
-                    "procedures": {p["title"]: _conclusion(match[match["procedure"] == p["name"]])
-                                   for p in procedures if (match["procedure"] == p["name"]).any()},
-                    "excitation_end": meta["excitation_end_s"]})
-            section["figures"].append({
-                "id": f"fig-th-{number}", "caption": f"Time histories of representative blocks "
-                f"under {record['name']} (as Figures 8.2, 8.5, 8.7, 8.9): θ/α and θ' against "
-                f"time; shaded spans are full rocking cycles (every second impact) with their "
-                f"durations, to compare with the converged T(θ) of each procedure in the title; "
-                f"the dashed line marks the end of the record (time axis zoomed on the rocking).",
-                "src": pending.add(figures.draw_time_histories, (drawn,), 11,
-                                   0.7 + 3.2 * len(blocks))})
+            figure = pending.add(f"fig-{series}-{number}-{procedure['name']}",
+                                 plots.procedure_figure(prows, pspec, procedure["title"]))
+            figure["caption"] = (
+                f"Figure {series}.{number} — {procedure['title']} on {record['name']}: the "
+                f"displacement spectrum the procedure reads at its β(α) (left), exact peak "
+                f"rotation against the procedure's rotation (centre; a purple band spans the "
+                f"branches of a cycle the iteration settles in, ○ marks a repelling fixed point), "
+                f"the converged T(θ) of Eq. 8.1 (right); one row per α.")
+            section["figures"].append(figure)
+        section["histories"] = [
+            _history_figure(pending, run, meta, results, procedures, names)
+            for meta in run.summary.get("histories", [])
+            if meta["record"] == rid and _key(rid, meta["alpha_deg"], meta["size_s"]) not in drawn]
         sections.append(section)
     return sections
 
 
-def _mechanics(pending: _Figures) -> list[dict]:
+def _mechanics(pending) -> list[dict]:
     r = np.linspace(0.5, 1.0, 101)[:-1]
-    curves = {(ratio, n): damping_free_rocking(ratio, n, r)
-              for ratio in (0.1, 0.3, 0.5, 0.7) for n in (2, 4, 6, 8)}
-    fig_7_1 = pending.add(figures.draw_figure_7_1,
-                          (r, curves, damping_priestley(r), damping_fema356(r)), 9, 5)
+    dashes = {2: "solid", 4: "dash", 6: "dashdot", 8: "dot"}
+    shades = {0.1: "#440154", 0.3: "#31688e", 0.5: "#35b779", 0.7: "#b5de2b"}
+    series = [{"x": r, "y": 100 * damping_free_rocking(ratio, n, r), "colour": shades[ratio],
+               "dash": dashes[n], "width": 1, "name": f"Eq. 7.9, θ₀/α = {ratio:g}, n = {n}"}
+              for ratio in shades for n in dashes]
+    series += [{"x": r, "y": 100 * damping_priestley(r), "colour": "#d62728", "width": 3,
+                "name": "Eq. 7.10: β = −0.34 ln r"},
+               {"x": r, "y": 100 * damping_fema356(r), "colour": "#000000", "width": 3,
+                "name": "Eq. 9.1: β = 0.4 (1 − √r)"}]
+    fig_7_1 = pending.add("fig-7-1", plots.lines_figure(
+        series, "coefficient of restitution r [-]", "equivalent damping β [%]", height=460,
+        legend_below=True))
+    fig_7_1["caption"] = (
+        "Figure 7.1 — Equivalent damping β versus the coefficient of restitution r from the "
+        "free-rocking decay (Eq. 7.9) for θ₀/α = 0.1 … 0.7 (colour) and n = 2 … 8 impacts "
+        "(dash), with the Priestley et al. fit (Eq. 7.10) and the FEMA 356 law (Eq. 9.1). "
+        "Click a legend entry to hide a curve.")
     spec = SENSITIVITY_BLOCK
     alpha = math.radians(spec["alpha_deg"])
     block = RigidBlock(spec["p"], alpha)
@@ -215,28 +282,109 @@ def _mechanics(pending: _Figures) -> list[dict]:
         motion = one_pulse("cosine", amplitude, spec["pulse_period_s"])
         response = simulate(block, motion, spec["free_motion_s"])
         label = f"a_p = {amplitude:.3f} g" + (" (overturns)" if response.overturned else "")
-        rocking[label] = (response.time, response.theta / alpha)
-        oscillator[f"a_p = {amplitude:.3f} g"] = oscillator_history(
-            motion, 2.0 * math.pi / spec["p"], beta, spec["free_motion_s"])
-    fig_sens = pending.add(figures.draw_sensitivity, (
+        stride = max(1, response.time.size // plots.HISTORY_SAMPLES)
+        rocking[label] = (response.time[::stride], response.theta[::stride] / alpha)
+        u = oscillator_history(motion, 2.0 * math.pi / spec["p"], beta, spec["free_motion_s"])
+        oscillator[f"a_p = {amplitude:.3f} g"] = (u[0][::stride], u[1][::stride])
+    fig_sens = pending.add("fig-sensitivity", plots.sensitivity_figure(
         rocking, oscillator,
         f"Figure 4.1: rocking block p = {spec['p']:g} rad/s, α = {spec['alpha_deg']:g}°, "
         f"one-cosine pulse T_p = {spec['pulse_period_s']:g} s",
-        f"Figure 7.2: 'equivalent' oscillator ω = p, ξ = β = {100 * beta:.2f} % (Eq. 7.10)"),
-        11, 4)
-    return [
-        {"id": "fig-7-1", "src": fig_7_1, "caption": "Figure 7.1 — Equivalent damping β versus "
-         "the coefficient of restitution r from the free-rocking decay (Eq. 7.9) for θ₀/α = "
-         "0.1 … 0.7 and n = 2 … 8 impacts, with the Priestley et al. fit (Eq. 7.10) and the FEMA "
-         "356 law (Eq. 9.1)."},
-        {"id": "fig-sensitivity", "src": fig_sens, "caption": "Figure 4.1 vs 7.2 — A 1.6 % "
-         "change of pulse amplitude takes the block from a modest rocking to overturning "
-         "(left), while the 'equivalent' linear oscillator barely notices (right): the "
-         "sensitivity that no equivalent-oscillator procedure can represent."},
-    ]
+        f"Figure 7.2: 'equivalent' oscillator ω = p, ξ = β = {100 * beta:.2f} % (Eq. 7.10)"))
+    fig_sens["caption"] = (
+        "Figure 4.1 vs 7.2 — A 1.6 % change of pulse amplitude takes the block from a modest "
+        "rocking to overturning (left), while the 'equivalent' linear oscillator barely notices "
+        "(right): the sensitivity that no equivalent-oscillator procedure can represent.")
+    return [fig_7_1, fig_sens]
 
 
-def render_report(run, generated: datetime | None = None, processes: int = 2) -> str:
+def _suite_section(run, procedures, pending) -> dict | None:
+    suite = run.suite
+    if suite is None or suite.empty:
+        return None
+    maps, sentences = [], []
+    present = [p for p in procedures if (suite["procedure"] == p["name"]).any()]
+    reds = [[0, "#ffffff"], [0.25, "#fcbba1"], [0.5, "#fb6a4a"], [1, "#67000d"]]
+    if present:
+        figure = pending.add("suite-unsafe", plots.grid_map_figure(
+            suite, "frac_unsafe", [(p["title"], suite["procedure"] == p["name"]) for p in present],
+            lambda title: title, "{title}<br>α = %{y}°, 2π/p = %{x:.2f} s<br>"
+            "unsafe for %{z:.1%} of the records<extra></extra>", reds, 0, 1, "unsafe"))
+        figure["caption"] = ("Share of the records for which each guideline is unsafe "
+                             "(missed overturning or underestimate beyond the band), per block.")
+        maps.append(figure)
+    for p in present:
+        rows = suite[suite["procedure"] == p["name"]]
+        alpha = 15.0 if (rows["alpha_deg"] == 15.0).any() else float(rows["alpha_deg"].iloc[0])
+        at = rows[rows["alpha_deg"] == alpha]
+        worst = at.loc[at["frac_unsafe"].astype(float).idxmax()]
+        records = int(rows["records"].max())
+        sentences.append(
+            f"Over {records} record{'s' if records != 1 else ''}, {p['title']} is unsafe for "
+            f"{100 * at['frac_unsafe'].astype(float).mean():.1f} % of blocks with α = {alpha:g}° "
+            f"(averaged over 2π/p = {at['size_s'].min():g}–{at['size_s'].max():g} s), worst at "
+            f"2π/p ≈ {worst['size_s']:.2f} s where {100 * worst['frac_unsafe']:.0f} % of the "
+            f"records make it unsafe.")
+        if rows[["ratio_p16", "ratio_p50", "ratio_p84"]].notna().any().any():
+            figure = pending.add(f"suite-ratio-{p['name']}", plots.ratio_band_figure(rows))
+            figure["caption"] = (f"{p['title']}: median approx/exact over the records where "
+                                 f"both survive, with the 16–84 % band, per α.")
+            maps.append(figure)
+    return {"figures": maps, "sentences": sentences}
+
+
+def _checks_section(run, names, pending) -> dict | None:
+    checks = run.checks
+    if checks is None or checks.empty:
+        return None
+    classes = list(CHECK_MEANING)
+    confusion = []
+    for (procedure, state, record), rows in checks.groupby(
+            ["procedure", "limit_state", "record"], sort=False):
+        counts = rows["verdict"].value_counts()
+        confusion.append({"procedure": procedure, "limit_state": state,
+                          "record": names.get(record, record),
+                          "counts": {c: int(counts.get(c, 0)) for c in classes}})
+    codes = checks.assign(code=checks["verdict"].map({c: i for i, c in enumerate(classes)}))
+    scale = []
+    for i, c in enumerate(classes):
+        scale += [[i / len(classes), plots.CHECK_COLOURS[c]],
+                  [(i + 1) / len(classes), plots.CHECK_COLOURS[c]]]
+    figures = []
+    for (procedure, state), rows in codes.groupby(["procedure", "limit_state"], sort=False):
+        records = list(dict.fromkeys(rows["record"]))
+        figure = pending.add(f"checks-{procedure}-{state}", plots.grid_map_figure(
+            rows, "code", [(r, rows["record"] == r) for r in records],
+            lambda r: names.get(r, r), "{title}<br>α = %{y}°, 2π/p = %{x:.2f} s<br>"
+            f"{state}: " + "%{text}<extra></extra>", scale, -0.5, len(classes) - 0.5,
+            labels=classes))
+        figure["caption"] = f"Limit-state check {state} of {procedure} against the exact response."
+        figures.append(figure)
+    return {"confusion": confusion, "classes": classes, "figures": figures}
+
+
+def _claims_section(run) -> dict | None:
+    claims = run.claims
+    if claims is None or claims.empty:
+        return None
+    counts = claims["status"].value_counts()
+    return {"rows": claims.to_dict("records"),
+            "tally": {s: int(counts.get(s, 0)) for s in CLAIM_STATUSES}}
+
+
+def _detail_records(run, records) -> list[dict]:
+    """Records with a per-record section: all of a small suite; of a large one, those asked for
+    (``summary["detail"]``) or the worst ones (most unsafe blocks)."""
+    if len(records) <= LARGE_SUITE:
+        return records
+    asked = run.summary.get("detail") or []
+    if not asked:
+        unsafe = run.results[run.results["verdict"].isin(UNSAFE_VERDICTS)]
+        asked = list(unsafe["record"].value_counts().index[:WORST_RECORDS])
+    return [r for r in records if r["id"] in asked]
+
+
+def render_report(run, generated: datetime | None = None) -> str:
     """The HTML report of an audit run, as one self-contained string.
 
     Parameters
@@ -245,34 +393,54 @@ def render_report(run, generated: datetime | None = None, processes: int = 2) ->
         Results of ``run_audit`` or of ``audit.engine.results.load_run``.
     generated : datetime, optional
         Time stamp printed in the report (default: now, UTC).
-    processes : int
-        Worker processes drawing the figures.
     """
+    from plotly.offline import get_plotlyjs
     pending = _Figures()
     summary = run.summary
     procedures = summary["procedures"]
     names = {r["id"]: r["name"] for r in summary["records"]}
-    audited = [r["id"] for r in summary["records"]
-               if (run.results["record"] == r["id"]).any()]
+    records = [dict(r, number=n) for n, r in enumerate(summary["records"], start=1)]
+    detail = _detail_records(run, records)
+    large = len(records) > LARGE_SUITE
+    detail_ids = {r["id"] for r in detail}
+    band = summary.get("settings", {}).get("agree_band", 0.10)
+    # records without a file still show the estimate of a procedure that needs none
+    results = pd.concat([run.results, run.estimates_only], ignore_index=True)
+    bottom = [_bottom_line(p, run.results, names, band) for p in procedures]
+    metas = summary.get("histories", [])
+    worst = _worst_cases(run, procedures, names, metas)
+    shown = {row["key"] for table in worst for row in table["rows"]}
+    worst_histories = [_history_figure(pending, run, meta, results, procedures, names)
+                       for meta in metas
+                       if _key(meta["record"], meta["alpha_deg"], meta["size_s"]) in shown]
     verdict_maps = []
     for procedure in procedures:
         rows = run.results[run.results["procedure"] == procedure["name"]]
-        records = [r for r in audited if (rows["record"] == r).any()]
-        if records:
-            verdict_maps.append({"procedure": procedure, "src": pending.add(
-                figures.draw_verdict_map, (rows, records, names), 11, 1.3 + 1.0 * len(records))})
+        audited = [r["id"] for r in detail if (rows["record"] == r["id"]).any()]
+        if audited:
+            spec = plots.verdict_map_figure(rows, audited, names, VERDICTS)
+            present = spec.pop("present")
+            figure = pending.add(f"verdict-map-{procedure['name']}", spec)
+            fragile = rows[rows["exact_fragile"].eq(True) & rows["record"].isin(audited)]
+            hinge = fragile["verdict"].isin(("both-overturn", "missed-overturn",
+                                             "false-overturn")).sum()
+            figure.update(procedure=procedure, present=present, fragile=len(fragile),
+                          hinge=int(hinge))
+            verdict_maps.append(figure)
     statistics = [dict(s, record_name=names.get(s["record"], s["record"]))
-                  for s in summary["statistics"]]
-    sections = _record_sections(run, procedures, pending)
-    mechanics = _mechanics(pending)
-    images = pending.render(processes)
-    for item in verdict_maps + mechanics + [f for s in sections for f in s["figures"]]:
-        item["src"] = images[item["src"]]
+                  for s in summary["statistics"] if s["record"] in detail_ids]
+    sections = _record_sections(run, procedures, pending, results, detail, names, shown)
     html = _environment().get_template("report.html.j2").render(
-        summary=summary, procedures=procedures,
-        procedure_summaries=[_procedure_summary(p, run.results, names) for p in procedures],
-        verdict_maps=verdict_maps, sections=sections, mechanics=mechanics, statistics=statistics,
-        verdicts=VERDICTS, verdict_meaning=VERDICT_MEANING, verdict_colours=figures.VERDICT_COLOURS,
-        records=summary["records"], g=G,
+        summary=summary, procedures=procedures, bottom=bottom, worst=worst,
+        worst_histories=worst_histories, verdict_maps=verdict_maps, sections=sections,
+        mechanics=_mechanics(pending), statistics=statistics, large=large,
+        suite=_suite_section(run, procedures, pending),
+        checks=_checks_section(run, names, pending), claims=_claims_section(run),
+        check_colours=plots.CHECK_COLOURS, check_meaning=CHECK_MEANING,
+        verdicts=VERDICTS, verdict_meaning=VERDICT_MEANING, verdict_colours=VERDICT_COLOURS,
+        unsafe_verdicts=UNSAFE_VERDICTS, records=records, g=G, band_pct=100.0 * band,
+        omitted=len(records) - len(detail), guide=GUIDE["results.csv"],
+        specs={k: plots.to_json(v) for k, v in pending.specs.items()},
+        plotly_js=get_plotlyjs(),
         generated=(generated or datetime.now(timezone.utc)).strftime("%Y-%m-%d %H:%M UTC"))
     return html

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 from audit.cli import options
 from audit.errors import InputError
 
@@ -44,6 +46,8 @@ def run(args) -> int:
         spectrum = NTC2018Spectrum(args.ag, args.f0, args.tc_star, args.soil, args.topography)
     else:
         spectrum = UBC97Spectrum(args.na, args.nv)
+        print(f"UBC 97: seismic zone 4, soil profile S_D, N_a = {args.na:g}, N_v = {args.nv:g} "
+              f"(C_a = {spectrum.ca:.3f}, C_v = {spectrum.cv:.3f})", file=sys.stderr)
     import numpy as np
     options.write_csv({  # a dict of columns: no pandas for this command
         "period_s": np.tile(periods, damping.size),

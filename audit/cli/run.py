@@ -13,27 +13,44 @@ from audit.errors import InputError
 DEFAULT_OUT = "audit-out"
 
 
+def _registered() -> str:
+    """Names of the registered procedures, read from the entry points without loading them."""
+    from importlib.metadata import entry_points
+    return ", ".join(sorted(ep.name for ep in entry_points(group="rocking_audit.procedures")))
+
+
 def add_parser(sub):
-    p = sub.add_parser("run", help="audit a procedure (or all) and write the HTML report")
-    p.add_argument("procedure", help="registered procedure name, or 'all'")
+    import argparse
+
+    class Defaults(argparse.ArgumentDefaultsHelpFormatter):
+        """Shows each option's default, where it has one."""
+
+        def _get_help_string(self, action):
+            return action.help if action.default is None else super()._get_help_string(action)
+
+    p = sub.add_parser("run", help="audit a procedure (or all) and write the HTML report",
+                       formatter_class=Defaults,
+                       description="Audit guideline procedures against the exact rocking "
+                                   "response; writes report.html, results.csv, summary.json "
+                                   "and the other files described in columns.json.")
+    p.add_argument("procedure", help=f"registered procedure name ({_registered()}), or 'all'")
     options.add_records_option(p)
     p.add_argument("--alpha", default="10,15,20", metavar="DEG,...", help="slendernesses [degrees]")
     p.add_argument("--sizes", default="0.5:8:0.05", metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s]")
     p.add_argument("--out", metavar="DIR", help=f"output directory (default {DEFAULT_OUT}/PROCEDURE)")
     p.add_argument("--jobs", type=options.jobs, default=2,
-                   help="threads for the exact solver and processes drawing the report (default 2)")
+                   help="threads of the exact solver, or worker processes with --scheduler dask")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=10.0, metavar="S",
-                   help="free motion after each record [s] (default 10)")
+                   help="free motion after each record [s]")
     p.add_argument("--agree-band", type=options.number("must lie in [0, 1)", 0, 1, high_open=True),
                    default=0.10, metavar="FRACTION",
-                   help="verdict 'agrees' when both survive and |approx/exact − 1| ≤ FRACTION "
-                        "(default 0.10)")
+                   help="verdict 'agrees' when both survive and |approx/exact − 1| ≤ FRACTION")
     p.add_argument("--robustness", type=options.number("must lie in [0, 0.5)", 0, 0.5,
                                                        high_open=True),
                    default=0.03, metavar="EPSILON",
                    help="flag blocks whose exact overturning changes with the record scaled by "
-                        "1 ± EPSILON (default 0.03; 0 turns it off)")
+                        "1 ± EPSILON (0 turns it off)")
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 design site S_XS,S_X1 [g] (§1.6) for every record without one")
     p.add_argument("--site-override", action="store_true",
@@ -42,7 +59,7 @@ def add_parser(sub):
                    help="with --site: scale the suite the FEMA P695 way to the design spectrum")
     p.add_argument("--anchor-period", type=options.POSITIVE, metavar="S",
                    help="with --scale-to-site: period where the suite median meets the design "
-                        "spectrum [s] (default 1)")
+                        "spectrum [s] (1 when not given)")
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record: a_g [g], F0, T_C* [s], soil category "
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
@@ -52,7 +69,7 @@ def add_parser(sub):
                    help="audit the readable records of a suite and list the unreadable ones "
                         "(default: stop at the first)")
     p.add_argument("--scheduler", default="local", metavar="local|dask|tcp://HOST:PORT",
-                   help="where records are audited: this process (default), a Dask LocalCluster "
+                   help="where records are audited: this process, a Dask LocalCluster "
                         "of --jobs worker processes, or an existing Dask cluster")
     p.add_argument("--resume", action="store_true",
                    help="reuse the per-record results that an interrupted run left in OUT/.partial")
@@ -94,6 +111,7 @@ def design_site(args, suite):
 def run(args) -> int:
     from audit.engine.files import check_output_dir
     from audit.engine.partial import PARTIAL_DIR
+    from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML, save_run
     from audit.engine.runner import run_audit
     from audit.engine.scheduler import check_scheduler
@@ -111,9 +129,11 @@ def run(args) -> int:
                        oscillators=options.AUDIT_SPECTRA * (3 + alphas.size * len(procedures)))
     start = time.perf_counter()
     detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
+    progress = Progress(len(suite), "record")
+    progress.stage(f"auditing {', '.join(p.name for p in procedures)} on {len(suite)} records")
     try:
         run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
-                        free_motion_s=args.free_motion, progress=_progress_line,
+                        free_motion_s=args.free_motion, progress=progress,
                         agree_band=args.agree_band, robustness=args.robustness,
                         scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
                         resume=args.resume, detail=detail)
@@ -123,10 +143,14 @@ def run(args) -> int:
               "command with --resume completes the run" if kept else
               "interrupted; nothing written", file=sys.stderr)
         return 130
+    finally:
+        progress.done()
+    progress.stage("checking the claims of the reference report")
     from audit.engine.claims import evaluate_claims
-    run.claims = evaluate_claims(run, suite)  # the reproduction checklist of the reference report
+    run.claims = evaluate_claims(run, suite)
     computed = time.perf_counter() - start
-    save_run(run, out_dir, lambda saved: render_report(saved, processes=args.jobs))
+    progress.stage(f"writing the results and the report to {out_dir}")
+    save_run(run, out_dir, render_report)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     total = time.perf_counter() - start
     print(f"Audited {', '.join(p.name for p in procedures)} on {suite.description} "
@@ -141,7 +165,3 @@ def run(args) -> int:
           f"({computed:.1f} s computing, {total:.1f} s in all)")
     return 0
 
-
-def _progress_line(done: int, total: int, record_id: str, how: str) -> None:
-    """One line on stderr per completed record."""
-    print(f"[{done}/{total}] {record_id}: {how}", file=sys.stderr, flush=True)

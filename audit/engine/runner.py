@@ -22,6 +22,7 @@ compared with, so they are kept apart (``AuditRun.estimates_only``), not given a
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -53,8 +54,8 @@ FIGURE_5_DAMPING = (0.05, 0.10, 0.15)
 SPECTRUM_PERIODS_S = np.concatenate(([0.0], np.geomspace(0.01, 100.0, 800)))
 #: Periods of the stored procedure spectra (Figures 8.x, 9.x): up to 20 s [s].
 PROCEDURE_SPECTRUM_PERIODS_S = SPECTRUM_PERIODS_S[SPECTRUM_PERIODS_S <= 20.0]
-#: Samples kept per stored time history.
-HISTORY_POINTS = 3000
+#: Samples kept per stored time history (about 2 per pixel of the report's figures).
+HISTORY_POINTS = 2000
 
 SPECTRA_COLUMNS = ["record", "procedure", "alpha_deg", "damping_pct", "period_s", "sd_m",
                    "sv_m_s", "sa_g"]
@@ -240,7 +241,10 @@ def record_summary(entry) -> dict:
         item["table_5_1"] = {"pga_g": facts.pga_g, "pgv_m_s": facts.pgv_ms,
                              "pulse_period_s": facts.pulse_period_s}
     if motion is not None:
-        item.update(source=motion.source, sha256=motion.sha256, dt_s=motion.dt,
+        # absolute, so a moved summary.json or report still names the file
+        source = Path(motion.source) if motion.source else None
+        item.update(source=str(source.absolute()) if source and source.is_file()
+                    else motion.source, sha256=motion.sha256, dt_s=motion.dt,
                     duration_s=motion.duration, pga_g=motion.pga_g, pgv_m_s=motion.pgv,
                     npts=int(motion.acceleration.size))
     return item
@@ -265,16 +269,60 @@ def statistics(frame: pd.DataFrame) -> list[dict]:
     return stats
 
 
-def _representative_sizes(spectrum, alpha_index: int, count: int = 3) -> list[float]:
+def _representative_sizes(spectrum, alpha_index: int, count: int = 2) -> list[float]:
     """Sizes of blocks that rock and survive, spread over the range (for Figures 8.2, 8.5, …)."""
     rocking = (spectrum.uplifted[alpha_index] & ~spectrum.overturned[alpha_index]
                & (spectrum.theta_ratio[alpha_index] > 0.05))
     sizes = spectrum.size_s[rocking]
     if sizes.size == 0:
         return []
-    picks = np.unique(np.quantile(np.arange(sizes.size), np.linspace(0.15, 0.85, count))
+    picks = np.unique(np.quantile(np.arange(sizes.size), np.linspace(0.25, 0.75, count))
                       .round().astype(int))
     return [float(sizes[i]) for i in picks]
+
+
+#: The worst blocks drawn as time histories, per procedure: (verdict, column ranked, largest
+#: first?, reason). Missed overturnings rank by how small the procedure's rotation is.
+WORST_CLASSES = (("unconservative", "ratio", False, "largest underestimate"),
+                 ("missed-overturn", "approx_theta_rad", False, "missed overturning"),
+                 ("conservative", "ratio", True, "largest overestimate"))
+
+
+def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
+    """``rows`` worst first by ``column``, blocks with a robust exact verdict before fragile ones
+    (a missed overturning that a 3 % change of the record undoes is a weaker case)."""
+    fragile = rows["exact_fragile"].eq(True)
+    return rows.assign(_fragile=fragile).sort_values(
+        ["_fragile", column], ascending=[True, not largest], kind="stable").drop(
+        columns="_fragile")
+
+
+def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 1) -> list[dict]:
+    """The blocks of one record worth a time history: each procedure's worst ones per class
+    (:data:`WORST_CLASSES`) and representative rocking blocks at α ≈ 15°.
+
+    Returns
+    -------
+    list of dict
+        ``alpha_deg``, ``size_s`` and ``reason`` (why it was picked; reasons of a block picked
+        several times are joined with "; "), in order of first pick.
+    """
+    picks = {}
+
+    def pick(alpha, size, reason):
+        key = (round(float(alpha), 9), round(float(size), 9))
+        picks.setdefault(key, []).append(reason)
+
+    for procedure, rows in results.groupby("procedure", sort=False):
+        for verdict, column, largest, reason in WORST_CLASSES:
+            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest)
+            for _, row in hits.head(per_class).iterrows():
+                pick(row["alpha_deg"], row["size_s"], f"{reason}, {procedure}")
+    alpha_index = int(np.argmin(np.abs(np.asarray(alpha_deg) - 15.0)))
+    for size in _representative_sizes(spectrum, alpha_index):
+        pick(alpha_deg[alpha_index], size, "representative")
+    return [{"alpha_deg": alpha, "size_s": size, "reason": "; ".join(reasons)}
+            for (alpha, size), reasons in picks.items()]
 
 
 def _history_rows(response, record_id, alpha_deg, size_s):
@@ -377,18 +425,20 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                                        exact, i, g)
                            for check in procedure.checks(entry, p, alpha, r, context, g)]
     if exact is not None:
-        alpha_index = int(np.argmin(np.abs(alpha_deg - 15.0)))
-        for size in _representative_sizes(exact, alpha_index):
-            block = RigidBlock.from_size(size, alpha_rad[alpha_index], g=g)
+        for pick in history_blocks(_concat(results, RESULT_COLUMNS), exact, alpha_deg):
+            block = RigidBlock.from_size(pick["size_s"], np.radians(pick["alpha_deg"]), g=g)
             response = simulate(block, motion, settings.free_motion_s)
-            histories.append(_history_rows(response, entry.id, alpha_deg[alpha_index], size))
+            histories.append(_history_rows(response, entry.id, pick["alpha_deg"],
+                                           pick["size_s"]))
             histories_meta.append({
-                "record": entry.id, "alpha_deg": float(alpha_deg[alpha_index]),
-                "size_s": size, "cycle_starts_s": response.cycle_starts.tolist(),
+                "record": entry.id, **pick, "cycle_starts_s": response.cycle_starts.tolist(),
                 "cycle_durations_s": response.cycle_durations.tolist(),
                 "first_impact_s": float(response.impact_times[0]) if response.n_impacts else None,
                 "last_impact_s": float(response.impact_times[-1]) if response.n_impacts else None,
                 "peak_rotation_ratio": response.peak_rotation_ratio,
+                "overturned": bool(response.overturned),
+                "overturn_time_s": (float(response.overturn_time) if response.overturned
+                                    else None),
                 "excitation_end_s": response.excitation_end})
     return RecordAudit(entry.id, _concat(results, RESULT_COLUMNS),
                        _concat(estimates_only, RESULT_COLUMNS), _concat(spectra, SPECTRA_COLUMNS),
