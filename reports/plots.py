@@ -610,7 +610,10 @@ def ratio_band_figure(suite: pd.DataFrame) -> dict:
                                       "median approx/exact = %{y:.3f}<extra></extra>"})
     layout = _layout(380)
     layout["xaxis"] = _axis("2π/p [s]")
-    layout["yaxis"] = _axis("approx/exact [-] where both survive", type="log")
+    # whole numbers on the log axis: plotly's default minor labels read "3" for 30
+    ticks = [0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100]
+    layout["yaxis"] = _axis("approx/exact [-] where both survive", type="log", tickvals=ticks,
+                            ticktext=[f"{t:g}" for t in ticks])
     layout["shapes"] = [{"type": "line", "xref": "x domain", "x0": 0, "x1": 1, "yref": "y",
                          "y0": 1, "y1": 1, "line": {"color": "#888888", "dash": "dot"}}]
     return {"data": data, "layout": layout}

@@ -17,6 +17,7 @@ import pandas as pd
 import pytest
 
 from audit.engine.results import load_run, save_run
+from audit.engine.suite import suite_summary
 from audit.engine.runner import (CHECK_COLUMNS, CLAIM_COLUMNS, SUITE_COLUMNS, VERDICTS,
                                  run_audit)
 from procedures import get_procedures
@@ -279,6 +280,7 @@ def _small_run():
                                           "cannot-check"])]
     run.checks = pd.DataFrame(checks, columns=CHECK_COLUMNS)
     run.suite = pd.DataFrame(suite, columns=SUITE_COLUMNS)
+    run.summary["suite"] = suite_summary(run.suite, {"priestley1978": "Priestley (1978)"})
     run.claims = pd.DataFrame(claims, columns=CLAIM_COLUMNS)
     return run
 
@@ -301,8 +303,9 @@ def test_sections_fed_by_other_parts_of_the_audit():
     tally = html[html.index('id="claims-tally"'):]
     assert "5 claims" in tally[:200] and "2 agrees, 1 close, 1 differs, 1 cannot-check" in tally
     # the quotable sentence: mean unsafe share at α = 15° is (0 + 0.5 + 0.25)/3 = 25.0 %
-    assert "unsafe for 25.0 % of blocks with α = 15°" in html
-    assert "worst at 2π/p ≈ 2.00 s" in html
+    # the quotable sentence of summary.json: (0 + 0.5 + 0.25)/3 = 25 % at α = 15°
+    assert ("Over 4 records, Priestley (1978) is unsafe for 25 % of blocks with α = 15°, "
+            "worst at 2π/p ≈ 2 s (50 % of records).") in html
     # hover of the checks map names the check of each cell
     spec = parsed.specs["checks-ntc2018-SLV"]
     assert spec["data"][0]["text"][0][0] in ("agrees-safe", "missed", "false-alarm",

@@ -80,7 +80,7 @@ def test_summary_mean_unsafe_worst_size_and_sentence(synthetic):
     assert p["sentence"] == ("over 4 records, FEMA 356 is unsafe for 25 % of blocks with "
                              "α = 15°, worst at 2π/p ≈ 1 s (50 % of records)")
     assert q["worst_size_s"] is None and q["mean_unsafe"] == 0.0
-    assert q["sentence"].startswith("over 2 records, q is unsafe for 0 % ")
+    assert q["sentence"] == "over 2 records, q is never unsafe for blocks with α = 15° (2π/p = 1–1 s)"
 
 
 def test_unknown_verdict_is_refused(synthetic):

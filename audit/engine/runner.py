@@ -128,11 +128,14 @@ class RecordContext:
     entry : records.RecordEntry
     free_motion_s : float
         Free motion after the record [s], the same window as the exact solver's.
+    jobs : int
+        Threads computing the record's spectra.
     """
 
-    def __init__(self, entry, free_motion_s: float):
+    def __init__(self, entry, free_motion_s: float, jobs: int = 1):
         self.entry = entry
         self.free_motion_s = free_motion_s
+        self.jobs = jobs
         self._spectra = {}
 
     def true_spectra(self, damping: float):
@@ -140,7 +143,7 @@ class RecordContext:
         key = round(float(damping), 12)
         if key not in self._spectra:
             self._spectra[key] = response_spectra(self.entry.motion, SPECTRUM_PERIODS_S, [key],
-                                                  self.free_motion_s)
+                                                  self.free_motion_s, jobs=self.jobs)
         return self._spectra[key]
 
     def true_displacement(self, damping: float):
@@ -385,7 +388,8 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     p = 2.0 * np.pi / sizes
     g = settings.g
     motion = entry.motion
-    context = RecordContext(entry, settings.free_motion_s) if motion is not None else None
+    context = (RecordContext(entry, settings.free_motion_s, settings.jobs)
+               if motion is not None else None)
     results, estimates_only, spectra, histories, rocking, checks = [], [], [], [], [], []
     unauditable, histories_meta = [], []
     exact = fragile = None

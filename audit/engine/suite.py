@@ -87,11 +87,13 @@ def suite_summary(suite: pd.DataFrame, titles: dict | None = None) -> list[dict]
         mean_unsafe = float(np.sum(unsafe * counts) / np.sum(counts))
         worst = int(np.argmax(unsafe))
         worst_size = float(group["size_s"].iloc[worst]) if unsafe[worst] > 0 else None
-        where = (f"worst at 2π/p ≈ {worst_size:.3g} s ({100 * unsafe[worst]:.0f} % of records)"
-                 if worst_size is not None else "at no block size")
-        sentence = (f"over {records} record{'s' if records != 1 else ''}, "
-                    f"{titles.get(procedure, procedure)} is unsafe for {100 * mean_unsafe:.0f} % "
-                    f"of blocks with α = {alpha:g}°, {where}")
+        title = titles.get(procedure, procedure)
+        over = f"over {records} record{'s' if records != 1 else ''}"
+        sentence = (f"{over}, {title} is unsafe for {100 * mean_unsafe:.0f} % of blocks with "
+                    f"α = {alpha:g}°, worst at 2π/p ≈ {worst_size:.3g} s "
+                    f"({100 * unsafe[worst]:.0f} % of records)" if worst_size is not None else
+                    f"{over}, {title} is never unsafe for blocks with α = {alpha:g}° "
+                    f"(2π/p = {group['size_s'].min():g}–{group['size_s'].max():g} s)")
         summary.append({"procedure": procedure, "alpha_deg": float(alpha), "records": records,
                         "blocks": int(counts.sum()), "mean_unsafe": mean_unsafe,
                         "worst_size_s": worst_size, "worst_unsafe": float(unsafe[worst]),
