@@ -1,15 +1,15 @@
 """Suite-scale audit: the local scheduler against a Dask LocalCluster, on one suite of records.
 
-Both procedures on every record of the suite over the default grid (α = 10, 15, 20°;
+Every registered procedure on every record of the suite over the default grid (α = 10, 15, 20°;
 2π/p = 0.5 … 8 s step 0.05), computed (a) in one process with the solver on ``--workers``
 threads and (b) on a Dask LocalCluster of ``--workers`` single-threaded worker processes. Each
 mode runs in a fresh child process, after a warm-up that loads the compiled solver, so its peak
 memory is its own: ``resource.getrusage`` maxrss of the child, and of each Dask worker (asked on
 the worker before the cluster closes). Reports wall time, time per record and per block, the
 size of a record's results, and a projection for the ~21,000 NGA-West2 components.
-Both modes run with one BLAS thread (``--blas-threads``), as Dask's nanny starts its workers:
-OpenBLAS threads spinning on the oscillator's tiny 4×4 ``expm`` calls otherwise slow a record
-several times on a busy machine, which would be measured as a Dask speed-up.
+Both modes run with one BLAS thread (``--blas-threads``), as Dask's nanny starts its workers, so
+that a difference of BLAS settings is never measured as a Dask speed-up (the oscillator's
+coefficients are closed-form now; no BLAS call remains on the hot path).
 
     python benchmarks/suite.py                       # FEMA P695 far-field, --site 1.5,0.9
     python benchmarks/suite.py --records ../shared/records/seed-suite.toml \\
@@ -151,8 +151,9 @@ def main():
     first = runs["local"][0]
     print(f"suite: {first['suite']}")
     print(f"{first['records']} records (mean length {first['duration_s']:.1f} s), "
-          f"{first['blocks']} exact blocks, both procedures, {args.workers} workers/threads, "
-          f"{args.repeat} run(s) each, medians, BLAS threads {args.blas_threads or 'unset'}")
+          f"{first['blocks']} exact blocks, every registered procedure, "
+          f"{args.workers} workers/threads, {args.repeat} run(s) each, medians, "
+          f"BLAS threads {args.blas_threads or 'unset'}")
     print(f"{'mode':<6} {'wall s':>8} {'s/record':>9} {'ms/block':>9} {'core-s/rec':>11} "
           f"{'maxrss MB':>10} {'workers MB':>14}")
     per_record_cost = {}
