@@ -71,7 +71,6 @@ def load_suite(sources, site):
 def measure(mode, sources, site, workers):
     """One timed audit in this process (run as a child): a JSON line on stdout."""
     from audit.engine.runner import AuditSettings, audit_record, run_audit
-    from audit.engine.scheduler import open_scheduler
     from procedures import get_procedures
     suite = load_suite(sources, site)
     procedures = get_procedures("all")

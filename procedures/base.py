@@ -397,7 +397,6 @@ AGREES_SAFE = "agrees-safe"
 AGREES_UNSAFE = "agrees-unsafe"
 MISSED = "missed"  # the procedure passes the block, the exact response exceeds: unsafe
 FALSE_ALARM = "false-alarm"  # the procedure fails the block, the exact response does not exceed
-CHECK_VERDICTS = (AGREES_SAFE, AGREES_UNSAFE, MISSED, FALSE_ALARM)
 
 
 @dataclass(frozen=True)
@@ -443,23 +442,11 @@ class Check:
     detail: str
 
 
-def centroid_displacement(theta_rad, alpha_rad, radius_m):
-    """Horizontal displacement of the centroid d = R [sin α − sin(α − θ)] [m] (§1).
-
-    Parameters
-    ----------
-    theta_rad : float or array
-        Rotation about the pivot corner θ [rad].
-    alpha_rad : float or array
-        Slenderness α [rad].
-    radius_m : float or array
-        R, centroid to corner [m].
-    """
-    return radius_m * (np.sin(alpha_rad) - np.sin(alpha_rad - np.asarray(theta_rad, dtype=float)))
 
 
 def rotation_at_displacement(displacement_m, alpha_rad, radius_m):
-    """θ(d) = α − asin(sin α − d/R) [rad], the inverse of :func:`centroid_displacement` (§1).
+    """θ(d) = α − asin(sin α − d/R) [rad]: the rotation at which the centroid has moved
+    d = R [sin α − sin(α − θ)] (§1).
 
     NaN for d outside [0, R(1 + sin α)]; d ≥ R sin α = b is at or beyond instability (θ ≥ α).
     """

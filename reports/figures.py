@@ -8,9 +8,6 @@ only when a PNG is asked for. Every ``draw_*`` function fills a given
 from __future__ import annotations
 
 import io
-import os
-import tempfile
-from pathlib import Path
 
 import matplotlib
 
@@ -40,19 +37,6 @@ def png_bytes(fig: Figure) -> bytes:
     return buffer.getvalue()
 
 
-def save_figure(draw, path, width: float = 10.0, height: float = 6.0) -> None:
-    """Draw with ``draw(fig)`` and write a PNG to ``path`` atomically."""
-    fig = new_figure(width, height)
-    draw(fig)
-    path = Path(path)
-    handle, staging = tempfile.mkstemp(prefix=f".{path.name}-", dir=path.parent or ".")
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            stream.write(png_bytes(fig))
-        os.replace(staging, path)
-    finally:
-        if os.path.exists(staging):
-            os.remove(staging)
 
 
 def _mark_overturned(ax, size, value, overturned, colour):

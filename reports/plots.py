@@ -98,8 +98,6 @@ def _literal(text: str) -> str:
     return str(text).replace("%{", "%\u200b{")
 
 
-def _ratio(value, alpha_rad):
-    return value / alpha_rad if np.isfinite(value) else np.nan
 
 
 def describe_exact(row) -> str:

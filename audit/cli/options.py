@@ -10,10 +10,14 @@ import argparse
 import math
 import os
 import sys
+from typing import TYPE_CHECKING
 import tempfile
 from pathlib import Path
 
 from audit.errors import InputError
+
+if TYPE_CHECKING:  # numpy is imported where a grid is parsed, not at start-up
+    import numpy as np
 
 
 #: Most points a START:STOP:STEP grid may have; beyond it the grid itself would not fit in memory.
@@ -162,7 +166,7 @@ AUDIT_SPECTRA = 801
 def add_force_option(parser):
     parser.add_argument("--force", action="store_true",
                         help="start even when the estimated work is beyond the limits "
-                             f"(see audit/engine/guards.py)")
+                             "(see audit/engine/guards.py)")
 
 
 def check_cost(args, motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0):

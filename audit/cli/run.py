@@ -23,10 +23,11 @@ def add_parser(sub):
     import argparse
 
     class Defaults(argparse.ArgumentDefaultsHelpFormatter):
-        """Shows each option's default, where it has one."""
+        """Shows each option's default, where it has one (not for on/off flags)."""
 
         def _get_help_string(self, action):
-            return action.help if action.default is None else super()._get_help_string(action)
+            return (action.help if action.default is None or action.default is False
+                    else super()._get_help_string(action))
 
     p = sub.add_parser("run", help="audit a procedure (or all) and write the HTML report",
                        formatter_class=Defaults,

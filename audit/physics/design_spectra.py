@@ -252,7 +252,3 @@ class NTC2018Spectrum(DesignSpectrum):
              d_g * (amplification + (1.0 - amplification) * fraction)],
             default=d_g)
 
-
-#: Design spectra by the name used on the command line.
-DESIGN_SPECTRA = {"fema356": FEMA356Spectrum, "ubc97": UBC97Spectrum,
-                  "ntc2018": NTC2018Spectrum}
