@@ -87,8 +87,11 @@ def design_site(args, suite):
         if len(fields) != 5:
             raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
         ag_g, f0, tc_star_s = options.float_list(",".join(fields[:3]), "--ntc-site")
-        suite = with_ntc_site(suite, ag_g, f0, tc_star_s, fields[3].strip().upper(),
-                              fields[4].strip().upper())
+        try:
+            suite = with_ntc_site(suite, ag_g, f0, tc_star_s, fields[3].strip().upper(),
+                                  fields[4].strip().upper())
+        except InputError as exc:  # the spectrum names the field; the user typed the option
+            raise InputError(f"--ntc-site: {exc}") from None
     if args.anchor_period is not None and not args.scale_to_site:
         raise InputError("--anchor-period: needs --scale-to-site")
     if not args.site:
