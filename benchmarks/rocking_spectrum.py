@@ -20,11 +20,7 @@ from audit.physics.block import RigidBlock
 from audit.physics.reference import simulate_reference
 from audit.physics.rocking import rocking_spectrum, simulate
 from audit.engine.grid import DEFAULT_ALPHA_DEG, DEFAULT_SIZES, size_grid
-from records import GroundMotion, load_records
-
-
-def scaled(motion, factor):
-    return GroundMotion(motion.id, motion.acceleration * factor, motion.dt)
+from records import load_records
 
 
 def main(record="pacoima_dam_1971", sample_count=18, jobs=2):
@@ -49,7 +45,7 @@ def main(record="pacoima_dam_1971", sample_count=18, jobs=2):
         ref = simulate_reference(block, motion)
         reference_time += time.perf_counter() - start
         theta, over = spectrum.theta_peak[i, j], bool(spectrum.overturned[i, j])
-        near = {simulate(block, scaled(motion, f)).overturned for f in (0.99, 1.01)} != {over}
+        near = {simulate(block, motion.scaled(f)).overturned for f in (0.99, 1.01)} != {over}
         diff = abs(theta / ref["peak_rotation"] - 1) if ref["peak_rotation"] > 0 else 0.0
         if not over and not ref["overturned"] and theta < 0.9 * block.alpha:
             worst = max(worst, diff)

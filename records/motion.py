@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -89,6 +89,20 @@ class GroundMotion:
             from records.pulses import pulse_acceleration
             return pulse_acceleration(self.pulse.shape, self.pulse.amplitude, self.pulse.period_s, t)
         return np.interp(t, self.time, self.acceleration, right=0.0)
+
+    def scaled(self, factor: float, component: str | None = None) -> GroundMotion:
+        """The same record with every acceleration (and an analytic pulse's amplitude) × factor.
+
+        Parameters
+        ----------
+        factor : float
+            Scale factor [-].
+        component : str, optional
+            New description of the component (default: unchanged).
+        """
+        pulse = self.pulse and replace(self.pulse, amplitude=self.pulse.amplitude * factor)
+        return replace(self, acceleration=self.acceleration * factor, pulse=pulse,
+                       component=self.component if component is None else component)
 
     @property
     def pga(self) -> float:

@@ -145,13 +145,10 @@ def scale_to_site(suite: RecordSuite, sxs_g: float, sx1_g: float,
     for entry in suite:
         if not entry.missing:
             factor = factors[entry.id]
-            motion = entry.motion
-            pulse = motion.pulse and replace(motion.pulse, amplitude=motion.pulse.amplitude * factor)
             component = (f"{entry.component}; scaled × {factor:.4g} (P695 normalisation "
                          f"{normalisation[entry.id]:g} × suite factor {suite_factor:.4g})")
-            entry = replace(entry, component=component, motion=replace(
-                motion, acceleration=motion.acceleration * factor, component=component,
-                pulse=pulse))
+            entry = replace(entry, component=component,
+                            motion=entry.motion.scaled(factor, component))
         entries.append(entry)
     scaling = {
         "method": "FEMA P695: each record × its P695 normalisation factor (1 where it has none), "

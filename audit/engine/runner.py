@@ -355,14 +355,9 @@ def fragile_overturning(motion, settings: AuditSettings, overturned: np.ndarray)
     """
     if not settings.robustness:
         return None
-    from records import GroundMotion
     fragile = np.zeros(overturned.shape, dtype=bool)
     for factor in (1.0 - settings.robustness, 1.0 + settings.robustness):
-        scaled = GroundMotion(motion.id, motion.acceleration * factor, motion.dt,
-                              pulse=None if motion.pulse is None else
-                              type(motion.pulse)(motion.pulse.shape, motion.pulse.amplitude * factor,
-                                                 motion.pulse.period_s))
-        other = rocking_spectrum(scaled, np.asarray(settings.size_s),
+        other = rocking_spectrum(motion.scaled(factor), np.asarray(settings.size_s),
                                  np.radians(settings.alpha_deg), g=settings.g,
                                  free_motion_s=settings.free_motion_s, jobs=settings.jobs)
         fragile |= other.overturned != overturned
