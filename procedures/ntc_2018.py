@@ -37,13 +37,10 @@ import numpy as np
 from audit import G
 from audit.errors import InputError
 from audit.physics.block import radius_from_p
-from audit.physics.design_spectra import NTC2018Spectrum
+from audit.physics.design_spectra import NTC2018_SITE_KEYS as SITE_KEYS, NTC2018Spectrum
 from procedures.base import (CONVERGED, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, OVERTURN,
                              Check, Estimate, Procedure, rotation_at_displacement)
 
-#: Keys of ``RecordEntry.site`` holding an NTC 2018 site: a_g [g], F₀ [-], T_C* [s], soil
-#: category A–E, topographic category T1–T4.
-SITE_KEYS = ("ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil", "ntc_topography")
 # Demand variants.
 AUTO = "auto"
 RECORD_BASED = "record"
@@ -167,9 +164,7 @@ class NTC2018(Procedure):
 
     def site_spectrum(self, entry) -> NTC2018Spectrum:
         """The NTC 2018 elastic spectrum of the record's site."""
-        site = entry.site
-        return NTC2018Spectrum(site["ntc_ag_g"], site["ntc_f0"], site["ntc_tc_star_s"],
-                               site["ntc_soil"], site["ntc_topography"])
+        return NTC2018Spectrum.from_site(entry.site)
 
     def peak_ground_acceleration(self, entry, context):
         """S_e(T₀ = 0) [m/s²]: a_g·S of the site, or the record's PGA."""

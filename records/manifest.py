@@ -17,6 +17,8 @@ from pathlib import Path
 
 from audit import G
 from audit.errors import InputError
+from audit.physics.design_spectra import (NTC2018_SITE_KEYS, NTC2018_TABLE_3_2_IV,
+                                          NTC2018_TABLE_3_2_V)
 from records.catalogue import DEFAULT_PULSE_PERIOD_S, SEED_CATALOGUE, RecordFacts
 from records.motion import GroundMotion
 from records.pulses import one_pulse
@@ -27,8 +29,7 @@ ENV_VARIABLE = "ROCKING_AUDIT_RECORDS"
 PULSE_SUITE = "pulses"
 FORMATS = ("peer-at2", "columns")
 #: Site parameters a manifest entry may carry: FEMA 356 (Table 3.1) and NTC 2018 (§3.2).
-SITE_FIELDS = ("site_class", "sxs_g", "sx1_g", "ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil",
-               "ntc_topography")
+SITE_FIELDS = ("site_class", "sxs_g", "sx1_g", *NTC2018_SITE_KEYS)
 _MANIFEST_FIELDS = {"id", "file", "format", "column", "dt", "units", "component", "missing",
                     *SITE_FIELDS}
 
@@ -160,8 +161,10 @@ _FIELD_RULES = {
     "ntc_ag_g": ((int, float), _positive_finite, "a positive number of g"),
     "ntc_f0": ((int, float), _positive_finite, "a positive number"),
     "ntc_tc_star_s": ((int, float), _positive_finite, "a positive number of seconds"),
-    "ntc_soil": (str, lambda v: v in ("A", "B", "C", "D", "E"), "one of A, B, C, D, E"),
-    "ntc_topography": (str, lambda v: v in ("T1", "T2", "T3", "T4"), "one of T1, T2, T3, T4"),
+    "ntc_soil": (str, lambda v: v in NTC2018_TABLE_3_2_IV,
+                 f"one of {', '.join(NTC2018_TABLE_3_2_IV)}"),
+    "ntc_topography": (str, lambda v: v in NTC2018_TABLE_3_2_V,
+                       f"one of {', '.join(NTC2018_TABLE_3_2_V)}"),
 }
 
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
-from audit.physics.design_spectra import FEMA356Spectrum
+from audit.physics.design_spectra import FEMA356Spectrum, NTC2018Spectrum
 from records.manifest import RecordSuite
 
 #: Damping of the spectra the suite is scaled on, 5 % as in FEMA P695 and FEMA 356 [-].
@@ -76,10 +76,8 @@ def with_ntc_site(suite: RecordSuite, ag_g: float, f0: float, tc_star_s: float, 
     soil, topography : str
         Soil category (A–E, Tab. 3.2.II) and topographic category (T1–T4, Tab. 3.2.III).
     """
-    from audit.physics.design_spectra import NTC2018Spectrum
     spectrum = NTC2018Spectrum(ag_g, f0, tc_star_s, soil, topography)  # validates every field
-    ntc = {"ntc_ag_g": spectrum.ag_g, "ntc_f0": spectrum.f0, "ntc_tc_star_s": spectrum.tc_star_s,
-           "ntc_soil": spectrum.soil, "ntc_topography": spectrum.topography}
+    ntc = spectrum.site()
     entries = tuple(replace(entry, site={**entry.site, **ntc}) for entry in suite)
     description = (f"{suite.description}; NTC 2018 site a_g = {ag_g:g} g, F0 = {f0:g}, "
                    f"T_C* = {tc_star_s:g} s, soil {soil}, topography {topography}")

@@ -167,6 +167,9 @@ NTC2018_TABLE_3_2_V = {"T1": 1.0, "T2": 1.2, "T3": 1.2, "T4": 1.4}
 #: NTC 2018 Tab. 3.2.VII: soil → T_E [s]; T_F = 10 s for every soil.
 NTC2018_TABLE_3_2_VII_TE_S = {"A": 4.5, "B": 5.0, "C": 6.0, "D": 6.0, "E": 6.0}
 NTC2018_TF_S = 10.0
+#: Keys of a record's site (``RecordEntry.site``, manifest fields) that hold an NTC 2018 site, in
+#: the order of :class:`NTC2018Spectrum`'s fields: a_g [g], F₀ [-], T_C* [s], soil, topography.
+NTC2018_SITE_KEYS = ("ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil", "ntc_topography")
 
 
 @dataclass(frozen=True)
@@ -205,6 +208,16 @@ class NTC2018Spectrum(DesignSpectrum):
         if self.topography not in NTC2018_TABLE_3_2_V:
             raise InputError(f"NTC topography: must be one of {', '.join(NTC2018_TABLE_3_2_V)}, "
                              f"got {self.topography!r}")
+
+    @classmethod
+    def from_site(cls, site: dict) -> NTC2018Spectrum:
+        """The spectrum of a record's site, read from its :data:`NTC2018_SITE_KEYS`."""
+        return cls(*(site[key] for key in NTC2018_SITE_KEYS))
+
+    def site(self) -> dict:
+        """The site as :data:`NTC2018_SITE_KEYS` → value (the inverse of :meth:`from_site`)."""
+        return dict(zip(NTC2018_SITE_KEYS, (self.ag_g, self.f0, self.tc_star_s, self.soil,
+                                             self.topography)))
 
     @property
     def soil_factor(self) -> float:
