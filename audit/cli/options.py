@@ -159,10 +159,6 @@ def suite(args):
     return loaded
 
 
-#: Periods of the record spectra an audit computes per damping ratio (runner.SPECTRUM_PERIODS_S).
-AUDIT_SPECTRA = 801
-
-
 def add_force_option(parser):
     parser.add_argument("--force", action="store_true",
                         help="start even when the estimated work is beyond the limits "

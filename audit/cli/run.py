@@ -117,7 +117,7 @@ def run(args) -> int:
     from audit.engine.partial import PARTIAL_DIR
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML, save_run
-    from audit.engine.runner import run_audit
+    from audit.engine.runner import SPECTRUM_PERIODS_S, run_audit
     from audit.engine.scheduler import check_scheduler
     from procedures import get_procedures
     from reports import render_report
@@ -130,7 +130,7 @@ def run(args) -> int:
     # the fragility flag solves every block twice more (record × (1 ± ε))
     options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
                        blocks=sizes.size * alphas.size * (3 if args.robustness else 1),
-                       oscillators=options.AUDIT_SPECTRA * (3 + alphas.size * len(procedures)))
+                       oscillators=SPECTRUM_PERIODS_S.size * (3 + alphas.size * len(procedures)))
     start = time.perf_counter()
     detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
     progress = Progress(len(suite), "record")
