@@ -23,9 +23,12 @@ def add_parser(sub):
     import argparse
 
     class Defaults(argparse.ArgumentDefaultsHelpFormatter):
-        """Shows each option's default, where it has one (not for on/off flags)."""
+        """Shows each option's default, where it has one (not for on/off flags), and the
+        registered procedures: read only when help is shown, not on every command's start-up."""
 
         def _get_help_string(self, action):
+            if "{registered}" in action.help:
+                return action.help.replace("{registered}", _registered())
             return (action.help if action.default is None or action.default is False
                     else super()._get_help_string(action))
 
@@ -34,7 +37,7 @@ def add_parser(sub):
                        description="Audit guideline procedures against the exact rocking "
                                    "response; writes report.html, results.csv, summary.json "
                                    "and the other files described in columns.json.")
-    p.add_argument("procedure", help=f"registered procedure name ({_registered()}), or 'all'")
+    p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
     p.add_argument("--alpha", default="10,15,20", metavar="DEG,...", help="slendernesses [degrees]")
     p.add_argument("--sizes", default="0.5:8:0.05", metavar="START:STOP:STEP",
