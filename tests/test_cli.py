@@ -34,6 +34,14 @@ def test_help_lists_subcommands():
         assert command in result.stdout
 
 
+def test_run_help_shows_defaults_and_registered_procedures(capsys):
+    assert main(["run", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "fema356, ntc2018, priestley1978" in text  # the installed entry points
+    assert "(default: 10,15,20)" in text and "(default: 0.5:8:0.05)" in text
+    assert "(default: False)" not in text  # on/off flags carry no default
+
+
 def test_list_shows_procedures_and_missing_records(seed_manifest, capsys):
     assert main(["list", "--records", str(seed_manifest)]) == 0
     out = capsys.readouterr().out
