@@ -179,3 +179,30 @@ def test_spectrum_threads_agree_and_grid_shape():
     np.testing.assert_array_equal(one.theta_peak, two.theta_peak)
     single = simulate(RigidBlock.from_size(2.0, math.radians(20)), pulse)
     assert one.theta_peak[1, 2] == single.peak_rotation
+
+
+@pytest.mark.parametrize("case", ["pulse-rocks", "pulse-overturns", "record"])
+def test_interpreted_and_compiled_kernels_agree(case, seed_suite, monkeypatch):
+    """A short ``simulate`` runs the kernel in the interpreter; the compiled code must give the
+    same response to rounding, including impacts, turning points and overturning."""
+    from audit.physics import rocking
+    motion, size_s, alpha_deg = {
+        "pulse-rocks": (one_pulse("cosine", 0.3, 2.0), math.pi, 15),
+        "pulse-overturns": (one_pulse("cosine", 0.2, 2.0), 2.0, 10),
+        "record": (seed_suite.get("pacoima_dam_1971").motion, 3.5, 20)}[case]
+    block = RigidBlock.from_size(size_s, math.radians(alpha_deg))
+    monkeypatch.setattr(rocking, "_simulate_kernel", lambda n: rocking._interpreted_simulate())
+    interpreted = simulate(block, motion)
+    monkeypatch.setattr(rocking, "_simulate_kernel", lambda n: rocking._simulate)
+    compiled = simulate(block, motion)
+    assert rocking._interpreted_simulate() is not rocking._simulate
+    assert interpreted.overturned == compiled.overturned == (case == "pulse-overturns")
+    assert interpreted.n_impacts == compiled.n_impacts
+    assert interpreted.turning_times.size == compiled.turning_times.size > 0
+    for name in ("theta", "omega", "impact_times", "impact_velocities", "turning_times",
+                 "turning_rotations"):
+        np.testing.assert_allclose(getattr(interpreted, name), getattr(compiled, name),
+                                   rtol=1e-12, atol=1e-15, err_msg=name)
+    assert interpreted.peak_rotation == pytest.approx(compiled.peak_rotation, rel=1e-12)
+    assert interpreted.overturn_time == pytest.approx(compiled.overturn_time, rel=1e-12,
+                                                      nan_ok=True)
