@@ -161,13 +161,14 @@ def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad:
 
     F(θ) = Sd(T(θ)) / (R cos α), T(θ) = (4/p) acosh(1/(1 − θ/α)). F(θ) − θ is evaluated for
     all blocks at once on a grid uniform in ln(pT/4) (:data:`SCAN_STEP_LOG_PERIOD` explains the
-    step), every sign change is polished by Brent's method to :data:`ROOT_TOLERANCE_RATIO` in
-    θ/α, and F'(θ*) is taken by a central difference. The trivial fixed point θ = 0 is left out.
+    step), every sign change is polished to :data:`ROOT_TOLERANCE_RATIO` in θ/α by Chandrupatla's
+    bracketing method, all roots at once (``scipy.optimize.elementwise.find_root``), and F'(θ*)
+    is taken by a central difference. The trivial fixed point θ = 0 is left out.
 
     Parameters
     ----------
     displacement : callable
-        Sd [m] as a function of the period T [s] (array in, array out).
+        Sd [m] as a function of the period T [s] (array in, array out, elementwise).
     p : array
         Frequency parameters of the blocks [rad/s], 1-D.
     alpha_rad : float
@@ -179,7 +180,7 @@ def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad:
     -------
     FixedPoints
     """
-    from scipy.optimize import brentq
+    from scipy.optimize.elementwise import find_root
 
     p = np.atleast_1d(np.asarray(p, dtype=float))
     scale = _map_scale(p, alpha_rad, g)
@@ -188,14 +189,15 @@ def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad:
     grid = 1.0 - 1.0 / np.cosh(v)  # θ/α at v (inverse of Eq. 8.1)
     excess = (displacement(4.0 * v / p[:, None]) * scale[:, None] - grid) > 0.0
     blocks, left = np.nonzero(excess[:, :-1] != excess[:, 1:])
-    ratios, slopes = np.empty(blocks.size), np.empty(blocks.size)
-    for k, (i, j) in enumerate(zip(blocks, left)):
-        def excess_of(x, i=i):
-            return float(_rotation_map(displacement, x, p[i], scale[i])) - x
-        root = brentq(excess_of, grid[j], grid[j + 1], xtol=ROOT_TOLERANCE_RATIO)
-        step = min(SLOPE_STEP_RATIO, 0.5 * root, 0.5 * (1.0 - root))
-        ratios[k] = root
-        slopes[k] = (excess_of(root + step) - excess_of(root - step)) / (2.0 * step) + 1.0
+
+    def excess_of(ratio, p_block, scale_block):
+        return _rotation_map(displacement, ratio, p_block, scale_block) - ratio
+
+    ratios = find_root(excess_of, (grid[left], grid[left + 1]), args=(p[blocks], scale[blocks]),
+                       tolerances={"xatol": ROOT_TOLERANCE_RATIO, "xrtol": 0.0}).x
+    step = np.minimum(SLOPE_STEP_RATIO, 0.5 * np.minimum(ratios, 1.0 - ratios))
+    slopes = (excess_of(ratios + step, p[blocks], scale[blocks])
+              - excess_of(ratios - step, p[blocks], scale[blocks])) / (2.0 * step) + 1.0
     return FixedPoints(blocks, ratios, slopes)
 
 
