@@ -232,6 +232,18 @@ def _cycle_length(recent: np.ndarray) -> np.ndarray:
     return length
 
 
+def _may_repeat(recent: np.ndarray) -> np.ndarray:
+    """Whether a row of ``recent`` may hold a settled cycle (see :func:`_cycle_length`).
+
+    A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
+    L before it, for some L, to :data:`CYCLE_TOLERANCE_RATIO` of the whole window's spread
+    (which bounds the spread of the last L iterates).
+    """
+    gaps = np.abs(recent[:, -1:] - recent[:, -1 - _CYCLE_SIZES[:, 0]])
+    spread = np.fmax.reduce(recent, axis=1) - np.fmin.reduce(recent, axis=1)  # NaN ignored
+    return np.any(gaps <= CYCLE_TOLERANCE_RATIO * spread[:, None], axis=1)
+
+
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
                      g: float = G, initial_ratio: float = INITIAL_ROTATION_RATIO,
                      tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
@@ -275,7 +287,10 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         done = ~over & (np.abs(new - recent[idx, -1]) <= tolerance)
         recent[idx, :-1] = recent[idx, 1:]
         recent[idx, -1] = np.where(over, 1.0, new)
-        length = np.where(over | done, 0, _cycle_length(recent[idx]))
+        length = np.zeros(idx.size, dtype=int)
+        maybe = ~(over | done) & _may_repeat(recent[idx])
+        if maybe.any():
+            length[maybe] = _cycle_length(recent[idx[maybe]])
         outcome[idx[over]] = OVERTURN
         outcome[idx[done]] = CONVERGED
         for j, size in zip(idx[length > 0], length[length > 0]):
