@@ -29,24 +29,38 @@ CHECK_COLOURS = {"agrees-safe": "#b2df8a", "agrees-unsafe": "#4d4d4d", "missed":
 _FONT = {"family": "DejaVu Sans, Helvetica, Arial, sans-serif", "size": 12}
 
 
+def _rounded(values: np.ndarray) -> list:
+    """Floats rounded to :data:`SIGNIFICANT_DIGITS`, integral ones as int, NaN/inf as None."""
+    if values.ndim > 1:
+        return [_rounded(row) for row in values]
+    rounded = np.char.mod(f"%.{SIGNIFICANT_DIGITS}g", values).astype(float)
+    out = rounded.astype(object)
+    finite = np.isfinite(rounded)
+    integral = finite & (rounded == np.trunc(rounded)) & (np.abs(rounded) < 1e15)
+    out[integral] = rounded[integral].astype(np.int64).astype(object)
+    out[~finite] = None
+    return out.tolist()
+
+
 def to_json(spec) -> str:
     """The spec as compact JSON, numbers rounded, NaN/inf as null, safe inside ``<script>``."""
     def clean(value):
         if isinstance(value, dict):
             return {k: clean(v) for k, v in value.items()}
         if isinstance(value, (list, tuple)):
+            if value and all(isinstance(v, (float, np.floating)) for v in value):
+                return _rounded(np.asarray(value, dtype=float))
             return [clean(v) for v in value]
         if isinstance(value, (np.ndarray, pd.Series, pd.Index)):
-            return clean(np.asarray(value).tolist())
+            array = np.asarray(value)
+            # float arrays, the bulk of every figure, are rounded all at once
+            return _rounded(array) if array.dtype.kind == "f" else clean(array.tolist())
         if isinstance(value, (bool, np.bool_)):
             return bool(value)
         if isinstance(value, (int, np.integer)):
             return int(value)
         if isinstance(value, (float, np.floating)):
-            if not math.isfinite(value):
-                return None
-            rounded = float(f"{value:.{SIGNIFICANT_DIGITS}g}")
-            return int(rounded) if rounded.is_integer() and abs(rounded) < 1e15 else rounded
+            return _rounded(np.array([value]))[0]
         return value
     return json.dumps(clean(spec), ensure_ascii=False, separators=(",", ":")).replace("</", "<\\/")
 
@@ -145,7 +159,7 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
         z = np.full((len(alphas), sizes.size), np.nan)
         custom = [[None] * sizes.size for _ in alphas]
         fragile_x, fragile_y = [], []
-        for _, row in rows.iterrows():
+        for row in rows.to_dict("records"):
             i = alphas.index(row["alpha_deg"])
             j = int(np.searchsorted(sizes, row["size_s"]))
             z[i, j] = codes[row["verdict"]]

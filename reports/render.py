@@ -146,13 +146,19 @@ def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
     return lines, words
 
 
-def _history_figure(pending, run, meta, results, procedures, names) -> dict:
+def _by_record(frame: pd.DataFrame) -> dict:
+    """The rows of each record: one pass, instead of a scan of the whole frame per figure."""
+    return {record: rows for record, rows in frame.groupby("record", sort=False)}
+
+
+def _history_figure(pending, histories: dict, results: dict, meta, procedures, names) -> dict:
+    """Figure of one drawn time history; ``histories`` and ``results`` by record."""
     rid = meta["record"]
-    h = run.histories[(run.histories["record"] == rid)
-                      & np.isclose(run.histories["size_s"], meta["size_s"])
-                      & np.isclose(run.histories["alpha_deg"], meta["alpha_deg"])]
-    match = results[(results["record"] == rid) & np.isclose(results["size_s"], meta["size_s"])
-                    & np.isclose(results["alpha_deg"], meta["alpha_deg"])]
+    h = histories[rid]
+    h = h[np.isclose(h["size_s"], meta["size_s"]) & np.isclose(h["alpha_deg"], meta["alpha_deg"])]
+    match = results[rid]
+    match = match[np.isclose(match["size_s"], meta["size_s"])
+                  & np.isclose(match["alpha_deg"], meta["alpha_deg"])]
     lines, words = _estimates(match, procedures)
     exact = (f"overturns at t = {meta['overturn_time_s']:.2f} s" if meta.get("overturned")
              else f"peak θ/α = {meta['peak_rotation_ratio']:.3f}")
@@ -205,7 +211,8 @@ def _design_frame(site: dict, dampings, periods) -> pd.DataFrame:
     return pd.concat(frames, ignore_index=True)
 
 
-def _record_sections(run, procedures, pending, results, records, names, drawn) -> list[dict]:
+def _record_sections(run, procedures, pending, results, records, names, drawn,
+                     by_record) -> list[dict]:
     spectra, summary = run.spectra, run.summary
     sections = []
     for record in records:
@@ -247,7 +254,7 @@ def _record_sections(run, procedures, pending, results, records, names, drawn) -
                 f"the converged T(θ) of Eq. 8.1 (right); one row per α.")
             section["figures"].append(figure)
         section["histories"] = [
-            _history_figure(pending, run, meta, results, procedures, names)
+            _history_figure(pending, *by_record, meta=meta, procedures=procedures, names=names)
             for meta in run.summary.get("histories", [])
             if meta["record"] == rid and _key(rid, meta["alpha_deg"], meta["size_s"]) not in drawn]
         sections.append(section)
@@ -409,7 +416,9 @@ def render_report(run, generated: datetime | None = None) -> str:
     metas = summary.get("histories", [])
     worst = _worst_cases(run, procedures, names, metas)
     shown = {row["key"] for table in worst for row in table["rows"]}
-    worst_histories = [_history_figure(pending, run, meta, results, procedures, names)
+    by_record = _by_record(run.histories), _by_record(results)
+    worst_histories = [_history_figure(pending, *by_record, meta=meta, procedures=procedures,
+                                       names=names)
                        for meta in metas
                        if _key(meta["record"], meta["alpha_deg"], meta["size_s"]) in shown]
     verdict_maps = []
@@ -428,7 +437,8 @@ def render_report(run, generated: datetime | None = None) -> str:
             verdict_maps.append(figure)
     statistics = [dict(s, record_name=names.get(s["record"], s["record"]))
                   for s in summary["statistics"] if s["record"] in detail_ids]
-    sections = _record_sections(run, procedures, pending, results, detail, names, shown)
+    sections = _record_sections(run, procedures, pending, results, detail, names, shown,
+                                by_record)
     html = _environment().get_template("report.html.j2").render(
         summary=summary, procedures=procedures, bottom=bottom, worst=worst,
         worst_histories=worst_histories, verdict_maps=verdict_maps, sections=sections,
