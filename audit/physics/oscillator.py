@@ -209,62 +209,112 @@ def _segment_peak(f0, g0, f2, f3, g1, length, xi_omega, omega_d, omega2):
 
 
 @numba.njit(cache=True, nogil=True)
+def _step_peaks(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega_d, omega2,
+                dt, sd, sv, sa):
+    """(sd, sv, sa) raised to the extrema of u, u', ü + üg strictly inside one step from
+    (u, u') to (u_next, v_next) under üg = acc_k + slope·τ.
+
+    The step is cut into ``n_segments`` sub-segments short enough that f'' has at most one zero
+    in each (ω_d·length < 3 < π); each is examined where :func:`_may_peak_inside` allows.
+    """
+    two_xi_omega = 2.0 * xi_omega
+    length = dt / n_segments
+    reach = length * length / 8.0
+    inv_omega_d = 1.0 / omega_d
+    d_start = _derivatives(u, v, acc_k, slope, two_xi_omega, omega2)
+    acc_start = acc_k
+    if n_segments > 1:  # the closed form of u over the whole step
+        displacement = _closed_form(u, v, d_start[2], d_start[3], xi_omega, omega_d, omega2)
+    for j in range(n_segments):
+        acc_end = acc_k + slope * (j + 1) * length
+        if j == n_segments - 1:
+            u_j, v_j = u_next, v_next
+        else:
+            u_j, v_j, _ = _evaluate((j + 1) * length, displacement, xi_omega, omega_d)
+        d_end = _derivatives(u_j, v_j, acc_end, slope, two_xi_omega, omega2)
+        if _may_peak_inside(d_start[0], d_start[1], d_start[2], d_start[3], d_end[0],
+                            d_end[1], d_end[2], reach, xi_omega, inv_omega_d, sd):
+            sd = max(sd, _segment_peak(d_start[0], d_start[1], d_start[2], d_start[3],
+                                       d_end[1], length, xi_omega, omega_d, omega2))
+        if _may_peak_inside(d_start[1], d_start[2], d_start[3], d_start[4], d_end[1],
+                            d_end[2], d_end[3], reach, xi_omega, inv_omega_d, sv):
+            sv = max(sv, _segment_peak(d_start[1], d_start[2], d_start[3], d_start[4],
+                                       d_end[2], length, xi_omega, omega_d, omega2))
+        sa_start = d_start[2] + acc_start
+        if _may_peak_inside(sa_start, d_start[3] + slope, d_start[4], d_start[5],
+                            d_end[2] + acc_end, d_end[3] + slope, d_end[4], reach,
+                            xi_omega, inv_omega_d, sa):
+            sa = max(sa, _segment_peak(sa_start, d_start[3] + slope, d_start[4],
+                                       d_start[5], d_end[3] + slope, length, xi_omega,
+                                       omega_d, omega2))
+        d_start = d_end
+        acc_start = acc_end
+    return sd, sv, sa
+
+
+@numba.njit(cache=True, nogil=True)
 def _peaks(acc, dt, coeffs, omega, damping, between_samples, out):
-    """out[i] = (max|u|, max|u'|, max|u'' + üg|) of oscillator i (see :func:`response_spectra`)."""
+    """out[i] = (max|u|, max|u'|, max|u'' + üg|) of oscillator i (see :func:`response_spectra`).
+
+    Two passes per oscillator. The first runs the recurrence, keeps the states at the samples
+    and their peaks. The second looks inside a step only where an extremum there could beat
+    those peaks. Inside a step each f of u, u', ü + üg has f'' = e^{−ξωτ}(P cos ω_dτ + Q sin ω_dτ)
+    (:func:`_closed_form`), so |f''| ≤ |P| + |Q| over the whole step, and an interior extremum
+    exceeds max(|f|) at the step's ends by at most (|P| + |Q|)·dt²/8 (:func:`_may_peak_inside`).
+    By Eq. 3.2, |P| and |Q| at every sample are bounded by the sampled peaks, max|üg| and
+    max|üg'|: almost every step fails the test at the cost of two loads, and the few that pass
+    get the exact search of :func:`_step_peaks`.
+    """
+    n = acc.size
+    u_at = np.empty(n)
+    v_at = np.empty(n)
+    acc_max = 0.0
+    slope_max = 0.0
+    for k in range(n):
+        acc_max = max(acc_max, abs(acc[k]))
+        if k:
+            slope_max = max(slope_max, abs(acc[k] - acc[k - 1]) / dt)
     for i in range(coeffs.shape[0]):
         c = coeffs[i]
         xi_omega = damping[i] * omega[i]
         two_xi_omega = 2.0 * xi_omega
         omega2 = omega[i] * omega[i]
         omega_d = omega[i] * math.sqrt(1.0 - damping[i] * damping[i])
-        # sub-segments short enough that f'' has at most one zero in each (ω_d·length < 3 < π)
-        n_segments = int(omega_d * dt / 3.0) + 1
-        length = dt / n_segments
-        reach = length * length / 8.0
-        inv_omega_d = 1.0 / omega_d
-        inv_dt = 1.0 / dt
         u = 0.0
         v = 0.0
+        u_at[0] = 0.0
+        v_at[0] = 0.0
         sd = 0.0
         sv = 0.0
         sa = 0.0
-        for k in range(acc.size - 1):
-            u_next, v_next = _step(c, u, v, acc[k], acc[k + 1])
-            slope = (acc[k + 1] - acc[k]) * inv_dt
-            if between_samples:
-                d_start = _derivatives(u, v, acc[k], slope, two_xi_omega, omega2)
-                acc_start = acc[k]
-                if n_segments > 1:  # the closed form of u over the whole step
-                    displacement = _closed_form(u, v, d_start[2], d_start[3], xi_omega, omega_d,
-                                                omega2)
-                for j in range(n_segments):
-                    acc_end = acc[k] + slope * (j + 1) * length
-                    if j == n_segments - 1:
-                        u_j, v_j = u_next, v_next
-                    else:
-                        u_j, v_j, _ = _evaluate((j + 1) * length, displacement, xi_omega, omega_d)
-                    d_end = _derivatives(u_j, v_j, acc_end, slope, two_xi_omega, omega2)
-                    if _may_peak_inside(d_start[0], d_start[1], d_start[2], d_start[3], d_end[0],
-                                        d_end[1], d_end[2], reach, xi_omega, inv_omega_d, sd):
-                        sd = max(sd, _segment_peak(d_start[0], d_start[1], d_start[2], d_start[3],
-                                                   d_end[1], length, xi_omega, omega_d, omega2))
-                    if _may_peak_inside(d_start[1], d_start[2], d_start[3], d_start[4], d_end[1],
-                                        d_end[2], d_end[3], reach, xi_omega, inv_omega_d, sv):
-                        sv = max(sv, _segment_peak(d_start[1], d_start[2], d_start[3], d_start[4],
-                                                   d_end[2], length, xi_omega, omega_d, omega2))
-                    sa_start = d_start[2] + acc_start
-                    if _may_peak_inside(sa_start, d_start[3] + slope, d_start[4], d_start[5],
-                                        d_end[2] + acc_end, d_end[3] + slope, d_end[4], reach,
-                                        xi_omega, inv_omega_d, sa):
-                        sa = max(sa, _segment_peak(sa_start, d_start[3] + slope, d_start[4],
-                                                   d_start[5], d_end[3] + slope, length, xi_omega,
-                                                   omega_d, omega2))
-                    d_start = d_end
-                    acc_start = acc_end
-            u, v = u_next, v_next
+        for k in range(n - 1):
+            u, v = _step(c, u, v, acc[k], acc[k + 1])
+            u_at[k + 1] = u
+            v_at[k + 1] = v
             sd = max(sd, abs(u))
             sv = max(sv, abs(v))
             sa = max(sa, abs(two_xi_omega * v + omega2 * u))
+        if between_samples:
+            # bounds on |u''|, …, |u⁽⁵⁾| at every sample by Eq. 3.2 (see _derivatives)
+            d2 = two_xi_omega * sv + omega2 * sd + acc_max
+            d3 = two_xi_omega * d2 + omega2 * sv + slope_max
+            d4 = two_xi_omega * d3 + omega2 * d2
+            d5 = two_xi_omega * d4 + omega2 * d3
+            reach = dt * dt / 8.0
+            margin_d = (d2 + (d3 + xi_omega * d2) / omega_d) * reach
+            margin_v = (d3 + (d4 + xi_omega * d3) / omega_d) * reach
+            margin_a = (d4 + (d5 + xi_omega * d4) / omega_d) * reach
+            n_segments = int(omega_d * dt / 3.0) + 1
+            sa_k = 0.0
+            for k in range(n - 1):
+                sa_next = abs(two_xi_omega * v_at[k + 1] + omega2 * u_at[k + 1])
+                if (max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd
+                        or max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv
+                        or max(sa_k, sa_next) + margin_a > sa):
+                    sd, sv, sa = _step_peaks(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
+                                             (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega,
+                                             omega_d, omega2, dt, sd, sv, sa)
+                sa_k = sa_next
         out[i, 0] = sd
         out[i, 1] = sv
         out[i, 2] = sa
