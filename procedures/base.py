@@ -272,41 +272,49 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         (``0.5753;0.8854``, empty when there is none).
     """
     p = np.asarray(p, dtype=float)
-    scale = _map_scale(p, alpha_rad, g)
-    recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
-    recent[:, -1] = initial_ratio
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
     detail = np.full(p.shape, "", dtype=object)
     cycle = np.full(p.shape, "", dtype=object)
-    active = np.ones(p.shape, dtype=bool)
+    final = np.empty(p.shape)
+    # the blocks still iterating, compacted whenever some settle: each iteration is a handful
+    # of array operations on them alone
+    live = np.arange(p.size)
+    live_p, live_scale = p, _map_scale(p, alpha_rad, g)
+    recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
+    recent[:, -1] = initial_ratio
     for i in range(1, max_iterations + 1):
-        idx = np.flatnonzero(active)
-        new = _rotation_map(displacement, recent[idx, -1], p[idx], scale[idx])
+        new = _rotation_map(displacement, recent[:, -1], live_p, live_scale)
         over = new >= 1.0
-        done = ~over & (np.abs(new - recent[idx, -1]) <= tolerance)
-        recent[idx, :-1] = recent[idx, 1:]
-        recent[idx, -1] = np.where(over, 1.0, new)
-        length = np.zeros(idx.size, dtype=int)
-        maybe = ~(over | done) & _may_repeat(recent[idx])
+        done = ~over & (np.abs(new - recent[:, -1]) <= tolerance)
+        recent[:, :-1] = recent[:, 1:]
+        recent[:, -1] = np.where(over, 1.0, new)
+        settled = over | done
+        maybe = ~settled & _may_repeat(recent)
         if maybe.any():
-            length[maybe] = _cycle_length(recent[idx[maybe]])
-        outcome[idx[over]] = OVERTURN
-        outcome[idx[done]] = CONVERGED
-        for j, size in zip(idx[length > 0], length[length > 0]):
-            values = np.sort(recent[j, -size:])
-            cycle[j] = _ratios_text(values)
-            detail[j] = (f"iterates settle in a {size}-cycle between θ/α = {values[0]:.4f} and "
-                         f"{values[-1]:.4f} (no fixed point reached from θ₀/α = {initial_ratio:g})")
-        settled = over | done | (length > 0)
-        iterations[idx[settled]] = i
-        active[idx[settled]] = False
-        if not active.any():
-            break
-    for j in np.flatnonzero(active):
+            length = np.zeros(live.size, dtype=int)
+            length[maybe] = _cycle_length(recent[maybe])
+            for k in np.flatnonzero(length):
+                values = np.sort(recent[k, -length[k]:])
+                cycle[live[k]] = _ratios_text(values)
+                detail[live[k]] = (
+                    f"iterates settle in a {length[k]}-cycle between θ/α = {values[0]:.4f} and "
+                    f"{values[-1]:.4f} (no fixed point reached from θ₀/α = {initial_ratio:g})")
+            settled |= length > 0
+        if settled.any():
+            outcome[live[over]] = OVERTURN
+            outcome[live[done]] = CONVERGED
+            iterations[live[settled]] = i
+            final[live[settled]] = recent[settled, -1]
+            keep = ~settled
+            live, live_p, live_scale, recent = live[keep], live_p[keep], live_scale[keep], recent[keep]
+            if not live.size:
+                break
+    final[live] = recent[:, -1]
+    for k, j in enumerate(live):
         detail[j] = (f"no settled value or cycle after {max_iterations} iterations "
-                     f"(last iterates θ/α = {recent[j, -2]:.4f}, {recent[j, -1]:.4f})")
-    return recent[:, -1].copy(), outcome, iterations, detail, cycle
+                     f"(last iterates θ/α = {recent[k, -2]:.4f}, {recent[k, -1]:.4f})")
+    return final, outcome, iterations, detail, cycle
 
 
 class Procedure:
