@@ -177,7 +177,7 @@ class NTC2018(Procedure):
         if self.demand_variant(entry) == CODE_SPECTRUM:
             spectrum = self.site_spectrum(entry)
             return lambda period_s: spectrum.displacement(period_s, damping)
-        spectra = context.true_spectra(damping)
+        spectra = context.true_spectra(damping, displacement_only=True)
         return lambda period_s: running_maximum(spectra.period_s, spectra.sd[0], period_s)
 
     def thresholds(self, p, alpha_rad: float, g: float = G) -> dict:

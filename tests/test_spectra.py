@@ -105,12 +105,15 @@ def test_peaks_between_samples_match_lsim_on_a_200x_finer_record(seed_suite):
     periods, dampings = [0.05, 0.1, 0.2], [0.0, 0.05, 0.2]
     located = response_spectra(clipped, periods, dampings)
     sampled = response_spectra(clipped, periods, dampings, between_samples=False)
+    displacement = response_spectra(clipped, periods, dampings, displacement_only=True)
+    assert np.isnan(displacement.sv).all() and np.isnan(displacement.sa).all()
     worst_sampled = 0.0
     for j, xi in enumerate(dampings):
         for i, period in enumerate(periods):
             truth, _ = lsim_peaks(fine_acceleration, fine_time, period, xi)
             ours = [located.sd[j, i], located.sv[j, i], located.sa[j, i]]
             np.testing.assert_allclose(ours, truth, rtol=1e-4)
+            assert displacement.sd[j, i] == pytest.approx(truth[0], rel=1e-4)
             at_samples = np.array([sampled.sd[j, i], sampled.sv[j, i], sampled.sa[j, i]])
             worst_sampled = max(worst_sampled, np.max(1 - at_samples / truth))
     assert worst_sampled > 0.02  # the located peaks fix an error the sampled ones do have

@@ -138,17 +138,20 @@ class RecordContext:
         self.jobs = jobs
         self._spectra = {}
 
-    def true_spectra(self, damping: float):
-        """True response spectra of the record at damping β [-] on :data:`SPECTRUM_PERIODS_S`."""
+    def true_spectra(self, damping: float, displacement_only: bool = False):
+        """True response spectra of the record at damping β [-] on :data:`SPECTRUM_PERIODS_S`;
+        Sd alone (Sv, Sa NaN) when ``displacement_only`` and no full spectra are cached."""
         key = round(float(damping), 12)
-        if key not in self._spectra:
-            self._spectra[key] = response_spectra(self.entry.motion, SPECTRUM_PERIODS_S, [key],
-                                                  self.free_motion_s, jobs=self.jobs)
-        return self._spectra[key]
+        cached = self._spectra.get(key)
+        if cached is None or (cached[1] and not displacement_only):
+            self._spectra[key] = (response_spectra(
+                self.entry.motion, SPECTRUM_PERIODS_S, [key], self.free_motion_s, jobs=self.jobs,
+                displacement_only=displacement_only), displacement_only)
+        return self._spectra[key][0]
 
     def true_displacement(self, damping: float):
         """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""
-        spectra = self.true_spectra(damping)
+        spectra = self.true_spectra(damping, displacement_only=True)
         return lambda period_s: spectra.displacement_at(period_s, 0)
 
 
