@@ -117,7 +117,7 @@ def design_site(args, suite):
 
 def run(args) -> int:
     from audit.engine.files import check_output_dir
-    from audit.engine.partial import PARTIAL_DIR
+    from audit.engine.partial import PARTIAL_DIR, kept_parts
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML, save_run
     from audit.engine.runner import SPECTRUM_PERIODS_S, run_audit
@@ -125,6 +125,7 @@ def run(args) -> int:
     from procedures import get_procedures
     from reports import render_report
     out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
+    out_dir_existed = out_dir.exists()
     scheduler = check_scheduler(args.scheduler)
     procedures = get_procedures(args.procedure)
     sizes = options.sizes(args.sizes)
@@ -145,7 +146,11 @@ def run(args) -> int:
                         scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
                         resume=args.resume, detail=detail)
     except KeyboardInterrupt:
-        kept = sorted((out_dir / PARTIAL_DIR).glob("*")) if (out_dir / PARTIAL_DIR).is_dir() else []
+        kept = kept_parts(out_dir / PARTIAL_DIR)
+        if not kept:  # interrupted before the first record was stored: leave nothing
+            shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
+            if not out_dir_existed and out_dir.is_dir() and not any(out_dir.iterdir()):
+                out_dir.rmdir()
         print(f"interrupted; {len(kept)} record(s) kept in {out_dir / PARTIAL_DIR}: the same "
               "command with --resume completes the run" if kept else
               "interrupted; nothing written", file=sys.stderr)

@@ -55,6 +55,12 @@ def record_key(entry) -> str:
     return _sha(json.dumps(item, sort_keys=True, default=repr))
 
 
+def kept_parts(directory) -> list[Path]:
+    """The parts stored in ``directory`` (temporary files of a write under way excluded)."""
+    directory = Path(directory)
+    return sorted(directory.glob("[!.]*.pkl")) if directory.is_dir() else []
+
+
 class PartialStore:
     """The ``.partial`` folder of a run.
 
@@ -98,16 +104,20 @@ class PartialStore:
         path, key = self._path_and_key(entry)
         self.directory.mkdir(parents=True, exist_ok=True)
         temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-        with open(temporary, "wb") as file:
-            pickle.dump({"key": key, "record": entry.id, "part": part}, file,
-                        protocol=pickle.HIGHEST_PROTOCOL)
-            file.flush()
-            os.fsync(file.fileno())
-        os.replace(temporary, path)
+        try:
+            with open(temporary, "wb") as file:
+                pickle.dump({"key": key, "record": entry.id, "part": part}, file,
+                            protocol=pickle.HIGHEST_PROTOCOL)
+                file.flush()
+                os.fsync(file.fileno())
+            os.replace(temporary, path)
+        except BaseException:  # Ctrl-C while writing included: no half part is left behind
+            temporary.unlink(missing_ok=True)
+            raise
 
     def remove(self) -> None:
         """Delete the folder (after the final outputs are saved, or to start afresh)."""
         shutil.rmtree(self.directory, ignore_errors=True)
 
 
-__all__ = ["PARTIAL_DIR", "PartialStore", "motion_digest", "record_key", "run_key"]
+__all__ = ["PARTIAL_DIR", "PartialStore", "kept_parts", "motion_digest", "record_key", "run_key"]
