@@ -29,8 +29,16 @@ CHECK_COLOURS = {"agrees-safe": "#b2df8a", "agrees-unsafe": "#4d4d4d", "missed":
 _FONT = {"family": "DejaVu Sans, Helvetica, Arial, sans-serif", "size": 12}
 
 
+def _round(value: float):
+    """A float rounded to :data:`SIGNIFICANT_DIGITS`: an int when integral, None for NaN/inf."""
+    rounded = float(f"{value:.{SIGNIFICANT_DIGITS}g}")  # 1.7975e308 rounds to inf
+    if not math.isfinite(rounded):
+        return None
+    return int(rounded) if rounded.is_integer() and abs(rounded) < 1e15 else rounded
+
+
 def _rounded(values: np.ndarray) -> list:
-    """Floats rounded to :data:`SIGNIFICANT_DIGITS`, integral ones as int, NaN/inf as None."""
+    """:func:`_round` of every element of a float array (nested lists for 2-D), all at once."""
     if values.ndim > 1:
         return [_rounded(row) for row in values]
     rounded = np.char.mod(f"%.{SIGNIFICANT_DIGITS}g", values).astype(float)
@@ -60,7 +68,7 @@ def to_json(spec) -> str:
         if isinstance(value, (int, np.integer)):
             return int(value)
         if isinstance(value, (float, np.floating)):
-            return _rounded(np.array([value]))[0]
+            return _round(value)
         return value
     return json.dumps(clean(spec), ensure_ascii=False, separators=(",", ":")).replace("</", "<\\/")
 

@@ -213,16 +213,18 @@ def _design_frame(site: dict, dampings, periods) -> pd.DataFrame:
 
 def _record_sections(run, procedures, pending, results, records, names, drawn,
                      by_record) -> list[dict]:
-    spectra, summary = run.spectra, run.summary
+    summary = run.summary
+    spectra_by, rocking_by = _by_record(run.spectra), _by_record(run.rocking)
     sections = []
     for record in records:
         rid, number = record["id"], record["number"]
         section = {"record": record, "number": number, "figures": [], "histories": [],
                    "unauditable": [u for u in summary["unauditable"] if u["record"] == rid]}
-        rows = results[results["record"] == rid]
+        rows = by_record[1].get(rid, results.iloc[:0])
+        spectra = spectra_by.get(rid, run.spectra.iloc[:0])
         if not record["missing"]:
-            response = spectra[(spectra["record"] == rid) & (spectra["procedure"] == "")]
-            rocking = run.rocking[run.rocking["record"] == rid]
+            response = spectra[spectra["procedure"] == ""]
+            rocking = rocking_by.get(rid, run.rocking.iloc[:0])
             has_site = bool((record.get("site") or {}).get("sxs_g"))
             design = _design_frame(record.get("site") or {},
                                    [d / 100.0 for d in summary["settings"]["figure_5_damping_pct"]],
@@ -242,7 +244,7 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
             prows = rows[rows["procedure"] == procedure["name"]]
             if prows.empty:
                 continue
-            pspec = spectra[(spectra["record"] == rid) & (spectra["procedure"] == procedure["name"])]
+            pspec = spectra[spectra["procedure"] == procedure["name"]]
             series = procedure["figure_series"] or "P"
             figure = pending.add(f"fig-{series}-{number}-{procedure['name']}",
                                  plots.procedure_figure(prows, pspec, procedure["title"]))

@@ -15,6 +15,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from audit.engine.results import load_run, save_run
 from audit.engine.suite import suite_summary
@@ -397,3 +399,17 @@ def test_procedure_figure_draws_cycles_and_repelling_fixed_points():
         if trace.get("showlegend", True) and trace.get("name"):
             assert any(v is not None and not (isinstance(v, float) and math.isnan(v))
                        for v in trace["y"]), trace["name"]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1,
+                max_size=40))
+def test_array_rounding_is_the_scalar_rounding(values):
+    """The report embeds float arrays rounded all at once; each number must come out as the
+    scalar rule gives it (4 significant digits, int when integral, null for NaN/inf)."""
+    from reports.plots import SIGNIFICANT_DIGITS, _round, _rounded
+    array = np.array(values)
+    assert _rounded(array) == [_round(v) for v in values]
+    for v in values:
+        r, text = _round(v), f"{v:.{SIGNIFICANT_DIGITS}g}"
+        assert r is None if not math.isfinite(float(text)) else r == float(text)
