@@ -186,23 +186,39 @@ def test_interpreted_and_compiled_kernels_agree(case, seed_suite, monkeypatch):
     """A short ``simulate`` runs the kernel in the interpreter; the compiled code must give the
     same response to rounding, including impacts, turning points and overturning."""
     from audit.physics import rocking
+    from audit.physics.tiers import interpreted
     motion, size_s, alpha_deg = {
         "pulse-rocks": (one_pulse("cosine", 0.3, 2.0), math.pi, 15),
         "pulse-overturns": (one_pulse("cosine", 0.2, 2.0), 2.0, 10),
         "record": (seed_suite.get("pacoima_dam_1971").motion, 3.5, 20)}[case]
     block = RigidBlock.from_size(size_s, math.radians(alpha_deg))
-    monkeypatch.setattr(rocking, "_simulate_kernel", lambda n: rocking._interpreted_simulate())
-    interpreted = simulate(block, motion)
-    monkeypatch.setattr(rocking, "_simulate_kernel", lambda n: rocking._simulate)
+    monkeypatch.setattr(rocking, "tiered", lambda kernel, n: interpreted(kernel))
+    slow = simulate(block, motion)
+    monkeypatch.setattr(rocking, "tiered", lambda kernel, n: kernel)
     compiled = simulate(block, motion)
-    assert rocking._interpreted_simulate() is not rocking._simulate
-    assert interpreted.overturned == compiled.overturned == (case == "pulse-overturns")
-    assert interpreted.n_impacts == compiled.n_impacts
-    assert interpreted.turning_times.size == compiled.turning_times.size > 0
+    assert interpreted(rocking._simulate) is not rocking._simulate
+    assert slow.overturned == compiled.overturned == (case == "pulse-overturns")
+    assert slow.n_impacts == compiled.n_impacts
+    assert slow.turning_times.size == compiled.turning_times.size > 0
     for name in ("theta", "omega", "impact_times", "impact_velocities", "turning_times",
                  "turning_rotations"):
-        np.testing.assert_allclose(getattr(interpreted, name), getattr(compiled, name),
+        np.testing.assert_allclose(getattr(slow, name), getattr(compiled, name),
                                    rtol=1e-12, atol=1e-15, err_msg=name)
-    assert interpreted.peak_rotation == pytest.approx(compiled.peak_rotation, rel=1e-12)
-    assert interpreted.overturn_time == pytest.approx(compiled.overturn_time, rel=1e-12,
-                                                      nan_ok=True)
+    assert slow.peak_rotation == pytest.approx(compiled.peak_rotation, rel=1e-12)
+    assert slow.overturn_time == pytest.approx(compiled.overturn_time, rel=1e-12, nan_ok=True)
+
+
+def test_tiered_kernels_turn_compiled_past_the_budget(monkeypatch):
+    """Interpreted while the process's interpreted runs fit the budget and nothing is compiled;
+    compiled after that."""
+    from audit.physics import oscillator, tiers
+    monkeypatch.setattr(tiers, "_interpreted_s", 0.0)
+    monkeypatch.setattr(tiers, "_any_compiled", lambda: False)
+    budget = tiers.INTERPRETED_BUDGET_S
+    slow = tiers.interpreted(oscillator._history)
+    assert tiers.tiered(oscillator._history, 0.75 * budget) is slow
+    assert tiers.tiered(oscillator._history, 0.5 * budget) is oscillator._history
+    assert tiers.tiered(oscillator._history, 0.25 * budget) is slow
+    monkeypatch.setattr(tiers, "_any_compiled", lambda: True)
+    monkeypatch.setattr(tiers, "_interpreted_s", 0.0)
+    assert tiers.tiered(oscillator._history, 0.0) is oscillator._history

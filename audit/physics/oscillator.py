@@ -20,7 +20,10 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
+from audit.physics.tiers import tiered
 
+#: Time of one step of the recurrence run interpreted (see audit.physics.tiers) [s].
+INTERPRETED_STEP_S = 1e-6
 #: Terms of the Taylor series of φ₂ used for |z| < 1 (the next term is below 1e-19).
 _PHI2_TERMS = 18
 
@@ -477,5 +480,6 @@ def oscillator_history(motion, period_s: float, damping: float, free_motion_s: f
     n_tail = int(np.ceil(free_motion_s / motion.dt - 1e-9))
     acc = np.concatenate((motion.acceleration, np.zeros(n_tail)))
     u = np.empty(acc.size)
-    _history(acc, recurrence_coefficients(period_s, damping, motion.dt)[0], u)
+    coeffs = recurrence_coefficients(period_s, damping, motion.dt)[0]
+    tiered(_history, acc.size * INTERPRETED_STEP_S)(acc, coeffs, u)
     return np.arange(acc.size) * motion.dt, u

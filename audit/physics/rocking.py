@@ -24,9 +24,7 @@ run is accurate to ~1e-7 relative away from the overturning boundary (see the co
 
 from __future__ import annotations
 
-import functools
 import math
-import types
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -34,6 +32,7 @@ import numba
 import numpy as np
 
 from audit.physics.block import RigidBlock, coefficient_of_restitution
+from audit.physics.tiers import tiered
 from audit.errors import InputError
 
 #: Free motion simulated after the end of the excitation [s].
@@ -47,9 +46,8 @@ IMPACT_CAPACITY = 100_000
 #: Most samples of θ(t) and θ'(t) kept by :func:`simulate` (longer histories are decimated, so
 #: one block's history stays within ~10 MB; peaks and impacts are located exactly regardless).
 HISTORY_CAPACITY = 400_000
-#: Runge–Kutta steps that :func:`simulate` runs in the interpreter, summed over a process,
-#: before it turns to the compiled kernel (see :func:`_simulate_kernel`).
-INTERPRETED_STEP_BUDGET = 50_000
+#: Time of one Runge–Kutta step of the kernel run interpreted (see audit.physics.tiers) [s].
+INTERPRETED_STEP_S = 5e-6
 
 # Ground-motion kinds understood by the kernel.
 _SAMPLED, _COSINE, _SINE = 0, 1, 2
@@ -312,40 +310,6 @@ def _spectrum(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
         out[i, 4] = 1.0 if res[6] else 0.0
 
 
-@functools.cache
-def _interpreted_simulate():
-    """:func:`_simulate` and the kernels it calls as plain Python functions: the same code, run
-    by the interpreter instead of compiled."""
-    namespace = dict(globals())
-    for kernel in (_ground, _theta_acc, _rk4, _locate, _simulate):
-        f = kernel.py_func
-        namespace[f.__name__] = types.FunctionType(f.__code__, namespace, f.__name__,
-                                                   f.__defaults__, f.__closure__)
-    return namespace["_simulate"]
-
-
-_interpreted_steps = 0
-
-
-def _simulate_kernel(n_steps):
-    """The compiled :func:`_simulate`, or the interpreted one for a short run.
-
-    Before numba runs its first kernel in a process it loads its compiler context and the
-    cached machine code (~0.5 s; compiling on a cold cache takes ~5 s), while the interpreter
-    runs one Runge–Kutta step in ~5–10 µs. A single short simulation (``audit rock`` on a
-    pulse) is therefore faster interpreted. Once the interpreted steps of the process would
-    exceed :data:`INTERPRETED_STEP_BUDGET`, or a kernel is compiled already, the compiled one
-    runs. Both execute the same code in IEEE double precision (the interpreter uses libm's
-    ``sin``/``cos`` as the compiled code does; no fast-math), so results agree to rounding.
-    """
-    global _interpreted_steps
-    if (_simulate.signatures or _spectrum.signatures
-            or _interpreted_steps + n_steps > INTERPRETED_STEP_BUDGET):
-        return _simulate
-    _interpreted_steps += n_steps
-    return _interpreted_simulate()
-
-
 def _motion_arguments(motion, free_motion_s):
     """Kernel arguments describing the excitation of a GroundMotion."""
     if free_motion_s < 0 or not math.isfinite(free_motion_s):
@@ -517,9 +481,10 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
     impacts = np.empty((IMPACT_CAPACITY, 4))
     turns = np.empty((IMPACT_CAPACITY, 2))
     n_steps = (n_samples - 1) * math.ceil(motion.dt * block.p * steps_per_radian)
-    res = _simulate_kernel(n_steps)(*args, block.p, block.alpha, math.sqrt(block.r), block.g,
-                                    steps_per_radian, rest_tolerance, initial_rotation,
-                                    initial_velocity, theta, omega, impacts, turns, stride)
+    kernel = tiered(_simulate, n_steps * INTERPRETED_STEP_S)
+    res = kernel(*args, block.p, block.alpha, math.sqrt(block.r), block.g, steps_per_radian,
+                 rest_tolerance, initial_rotation, initial_velocity, theta, omega, impacts, turns,
+                 stride)
     n_kept = min(int(res[5]), IMPACT_CAPACITY)
     n_turns = min(int(res[8]), IMPACT_CAPACITY)
     return RockingResponse(

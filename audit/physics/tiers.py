@@ -1,0 +1,58 @@
+"""Numba kernels run compiled, or in the interpreter while a process's work is small.
+
+Before numba runs its first kernel in a process it loads its compiler context and the cached
+machine code (~0.5 s; compiling on a cold cache takes ~5 s), while the interpreter runs the same
+kernel code at ~1–10 µs per step. A single short simulation (``audit rock`` on a pulse, the
+figures of ``audit report``) is therefore faster interpreted. :func:`tiered` picks: compiled
+once any kernel of the package is loaded in the process, or once the estimated time of the
+interpreted runs would exceed :data:`INTERPRETED_BUDGET_S`; interpreted otherwise. Both
+execute the same code in IEEE double precision (the interpreter calls libm's ``sin``/``cos``, as
+the compiled code does; no fast-math), so they agree to rounding.
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+import types
+
+from numba.core.registry import CPUDispatcher
+
+#: Estimated interpreted run time, summed over a process, before kernels run compiled [s]:
+#: about what loading the compiled code costs.
+INTERPRETED_BUDGET_S = 0.4
+
+_interpreted_s = 0.0
+
+
+@functools.cache
+def interpreted(kernel: CPUDispatcher):
+    """``kernel`` as a plain Python function whose calls to other kernels of its module are
+    plain Python functions too: the same code, run by the interpreter."""
+    namespace = dict(kernel.py_func.__globals__)
+    for name, value in list(namespace.items()):
+        if isinstance(value, CPUDispatcher):
+            f = value.py_func
+            namespace[name] = types.FunctionType(f.__code__, namespace, f.__name__,
+                                                 f.__defaults__, f.__closure__)
+    return namespace[kernel.py_func.__name__]
+
+
+def _any_compiled() -> bool:
+    """Whether a kernel of ``audit.physics`` has compiled code in this process."""
+    return any(isinstance(value, CPUDispatcher) and value.signatures
+               for name, module in list(sys.modules.items()) if name.startswith("audit.physics.")
+               for value in list(vars(module).values()))
+
+
+def tiered(kernel: CPUDispatcher, interpreted_s: float):
+    """``kernel`` compiled, or interpreted for a run estimated to take ``interpreted_s`` [s]
+    that way, while the process's interpreted runs stay within :data:`INTERPRETED_BUDGET_S`."""
+    global _interpreted_s
+    if _interpreted_s + interpreted_s > INTERPRETED_BUDGET_S or _any_compiled():
+        return kernel
+    _interpreted_s += interpreted_s
+    return interpreted(kernel)
+
+
+__all__ = ["INTERPRETED_BUDGET_S", "interpreted", "tiered"]
