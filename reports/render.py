@@ -8,6 +8,7 @@ and can be attached to a design review. Nothing is drawn on the server.
 from __future__ import annotations
 
 import math
+from collections import defaultdict
 from datetime import datetime, timezone
 
 import numpy as np
@@ -147,8 +148,9 @@ def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
 
 
 def _by_record(frame: pd.DataFrame) -> dict:
-    """The rows of each record: one pass, instead of a scan of the whole frame per figure."""
-    return {record: rows for record, rows in frame.groupby("record", sort=False)}
+    """The rows of each record, no rows (same columns) for any other: one pass, instead of a
+    scan of the whole frame per figure."""
+    return defaultdict(lambda: frame.iloc[:0], list(frame.groupby("record", sort=False)))
 
 
 def _history_figure(pending, histories: dict, results: dict, meta, procedures, names) -> dict:
@@ -220,11 +222,11 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
         rid, number = record["id"], record["number"]
         section = {"record": record, "number": number, "figures": [], "histories": [],
                    "unauditable": [u for u in summary["unauditable"] if u["record"] == rid]}
-        rows = by_record[1].get(rid, results.iloc[:0])
-        spectra = spectra_by.get(rid, run.spectra.iloc[:0])
+        rows = by_record[1][rid]
+        spectra = spectra_by[rid]
         if not record["missing"]:
             response = spectra[spectra["procedure"] == ""]
-            rocking = rocking_by.get(rid, run.rocking.iloc[:0])
+            rocking = rocking_by[rid]
             has_site = bool((record.get("site") or {}).get("sxs_g"))
             design = _design_frame(record.get("site") or {},
                                    [d / 100.0 for d in summary["settings"]["figure_5_damping_pct"]],

@@ -413,3 +413,18 @@ def test_array_rounding_is_the_scalar_rounding(values):
     for v in values:
         r, text = _round(v), f"{v:.{SIGNIFICANT_DIGITS}g}"
         assert r is None if not math.isfinite(float(text)) else r == float(text)
+
+
+def test_record_drawn_but_audited_by_no_procedure():
+    """FEMA 356 needs a design site; a record without one still has its exact response and a
+    drawn history (the README's main command on Erzincan). The report shows that history with
+    no estimate, and says why the procedure was not audited."""
+    from records import RecordSuite
+    no_site = RecordSuite(tuple(e for e in pulse_suite() if not e.site.get("sxs_g")), "no site")
+    assert [e.id for e in no_site] == ["erzincan_1992", "takatori_1995"]
+    run = run_audit(get_procedures("fema356"), no_site, [15.0], np.arange(1.0, 8.01, 1.0))
+    assert run.results.empty and len(run.histories)
+    html = render_report(run)
+    drawn = [key for key in _parse(html).specs if key.startswith("th-")]
+    assert {key.split("-")[1] for key in drawn} == {"erzincan_1992", "takatori_1995"}
+    assert "no FEMA 356 (2000) site parameters (sxs_g, sx1_g)" in html
