@@ -221,3 +221,20 @@ def test_third_party_plugin_runs_through_the_cli(tmp_path):
     assert set(results["procedure"]) == {"halfpriestley"}
     assert results["beta_pct"].iloc[0] == pytest.approx(0.5 * 13.11976, rel=1e-5)
     assert "Half-damped Priestley (plug-in)" in (out / "report.html").read_text()
+
+
+def test_first_run_compile_is_announced_only_without_cached_machine_code(tmp_path):
+    """An empty numba cache (a fresh install) means the first record waits for the compiler,
+    and run says so; with the machine code cached it says nothing."""
+    from audit.engine.runner import compiles_first
+    from audit.physics.oscillator import response_spectra
+    from audit.physics.rocking import rocking_spectrum
+    from records import one_pulse
+    pulse = one_pulse("cosine", 0.3, 1.0)
+    rocking_spectrum(pulse, [1.0], [0.2])
+    response_spectra(pulse, [1.0], [0.05])
+    assert not compiles_first()
+    fresh = subprocess.run(
+        [sys.executable, "-c", "from audit.engine.runner import compiles_first as c; print(c())"],
+        env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path)), capture_output=True, text=True)
+    assert fresh.stdout.strip() == "True", fresh.stderr

@@ -120,7 +120,7 @@ def run(args) -> int:
     from audit.engine.partial import PARTIAL_DIR, kept_parts
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML, save_run
-    from audit.engine.runner import SPECTRUM_PERIODS_S, run_audit
+    from audit.engine.runner import SPECTRUM_PERIODS_S, compiles_first, run_audit
     from audit.engine.scheduler import check_scheduler
     from procedures import get_procedures
     from reports import render_report
@@ -139,6 +139,9 @@ def run(args) -> int:
     detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
     progress = Progress(len(suite), "record")
     progress.stage(f"auditing {', '.join(p.name for p in procedures)} on {len(suite)} records")
+    if compiles_first():
+        progress.stage("compiling the rocking solver and the oscillator kernels for this machine "
+                       "(first run only: 5–10 s)")
     try:
         run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
                         free_motion_s=args.free_motion, progress=progress,

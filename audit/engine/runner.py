@@ -303,6 +303,14 @@ def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
         columns="_fragile")
 
 
+def compiles_first() -> bool:
+    """Whether the rocking solver and the oscillator kernels the audit runs lack cached machine
+    code, so that the first record waits for numba to compile them (once after installing)."""
+    from audit.physics import oscillator, rocking
+    from audit.physics.tiers import machine_code_cached
+    return not (machine_code_cached(rocking._spectrum) and machine_code_cached(oscillator._peaks))
+
+
 def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 1) -> list[dict]:
     """The blocks of one record worth a time history: each procedure's worst ones per class
     (:data:`WORST_CLASSES`) and representative rocking blocks at α ≈ 15°.

@@ -13,6 +13,7 @@ the compiled code does; no fast-math), so they agree to rounding.
 from __future__ import annotations
 
 import functools
+import os
 import sys
 import types
 
@@ -45,6 +46,15 @@ def _any_compiled() -> bool:
                for value in list(vars(module).values()))
 
 
+def machine_code_cached(kernel: CPUDispatcher) -> bool:
+    """Whether numba holds cached machine code of ``kernel`` on disk, so that a run loads it
+    (~0.5 s) rather than compiling it (seconds; the first run after installing)."""
+    try:  # numba keeps the cache's index file name in its FunctionCache, not in a public API
+        return os.path.exists(kernel._cache._cache_file._index_path)
+    except AttributeError:  # another numba layout: say nothing rather than guess
+        return True
+
+
 def tiered(kernel: CPUDispatcher, interpreted_s: float):
     """``kernel`` compiled, or interpreted for a run estimated to take ``interpreted_s`` [s]
     that way, while the process's interpreted runs stay within :data:`INTERPRETED_BUDGET_S`."""
@@ -55,4 +65,4 @@ def tiered(kernel: CPUDispatcher, interpreted_s: float):
     return interpreted(kernel)
 
 
-__all__ = ["INTERPRETED_BUDGET_S", "interpreted", "tiered"]
+__all__ = ["INTERPRETED_BUDGET_S", "interpreted", "machine_code_cached", "tiered"]
