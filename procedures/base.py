@@ -284,6 +284,8 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
     recent[:, -1] = initial_ratio
     for i in range(1, max_iterations + 1):
+        if not live.size:
+            break
         new = _rotation_map(displacement, recent[:, -1], live_p, live_scale)
         over = new >= 1.0
         done = ~over & (np.abs(new - recent[:, -1]) <= tolerance)
@@ -308,8 +310,6 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
             final[live[settled]] = recent[settled, -1]
             keep = ~settled
             live, live_p, live_scale, recent = live[keep], live_p[keep], live_scale[keep], recent[keep]
-            if not live.size:
-                break
     final[live] = recent[:, -1]
     for k, j in enumerate(live):
         detail[j] = (f"no settled value or cycle after {max_iterations} iterations "
