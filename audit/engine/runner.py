@@ -21,6 +21,7 @@ compared with, so they are kept apart (``AuditRun.estimates_only``), not given a
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
@@ -375,6 +376,14 @@ def fragile_overturning(motion, settings: AuditSettings, overturned: np.ndarray)
     return fragile
 
 
+def _exact_response(motion, sizes, alpha_rad, settings: AuditSettings):
+    """The exact rocking spectrum of the grid and its fragile blocks (see
+    :func:`fragile_overturning`)."""
+    exact = rocking_spectrum(motion, sizes, alpha_rad, g=settings.g,
+                             free_motion_s=settings.free_motion_s, jobs=settings.jobs)
+    return exact, fragile_overturning(motion, settings, exact.overturned)
+
+
 def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     """Audit every procedure on one record over the (α, 2π/p) grid: the unit of work.
 
@@ -398,22 +407,24 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                if motion is not None else None)
     results, estimates_only, spectra, histories, rocking, checks = [], [], [], [], [], []
     unauditable, histories_meta = [], []
-    exact = fragile = None
+    exact_job = None
     if motion is not None:
-        exact = rocking_spectrum(motion, sizes, alpha_rad, g=g,
-                                 free_motion_s=settings.free_motion_s, jobs=settings.jobs)
-        fragile = fragile_overturning(motion, settings, exact.overturned)
-        rocking.append(exact.to_frame().assign(record=entry.id)[ROCKING_COLUMNS])
+        # the exact solver releases the GIL: it runs beside the procedures, whose fixed-point
+        # iterations hold it and would leave the second core idle
         for damping in FIGURE_5_DAMPING:
             spectra.append(context.true_spectra(damping).to_frame()
                            .assign(record=entry.id, procedure="", alpha_deg=np.nan)
                            [SPECTRA_COLUMNS])
+        pool = ThreadPoolExecutor(1)
+        exact_job = pool.submit(_exact_response, motion, sizes, alpha_rad, settings)
+        pool.shutdown(wait=False)  # its one thread ends with the job; an interrupt waits for none
+    estimates = []  # (procedure, α index, estimate, checks)
     for procedure in procedures:
         reason = procedure.unmet_requirements(entry)
         if reason is not None:
             unauditable.append({"procedure": procedure.name, "record": entry.id, "reason": reason})
             continue
-        if exact is None:
+        if motion is None:
             unauditable.append({"procedure": procedure.name, "record": entry.id,
                                 "reason": f"no record file ({entry.missing_reason}): "
                                           "estimate shown, no exact comparison"})
@@ -427,13 +438,18 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                 "record": entry.id, "procedure": procedure.name, "alpha_deg": alpha_deg[i],
                 "damping_pct": 100.0 * estimate.damping, "period_s": PROCEDURE_SPECTRUM_PERIODS_S,
                 "sd_m": sd, "sv_m_s": np.nan, "sa_g": np.nan}))
-            rows = _result_rows(entry.id, procedure.name, alpha_deg[i], sizes, p, estimate,
-                                exact, fragile, i, settings.agree_band)
-            (results if exact is not None else estimates_only).append(rows)
-            if exact is not None:  # a check is audited only against an exact response
-                checks += [_check_rows(entry.id, procedure.name, alpha_deg[i], sizes, check,
-                                       exact, i, g)
-                           for check in procedure.checks(entry, p, alpha, r, context, g)]
+            # a check is audited only against an exact response
+            estimates.append((procedure.name, i, estimate, procedure.checks(
+                entry, p, alpha, r, context, g) if motion is not None else []))
+    exact, fragile = exact_job.result() if exact_job is not None else (None, None)
+    if exact is not None:
+        rocking.append(exact.to_frame().assign(record=entry.id)[ROCKING_COLUMNS])
+    for name, i, estimate, procedure_checks in estimates:
+        rows = _result_rows(entry.id, name, alpha_deg[i], sizes, p, estimate, exact, fragile, i,
+                            settings.agree_band)
+        (results if exact is not None else estimates_only).append(rows)
+        checks += [_check_rows(entry.id, name, alpha_deg[i], sizes, check, exact, i, g)
+                   for check in procedure_checks]
     if exact is not None:
         for pick in history_blocks(_concat(results, RESULT_COLUMNS), exact, alpha_deg):
             block = RigidBlock.from_size(pick["size_s"], np.radians(pick["alpha_deg"]), g=g)
