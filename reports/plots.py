@@ -37,32 +37,18 @@ def _round(value: float):
     return int(rounded) if rounded.is_integer() and abs(rounded) < 1e15 else rounded
 
 
-def _rounded(values: np.ndarray) -> list:
-    """:func:`_round` of every element of a float array (nested lists for 2-D), all at once."""
-    if values.ndim > 1:
-        return [_rounded(row) for row in values]
-    rounded = np.char.mod(f"%.{SIGNIFICANT_DIGITS}g", values).astype(float)
-    out = rounded.astype(object)
-    finite = np.isfinite(rounded)
-    integral = finite & (rounded == np.trunc(rounded)) & (np.abs(rounded) < 1e15)
-    out[integral] = rounded[integral].astype(np.int64).astype(object)
-    out[~finite] = None
-    return out.tolist()
-
-
 def to_json(spec) -> str:
     """The spec as compact JSON, numbers rounded, NaN/inf as null, safe inside ``<script>``."""
     def clean(value):
         if isinstance(value, dict):
             return {k: clean(v) for k, v in value.items()}
         if isinstance(value, (list, tuple)):
-            if value and all(isinstance(v, (float, np.floating)) for v in value):
-                return _rounded(np.asarray(value, dtype=float))
             return [clean(v) for v in value]
         if isinstance(value, (np.ndarray, pd.Series, pd.Index)):
             array = np.asarray(value)
-            # float arrays, the bulk of every figure, are rounded all at once
-            return _rounded(array) if array.dtype.kind == "f" else clean(array.tolist())
+            if array.dtype.kind == "f" and array.ndim == 1:  # the bulk of every figure
+                return [_round(v) for v in array.tolist()]
+            return clean(array.tolist())
         if isinstance(value, (bool, np.bool_)):
             return bool(value)
         if isinstance(value, (int, np.integer)):

@@ -404,15 +404,23 @@ def test_procedure_figure_draws_cycles_and_repelling_fixed_points():
 @settings(max_examples=200, deadline=None)
 @given(st.lists(st.floats(allow_nan=True, allow_infinity=True, width=64), min_size=1,
                 max_size=40))
-def test_array_rounding_is_the_scalar_rounding(values):
-    """The report embeds float arrays rounded all at once; each number must come out as the
-    scalar rule gives it (4 significant digits, int when integral, null for NaN/inf)."""
-    from reports.plots import SIGNIFICANT_DIGITS, _round, _rounded
-    array = np.array(values)
-    assert _rounded(array) == [_round(v) for v in values]
-    for v in values:
-        r, text = _round(v), f"{v:.{SIGNIFICANT_DIGITS}g}"
-        assert r is None if not math.isfinite(float(text)) else r == float(text)
+def test_embedded_numbers_keep_four_significant_digits(values):
+    """Every float of a figure reaches the page within half a unit of its 4th significant digit,
+    as an int when integral, and as null when it is (or rounds to) NaN or ±inf: JSON has no
+    NaN, and a value next to the largest double rounds to inf."""
+    from reports.plots import to_json
+    embedded = json.loads(to_json({"y": np.array(values), "z": np.array([values, values])}))
+    assert embedded["z"] == [embedded["y"], embedded["y"]]
+    for value, got in zip(values, embedded["y"]):
+        if not math.isfinite(value) or abs(value) > 1.7976e308:  # 1.798e308 overflows
+            assert got is None
+            continue
+        if got is None:  # 1.7975e308 is the last value that may round either way
+            assert abs(value) >= 1.7974e308
+            continue
+        assert abs(got - value) <= 5e-4 * abs(value)
+        assert len(repr(float(got)).lstrip("-0.").split("e")[0].replace(".", "").rstrip("0")) <= 4
+        assert isinstance(got, int) == (float(got).is_integer() and abs(got) < 1e15)
 
 
 def test_record_drawn_but_audited_by_no_procedure():
