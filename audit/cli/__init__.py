@@ -58,6 +58,10 @@ def main(argv=None) -> int:
 
     previous = signal.signal(signal.SIGINT, on_interrupt)
     with warnings.catch_warnings():
+        # a user sees the tool's own warnings, one line each, never a library's deprecation
+        # notices (Python hides those outside __main__ too; a test runner shows them)
+        warnings.simplefilter("ignore", DeprecationWarning)
+        warnings.simplefilter("ignore", PendingDeprecationWarning)
         warnings.simplefilter("always", InputWarning)
         warnings.showwarning = _one_line_warning
         return _run(args, previous)
