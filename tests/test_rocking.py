@@ -155,7 +155,11 @@ def test_real_record_against_reference(seed_suite):
     for size, alpha in ((3.5, 20), (2.5, 20), (5.65, 15)):
         block = RigidBlock.from_size(size, math.radians(alpha))
         ours, ref = simulate(block, motion), simulate_reference(block, motion)
-        assert ours.overturned == ref["overturned"] and ours.n_impacts == ref["n_impacts"]
+        assert ours.overturned == ref["overturned"]
+        # impacts agree one to one until the response decays into a chatter of small rocks, where
+        # differences of 1e-8 s grow by impact (55 against 57 impacts for the 3.5 s block with
+        # scipy 1.17, 55 each with earlier releases): the count there is not a fact to test
+        np.testing.assert_allclose(ours.impact_times[:15], ref["impact_times"][:15], atol=1e-4)
         assert ours.peak_rotation == pytest.approx(ref["peak_rotation"], rel=1e-4)
 
 

@@ -34,7 +34,8 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
     Returns
     -------
     dict
-        ``peak_rotation`` [rad], ``overturned`` (bool), ``n_impacts``, and the time [s] and
+        ``peak_rotation`` [rad], ``overturned`` (bool), ``n_impacts`` and their times
+        ``impact_times`` [s], and the time [s] and
         θ [rad] of every turning point θ' = 0 (``turning_times``, ``turning_rotations``).
     """
     time = motion.time
@@ -61,13 +62,14 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
         level = math.copysign(threshold, a1)
         return max(t_from, time[j - 1] + (level - a0) / (a1 - a0) * (time[j] - time[j - 1]))
 
-    peak, n_impacts = 0.0, 0
+    peak, impacts = 0.0, []
     turns = []  # (t, θ) of every turning point
 
     def result(peak_rotation, overturned):
         times, rotations = np.array(turns).reshape(-1, 2).T
         return {"peak_rotation": peak_rotation, "overturned": overturned,
-                "n_impacts": n_impacts, "turning_times": times, "turning_rotations": rotations}
+                "n_impacts": len(impacts), "impact_times": np.array(impacts),
+                "turning_times": times, "turning_rotations": rotations}
     t = next_uplift(0.0)
     theta, omega = 0.0, 0.0
     side = -math.copysign(1.0, ground(t)) if t is not None else 1.0
@@ -96,8 +98,8 @@ def simulate_reference(block, motion, free_motion_s: float = DEFAULT_FREE_MOTION
             return result(alpha, True)
         if not sol.t_events[0].size:
             break
-        n_impacts += 1
         t = float(sol.t_events[0][0])
+        impacts.append(t)
         omega = velocity_ratio * float(sol.y_events[0][0][1])
         theta = 0.0
         side = math.copysign(1.0, omega)
