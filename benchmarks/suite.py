@@ -70,7 +70,9 @@ def load_suite(sources, site):
 
 def measure(mode, sources, site, workers):
     """One timed audit in this process (run as a child): a JSON line on stdout."""
-    from audit.engine.runner import AuditSettings, audit_record, run_audit
+    from audit.engine.record_audit import audit_record
+    from audit.engine.settings import AuditSettings
+    from audit.engine.suite_run import run_audit
     from procedures import get_procedures
     suite = load_suite(sources, site)
     procedures = get_procedures("all")

@@ -1,6 +1,8 @@
-"""Guideline procedures for the peak rotation of rocking blocks, one module per publication."""
+"""Guideline procedures for rocking blocks, one module per publication, and their contract."""
 
-from procedures.base import Estimate, Procedure, iterate_rotation
+from procedures.base import (Check, Estimate, Evaluation, Procedure, estimate_rotation,
+                             iterate_rotation)
 from procedures.registry import available_procedures, get_procedures
 
-__all__ = ["Estimate", "Procedure", "iterate_rotation", "available_procedures", "get_procedures"]
+__all__ = ["Check", "Estimate", "Evaluation", "Procedure", "estimate_rotation",
+           "iterate_rotation", "available_procedures", "get_procedures"]

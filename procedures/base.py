@@ -27,6 +27,11 @@ from audit import G
 from audit.physics.block import radius_from_p
 from audit.physics.damping import housner_period
 
+#: Periods on which procedures read record spectra, linear in T in between [s]: 0, then 800
+#: periods 1.16 % apart from 0.01 s to 100 s (:class:`procedures.context.RecordContext`).
+SPECTRUM_PERIODS_S = np.concatenate(([0.0], np.geomspace(0.01, 100.0, 800)))
+#: Periods at which the spectrum a procedure read is stored with the audit (Figures 8.x, 9.x) [s].
+STORED_SPECTRUM_PERIODS_S = SPECTRUM_PERIODS_S[SPECTRUM_PERIODS_S <= 20.0]
 #: Initial guess θ₀/α of the iteration: a small rotation, so the iteration climbs to the
 #: smallest non-trivial fixed point (θ = 0 is always one, and unstable when the block uplifts).
 INITIAL_ROTATION_RATIO = 0.1
@@ -44,7 +49,7 @@ CYCLE_TOLERANCE_RATIO = 1e-6
 SUBCYCLE_TOLERANCE_RATIO = 1e-3
 #: Fixed points are scanned on a grid uniform in ln v, v = pT/4 = acosh(1/(1 − θ/α)) (Eq. 8.1),
 #: with this step: successive periods 0.25 % apart. The record spectra are linear in T between
-#: tabulated periods 1.16 % apart (``audit.engine.runner.SPECTRUM_PERIODS_S``), so every linear
+#: tabulated periods 1.16 % apart (:data:`SPECTRUM_PERIODS_S`), so every linear
 #: piece holds ≥ 4 grid points and, on it, F(θ) − θ is linear in T minus the smooth inverse of
 #: Eq. 8.1: each simple root changes sign between two grid points; only two roots less than a
 #: grid step apart (a near tangency) can be missed. A grid in θ/α would not do: T ∝ sqrt(θ/α)
@@ -317,11 +322,74 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     return final, outcome, iterations, detail, cycle
 
 
+def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2: float, p,
+                      alpha_rad: float, damping: float, g: float = G) -> Estimate:
+    """Peak rotation of blocks by the iteration of Priestley et al. (1978), Eqs. 8.1–8.2.
+
+    Step 1 (no uplift when PGA ≤ g tan α), then :func:`iterate_rotation` from
+    θ₀/α = :data:`INITIAL_ROTATION_RATIO`, and :func:`fixed_points` of the same map.
+
+    Parameters
+    ----------
+    displacement : callable
+        Sd [m] as a function of the period T [s] at damping ``damping``.
+    pga_m_s2 : float
+        Peak ground acceleration of the uplift check [m/s²].
+    p : array
+        Frequency parameters [rad/s].
+    alpha_rad : float
+        Slenderness α [rad].
+    damping : float
+        β the spectrum is at [-] (recorded on the estimate).
+    g : float
+        Acceleration of gravity [m/s²].
+    """
+    p = np.asarray(p, dtype=float)
+    theta = np.zeros(p.shape)
+    period = np.zeros(p.shape)
+    iterations = np.zeros(p.shape, dtype=int)
+    outcome = np.full(p.shape, NO_UPLIFT, dtype=object)
+    detail = np.full(p.shape, "", dtype=object)
+    cycle = np.full(p.shape, "", dtype=object)
+    roots = np.full(p.shape, "", dtype=object)
+    if pga_m_s2 > g * np.tan(alpha_rad):
+        ratio, outcome, iterations, detail, cycle = iterate_rotation(displacement, p, alpha_rad, g)
+        roots = fixed_points(displacement, p, alpha_rad, g).text(p.size)
+        # no single rotation to report when overturning is predicted or nothing converged
+        undefined = outcome != CONVERGED
+        theta = np.where(undefined, np.nan, ratio * alpha_rad)
+        period = np.where(undefined, np.nan, housner_period(ratio, p))
+    return Estimate(theta, period, iterations, outcome, detail, float(damping),
+                    fixed_points=roots, cycle=cycle)
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """Everything a procedure says about blocks of one slenderness under one record.
+
+    Attributes
+    ----------
+    estimate : Estimate or None
+        The peak rotation it estimates; None for a procedure that only checks limit states.
+    spectrum_sd_m : numpy.ndarray or None
+        The displacement spectrum it read, at its damping, on
+        :data:`STORED_SPECTRUM_PERIODS_S` [m]; None when it reads none.
+    checks : list of Check
+        Its limit-state checks (none for a procedure that only estimates a rotation).
+    """
+
+    estimate: Estimate | None
+    spectrum_sd_m: np.ndarray | None
+    checks: list
+
+
 class Procedure:
     """Base class of the guideline procedures: the contract the audit relies on.
 
-    Subclasses declare the class attributes and implement :meth:`damping` and
-    :meth:`displacement_spectrum`; :meth:`estimate` runs the shared iteration.
+    Subclasses declare the class attributes and implement :meth:`damping`,
+    :meth:`peak_ground_acceleration` and :meth:`displacement_spectrum` (a rotation estimate by
+    the shared iteration), and/or :meth:`checks` (limit states). The audit makes one call per
+    record and slenderness, :meth:`evaluate`, and decides every verdict itself.
     """
 
     #: Registry key, as typed on the command line (e.g. ``"priestley1978"``).
@@ -339,9 +407,11 @@ class Procedure:
     requires_motion: ClassVar[bool] = False
     #: Site parameters the record must carry, keys of ``RecordEntry.site``.
     requires_site: ClassVar[tuple[str, ...]] = ()
+    #: False for a procedure that only checks limit states and estimates no rotation.
+    estimates_rotation: ClassVar[bool] = True
 
     def unmet_requirements(self, entry) -> str | None:
-        """Why this procedure cannot estimate for the record ``entry``, or None."""
+        """Why this procedure cannot evaluate the record ``entry``, or None."""
         if self.requires_motion and entry.motion is None:
             return f"no record file ({entry.missing_reason})"
         missing = [key for key in self.requires_site if entry.site.get(key) is None]
@@ -349,10 +419,37 @@ class Procedure:
             return f"no {self.title} site parameters ({', '.join(missing)})"
         return None
 
+    def evaluate(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> Evaluation:
+        """The procedure's estimate, the spectrum it read and its checks for blocks
+        (p [rad/s], α [rad], r [-]) under the record ``entry``.
+
+        Parameters
+        ----------
+        entry : records.RecordEntry
+        p : array
+            Frequency parameters [rad/s].
+        alpha_rad : float
+            Slenderness α [rad].
+        r : float
+            Coefficient of restitution [-].
+        context : procedures.context.RecordContext
+            Cache of the record's spectra.
+        g : float
+            Acceleration of gravity [m/s²].
+        """
+        checks = self.checks(entry, p, alpha_rad, r, context, g)
+        if not self.estimates_rotation:
+            return Evaluation(None, None, checks)
+        beta = float(self.damping(r))
+        spectrum = self.displacement_spectrum(entry, beta, context)
+        estimate = estimate_rotation(spectrum, self.peak_ground_acceleration(entry, context), p,
+                                     alpha_rad, beta, g)
+        return Evaluation(estimate, spectrum(STORED_SPECTRUM_PERIODS_S), checks)
+
     def checks(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> list[Check]:
         """Limit-state checks of blocks (p [rad/s], α [rad], r) under the record ``entry``.
 
-        Same arguments as :meth:`estimate`. A procedure that verifies limit states returns one
+        Same arguments as :meth:`evaluate`. A procedure that verifies limit states returns one
         :class:`Check` per limit state (see the end of this module); the default, for
         procedures that only estimate a rotation, is none.
         """
@@ -370,41 +467,6 @@ class Procedure:
         """Sd(T) [m] at damping β for the record ``entry``; ``context`` caches record spectra."""
         raise NotImplementedError
 
-    def estimate(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> Estimate:
-        """Peak rotation of blocks (p [rad/s], α [rad], r) under the record (SPEC §5–6).
-
-        Parameters
-        ----------
-        entry : records.RecordEntry
-        p : array
-            Frequency parameters [rad/s].
-        alpha_rad : float
-            Slenderness α [rad].
-        r : float
-            Coefficient of restitution [-].
-        context : audit.engine.runner.RecordContext
-            Cache of the record's spectra.
-        """
-        p = np.asarray(p, dtype=float)
-        beta = float(self.damping(r))
-        theta = np.zeros(p.shape)
-        period = np.zeros(p.shape)
-        iterations = np.zeros(p.shape, dtype=int)
-        outcome = np.full(p.shape, NO_UPLIFT, dtype=object)
-        detail = np.full(p.shape, "", dtype=object)
-        cycle = np.full(p.shape, "", dtype=object)
-        roots = np.full(p.shape, "", dtype=object)
-        if self.peak_ground_acceleration(entry, context) > g * np.tan(alpha_rad):
-            spectrum = self.displacement_spectrum(entry, beta, context)
-            ratio, outcome, iterations, detail, cycle = iterate_rotation(spectrum, p, alpha_rad, g)
-            roots = fixed_points(spectrum, p, alpha_rad, g).text(p.size)
-            # no single rotation to report when overturning is predicted or nothing converged
-            undefined = outcome != CONVERGED
-            theta = np.where(undefined, np.nan, ratio * alpha_rad)
-            period = np.where(undefined, np.nan, housner_period(ratio, p))
-        return Estimate(theta, period, iterations, outcome, detail, beta, fixed_points=roots,
-                        cycle=cycle)
-
 
 # ---------------------------------------------------------------------------------------------
 # Limit-state checks: procedures that verify a block rather than (or besides) estimating θ.
@@ -416,13 +478,6 @@ class Procedure:
 #: Exact events a check is audited against.
 EXACT_UPLIFT = "uplift"  # the exact block uplifts
 EXACT_ROTATION = "rotation"  # exact max θ ≥ the check's ``theta_limit_rad``, or overturning
-
-# Verdicts of a check against the exact response.
-AGREES_SAFE = "agrees-safe"
-AGREES_UNSAFE = "agrees-unsafe"
-MISSED = "missed"  # the procedure passes the block, the exact response exceeds: unsafe
-FALSE_ALARM = "false-alarm"  # the procedure fails the block, the exact response does not exceed
-
 
 @dataclass(frozen=True)
 class Check:
@@ -467,8 +522,6 @@ class Check:
     detail: str
 
 
-
-
 def rotation_at_displacement(displacement_m, alpha_rad, radius_m):
     """θ(d) = α − asin(sin α − d/R) [rad]: the rotation at which the centroid has moved
     d = R [sin α − sin(α − θ)] (§1).
@@ -478,52 +531,3 @@ def rotation_at_displacement(displacement_m, alpha_rad, radius_m):
     with np.errstate(invalid="ignore"):
         return alpha_rad - np.arcsin(np.sin(alpha_rad)
                                      - np.asarray(displacement_m, dtype=float) / radius_m)
-
-
-def exact_exceeded(check: Check, theta_peak, overturned, uplifted) -> np.ndarray:
-    """Whether the exact response exceeds the check's limit state, per block (§2.5).
-
-    Parameters
-    ----------
-    check : Check
-    theta_peak : array
-        Exact max |θ| [rad] of the same blocks.
-    overturned, uplifted : array of bool
-        Exact overturning and uplift of the same blocks.
-
-    Returns
-    -------
-    numpy.ndarray of bool
-        ``uplifted`` for :data:`EXACT_UPLIFT`; θ_peak ≥ θ_limit or overturned for
-        :data:`EXACT_ROTATION`. Blocks with no exact response (NaN) are the caller's to mask.
-    """
-    if check.exact_event == EXACT_UPLIFT:
-        return np.asarray(uplifted, dtype=bool)
-    if check.exact_event == EXACT_ROTATION:
-        with np.errstate(invalid="ignore"):
-            return (np.asarray(theta_peak) >= check.theta_limit_rad) | np.asarray(overturned,
-                                                                                   dtype=bool)
-    raise ValueError(f"check {check.limit_state}: unknown exact event {check.exact_event!r}")
-
-
-def check_verdicts(passes, exceeded) -> np.ndarray:
-    """Verdict of each block on one check: procedure's pass/fail against the exact event.
-
-    Parameters
-    ----------
-    passes : array of bool
-        The procedure passes the block.
-    exceeded : array of bool
-        The exact response exceeds the limit state (:func:`exact_exceeded`).
-
-    Returns
-    -------
-    numpy.ndarray of str
-        ``agrees-safe`` (passes, not exceeded), ``agrees-unsafe`` (fails, exceeded), ``missed``
-        (passes, exceeded: unconservative) or ``false-alarm`` (fails, not exceeded).
-    """
-    passes = np.asarray(passes, dtype=bool)
-    exceeded = np.asarray(exceeded, dtype=bool)
-    return np.where(passes, np.where(exceeded, MISSED, AGREES_SAFE),
-                    np.where(exceeded, AGREES_UNSAFE, FALSE_ALARM)).astype(object)
-

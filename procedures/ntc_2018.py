@@ -39,7 +39,8 @@ from audit.errors import InputError
 from audit.physics.block import radius_from_p
 from audit.physics.design_spectra import NTC2018_SITE_KEYS as SITE_KEYS, NTC2018Spectrum
 from procedures.base import (CONVERGED, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, OVERTURN,
-                             Check, Estimate, Procedure, rotation_at_displacement)
+                             STORED_SPECTRUM_PERIODS_S, Check, Estimate, Evaluation, Procedure,
+                             rotation_at_displacement)
 
 # Demand variants.
 AUTO = "auto"
@@ -226,18 +227,22 @@ class NTC2018(Procedure):
                 f"[C8.7.1.{10 if state == 'SLV' else 11}]{rule}"))
         return checks
 
-    def estimate(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> Estimate:
-        """θ(d_dem(T_SLV)) at ξ_SLV [rad]: 0 where SLD passes, overturning where d_dem ≥ d₀."""
-        checks = {check.limit_state: check for check in self.checks(entry, p, alpha_rad, r,
-                                                                    context, g)}
-        sld, slv = checks["SLD"], checks["SLV"]
+    def evaluate(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> Evaluation:
+        """The four checks, and the rotation θ(d_dem(T_SLV)) at ξ_SLV [rad] they imply: 0 where
+        SLD passes, overturning where d_dem ≥ d₀; the demand spectrum read at ξ_SLV."""
+        checks = self.checks(entry, p, alpha_rad, r, context, g)
+        by_state = {check.limit_state: check for check in checks}
+        sld, slv = by_state["SLD"], by_state["SLV"]
         over = ~sld.passes & np.isnan(slv.demand_theta_rad)
         outcome = np.select([sld.passes, over], [NO_UPLIFT, OVERTURN], CONVERGED).astype(object)
         theta = np.where(sld.passes, 0.0, slv.demand_theta_rad)
         period = np.where(sld.passes, 0.0, np.where(over, np.nan, slv.period_s))
-        return Estimate(theta=theta, period_s=period,
-                        iterations=np.zeros(theta.shape, dtype=int), outcome=outcome,
-                        detail=np.full(theta.shape, "", dtype=object), damping=self.damping_slv,
-                        # no iteration, so no fixed points or cycles to report
-                        fixed_points=np.full(theta.shape, "", dtype=object),
-                        cycle=np.full(theta.shape, "", dtype=object))
+        estimate = Estimate(theta=theta, period_s=period,
+                            iterations=np.zeros(theta.shape, dtype=int), outcome=outcome,
+                            detail=np.full(theta.shape, "", dtype=object),
+                            damping=self.damping_slv,
+                            # no iteration, so no fixed points or cycles to report
+                            fixed_points=np.full(theta.shape, "", dtype=object),
+                            cycle=np.full(theta.shape, "", dtype=object))
+        spectrum = self.displacement_spectrum(entry, self.damping_slv, context)
+        return Evaluation(estimate, spectrum(STORED_SPECTRUM_PERIODS_S), checks)

@@ -1,9 +1,9 @@
-"""The README's column guide, generated from :mod:`audit.engine.columns` (a test keeps the two
+"""The README's column guide, generated from :mod:`audit.engine.schemas` (a test keeps the two
 in sync): ``python -m reports.guide`` prints it."""
 
 from __future__ import annotations
 
-from audit.engine.columns import GUIDE
+from audit.engine.schemas import GUIDE
 
 
 def markdown() -> str:

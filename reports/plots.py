@@ -24,8 +24,6 @@ SIGNIFICANT_DIGITS = 4
 SPECTRUM_STRIDE = 2
 #: Samples of a time history drawn in the page (decimated by a stride).
 HISTORY_SAMPLES = 900
-CHECK_COLOURS = {"agrees-safe": "#b2df8a", "agrees-unsafe": "#4d4d4d", "missed": "#b2182b",
-                 "false-alarm": "#fdbf6f"}
 _FONT = {"family": "DejaVu Sans, Helvetica, Arial, sans-serif", "size": 12}
 
 

@@ -1,4 +1,4 @@
-"""The self-contained HTML audit report (SPEC §8), rendered from an :class:`~audit.engine.runner.AuditRun`.
+"""The self-contained HTML audit report (SPEC §8), rendered from an :class:`~audit.engine.suite_run.AuditRun`.
 
 Figures are plotly.js specifications drawn by the browser from data embedded in the page;
 plotly.js itself is inlined once, so the page references nothing outside itself, opens offline
@@ -16,21 +16,13 @@ import pandas as pd
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from audit import G
-from audit.engine.columns import GUIDE
-from audit.engine.runner import (UNECONOMIC_VERDICTS, UNSAFE_VERDICTS, VERDICTS, WORST_CLASSES,
-                                 rank_worst)
-from audit.physics.block import RigidBlock, coefficient_of_restitution
-from audit.physics.damping import damping_fema356, damping_free_rocking, damping_priestley
-from audit.physics.design_spectra import FEMA356Spectrum, UBC97Spectrum
-from audit.physics.oscillator import oscillator_history
-from audit.physics.rocking import simulate
-from records import one_pulse
+from audit.engine.ranking import WORST_CLASSES, rank_worst
+from audit.engine.schemas import GUIDE
+from audit.engine.verdicts import (CHECK_VERDICTS, CLAIM_STATUSES, ROTATION_VERDICTS,
+                                   UNSAFE_VERDICTS, VERDICTS, meanings, names)
 from reports import plots
-from reports.palette import VERDICT_COLOURS
+from reports.palette import CHECK_COLOURS, VERDICT_COLOURS
 
-#: Figure 4.1 vs 7.2: block p = 2 rad/s, α = 15°, one-cosine pulses of T_p = 2 s (SPEC §2).
-SENSITIVITY_PULSES_G = (0.310, 0.315, 0.316)
-SENSITIVITY_BLOCK = {"p": 2.0, "alpha_deg": 15.0, "pulse_period_s": 2.0, "free_motion_s": 8.0}
 #: Above this many records the suite statistics come first and per-record detail is given only
 #: for the records asked for (``summary["detail"]``) or the :data:`WORST_RECORDS` worst ones.
 LARGE_SUITE = 10
@@ -40,24 +32,9 @@ WORST_ROWS = 5
 #: Colours of the guidelines' estimates in the time histories.
 PROCEDURE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
 
-VERDICT_MEANING = {
-    "no-uplift": "PGA ≤ g tan α: neither the block nor the procedure rocks",
-    "both-overturn": "both the exact response and the procedure overturn",
-    "false-overturn": "the procedure predicts overturning; the block survives (uneconomic)",
-    "missed-overturn": "the block overturns; the procedure says it survives (unsafe)",
-    "agrees": "both survive and approx/exact lies within the agreement band",
-    "conservative": "the procedure's rotation exceeds the exact one beyond the band (uneconomic)",
-    "unconservative": "the procedure's rotation is below the exact one beyond the band (unsafe)",
-    "not-converged": "the procedure's iteration settles in a cycle or does not settle: no "
-                     "estimate, counted neither safe nor unsafe",
-}
-CHECK_MEANING = {
-    "agrees-safe": "the procedure passes and the exact response does not exceed the limit state",
-    "agrees-unsafe": "the procedure fails and the exact response exceeds it",
-    "missed": "the procedure passes but the exact response exceeds the limit state (unsafe)",
-    "false-alarm": "the procedure fails but the exact response does not exceed it (uneconomic)",
-}
-CLAIM_STATUSES = ("agrees", "close", "differs", "cannot-check")
+VERDICT_MEANING = meanings(ROTATION_VERDICTS)
+CHECK_MEANING = meanings(CHECK_VERDICTS)
+CLAIM_STATUS_NAMES = names(CLAIM_STATUSES)
 
 
 def _environment() -> Environment:
@@ -93,42 +70,17 @@ def _where(row, names) -> str:
             f"2π/p = {row['size_s']:.2f} s")
 
 
-def _worst_case(rows: pd.DataFrame):
-    """The block the bottom line names: a missed overturning where the procedure's rotation is
-    smallest (robust before fragile), else the largest underestimate, else the largest
-    overestimate."""
-    order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
-    for verdict, column, largest, _ in order:
-        hits = rows[rows["verdict"] == verdict]
-        if len(hits):
-            return rank_worst(hits, column, largest).iloc[0]
-    return None
-
-
-def _bottom_line(procedure: dict, results: pd.DataFrame, names: dict, band: float) -> dict:
-    """One sentence per procedure: unsafe and uneconomic shares, not-converged, worst case."""
-    rows = results[results["procedure"] == procedure["name"]]
-    total = len(rows)
-    counts = rows["verdict"].value_counts()
-    count = {v: int(counts.get(v, 0)) for v in VERDICTS}
-    pct = {v: 100.0 * n / total if total else 0.0 for v, n in count.items()}
-    unsafe = sum(count[v] for v in UNSAFE_VERDICTS)
-    uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
-    worst = _worst_case(rows)
+def _bottom_line(procedure: dict, line: dict, names: dict, band: float) -> dict:
+    """One sentence per procedure from the engine's bottom line (``summary["bottom_line"]``)."""
+    worst = line["worst"]
     worst_text = ""
     if worst is not None:
         worst_text = (f"{_where(worst, names)}: the guideline gives "
                       f"{plots.describe_guideline(worst)}, the exact response "
                       f"{plots.describe_exact(worst)} ({worst['verdict']})")
-    ratios = rows["ratio"].replace([np.inf, -np.inf], np.nan).dropna()
-    return {**procedure, "blocks": total, "records": int(rows["record"].nunique()),
-            "count": count, "pct": pct, "unsafe": unsafe, "uneconomic": uneconomic,
-            "unsafe_pct": 100.0 * unsafe / total if total else 0.0,
-            "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
-            "band_pct": 100.0 * band, "worst": worst_text,
+    return {**procedure, **line, "band_pct": 100.0 * band, "worst": worst_text,
             "worst_link": (_history_id(worst["record"], worst["alpha_deg"], worst["size_s"])
-                           if worst is not None else None),
-            "median_ratio": float(ratios.median()) if len(ratios) else None}
+                           if worst is not None else None)}
 
 
 def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
@@ -199,20 +151,6 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     return tables
 
 
-def _design_frame(site: dict, dampings, periods) -> pd.DataFrame:
-    """Design spectra overlaid on Figure 5.x: FEMA 356 at each damping where the record has
-    site parameters, and UBC 97 (zone 4, soil S_D, N_a = N_v = 1) at 5 % on every record."""
-    frames = [pd.DataFrame({"code": "UBC 97 zone 4, S_D", "period_s": periods, "damping_pct": 5.0,
-                            "sa_g": UBC97Spectrum().acceleration(periods, 0.05),
-                            "sd_m": UBC97Spectrum().displacement(periods, 0.05)})]
-    if site.get("sxs_g") and site.get("sx1_g"):
-        spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
-        frames += [pd.DataFrame({"code": "FEMA 356", "period_s": periods, "damping_pct": 100.0 * d,
-                                 "sa_g": spectrum.acceleration(periods, d),
-                                 "sd_m": spectrum.displacement(periods, d)}) for d in dampings]
-    return pd.concat(frames, ignore_index=True)
-
-
 def _record_sections(run, procedures, pending, results, records, names, drawn,
                      by_record) -> list[dict]:
     summary = run.summary
@@ -228,9 +166,7 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
             response = spectra[spectra["procedure"] == ""]
             rocking = rocking_by[rid]
             has_site = bool((record.get("site") or {}).get("sxs_g"))
-            design = _design_frame(record.get("site") or {},
-                                   [d / 100.0 for d in summary["settings"]["figure_5_damping_pct"]],
-                                   np.linspace(0.0, 8.0, 161))
+            design = run.design_spectra[run.design_spectra["record"].isin(("", rid))]
             figure = pending.add(f"fig-5-{number}",
                                  plots.response_and_rocking_figure(response, rocking, design))
             figure["caption"] = (
@@ -265,17 +201,21 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
     return sections
 
 
-def _mechanics(pending) -> list[dict]:
-    r = np.linspace(0.5, 1.0, 101)[:-1]
+def _mechanics(run, pending) -> list[dict]:
+    """Figures 7.1 and 4.1 vs 7.2, from the run's ``mechanics.csv``."""
+    curves = run.mechanics
     dashes = {2: "solid", 4: "dash", 6: "dashdot", 8: "dot"}
     shades = {0.1: "#440154", 0.3: "#31688e", 0.5: "#35b779", 0.7: "#b5de2b"}
-    series = [{"x": r, "y": 100 * damping_free_rocking(ratio, n, r), "colour": shades[ratio],
-               "dash": dashes[n], "width": 1, "name": f"Eq. 7.9, θ₀/α = {ratio:g}, n = {n}"}
-              for ratio in shades for n in dashes]
-    series += [{"x": r, "y": 100 * damping_priestley(r), "colour": "#d62728", "width": 3,
-                "name": "Eq. 7.10: β = −0.34 ln r"},
-               {"x": r, "y": 100 * damping_fema356(r), "colour": "#000000", "width": 3,
-                "name": "Eq. 9.1: β = 0.4 (1 − √r)"}]
+    laws = {"Eq. 7.10": "#d62728", "Eq. 9.1": "#000000"}
+    series = []
+    for name, rows in curves[curves["figure"] == "7.1"].groupby("series", sort=False):
+        ratio, impacts = rows["theta0_ratio"].iloc[0], rows["impacts"].iloc[0]
+        if np.isfinite(ratio):
+            style = {"colour": shades[round(ratio, 6)], "dash": dashes[int(impacts)], "width": 1}
+        else:
+            style = {"colour": laws[name.split(":")[0]], "width": 3}
+        series.append({"x": rows["x"].to_numpy(), "y": rows["y"].to_numpy(), "name": name,
+                       **style})
     fig_7_1 = pending.add("fig-7-1", plots.lines_figure(
         series, "coefficient of restitution r [-]", "equivalent damping β [%]", height=460,
         legend_below=True))
@@ -284,24 +224,18 @@ def _mechanics(pending) -> list[dict]:
         "free-rocking decay (Eq. 7.9) for θ₀/α = 0.1 … 0.7 (colour) and n = 2 … 8 impacts "
         "(dash), with the Priestley et al. fit (Eq. 7.10) and the FEMA 356 law (Eq. 9.1). "
         "Click a legend entry to hide a curve.")
-    spec = SENSITIVITY_BLOCK
-    alpha = math.radians(spec["alpha_deg"])
-    block = RigidBlock(spec["p"], alpha)
-    beta = float(damping_priestley(coefficient_of_restitution(alpha)))
-    rocking, oscillator = {}, {}
-    for amplitude in SENSITIVITY_PULSES_G:
-        motion = one_pulse("cosine", amplitude, spec["pulse_period_s"])
-        response = simulate(block, motion, spec["free_motion_s"])
-        label = f"a_p = {amplitude:.3f} g" + (" (overturns)" if response.overturned else "")
-        stride = max(1, response.time.size // plots.HISTORY_SAMPLES)
-        rocking[label] = (response.time[::stride], response.theta[::stride] / alpha)
-        u = oscillator_history(motion, 2.0 * math.pi / spec["p"], beta, spec["free_motion_s"])
-        oscillator[f"a_p = {amplitude:.3f} g"] = (u[0][::stride], u[1][::stride])
+    spec = run.summary["mechanics"]
+
+    def histories(figure):
+        rows = curves[curves["figure"] == figure]
+        return {name: (group["x"].to_numpy(), group["y"].to_numpy())
+                for name, group in rows.groupby("series", sort=False)}
     fig_sens = pending.add("fig-sensitivity", plots.sensitivity_figure(
-        rocking, oscillator,
+        histories("4.1"), histories("7.2"),
         f"Figure 4.1: rocking block p = {spec['p']:g} rad/s, α = {spec['alpha_deg']:g}°, "
         f"one-cosine pulse T_p = {spec['pulse_period_s']:g} s",
-        f"Figure 7.2: 'equivalent' oscillator ω = p, ξ = β = {100 * beta:.2f} % (Eq. 7.10)"))
+        f"Figure 7.2: 'equivalent' oscillator ω = p, ξ = β = {100 * spec['beta']:.2f} % "
+        "(Eq. 7.10)"))
     fig_sens["caption"] = (
         "Figure 4.1 vs 7.2 — A 1.6 % change of pulse amplitude takes the block from a modest "
         "rocking to overturning (left), while the 'equivalent' linear oscillator barely notices "
@@ -357,8 +291,8 @@ def _checks_section(run, names, pending) -> dict | None:
     codes = checks.assign(code=checks["verdict"].map({c: i for i, c in enumerate(classes)}))
     scale = []
     for i, c in enumerate(classes):
-        scale += [[i / len(classes), plots.CHECK_COLOURS[c]],
-                  [(i + 1) / len(classes), plots.CHECK_COLOURS[c]]]
+        scale += [[i / len(classes), CHECK_COLOURS[c]],
+                  [(i + 1) / len(classes), CHECK_COLOURS[c]]]
     figures = []
     for (procedure, state), rows in codes.groupby(["procedure", "limit_state"], sort=False):
         records = list(dict.fromkeys(rows["record"]))
@@ -379,7 +313,7 @@ def _claims_section(run) -> dict | None:
         return None
     counts = claims["status"].value_counts()
     return {"rows": claims.to_dict("records"),
-            "tally": {s: int(counts.get(s, 0)) for s in CLAIM_STATUSES}}
+            "tally": {s: int(counts.get(s, 0)) for s in CLAIM_STATUS_NAMES}}
 
 
 def _detail_records(run, records) -> list[dict]:
@@ -399,7 +333,7 @@ def render_report(run, generated: datetime | None = None) -> str:
 
     Parameters
     ----------
-    run : audit.engine.runner.AuditRun
+    run : audit.engine.suite_run.AuditRun
         Results of ``run_audit`` or of ``audit.engine.results.load_run``.
     generated : datetime, optional
         Time stamp printed in the report (default: now, UTC).
@@ -416,7 +350,8 @@ def render_report(run, generated: datetime | None = None) -> str:
     band = summary.get("settings", {}).get("agree_band", 0.10)
     # records without a file still show the estimate of a procedure that needs none
     results = pd.concat([run.results, run.estimates_only], ignore_index=True)
-    bottom = [_bottom_line(p, run.results, names, band) for p in procedures]
+    lines = {line["name"]: line for line in summary["bottom_line"]}
+    bottom = [_bottom_line(p, lines[p["name"]], names, band) for p in procedures]
     metas = summary.get("histories", [])
     worst = _worst_cases(run, procedures, names, metas)
     shown = {row["key"] for table in worst for row in table["rows"]}
@@ -446,10 +381,10 @@ def render_report(run, generated: datetime | None = None) -> str:
     html = _environment().get_template("report.html.j2").render(
         summary=summary, procedures=procedures, bottom=bottom, worst=worst,
         worst_histories=worst_histories, verdict_maps=verdict_maps, sections=sections,
-        mechanics=_mechanics(pending), statistics=statistics, large=large,
+        mechanics=_mechanics(run, pending), statistics=statistics, large=large,
         suite=_suite_section(run, procedures, pending),
         checks=_checks_section(run, names, pending), claims=_claims_section(run),
-        check_colours=plots.CHECK_COLOURS, check_meaning=CHECK_MEANING,
+        check_colours=CHECK_COLOURS, check_meaning=CHECK_MEANING,
         verdicts=VERDICTS, verdict_meaning=VERDICT_MEANING, verdict_colours=VERDICT_COLOURS,
         unsafe_verdicts=UNSAFE_VERDICTS, records=records, g=G, band_pct=100.0 * band,
         omitted=len(records) - len(detail), guide=GUIDE["results.csv"],

@@ -19,7 +19,7 @@ import pytest
 
 from audit.cli import EXIT_INTERRUPTED, main
 from audit.engine import guards
-from audit.engine.files import write_files_atomically
+from audit.files import write_files_atomically
 from audit.errors import InputError
 from records import ENV_VARIABLE, load_records
 
@@ -214,7 +214,8 @@ CASES = [
     ("report-broken-json", {"results/results.csv": "record\n", "results/summary.json": "{",
                             **{f"results/{name}": "a\n" for name in (
                                 "spectra.csv", "histories.csv", "rocking.csv",
-                                "estimates-only.csv", "checks.csv", "suite.csv", "claims.csv")}},
+                                "estimates-only.csv", "checks.csv", "suite.csv", "claims.csv",
+                                "design-spectra.csv", "mechanics.csv")}},
      ["report", "results"], ["summary.json"]),
     # ---------------------------------------------------------------- --records paths
     ("records-absent", {}, ["list", "--records", "nothing.toml"], ["nothing.toml"]),

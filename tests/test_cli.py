@@ -165,7 +165,8 @@ def test_run_and_rerender(tmp_path, monkeypatch, capsys):
                  "--out", str(out)]) == 0
     assert "pulse-idealised" in capsys.readouterr().out
     assert sorted(p.name for p in out.iterdir()) == [
-        "checks.csv", "claims.csv", "columns.json", "estimates-only.csv", "histories.csv",
+        "checks.csv", "claims.csv", "columns.json", "design-spectra.csv", "estimates-only.csv",
+        "histories.csv", "mechanics.csv",
         "report.html", "results.csv", "rocking.csv", "spectra.csv", "suite.csv", "summary.json"]
     results = pd.read_csv(out / "results.csv")
     assert list(results.columns[:8]) == [
@@ -226,7 +227,7 @@ def test_third_party_plugin_runs_through_the_cli(tmp_path):
 def test_first_run_compile_is_announced_only_without_cached_machine_code(tmp_path):
     """An empty numba cache (a fresh install) means the first record waits for the compiler,
     and run says so; with the machine code cached it says nothing."""
-    from audit.engine.runner import compiles_first
+    from audit.engine.suite_run import compiles_first
     from audit.physics.oscillator import response_spectra
     from audit.physics.rocking import rocking_spectrum
     from records import one_pulse
@@ -235,6 +236,6 @@ def test_first_run_compile_is_announced_only_without_cached_machine_code(tmp_pat
     response_spectra(pulse, [1.0], [0.05])
     assert not compiles_first()
     fresh = subprocess.run(
-        [sys.executable, "-c", "from audit.engine.runner import compiles_first as c; print(c())"],
+        [sys.executable, "-c", "from audit.engine.suite_run import compiles_first as c; print(c())"],
         env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path)), capture_output=True, text=True)
     assert fresh.stdout.strip() == "True", fresh.stderr

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-HEAVY = ("matplotlib", "pandas", "audit.engine.runner")
+HEAVY = ("matplotlib", "pandas", "audit.engine.suite_run")
 PROBE = """
 import contextlib, json, sys
 from audit.cli import main

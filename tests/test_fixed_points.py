@@ -15,7 +15,7 @@ import pytest
 from scipy import signal
 from scipy.optimize import brentq
 
-from audit.engine.runner import RecordContext
+from procedures.context import RecordContext
 from audit.physics.block import coefficient_of_restitution, radius_from_p
 from audit.physics.damping import housner_rotation_ratio
 from procedures import iterate_rotation
@@ -134,8 +134,8 @@ def pacoima(seed_suite):
     entry = seed_suite.get("pacoima_dam_1971")
     context = RecordContext(entry, 10.0)
     sizes = np.array([6.0, 8.0])
-    estimate = PriestleyEvisonCarr1978().estimate(
-        entry, 2 * np.pi / sizes, ALPHA, float(coefficient_of_restitution(ALPHA)), context)
+    estimate = PriestleyEvisonCarr1978().evaluate(
+        entry, 2 * np.pi / sizes, ALPHA, float(coefficient_of_restitution(ALPHA)), context).estimate
     return entry.motion, estimate
 
 

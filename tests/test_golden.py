@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from audit.engine.runner import run_audit
+from audit.engine.suite_run import run_audit
 from procedures import get_procedures
 from records import RecordSuite
 

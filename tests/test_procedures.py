@@ -11,7 +11,8 @@ from audit.physics.block import coefficient_of_restitution, radius_from_p
 from audit.physics.damping import housner_period
 from audit.errors import InputError
 from audit.engine.grid import size_grid
-from audit.engine.runner import RecordContext, run_audit
+from audit.engine.suite_run import run_audit
+from procedures.context import RecordContext
 from procedures import available_procedures, get_procedures, iterate_rotation
 from procedures.fema_356 import FEMA356
 from procedures.priestley_1978 import PriestleyEvisonCarr1978
@@ -91,8 +92,8 @@ def test_fema_depends_on_the_site_not_the_motion():
     strong = RecordEntry("x", one_pulse("cosine", 2.0, 1.0), site=entry.site)
     p = 2 * np.pi / size_grid(0.5, 8.0, 0.5)
     r = float(coefficient_of_restitution(ALPHA))
-    a = FEMA356().estimate(entry, p, ALPHA, r, None)
-    b = FEMA356().estimate(strong, p, ALPHA, r, None)
+    a = FEMA356().evaluate(entry, p, ALPHA, r, None).estimate
+    b = FEMA356().evaluate(strong, p, ALPHA, r, None).estimate
     np.testing.assert_array_equal(a.theta, b.theta)
     assert a.damping == pytest.approx(0.4 * (1 - math.sqrt(r)))
 
@@ -100,8 +101,8 @@ def test_fema_depends_on_the_site_not_the_motion():
 def test_no_uplift_below_the_uplift_acceleration():
     entry = RecordEntry("weak", one_pulse("cosine", 0.1, 1.0))
     context = RecordContext(entry, 10.0)
-    estimate = PriestleyEvisonCarr1978().estimate(entry, np.array([2.0, 3.0]), ALPHA,
-                                                  0.8, context)
+    estimate = PriestleyEvisonCarr1978().evaluate(entry, np.array([2.0, 3.0]), ALPHA,
+                                                  0.8, context).estimate
     assert list(estimate.outcome) == ["no-uplift"] * 2 and np.all(estimate.theta == 0.0)
 
 

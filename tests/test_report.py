@@ -20,8 +20,9 @@ from hypothesis import strategies as st
 
 from audit.engine.results import load_run, save_run
 from audit.engine.suite import suite_summary
-from audit.engine.runner import (CHECK_COLUMNS, CLAIM_COLUMNS, SUITE_COLUMNS, VERDICTS,
-                                 run_audit)
+from audit.engine.schemas import CHECK_COLUMNS, CLAIM_COLUMNS, SUITE_COLUMNS
+from audit.engine.suite_run import run_audit
+from audit.engine.verdicts import VERDICTS
 from procedures import get_procedures
 from records import pulse_suite
 from reports import render_report

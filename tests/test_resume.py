@@ -16,7 +16,9 @@ import pytest
 from audit.engine.grid import size_grid
 from audit.engine.results import run_files
 from audit.engine.partial import PARTIAL_DIR, PartialStore
-from audit.engine.runner import AuditSettings, audit_record, run_audit
+from audit.engine.record_audit import audit_record
+from audit.engine.settings import AuditSettings
+from audit.engine.suite_run import run_audit
 from procedures import get_procedures
 from records import load_records
 

@@ -7,7 +7,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from audit.engine.runner import SUITE_COLUMNS, AuditSettings, audit_record, run_audit
+from audit.engine.record_audit import audit_record
+from audit.engine.schemas import SUITE_COLUMNS
+from audit.engine.settings import AuditSettings
+from audit.engine.suite_run import run_audit
 from audit.engine.scheduler import (RecordReference, by_reference, check_scheduler,
                                     open_scheduler, resolve)
 from audit.cli import main

@@ -4,8 +4,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from audit.engine.runner import SUITE_COLUMNS, VERDICTS
-from audit.engine.suite import suite_statistics, suite_summary, verdict_column
+from audit.engine.schemas import SUITE_COLUMNS, verdict_column
+from audit.engine.suite import suite_statistics, suite_summary
+from audit.engine.verdicts import VERDICTS
 
 
 def _results(rows):

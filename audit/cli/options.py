@@ -11,7 +11,6 @@ import math
 import os
 import sys
 from typing import TYPE_CHECKING
-import tempfile
 from pathlib import Path
 
 from audit.errors import InputError
@@ -206,7 +205,7 @@ def output_file(path: str | None, option: str) -> Path | None:
     """The file of an output option, checked before any work; None for standard output."""
     if path in (None, "-"):
         return None
-    from audit.engine.files import check_output_file
+    from audit.files import check_output_file
     return check_output_file(path, option)
 
 
@@ -229,28 +228,6 @@ def csv_text(table) -> tuple[str, int]:
     return table.to_csv(index=False, float_format="%.8g"), len(table)
 
 
-def write_outputs(files: dict[Path, bytes]) -> None:
-    """Write every output file of a command together: all are staged beside their targets
-    first and renamed into place only when every one is complete, so a failure leaves none."""
-    staged = []
-    try:
-        for path, content in files.items():
-            path.parent.mkdir(parents=True, exist_ok=True)
-            handle, temp = tempfile.mkstemp(prefix=f".{path.name}-staging-{os.getpid()}-",
-                                            dir=path.parent)
-            staged.append(temp)
-            with os.fdopen(handle, "wb") as stream:
-                stream.write(content)
-        for temp, path in zip(staged, files):
-            os.replace(temp, path)
-    except OSError as exc:
-        raise InputError(f"{path}: cannot write: {exc.strerror}") from None
-    finally:
-        for temp in staged:
-            if os.path.exists(temp):
-                os.remove(temp)
-
-
 def write_csv(table, path: Path | None, extra: dict[Path, bytes] | None = None) -> None:
     """``table`` (see :func:`csv_text`) as CSV to ``path`` or standard output (None), with the
     ``extra`` files, all or nothing."""
@@ -258,7 +235,8 @@ def write_csv(table, path: Path | None, extra: dict[Path, bytes] | None = None) 
     files = dict(extra or {})
     if path is not None:
         files[path] = text.encode()
-    write_outputs(files)
+    from audit.files import write_atomically
+    write_atomically(files)
     if path is None:
         sys.stdout.write(text)
     else:

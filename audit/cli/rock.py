@@ -74,7 +74,8 @@ def run(args) -> int:
             if response.n_impacts else None,
             "cycle_starts": response.cycle_starts, "cycle_durations": response.cycle_durations,
             "excitation_end": motion.duration}]), height=3.9)
-    options.write_outputs(outputs)  # all or nothing
+    from audit.files import write_atomically
+    write_atomically(outputs)  # all or nothing
     if history:
         print(f"History written to {args.history}", file=sys.stderr)
     if args.json:

@@ -8,6 +8,8 @@ import time
 from pathlib import Path
 
 from audit.cli import options
+from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+                                   DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER, alpha_text, sizes_text)
 from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out"
@@ -39,20 +41,22 @@ def add_parser(sub):
                                    "and the other files described in columns.json.")
     p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
-    p.add_argument("--alpha", default="10,15,20", metavar="DEG,...", help="slendernesses [degrees]")
-    p.add_argument("--sizes", default="0.5:8:0.05", metavar="START:STOP:STEP",
+    p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
+                   help="slendernesses [degrees]")
+    p.add_argument("--sizes", default=sizes_text(), metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s]")
     p.add_argument("--out", metavar="DIR", help=f"output directory (default {DEFAULT_OUT}/PROCEDURE)")
-    p.add_argument("--jobs", type=options.jobs, default=2,
+    p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="threads of the exact solver, or worker processes with --scheduler dask")
-    p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=10.0, metavar="S",
+    p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
+                   metavar="S",
                    help="free motion after each record [s]")
     p.add_argument("--agree-band", type=options.number("must lie in [0, 1)", 0, 1, high_open=True),
-                   default=0.10, metavar="FRACTION",
+                   default=DEFAULT_AGREE_BAND, metavar="FRACTION",
                    help="verdict 'agrees' when both survive and |approx/exact − 1| ≤ FRACTION")
     p.add_argument("--robustness", type=options.number("must lie in [0, 0.5)", 0, 0.5,
                                                        high_open=True),
-                   default=0.03, metavar="EPSILON",
+                   default=DEFAULT_ROBUSTNESS, metavar="EPSILON",
                    help="flag blocks whose exact overturning changes with the record scaled by "
                         "1 ± EPSILON (0 turns it off)")
     p.add_argument("--site", metavar="SXS,SX1",
@@ -72,7 +76,8 @@ def add_parser(sub):
     p.add_argument("--skip-bad-records", action="store_true",
                    help="audit the readable records of a suite and list the unreadable ones "
                         "(default: stop at the first)")
-    p.add_argument("--scheduler", default="local", metavar="local|dask|tcp://HOST:PORT",
+    p.add_argument("--scheduler", default=DEFAULT_SCHEDULER,
+                   metavar="local|dask|tcp://HOST:PORT",
                    help="where records are audited: this process, a Dask LocalCluster "
                         "of --jobs worker processes, or an existing Dask cluster")
     p.add_argument("--resume", action="store_true",
@@ -84,46 +89,31 @@ def add_parser(sub):
 def design_site(args, suite):
     """``suite`` with the design sites and scaling of ``--ntc-site``, ``--site``,
     ``--site-override``, ``--scale-to-site`` and ``--anchor-period``."""
-    from records import scale_to_site, with_design_site, with_ntc_site
+    from audit.api import design_suite
+    ntc_site = site = None
     if args.ntc_site:
         fields = args.ntc_site.split(",")
         if len(fields) != 5:
             raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        ag_g, f0, tc_star_s = options.float_list(",".join(fields[:3]), "--ntc-site")
-        try:
-            suite = with_ntc_site(suite, ag_g, f0, tc_star_s, fields[3].strip().upper(),
-                                  fields[4].strip().upper())
-        except InputError as exc:  # the spectrum names the field; the user typed the option
-            raise InputError(f"--ntc-site: {exc}") from None
-    if args.anchor_period is not None and not args.scale_to_site:
-        raise InputError("--anchor-period: needs --scale-to-site")
-    if not args.site:
-        if args.site_override or args.scale_to_site:
-            raise InputError("--site-override and --scale-to-site need --site SXS,SX1")
-        return suite
-    site = options.float_list(args.site, "--site")
-    if len(site) != 2:
-        raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
-    sxs_g, sx1_g = site
-    if not (sxs_g > 0 and sx1_g > 0):
-        raise InputError(f"--site: S_XS and S_X1 must be positive accelerations in g, "
-                         f"got '{args.site}'")
-    suite = with_design_site(suite, sxs_g, sx1_g, override=args.site_override)
-    if args.scale_to_site:
-        suite = scale_to_site(suite, sxs_g, sx1_g,
-                              1.0 if args.anchor_period is None else args.anchor_period)
-    return suite
+        ntc_site = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+    if args.site:
+        site = options.float_list(args.site, "--site")
+        if len(site) != 2:
+            raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
+    return design_suite(suite, site, args.site_override, args.scale_to_site, args.anchor_period,
+                        ntc_site)
 
 
 def run(args) -> int:
-    from audit.engine.files import check_output_dir
+    from audit.api import run as run_api
     from audit.engine.partial import PARTIAL_DIR, kept_parts
     from audit.engine.progress import Progress
-    from audit.engine.results import REPORT_HTML, save_run
-    from audit.engine.runner import SPECTRUM_PERIODS_S, compiles_first, run_audit
+    from audit.engine.results import REPORT_HTML
     from audit.engine.scheduler import check_scheduler
+    from audit.engine.suite_run import compiles_first
+    from audit.files import check_output_dir
     from procedures import get_procedures
-    from reports import render_report
+    from procedures.base import SPECTRUM_PERIODS_S
     out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
     out_dir_existed = out_dir.exists()
     scheduler = check_scheduler(args.scheduler)
@@ -143,11 +133,11 @@ def run(args) -> int:
         progress.stage("compiling the rocking solver and the oscillator kernels for this machine "
                        "(first run only: 5–10 s)")
     try:
-        run = run_audit(procedures, suite, alphas, sizes, jobs=args.jobs,
-                        free_motion_s=args.free_motion, progress=progress,
-                        agree_band=args.agree_band, robustness=args.robustness,
-                        scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
-                        resume=args.resume, detail=detail)
+        result = run_api(procedures, suite, alphas, sizes, jobs=args.jobs,
+                         free_motion_s=args.free_motion, progress=progress,
+                         agree_band=args.agree_band, robustness=args.robustness,
+                         scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
+                         resume=args.resume, detail=detail)
     except KeyboardInterrupt:
         kept = kept_parts(out_dir / PARTIAL_DIR)
         if not kept:  # interrupted before the first record was stored: leave nothing
@@ -160,23 +150,20 @@ def run(args) -> int:
         return 130
     finally:
         progress.done()
-    progress.stage("checking the claims of the reference report")
-    from audit.engine.claims import evaluate_claims
-    run.claims = evaluate_claims(run, suite)
     computed = time.perf_counter() - start
     progress.stage(f"writing the results and the report to {out_dir}")
-    save_run(run, out_dir, render_report)
+    result.write(out_dir)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     total = time.perf_counter() - start
+    summary = result.summary
     print(f"Audited {', '.join(p.name for p in procedures)} on {suite.description} "
-          f"in {run.summary['scheduler']}"
-          + (f"; reused {len(run.summary['resumed'])} records of an interrupted run"
-             if run.summary["resumed"] else ""))
-    for item in run.summary["unauditable"]:
+          f"in {summary['scheduler']}"
+          + (f"; reused {len(summary['resumed'])} records of an interrupted run"
+             if summary["resumed"] else ""))
+    for item in summary["unauditable"]:
         print(f"  not audited: {item['procedure']} × {item['record']}: {item['reason']}")
-    counts = run.results["verdict"].value_counts()
+    counts = result.results["verdict"].value_counts()
     print("Verdicts: " + ", ".join(f"{v} {n}" for v, n in counts.items()))
     print(f"Wrote {out_dir / REPORT_HTML} and results.csv, summary.json "
           f"({computed:.1f} s computing, {total:.1f} s in all)")
     return 0
-

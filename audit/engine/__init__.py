@@ -1,1 +1,1 @@
-"""The application around the physics: the audit runner, saved results and progress reporting."""
+"""The application around the physics: the audit pipeline, saved results and progress reporting."""

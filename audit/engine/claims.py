@@ -26,7 +26,8 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.engine.runner import CLAIM_COLUMNS, RecordContext
+from audit.engine.schemas import CLAIM_COLUMNS
+from audit.engine.verdicts import CLAIM_STATUSES, names
 from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution, radius_from_p
 from audit.physics.damping import (damping_fema356, damping_free_rocking, damping_priestley,
@@ -35,12 +36,13 @@ from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import DEFAULT_FREE_MOTION_S, simulate
 from procedures.base import CONVERGED, NO_UPLIFT, OVERTURN
 from procedures.registry import available_procedures
+from procedures.context import RecordContext
 from records import GroundMotion, one_pulse
 
 CLAIMS_FILE = "claims.toml"
 CLAIM_FIELDS = ("id", "section", "claim", "reference_value", "records", "method", "tolerance",
                 "note")
-STATUSES = ("agrees", "close", "differs", "cannot-check")
+STATUSES = names(CLAIM_STATUSES)
 TOLERANCE_KINDS = ("relative", "absolute", "at_least", "at_most", "exact")
 #: Duration of the one-cosine pulses of Figures 4.1, 4.2 and 7.2 [s] and the free motion after.
 PULSE_PERIOD_S = 2.0
@@ -133,7 +135,7 @@ class ClaimContext:
 
     Parameters
     ----------
-    run : audit.engine.runner.AuditRun
+    run : audit.engine.suite_run.AuditRun
     suite : records.RecordSuite, optional
         The records of the run. Single-block claims on a record simulate from its motion when
         given; otherwise they read the run's grid (and cannot check blocks off the grid).
@@ -336,9 +338,9 @@ def procedure_block(ctx, quantity: str, procedure: str, record: str, alpha_deg: 
         outcome, theta = row["approx_outcome"], row["approx_theta_rad"]
         detail, cycle = row["approx_detail"], row["approx_cycle"]
     else:
-        estimate = available_procedures()[procedure]().estimate(
+        estimate = available_procedures()[procedure]().evaluate(
             entry, np.array([p]), alpha, float(coefficient_of_restitution(alpha)),
-            ctx.record_context(entry), ctx.g)
+            ctx.record_context(entry), ctx.g).estimate
         outcome, theta = estimate.outcome[0], estimate.theta[0]
         detail, cycle = estimate.detail[0], estimate.cycle[0]
     if outcome == OVERTURN:
@@ -512,7 +514,7 @@ def evaluate_method(ctx: ClaimContext, method: dict) -> Value:
 # ------------------------------------------------------------------------------ checklist
 
 def evaluate_claim(ctx: ClaimContext, claim: dict) -> dict:
-    """One row of the checklist (columns :data:`audit.engine.runner.CLAIM_COLUMNS`)."""
+    """One row of the checklist (columns :data:`audit.engine.schemas.CLAIM_COLUMNS`)."""
     row = {key: claim[key] for key in ("id", "section", "claim", "reference_value")}
     notes = [claim["note"]] if claim["note"] else []
     try:
@@ -540,7 +542,7 @@ def evaluate_claims(run, suite=None, claims: list[dict] | None = None) -> pd.Dat
 
     Parameters
     ----------
-    run : audit.engine.runner.AuditRun
+    run : audit.engine.suite_run.AuditRun
         The run (its ``results``, ``rocking`` and ``summary`` are read).
     suite : records.RecordSuite, optional
         The run's records; with it, single-block claims are simulated from the record (any

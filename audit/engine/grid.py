@@ -1,14 +1,10 @@
-"""The audit grid: slendernesses and block sizes (light: numpy only, so the CLI can parse it)."""
+"""The audit grid: block sizes 2π/p (light: numpy only, so the CLI can parse it)."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-
-DEFAULT_ALPHA_DEG = (10.0, 15.0, 20.0)
-#: Block sizes 2π/p: START, STOP (inclusive), STEP [s].
-DEFAULT_SIZES = (0.5, 8.0, 0.05)
 
 
 def size_grid(start: float, stop: float, step: float) -> np.ndarray:

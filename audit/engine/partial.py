@@ -1,6 +1,6 @@
 """Per-record results kept while a run is under way, so an interrupted run can resume.
 
-Each record's :class:`~audit.engine.runner.RecordAudit` is pickled into ``DIR/.partial/`` as
+Each record's :class:`~audit.engine.record_audit.RecordAudit` is pickled into ``DIR/.partial/`` as
 soon as it is computed (written to a temporary name, then renamed: a kill leaves either the
 whole file or none). The file name and the stored key hash everything the part depends on:
 the tool version, the procedures (names, classes, attributes), the :class:`AuditSettings`
@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import pickle
 import shutil
 from pathlib import Path
 
 from audit import __version__
+from audit.files import write_file_atomically
 
 PARTIAL_DIR = ".partial"
 
@@ -69,7 +69,7 @@ class PartialStore:
     directory : str or Path
         ``DIR/.partial``.
     procedures : list of procedures.Procedure
-    settings : audit.engine.runner.AuditSettings
+    settings : audit.engine.settings.AuditSettings
     resume : bool
         Keep parts already there (reused where their key matches); otherwise the folder is
         cleared first.
@@ -102,18 +102,8 @@ class PartialStore:
     def save(self, entry, part) -> None:
         """Store the part of ``entry`` atomically (temporary file, then rename)."""
         path, key = self._path_and_key(entry)
-        self.directory.mkdir(parents=True, exist_ok=True)
-        temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-        try:
-            with open(temporary, "wb") as file:
-                pickle.dump({"key": key, "record": entry.id, "part": part}, file,
-                            protocol=pickle.HIGHEST_PROTOCOL)
-                file.flush()
-                os.fsync(file.fileno())
-            os.replace(temporary, path)
-        except BaseException:  # Ctrl-C while writing included: no half part is left behind
-            temporary.unlink(missing_ok=True)
-            raise
+        write_file_atomically(path, pickle.dumps({"key": key, "record": entry.id, "part": part},
+                                                 protocol=pickle.HIGHEST_PROTOCOL))
 
     def remove(self) -> None:
         """Delete the folder (after the final outputs are saved, or to start afresh)."""

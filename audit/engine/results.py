@@ -17,8 +17,9 @@ import numpy as np
 import pandas as pd
 
 from audit.errors import InputError
-from audit.engine.files import write_files_atomically
-from audit.engine.runner import BOOLEAN_COLUMNS, RESULT_COLUMNS, AuditRun
+from audit.files import write_files_atomically
+from audit.engine.schemas import BOOLEAN_COLUMNS, RESULT_COLUMNS, column_guide
+from audit.engine.suite_run import AuditRun
 
 RESULTS_CSV = "results.csv"
 SUMMARY_JSON = "summary.json"
@@ -29,6 +30,8 @@ ESTIMATES_ONLY_CSV = "estimates-only.csv"
 CHECKS_CSV = "checks.csv"
 SUITE_CSV = "suite.csv"
 CLAIMS_CSV = "claims.csv"
+DESIGN_SPECTRA_CSV = "design-spectra.csv"
+MECHANICS_CSV = "mechanics.csv"
 COLUMNS_JSON = "columns.json"
 REPORT_HTML = "report.html"
 
@@ -59,7 +62,6 @@ def _with_booleans(frame):
 
 def run_files(run: AuditRun) -> dict[str, bytes]:
     """The data files of a run, as bytes (``columns.json`` describes every column)."""
-    from audit.engine.columns import column_guide
     return {
         RESULTS_CSV: _with_booleans(run.results).to_csv(index=False, float_format="%.10g").encode(),
         ESTIMATES_ONLY_CSV: _with_booleans(run.estimates_only).to_csv(
@@ -71,12 +73,14 @@ def run_files(run: AuditRun) -> dict[str, bytes]:
         CHECKS_CSV: run.checks.to_csv(index=False, float_format="%.10g").encode(),
         SUITE_CSV: run.suite.to_csv(index=False, float_format="%.6g").encode(),
         CLAIMS_CSV: run.claims.to_csv(index=False).encode(),
+        DESIGN_SPECTRA_CSV: run.design_spectra.to_csv(index=False, float_format="%.8g").encode(),
+        MECHANICS_CSV: run.mechanics.to_csv(index=False, float_format="%.7g").encode(),
         COLUMNS_JSON: json.dumps(column_guide(), indent=1, ensure_ascii=False).encode(),
     }
 
 
 DATA_FILES = (RESULTS_CSV, ESTIMATES_ONLY_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV,
-              ROCKING_CSV, CHECKS_CSV, SUITE_CSV, CLAIMS_CSV)
+              ROCKING_CSV, CHECKS_CSV, SUITE_CSV, CLAIMS_CSV, DESIGN_SPECTRA_CSV, MECHANICS_CSV)
 
 
 def load_run(run_dir: str | Path) -> AuditRun:
@@ -126,11 +130,16 @@ def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
                                                           "capacity_m")})
         suite = pd.read_csv(io.BytesIO(files[SUITE_CSV]))
         claims = pd.read_csv(io.BytesIO(files[CLAIMS_CSV]), keep_default_na=False, dtype=str)
+        design = pd.read_csv(io.BytesIO(files[DESIGN_SPECTRA_CSV]), keep_default_na=False,
+                             na_values={c: [""] for c in ("damping_pct", "period_s", "sa_g",
+                                                          "sd_m")})
+        mechanics = pd.read_csv(io.BytesIO(files[MECHANICS_CSV]))
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}: cannot read the results: {exc}") from None
     spectra["procedure"] = spectra["procedure"].astype(str)
+    design["record"] = design["record"].astype(str)
     return AuditRun(results, spectra, histories, rocking, estimates_only, summary, checks, suite,
-                    claims)
+                    claims, design, mechanics)
 
 
 def save_run(run: AuditRun, out_dir: str | Path, render) -> AuditRun:

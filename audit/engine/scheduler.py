@@ -1,6 +1,6 @@
 """Where the records of an audit are computed: this process, or a Dask cluster.
 
-The unit of work is :func:`~audit.engine.runner.audit_record` (one record, every procedure,
+The unit of work is :func:`~audit.engine.record_audit.audit_record` (one record, every procedure,
 the whole grid); records are independent, so a suite spreads over workers with no other
 communication. ``local`` runs them one after the other in this process (the exact solver
 uses ``jobs`` threads); ``dask`` starts a ``dask.distributed`` LocalCluster of ``jobs``
@@ -22,6 +22,7 @@ from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
 from audit.engine.partial import motion_digest
+from audit.engine.record_audit import audit_record
 from audit.errors import InputError
 
 LOCAL = "local"
@@ -87,7 +88,6 @@ def resolve(item):
 
 def timed_audit(item, procedures, settings):
     """Audit one record (entry or reference): ``(RecordAudit, seconds)``, or None if unresolved."""
-    from audit.engine.runner import audit_record
     entry = resolve(item)
     if entry is None:
         return None

@@ -12,16 +12,13 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from audit.engine.runner import SUITE_COLUMNS, UNSAFE_VERDICTS, VERDICTS
+from audit.engine.ranking import worst_case
+from audit.engine.schemas import SUITE_COLUMNS, verdict_column
+from audit.engine.verdicts import UNECONOMIC_VERDICTS, UNSAFE_VERDICTS, VERDICTS
 
 #: Percentiles of approx/exact written to ``suite.csv`` [%].
 RATIO_PERCENTILES = (16, 50, 84)
 _KEYS = ["procedure", "alpha_deg", "size_s"]
-
-
-def verdict_column(verdict: str) -> str:
-    """``suite.csv`` column of a verdict class: ``missed-overturn`` → ``frac_missed_overturn``."""
-    return f"frac_{verdict.replace('-', '_')}"
 
 
 def suite_statistics(results: pd.DataFrame) -> pd.DataFrame:
@@ -36,7 +33,7 @@ def suite_statistics(results: pd.DataFrame) -> pd.DataFrame:
     Returns
     -------
     pandas.DataFrame
-        Columns :data:`~audit.engine.runner.SUITE_COLUMNS`: ``records`` counted, the fraction
+        Columns :data:`~audit.engine.schemas.SUITE_COLUMNS`: ``records`` counted, the fraction
         of them in each verdict class (the fractions sum to 1), ``frac_unsafe`` (missed
         overturning + unconservative), and the 16th/50th/84th percentiles of approx/exact over
         the records where both survive (linear interpolation between order statistics; NaN
@@ -101,4 +98,43 @@ def suite_summary(suite: pd.DataFrame, titles: dict | None = None) -> list[dict]
     return summary
 
 
-__all__ = ["suite_statistics", "suite_summary", "verdict_column", "RATIO_PERCENTILES"]
+def bottom_line(results: pd.DataFrame, procedures) -> list[dict]:
+    """Per procedure: how many blocks it gets wrong on each side, and its worst case.
+
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``results.csv`` rows (blocks with an exact response).
+    procedures : list of procedures.Procedure
+
+    Returns
+    -------
+    list of dict
+        ``name, blocks, records, count`` (per verdict), ``pct`` (per verdict, % of blocks),
+        ``unsafe, uneconomic, unsafe_pct, uneconomic_pct, median_ratio`` (approx/exact where
+        both survive) and ``worst`` (the row of :func:`~audit.engine.histories.worst_case`, or
+        None).
+    """
+    lines = []
+    for procedure in procedures:
+        rows = results[results["procedure"] == procedure.name]
+        total = len(rows)
+        counts = rows["verdict"].value_counts()
+        count = {v: int(counts.get(v, 0)) for v in VERDICTS}
+        unsafe = sum(count[v] for v in UNSAFE_VERDICTS)
+        uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
+        ratios = rows["ratio"].astype(float).replace([np.inf, -np.inf], np.nan).dropna()
+        worst = worst_case(rows)
+        lines.append({
+            "name": procedure.name, "blocks": total, "records": int(rows["record"].nunique()),
+            "count": count, "pct": {v: 100.0 * n / total if total else 0.0
+                                    for v, n in count.items()},
+            "unsafe": unsafe, "uneconomic": uneconomic,
+            "unsafe_pct": 100.0 * unsafe / total if total else 0.0,
+            "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
+            "median_ratio": float(ratios.median()) if len(ratios) else None,
+            "worst": None if worst is None else worst.to_dict()})
+    return lines
+
+
+__all__ = ["suite_statistics", "suite_summary", "bottom_line", "RATIO_PERCENTILES"]

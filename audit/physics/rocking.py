@@ -32,15 +32,11 @@ import numba
 import numpy as np
 
 from audit.physics.block import RigidBlock, coefficient_of_restitution
+from audit.physics.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
+                                    DEFAULT_STEPS_PER_RADIAN)
 from audit.physics.tiers import tiered
 from audit.errors import InputError
 
-#: Free motion simulated after the end of the excitation [s].
-DEFAULT_FREE_MOTION_S = 10.0
-#: Runge–Kutta steps per radian of p·t: h ≤ 1/(steps_per_radian·p).
-DEFAULT_STEPS_PER_RADIAN = 40.0
-#: A rebound that would lift the block by less than this fraction of α counts as rest.
-DEFAULT_REST_TOLERANCE = 1e-6
 #: Impacts whose times are kept by :func:`simulate`.
 IMPACT_CAPACITY = 100_000
 #: Most samples of θ(t) and θ'(t) kept by :func:`simulate` (longer histories are decimated, so

@@ -1,4 +1,5 @@
-"""Output files and folders: checked before any work, written all or nothing.
+"""Output files and folders: checked before any work, written all or nothing (the one place
+the tool writes files atomically: every layer, records included, writes through here).
 
 Light on purpose (no pandas, no numpy), so every command can validate and write its outputs
 without loading the scientific stack.
@@ -118,3 +119,30 @@ def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None
         raise InputError(f"{out_dir}: cannot write: {exc.strerror}") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
+
+
+def write_atomically(files: dict[Path, bytes]) -> None:
+    """Write every output file of a command together: all are staged beside their targets
+    first and renamed into place only when every one is complete, so a failure leaves none."""
+    staged = []
+    try:
+        for path, content in files.items():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            handle, temp = tempfile.mkstemp(prefix=f".{path.name}-staging-{os.getpid()}-",
+                                            dir=path.parent)
+            staged.append(temp)
+            with os.fdopen(handle, "wb") as stream:
+                stream.write(content)
+        for temp, path in zip(staged, files):
+            os.replace(temp, path)
+    except OSError as exc:
+        raise InputError(f"{path}: cannot write: {exc.strerror}") from None
+    finally:
+        for temp in staged:
+            if os.path.exists(temp):
+                os.remove(temp)
+
+
+def write_file_atomically(path: str | Path, content: bytes) -> None:
+    """Write one file atomically (see :func:`write_atomically`)."""
+    write_atomically({Path(path): content})

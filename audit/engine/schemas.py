@@ -1,11 +1,21 @@
-"""The column guide of the files an audit writes (``columns.json``, and the README's table).
+"""The files an audit writes, column by column: the one schema every layer reads.
 
-One entry per column: its unit (``-`` for dimensionless, ``text``, ``bool``) and its meaning.
-Column names carry their unit (``_rad``, ``_s``, ``_deg``, ``_g``, ``_m``, ``_m_s``,
-``_rad_s``, ``_pct``), so a CSV read on its own still says what it holds.
+One entry per column: its unit (``-`` for dimensionless, ``text``, ``bool``) and its meaning
+(``columns.json``, the README's table). Column names carry their unit (``_rad``, ``_s``,
+``_deg``, ``_g``, ``_m``, ``_m_s``, ``_rad_s``, ``_pct``), so a CSV read on its own still says
+what it holds; the column lists of the engine are the keys, in order.
 """
 
 from __future__ import annotations
+
+from audit.engine.verdicts import (CHECK_VERDICTS, CLAIM_STATUSES, UNSAFE_VERDICTS, VERDICTS,
+                                   names)
+
+
+def verdict_column(verdict: str) -> str:
+    """``suite.csv`` column of a verdict class: ``missed-overturn`` → ``frac_missed_overturn``."""
+    return f"frac_{verdict.replace('-', '_')}"
+
 
 _RESULTS = {
     "record": ("text", "record id"),
@@ -31,8 +41,7 @@ _RESULTS = {
     "approx_detail": ("text", "what the iteration did when it did not converge"),
     "iterations": ("-", "iterations used"),
     "beta_pct": ("%", "equivalent damping β of the procedure"),
-    "verdict": ("text", "no-uplift, both-overturn, false-overturn, missed-overturn, agrees, "
-                        "conservative, unconservative, not-converged"),
+    "verdict": ("text", ", ".join(VERDICTS)),
     "ratio": ("-", "approx_theta_rad / exact_theta_rad where both survive"),
 }
 
@@ -72,8 +81,7 @@ GUIDE = {
                                 "theta_limit_rad, or overturning)"),
         "procedure_passes": ("bool", "the procedure's check is satisfied"),
         "exact_exceeded": ("bool", "the exact response exceeds the limit state"),
-        "verdict": ("text", "agrees-safe, agrees-unsafe, missed (passes, exact exceeds: "
-                            "unsafe) or false-alarm"),
+        "verdict": ("text", ", ".join(names(CHECK_VERDICTS))),
         "demand_m": ("m", "displacement demand (empty for an acceleration check)"),
         "capacity_m": ("m", "displacement capacity"),
         "demand_g": ("g", "acceleration demand (empty for a displacement check)"),
@@ -87,10 +95,8 @@ GUIDE = {
         "alpha_deg": ("deg", "slenderness α"),
         "size_s": ("s", "block size 2π/p"),
         "records": ("-", "records counted"),
-        **{f"frac_{v}": ("-", f"fraction of records with verdict {v.replace('_', '-')}")
-           for v in ("no_uplift", "both_overturn", "false_overturn", "missed_overturn",
-                     "agrees", "conservative", "unconservative", "not_converged")},
-        "frac_unsafe": ("-", "fraction missed-overturn + unconservative"),
+        **{verdict_column(v): ("-", f"fraction of records with verdict {v}") for v in VERDICTS},
+        "frac_unsafe": ("-", "fraction " + " + ".join(UNSAFE_VERDICTS)),
         "ratio_p16": ("-", "16th percentile of approx/exact where both survive"),
         "ratio_p50": ("-", "median of approx/exact where both survive"),
         "ratio_p84": ("-", "84th percentile of approx/exact where both survive"),
@@ -101,7 +107,7 @@ GUIDE = {
         "claim": ("text", "the claim in words"),
         "reference_value": ("text", "the report's value"),
         "tool_value": ("text", "the tool's value"),
-        "status": ("text", "agrees, close, differs or cannot-check"),
+        "status": ("text", ", ".join(names(CLAIM_STATUSES))),
         "note": ("text", "why it differs, where known"),
     },
     "histories.csv": {
@@ -113,6 +119,37 @@ GUIDE = {
         "omega_rad_s": ("rad/s", "θ'"),
     },
 }
+
+
+GUIDE["design-spectra.csv"] = {
+    "record": ("text", "record id whose design site it is; empty for UBC 97, the same for all"),
+    "code": ("text", "design spectrum: UBC 97 zone 4 S_D, or FEMA 356 of the record's site"),
+    "damping_pct": ("%", "damping ratio ξ"),
+    "period_s": ("s", "period T"),
+    "sa_g": ("g", "design spectral acceleration"),
+    "sd_m": ("m", "design spectral displacement Sa g T²/(4π²)"),
+}
+GUIDE["mechanics.csv"] = {
+    "figure": ("text", "figure of the reference report: 7.1 (β against r), 4.1 (rocking "
+                       "block under pulses), 7.2 (its 'equivalent' oscillator)"),
+    "series": ("text", "curve"),
+    "theta0_ratio": ("-", "Figure 7.1: initial rotation θ₀/α of the free-rocking decay"),
+    "impacts": ("-", "Figure 7.1: impacts n of the free-rocking decay"),
+    "x": ("-", "r [-] (Figure 7.1) or t [s]"),
+    "y": ("-", "β [%] (Figure 7.1), θ/α [-] (4.1) or u [m] (7.2)"),
+}
+
+RESULT_COLUMNS = list(GUIDE["results.csv"])
+ROCKING_COLUMNS = list(GUIDE["rocking.csv"])
+SPECTRA_COLUMNS = list(GUIDE["spectra.csv"])
+CHECK_COLUMNS = list(GUIDE["checks.csv"])
+SUITE_COLUMNS = list(GUIDE["suite.csv"])
+CLAIM_COLUMNS = list(GUIDE["claims.csv"])
+HISTORY_COLUMNS = list(GUIDE["histories.csv"])
+DESIGN_SPECTRA_COLUMNS = list(GUIDE["design-spectra.csv"])
+MECHANICS_COLUMNS = list(GUIDE["mechanics.csv"])
+#: Columns holding booleans in ``results.csv`` (``exact_fragile`` is empty when not checked).
+BOOLEAN_COLUMNS = ("exact_overturned", "exact_uplifted", "exact_fragile", "approx_overturned")
 
 
 def column_guide() -> dict:

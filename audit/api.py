@@ -1,0 +1,360 @@
+"""The Python API: the engine the command line runs, for notebooks and scripts.
+
+    import audit, records
+    block = audit.Block.from_dimensions(width_m=0.8, height_m=2.4)
+    response = audit.rock(block, records.load("pulses").get("pacoima_dam_1971"))
+    result = audit.run("all", records="p695-far-field", site=(1.5, 0.9), scale_to_site=True)
+    result.bottom_line                       # a DataFrame; result.write("out") for the files
+
+Angles are given in degrees and accelerations in g at this edge, as on the command line;
+everything inside is SI. Bad input raises :class:`audit.errors.InputError` with the message the
+command line prints.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from audit import G
+from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
+                                   DEFAULT_JOBS, DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER)
+from audit.engine.suite_run import AuditRun, run_audit
+from audit.errors import InputError
+from audit.physics.block import RigidBlock
+from audit.physics.rocking import RockingResponse as _Response
+from audit.physics.rocking import simulate
+from procedures.base import Procedure
+
+
+@dataclass(frozen=True)
+class Block:
+    """A free-standing rectangular block, by its slenderness and size.
+
+    Parameters
+    ----------
+    alpha_deg : float
+        Slenderness α = atan(b/h) [degrees], 0 < α < 45.
+    size_s : float
+        Size 2π/p [s], p = √(3g/(4R)) the frequency parameter (Eq. 4.2), R the half-diagonal.
+    r : float, optional
+        Coefficient of restitution (ratio of kinetic energies after/before an impact) [-];
+        Eq. 4.8 of Makris & Konstantinidis (2001), r = (1 − 1.5 sin²α)², when not given.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
+
+    alpha_deg: float
+    size_s: float
+    r: float | None = None
+    g: float = G
+
+    def __post_init__(self):
+        self.rigid  # validates α, the size, r and g with the solver's own messages
+
+    @classmethod
+    def from_dimensions(cls, width_m: float, height_m: float, r: float | None = None,
+                        g: float = G) -> Block:
+        """The block of full width 2b and full height 2h [m]: α = atan(b/h), R = √(b² + h²)."""
+        rigid = RigidBlock.from_dimensions(width_m / 2.0, height_m / 2.0, r, g)
+        return cls(math.degrees(rigid.alpha), rigid.size_s, r, g)
+
+    @property
+    def rigid(self) -> RigidBlock:
+        """The solver's block (p [rad/s], α [rad], r, g)."""
+        return RigidBlock.from_size(self.size_s, math.radians(self.alpha_deg), self.r, self.g)
+
+    @property
+    def p_rad_s(self) -> float:
+        """Frequency parameter p = 2π/size [rad/s]."""
+        return 2.0 * math.pi / self.size_s
+
+    @property
+    def radius_m(self) -> float:
+        """Half-diagonal R = 3g/(4p²) [m]."""
+        return self.rigid.radius
+
+    @property
+    def width_m(self) -> float:
+        """Full width 2b = 2R sin α [m]."""
+        return 2.0 * self.rigid.half_width
+
+    @property
+    def height_m(self) -> float:
+        """Full height 2h = 2R cos α [m]."""
+        return 2.0 * self.rigid.half_height
+
+    @property
+    def restitution(self) -> float:
+        """The coefficient of restitution r the solver uses [-]."""
+        return self.rigid.r
+
+
+class RockingResponse:
+    """The exact response of one block to one ground motion (:func:`rock`).
+
+    Attributes
+    ----------
+    block : Block
+    motion : records.GroundMotion
+    overturned : bool
+    peak : float
+        max |θ| [rad] (α when the block overturns).
+    peak_ratio : float
+        max |θ| / α [-].
+    overturn_time_s : float or None
+    impacts : int
+    """
+
+    def __init__(self, block: Block, motion, response: _Response):
+        self.block, self.motion, self.solution = block, motion, response
+        self.overturned = bool(response.overturned)
+        self.peak = float(response.peak_rotation)
+        self.peak_ratio = float(response.peak_rotation_ratio)
+        self.overturn_time_s = float(response.overturn_time) if response.overturned else None
+        self.impacts = int(response.n_impacts)
+
+    @property
+    def history(self) -> pd.DataFrame:
+        """The response at every solver output point: ``time_s, theta_rad, theta_dot_rad_s,
+        ground_acc_g``; an impact appears twice at its time (θ' before, then after)."""
+        time, theta, omega = self.solution.history()
+        return pd.DataFrame({"time_s": time, "theta_rad": theta, "theta_dot_rad_s": omega,
+                             "ground_acc_g": self.motion.acceleration_at(time) / G})
+
+    def plot(self):
+        """θ/α and θ' against time, rocking cycles shaded: a matplotlib Figure."""
+        from reports.figures import draw_time_histories, new_figure
+        response = self.solution
+        fig = new_figure(10.0, 5.0)
+        draw_time_histories(fig, [{
+            "time": response.time, "theta_ratio": response.theta / response.block.alpha,
+            "omega": response.omega,
+            "title": (f"{getattr(self.motion, 'id', 'motion')}: 2π/p = {self.block.size_s:.3g} s, "
+                      f"α = {self.block.alpha_deg:g}°"),
+            "rocking_span": ((response.impact_times[0], response.impact_times[-1])
+                             if response.n_impacts else None),
+            "cycle_starts": response.cycle_starts, "cycle_durations": response.cycle_durations,
+            "excitation_end": response.excitation_end}])
+        return fig
+
+    def __repr__(self) -> str:
+        what = (f"overturns at t = {self.overturn_time_s:.3f} s" if self.overturned
+                else f"peak θ/α = {self.peak_ratio:.4f}")
+        return (f"RockingResponse(α = {self.block.alpha_deg:g}°, 2π/p = {self.block.size_s:g} s: "
+                f"{what}, {self.impacts} impacts)")
+
+
+def rock(block: Block, motion, free_motion_s: float = DEFAULT_FREE_MOTION_S) -> RockingResponse:
+    """Exact rocking response of ``block`` to ``motion`` (Eq. 4.3, impacts by Eq. 4.8).
+
+    Parameters
+    ----------
+    block : Block
+    motion : records.GroundMotion or records.RecordEntry
+        Ground acceleration [m/s²] (a suite's record, e.g. ``records.load(...).get(id)``).
+    free_motion_s : float
+        Free motion simulated after the excitation ends [s].
+    """
+    motion = getattr(motion, "motion", motion)
+    if motion is None:
+        raise InputError("rock: the record has no file to read")
+    return RockingResponse(block, motion, simulate(block.rigid, motion, free_motion_s))
+
+
+def _procedures(procedures) -> list[Procedure]:
+    """Procedure instances from ``"all"``, a name, an instance, a class or a list of those."""
+    from procedures import get_procedures
+    if isinstance(procedures, (str, Procedure)) or isinstance(procedures, type):
+        procedures = [procedures]
+    out = []
+    for item in procedures:
+        if isinstance(item, str):
+            out += get_procedures(item)
+        elif isinstance(item, Procedure):
+            out.append(item)
+        elif isinstance(item, type) and issubclass(item, Procedure):
+            out.append(item())
+        else:
+            raise InputError(f"procedures: expected a name, 'all' or a Procedure, got {item!r}")
+    return out
+
+
+def design_suite(suite, site=None, site_override: bool = False, scale_to_site: bool = False,
+                 anchor_period_s: float | None = None, ntc_site=None):
+    """``suite`` with design sites and the FEMA P695 scaling to a design spectrum.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+    site : (float, float), optional
+        FEMA 356 design site S_XS, S_X1 [g] for every record without one.
+    site_override : bool
+        Also replace the sites records carry (Table 3.1).
+    scale_to_site : bool
+        Scale the suite so that its median 5 %-damped Sa at ``anchor_period_s`` equals the
+        design spectrum (each record first by its P695 normalisation factor).
+    anchor_period_s : float, optional
+        Anchor period [s] (1 s when not given).
+    ntc_site : (float, float, float, str, str), optional
+        NTC 2018 site a_g [g], F0 [-], T_C* [s], soil category A–E, topography T1–T4.
+    """
+    from records import scale_to_site as scaled, with_design_site, with_ntc_site
+    if ntc_site is not None:
+        ag_g, f0, tc_star_s, soil, topography = ntc_site
+        try:
+            suite = with_ntc_site(suite, ag_g, f0, tc_star_s, str(soil).strip().upper(),
+                                  str(topography).strip().upper())
+        except InputError as exc:  # the spectrum names the field; the user typed the option
+            raise InputError(f"--ntc-site: {exc}") from None
+    if anchor_period_s is not None and not scale_to_site:
+        raise InputError("--anchor-period: needs --scale-to-site")
+    if site is None:
+        if site_override or scale_to_site:
+            raise InputError("--site-override and --scale-to-site need --site SXS,SX1")
+        return suite
+    sxs_g, sx1_g = site
+    if not (sxs_g > 0 and sx1_g > 0):
+        raise InputError(f"--site: S_XS and S_X1 must be positive accelerations in g, "
+                         f"got {sxs_g:g},{sx1_g:g}")
+    suite = with_design_site(suite, sxs_g, sx1_g, override=site_override)
+    if scale_to_site:
+        suite = scaled(suite, sxs_g, sx1_g, 1.0 if anchor_period_s is None else anchor_period_s)
+    return suite
+
+
+class AuditResult:
+    """An audit's results as DataFrames, its bottom line, and its files and report.
+
+    Attributes
+    ----------
+    run : audit.engine.suite_run.AuditRun
+        Everything the audit produced (also ``.spectra``, ``.rocking``, ``.histories``).
+    """
+
+    def __init__(self, run: AuditRun):
+        self.run = run
+
+    results = property(lambda self: self.run.results,
+                       doc="One row per procedure × record × α × size (``results.csv``).")
+    suite = property(lambda self: self.run.suite,
+                     doc="Verdict statistics over the records per procedure × α × size.")
+    checks = property(lambda self: self.run.checks,
+                      doc="Limit-state checks against the exact response (``checks.csv``).")
+    claims = property(lambda self: self.run.claims,
+                      doc="The reference report's claims, checked (``claims.csv``).")
+    summary = property(lambda self: self.run.summary, doc="Everything of ``summary.json``.")
+
+    @property
+    def bottom_line(self) -> pd.DataFrame:
+        """Per procedure: blocks compared, the % unsafe and uneconomic, the median approx/exact,
+        and the worst block."""
+        titles = {p["name"]: p["title"] for p in self.summary["procedures"]}
+        rows = []
+        for line in self.summary["bottom_line"]:
+            worst = line["worst"] or {}
+            rows.append({"procedure": line["name"], "title": titles[line["name"]],
+                         "records": line["records"], "blocks": line["blocks"],
+                         "unsafe_pct": line["unsafe_pct"],
+                         "uneconomic_pct": line["uneconomic_pct"],
+                         "agrees_pct": line["pct"]["agrees"],
+                         "not_converged_pct": line["pct"]["not-converged"],
+                         "median_ratio": line["median_ratio"],
+                         "worst_record": worst.get("record"),
+                         "worst_alpha_deg": worst.get("alpha_deg"),
+                         "worst_size_s": worst.get("size_s"),
+                         "worst_verdict": worst.get("verdict")})
+        return pd.DataFrame(rows)
+
+    def write(self, out_dir) -> Path:
+        """Write the result files and ``report.html`` into ``out_dir`` (atomically)."""
+        from audit.engine.results import save_run
+        from reports import render_report
+        save_run(self.run, out_dir, render_report)
+        return Path(out_dir)
+
+    def report(self, path) -> Path:
+        """Write only the self-contained HTML report to ``path``."""
+        from audit.files import write_file_atomically
+        from audit.engine.results import parse_run, run_files
+        from reports import render_report
+        saved = parse_run(run_files(self.run))  # rendered from exactly what would be saved
+        write_file_atomically(Path(path), render_report(saved).encode("utf-8"))
+        return Path(path)
+
+    def _repr_html_(self) -> str:
+        table = self.bottom_line[["title", "records", "blocks", "unsafe_pct",
+                                  "uneconomic_pct", "agrees_pct", "median_ratio"]]
+        return (f"<p><b>Rocking audit</b> on {self.summary['records_source']}: "
+                f"{len(self.results)} block comparisons.</p>"
+                + table.to_html(index=False, float_format=lambda v: f"{v:.3g}", na_rep="—"))
+
+    def __repr__(self) -> str:
+        return (f"AuditResult({', '.join(p['name'] for p in self.summary['procedures'])} on "
+                f"{self.summary['records_source']}: {len(self.results)} block comparisons)")
+
+
+def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, site=None,
+        site_override: bool = False, scale_to_site: bool = False, anchor_period_s=None,
+        ntc_site=None, jobs: int = DEFAULT_JOBS, free_motion_s: float = DEFAULT_FREE_MOTION_S,
+        agree_band: float = DEFAULT_AGREE_BAND, robustness: float = DEFAULT_ROBUSTNESS,
+        scheduler: str = DEFAULT_SCHEDULER, detail=(), progress: bool = False,
+        partial_dir=None, resume: bool = False) -> AuditResult:
+    """Audit guideline procedures on a suite of records over a grid of blocks.
+
+    Parameters
+    ----------
+    procedures : str, Procedure, type or list
+        ``"all"``, a registered name (``"fema356"``), a Procedure instance or subclass (a
+        plug-in written in the notebook), or a list of those.
+    records : str, path or records.RecordSuite, optional
+        A built-in suite name, a manifest / record file / folder, or a suite from
+        :func:`records.load`; default: ``$ROCKING_AUDIT_RECORDS``, else the shipped seed records.
+    alpha_deg : sequence of float
+        Slendernesses [degrees].
+    sizes_s : array, optional
+        Block sizes 2π/p [s]; default 0.5 … 8.0 s in steps of 0.05 s.
+    site, site_override, scale_to_site, anchor_period_s, ntc_site :
+        Design sites and scaling, see :func:`design_suite`.
+    jobs : int
+        Threads of the exact solver (worker processes with ``scheduler="dask"``).
+    free_motion_s : float
+        Free motion after each record [s].
+    agree_band : float
+        Half-width of the agreement band on approx/exact [-].
+    robustness : float
+        ε of the fragile-overturning flag [-] (0 turns it off).
+    scheduler : str
+        ``local``, ``dask`` or ``tcp://HOST:PORT``.
+    detail : sequence of str
+        Records whose detail the report shows.
+    progress : bool or callable
+        A progress bar on standard error, or ``progress(done, total, record_id, how)``.
+    partial_dir, resume :
+        Keep each record's part in ``partial_dir`` as it completes; reuse them with ``resume``.
+
+    Returns
+    -------
+    AuditResult
+    """
+    from records import RecordSuite, load_records
+    from audit.engine.progress import Progress
+    suite = records if isinstance(records, RecordSuite) else load_records(records)
+    suite = design_suite(suite, site, site_override, scale_to_site, anchor_period_s, ntc_site)
+    chosen = _procedures(procedures)
+    bar = Progress(len(suite), "record") if progress is True else None
+    try:
+        audit_run = run_audit(chosen, suite, alpha_deg, sizes_s, jobs=jobs,
+                              free_motion_s=free_motion_s, progress=bar or progress or None,
+                              agree_band=agree_band, robustness=robustness, scheduler=scheduler,
+                              partial_dir=partial_dir, resume=resume, detail=list(detail))
+    finally:
+        if bar is not None:
+            bar.done()
+    return AuditResult(audit_run)
+
+
+__all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite"]

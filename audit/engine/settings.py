@@ -1,0 +1,71 @@
+"""What an audit computes, the same for every record of a run (and hashed for resumable runs)."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+from audit import G
+from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
+                                   DEFAULT_ROBUSTNESS, DEFAULT_SIZES)
+from audit.engine.grid import size_grid
+from audit.physics.defaults import DEFAULT_REST_TOLERANCE, DEFAULT_STEPS_PER_RADIAN
+from procedures.base import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
+                             MAX_ITERATIONS, TOLERANCE_RATIO)
+
+#: Damping ratios of the record response spectra of Figures 5.x [-].
+FIGURE_5_DAMPING = (0.05, 0.10, 0.15)
+#: Samples kept per stored time history (about 2 per pixel of the report's figures).
+HISTORY_POINTS = 2000
+
+
+@dataclass(frozen=True)
+class AuditSettings:
+    """What a run computes, the same for every record.
+
+    Attributes
+    ----------
+    alpha_deg : tuple of float
+        Slendernesses [degrees].
+    size_s : tuple of float
+        Block sizes 2π/p [s].
+    free_motion_s : float
+        Free motion after each record, for the exact solver and the record spectra [s].
+    agree_band : float
+        Half-width of the agreement band on approx/exact [-].
+    robustness : float
+        ε of the fragility flag: exact spectra also at the record × (1 ± ε) [-]; 0 = off.
+    g : float
+        Acceleration of gravity [m/s²].
+    jobs : int
+        Threads of the exact solver (not part of what is computed).
+    """
+
+    alpha_deg: tuple = DEFAULT_ALPHA_DEG
+    size_s: tuple = tuple(size_grid(*DEFAULT_SIZES))
+    free_motion_s: float = DEFAULT_FREE_MOTION_S
+    agree_band: float = DEFAULT_AGREE_BAND
+    robustness: float = DEFAULT_ROBUSTNESS
+    g: float = G
+    jobs: int = 1
+
+    def as_dict(self) -> dict:
+        """Plain values for ``summary.json`` (angles in degrees, sizes in s)."""
+        values = asdict(self)
+        values.pop("jobs")
+        values.update(alpha_deg=list(self.alpha_deg), size_s=list(self.size_s))
+        return values
+
+    def described(self) -> dict:
+        """:meth:`as_dict` with the solver's and the iteration's fixed settings, for
+        ``summary.json``."""
+        return {**self.as_dict(),
+                "steps_per_radian": DEFAULT_STEPS_PER_RADIAN,
+                "rest_tolerance": DEFAULT_REST_TOLERANCE,
+                "initial_rotation_ratio": INITIAL_ROTATION_RATIO,
+                "tolerance_ratio": TOLERANCE_RATIO, "max_iterations": MAX_ITERATIONS,
+                "max_cycle_length": MAX_CYCLE_LENGTH,
+                "cycle_tolerance_ratio": CYCLE_TOLERANCE_RATIO,
+                "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING]}
+
+
+__all__ = ["AuditSettings", "FIGURE_5_DAMPING", "HISTORY_POINTS"]

@@ -1,0 +1,51 @@
+"""What a procedure may ask of one record: its response spectra, computed once and cached.
+
+Record spectra are tabulated on :data:`procedures.base.SPECTRUM_PERIODS_S`, linear in T in
+between, which is what the root scan of :func:`procedures.base.fixed_points` relies on.
+"""
+
+from __future__ import annotations
+
+from audit.physics.defaults import DEFAULT_FREE_MOTION_S
+from audit.physics.oscillator import response_spectra
+from procedures.base import SPECTRUM_PERIODS_S
+
+
+class RecordContext:
+    """The spectra of one record that procedures read, computed once and cached.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record; ``entry.motion`` is None for a record without a file (a procedure that
+        needs no motion, such as one reading a design spectrum, still estimates).
+    free_motion_s : float
+        Free motion after the record [s], the same window as the exact solver's.
+    jobs : int
+        Threads computing the record's spectra.
+    """
+
+    def __init__(self, entry, free_motion_s: float = DEFAULT_FREE_MOTION_S, jobs: int = 1):
+        self.entry = entry
+        self.free_motion_s = free_motion_s
+        self.jobs = jobs
+        self._spectra = {}
+
+    def true_spectra(self, damping: float, displacement_only: bool = False):
+        """True response spectra of the record at damping β [-] on :data:`SPECTRUM_PERIODS_S`;
+        Sd alone (Sv, Sa NaN) when ``displacement_only`` and no full spectra are cached."""
+        key = round(float(damping), 12)
+        cached = self._spectra.get(key)
+        if cached is None or (cached[1] and not displacement_only):
+            self._spectra[key] = (response_spectra(
+                self.entry.motion, SPECTRUM_PERIODS_S, [key], self.free_motion_s, jobs=self.jobs,
+                displacement_only=displacement_only), displacement_only)
+        return self._spectra[key][0]
+
+    def true_displacement(self, damping: float):
+        """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""
+        spectra = self.true_spectra(damping, displacement_only=True)
+        return lambda period_s: spectra.displacement_at(period_s, 0)
+
+
+__all__ = ["RecordContext"]
