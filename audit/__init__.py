@@ -8,3 +8,13 @@ __version__ = "0.1.0"
 
 #: Acceleration of gravity [m/s²] used throughout unless configured otherwise (SPEC §2).
 G = 9.81
+
+#: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
+_API = ("Block", "RockingResponse", "AuditResult", "rock", "run")
+
+
+def __getattr__(name):
+    if name in _API:
+        from audit import api
+        return getattr(api, name)
+    raise AttributeError(f"module 'audit' has no attribute {name!r}")

@@ -1,0 +1,128 @@
+"""The import structure: no cycles, one-way layers, every module importable alone.
+
+Layers, lowest first: records → physics → procedures → engine → reports → API → command line;
+a module imports only from its own layer or lower ones. ``audit`` (G, the version),
+``audit.errors`` and ``audit.files`` are below every layer. Every import counts, including the
+ones inside functions that keep start-up light: an import deferred into a function still ties
+the two modules together.
+"""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+PACKAGES = ("audit", "procedures", "reports", "records")
+BASE = {"audit", "audit.errors", "audit.files"}
+LAYERS = (("records",), ("audit.physics",), ("procedures",), ("audit.engine",), ("reports",),
+          ("audit.api",), ("audit.cli", "audit.__main__"))
+
+
+def _modules() -> dict[str, Path]:
+    found = {}
+    for package in PACKAGES:
+        for path in sorted((REPO / package).rglob("*.py")):
+            parts = path.relative_to(REPO).with_suffix("").parts
+            name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+            found[name] = path
+    return found
+
+
+MODULES = _modules()
+
+
+def _imports(name: str, path: Path) -> set[str]:
+    """Project modules ``name`` imports anywhere in its body (function-level included), except
+    the lazy re-export of the API by ``audit.__getattr__`` (loaded after ``audit`` is whole)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            targets = [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            # ``from package import module`` imports the module; ``from module import name``
+            # the module
+            modules = [f"{node.module}.{alias.name}" for alias in node.names
+                       if f"{node.module}.{alias.name}" in MODULES]
+            targets = modules if len(modules) == len(node.names) else [node.module, *modules]
+        else:
+            continue
+        out |= {target for target in targets if target in MODULES}
+    if name == "audit":
+        out.discard("audit.api")
+    out.discard(name)
+    return out
+
+
+GRAPH = {name: _imports(name, path) for name, path in MODULES.items()}
+
+
+def _layer(name: str) -> int:
+    if name in BASE:
+        return -1
+    for level, prefixes in enumerate(LAYERS):
+        if any(name == prefix or name.startswith(prefix + ".") for prefix in prefixes):
+            return level
+    raise AssertionError(f"{name}: in no layer")
+
+
+def test_no_import_cycles():
+    state, stack, cycles = {}, [], []
+
+    def visit(node):
+        state[node] = "open"
+        stack.append(node)
+        for target in sorted(GRAPH[node]):
+            if state.get(target) == "open":
+                cycles.append(stack[stack.index(target):] + [target])
+            elif target not in state:
+                visit(target)
+        stack.pop()
+        state[node] = "done"
+
+    for name in sorted(GRAPH):
+        if name not in state:
+            visit(name)
+    assert not cycles, "import cycles: " + "; ".join(" → ".join(c) for c in cycles)
+
+
+def test_imports_go_one_way_down_the_layers():
+    upward = [f"{name} → {target}" for name, targets in GRAPH.items() for target in targets
+              if _layer(target) > _layer(name)]
+    assert not upward, "imports against the layers: " + "; ".join(sorted(upward))
+
+
+def test_the_graph_sees_imports():
+    # the checks above would pass on an empty graph: these edges are known to exist
+    assert "procedures.base" in GRAPH["audit.engine.verdicts"]
+    assert "audit.engine.record_audit" in GRAPH["audit.engine.scheduler"]
+    assert _layer("audit.cli.run") > _layer("audit.api") > _layer("reports.render")
+
+
+def _import_alone(name: str) -> tuple[str, str]:
+    done = subprocess.run([sys.executable, "-c", f"import {name}"], cwd=REPO,
+                          capture_output=True, text=True)
+    return name, done.stderr.strip().splitlines()[-1] if done.returncode else ""
+
+
+def test_every_module_imports_alone_in_a_fresh_interpreter():
+    with ThreadPoolExecutor(2) as pool:
+        failed = [f"{name}: {error}" for name, error in pool.map(
+            _import_alone, sorted(set(MODULES) - {"audit.__main__"})) if error]
+    assert not failed, "\n".join(failed)
+
+
+@pytest.mark.parametrize("name", ["reports.render", "audit.cli.report"])
+def test_rendering_a_report_imports_no_solver(name):
+    probe = (f"import sys, {name}; "
+             "print(sorted(m for m in sys.modules if m.startswith(('numba', "
+             "'audit.physics.rocking', 'audit.physics.oscillator'))))")
+    done = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.strip() == "[]"
