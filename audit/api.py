@@ -145,7 +145,7 @@ class RockingResponse:
         what = (f"overturns at t = {self.overturn_time_s:.3f} s" if self.overturned
                 else f"peak θ/α = {self.peak_ratio:.4f}")
         return (f"RockingResponse(α = {self.block.alpha_deg:g}°, 2π/p = {self.block.size_s:g} s: "
-                f"{what}, {self.impacts} impacts)")
+                f"{what}, {self.impacts} impact{'' if self.impacts == 1 else 's'})")
 
 
 def rock(block: Block, motion, free_motion_s: float = DEFAULT_FREE_MOTION_S) -> RockingResponse:
