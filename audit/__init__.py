@@ -6,7 +6,7 @@ Shortcomings of Design Guidelines*, PEER 2001/07.
 
 __version__ = "0.1.0"
 
-#: Acceleration of gravity [m/s²] used throughout unless configured otherwise (SPEC §2).
+#: Acceleration of gravity [m/s²] used throughout unless configured otherwise.
 G = 9.81
 
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.

@@ -524,7 +524,7 @@ class Check:
 
 def rotation_at_displacement(displacement_m, alpha_rad, radius_m):
     """θ(d) = α − asin(sin α − d/R) [rad]: the rotation at which the centroid has moved
-    d = R [sin α − sin(α − θ)] (§1).
+    d = R [sin α − sin(α − θ)] (rotation about the base corner).
 
     NaN for d outside [0, R(1 + sin α)]; d ≥ R sin α = b is at or beyond instability (θ ≥ α).
     """

@@ -1,4 +1,4 @@
-"""The self-contained HTML audit report (SPEC §8), rendered from an :class:`~audit.engine.suite_run.AuditRun`.
+"""The self-contained HTML audit report, rendered from a saved :class:`~audit.engine.suite_run.AuditRun`.
 
 Figures are plotly.js specifications drawn by the browser from data embedded in the page;
 plotly.js itself is inlined once, so the page references nothing outside itself, opens offline
