@@ -437,3 +437,23 @@ def test_record_drawn_but_audited_by_no_procedure():
     drawn = [key for key in _parse(html).specs if key.startswith("th-")]
     assert {key.split("-")[1] for key in drawn} == {"erzincan_1992", "takatori_1995"}
     assert "no FEMA 356 (2000) site parameters (sxs_g, sx1_g)" in html
+
+
+def test_mechanics_figures_are_drawn_from_the_saved_files():
+    # Figures 7.1 and 4.1/7.2 come from mechanics.csv: 16 free-rocking curves (θ₀/α 0.1…0.7 ×
+    # n 2…8) and the two laws; three pulse amplitudes for the block and for the oscillator
+    from audit.engine.results import parse_run, run_files
+    run = run_audit(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(15.0,),
+                    sizes=np.array([2.0]), robustness=0.0, claims=False)
+    specs = _parse(render_report(parse_run(run_files(run)))).specs
+    names = [trace["name"] for trace in specs["fig-7-1"]["data"]]
+    assert len(names) == 18 and names[-2:] == ["Eq. 7.10: β = −0.34 ln r",
+                                               "Eq. 9.1: β = 0.4 (1 − √r)"]
+    traces = specs["fig-sensitivity"]["data"]
+    # 0.316 g overturns the block (Figure 4.1); its oscillator does not "overturn"
+    assert [t["name"] for t in traces] == ["a_p = 0.310 g", "a_p = 0.315 g",
+                                           "a_p = 0.316 g (overturns)", "a_p = 0.310 g",
+                                           "a_p = 0.315 g", "a_p = 0.316 g"]
+    # Eq. 7.10 at r = 0.8: β = −0.34 ln 0.8 = 7.587 %
+    law = specs["fig-7-1"]["data"][16]
+    assert law["y"][law["x"].index(0.8)] == pytest.approx(7.587, abs=1e-3)

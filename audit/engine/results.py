@@ -133,7 +133,8 @@ def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
         design = pd.read_csv(io.BytesIO(files[DESIGN_SPECTRA_CSV]), keep_default_na=False,
                              na_values={c: [""] for c in ("damping_pct", "period_s", "sa_g",
                                                           "sd_m")})
-        mechanics = pd.read_csv(io.BytesIO(files[MECHANICS_CSV]))
+        mechanics = pd.read_csv(io.BytesIO(files[MECHANICS_CSV]),
+                                dtype={"figure": str, "series": str})
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}: cannot read the results: {exc}") from None
     spectra["procedure"] = spectra["procedure"].astype(str)
