@@ -1,17 +1,9 @@
 """Reproduction checklist of the reference report (Sections 4–9), evaluated on an audit run.
 
-The claims are data (``claims.toml`` beside this module): each names an evaluator of this
-module and its parameters, the report's value and a tolerance fixed from the report's own
-precision. :func:`evaluate_claims` runs every claim and grades it:
-
-``agrees``        within the claim's tolerance;
-``close``         within its wider ``close`` tolerance, or the number matches but not what the
-                  report says it is (a branch of a cycle of the iteration read as converged);
-``differs``       outside both;
-``cannot-check``  a record the claim needs is absent from the run or has no file.
-
-Evaluators compute from the physics (one block, one record) wherever they can, so a claim stays
-checkable on a partial grid; only statements about regions of the grid read the run's tables.
+The claims are data (``claims.toml`` beside this module): each names an evaluator of
+:mod:`audit.engine.claim_evaluators` and its parameters, the report's value and a tolerance fixed
+from the report's own precision. :func:`evaluate_claims` runs every claim and grades it with a
+status of :data:`audit.engine.verdicts.CLAIM_STATUSES`.
 """
 
 from __future__ import annotations
