@@ -22,7 +22,8 @@ import pandas as pd
 from audit import G
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_JOBS, DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER)
-from audit.engine.suite_run import AuditRun, run_audit
+from audit.engine.audit_run import AuditRun
+from audit.engine.suite_run import run_audit
 from audit.errors import InputError
 from audit.physics.block import RigidBlock
 from audit.physics.rocking import RockingResponse as _Response
@@ -231,7 +232,7 @@ class AuditResult:
 
     Attributes
     ----------
-    run : audit.engine.suite_run.AuditRun
+    run : audit.engine.audit_run.AuditRun
         Everything the audit produced (also ``.spectra``, ``.rocking``, ``.histories``).
     """
 

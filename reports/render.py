@@ -1,4 +1,4 @@
-"""The self-contained HTML audit report, rendered from a saved :class:`~audit.engine.suite_run.AuditRun`.
+"""The self-contained HTML audit report, rendered from a saved :class:`~audit.engine.audit_run.AuditRun`.
 
 Figures are plotly.js specifications drawn by the browser from data embedded in the page;
 plotly.js itself is inlined once, so the page references nothing outside itself, opens offline
@@ -333,7 +333,7 @@ def render_report(run, generated: datetime | None = None) -> str:
 
     Parameters
     ----------
-    run : audit.engine.suite_run.AuditRun
+    run : audit.engine.audit_run.AuditRun
         Results of ``run_audit`` or of ``audit.engine.results.load_run``.
     generated : datetime, optional
         Time stamp printed in the report (default: now, UTC).

@@ -9,7 +9,8 @@ import pytest
 from audit.engine.claims import (CLAIM_FIELDS, EVALUATORS, STATUSES, ClaimContext,
                                  evaluate_claims, evaluate_method, grade, load_claims)
 from audit.engine.schemas import CLAIM_COLUMNS
-from audit.engine.suite_run import AuditRun, run_audit
+from audit.engine.audit_run import AuditRun
+from audit.engine.suite_run import run_audit
 from audit.errors import InputError
 from procedures import get_procedures
 

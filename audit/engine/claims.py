@@ -92,7 +92,7 @@ class ClaimContext:
 
     Parameters
     ----------
-    run : audit.engine.suite_run.AuditRun
+    run : audit.engine.audit_run.AuditRun
     suite : records.RecordSuite, optional
         The records of the run. Single-block claims on a record simulate from its motion when
         given; otherwise they read the run's grid (and cannot check blocks off the grid).
@@ -169,7 +169,7 @@ def evaluate_claims(run, suite=None, claims: list[dict] | None = None) -> pd.Dat
 
     Parameters
     ----------
-    run : audit.engine.suite_run.AuditRun
+    run : audit.engine.audit_run.AuditRun
         The run (its ``results``, ``rocking`` and ``summary`` are read).
     suite : records.RecordSuite, optional
         The run's records; with it, single-block claims are simulated from the record (any

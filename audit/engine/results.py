@@ -19,7 +19,7 @@ import pandas as pd
 from audit.errors import InputError
 from audit.files import write_files_atomically
 from audit.engine.schemas import BOOLEAN_COLUMNS, RESULT_COLUMNS, column_guide
-from audit.engine.suite_run import AuditRun
+from audit.engine.audit_run import AuditRun
 
 RESULTS_CSV = "results.csv"
 SUMMARY_JSON = "summary.json"
