@@ -78,3 +78,22 @@ def test_a_plug_in_written_in_python_is_audited():
     beta = result.results.groupby("procedure")["beta_pct"].first()
     assert beta["half"] == pytest.approx(0.5 * beta["priestley1978"])
 
+
+
+def test_command_line_defaults_are_the_engines():
+    from audit.cli import build_parser
+    from audit.engine import defaults
+    from audit.engine.grid import size_grid
+    from audit.cli import options
+    args = build_parser().parse_args(["run", "all"])
+    assert list(options.alphas_deg(args.alpha)) == list(defaults.DEFAULT_ALPHA_DEG)
+    np.testing.assert_array_equal(options.sizes(args.sizes), size_grid(*defaults.DEFAULT_SIZES))
+    assert (args.jobs, args.free_motion, args.agree_band, args.robustness, args.scheduler) == (
+        defaults.DEFAULT_JOBS, defaults.DEFAULT_FREE_MOTION_S, defaults.DEFAULT_AGREE_BAND,
+        defaults.DEFAULT_ROBUSTNESS, defaults.DEFAULT_SCHEDULER)
+    spectrum = build_parser().parse_args(["spectrum", "--pulse", "cosine", "--amplitude", "0.3",
+                                          "--pulse-period", "1"])
+    assert (spectrum.alpha, spectrum.sizes) == (defaults.alpha_text(), defaults.sizes_text())
+    rock = build_parser().parse_args(["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine",
+                                      "--amplitude", "0.3", "--pulse-period", "2"])
+    assert rock.duration == defaults.DEFAULT_FREE_MOTION_S

@@ -8,6 +8,7 @@ import math
 import sys
 
 from audit.cli import options
+from audit.engine.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError
 
 
@@ -22,8 +23,9 @@ def add_parser(sub):
     p.add_argument("--r", type=options.number("must lie between 0 and 1", 0, 1),
                    help="coefficient of restitution (default Eq. 4.8)")
     options.add_excitation_options(p)
-    p.add_argument("--duration", type=options.NON_NEGATIVE, default=10.0, metavar="S",
-                   help="free motion simulated after the excitation [s] (default 10)")
+    p.add_argument("--duration", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
+                   metavar="S", help=f"free motion simulated after the excitation [s] (default "
+                                     f"{DEFAULT_FREE_MOTION_S:g})")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw θ/α and θ' against time")
     p.add_argument("--history", metavar="FILE.csv",

@@ -3,23 +3,25 @@
 from __future__ import annotations
 
 from audit.cli import options
+from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, alpha_text, sizes_text
 
 
 def add_parser(sub):
     p = sub.add_parser("spectrum", help="rocking spectra (default) or oscillator response spectra")
     p.add_argument("--kind", choices=("rocking", "response"), default="rocking")
     options.add_excitation_options(p)
-    p.add_argument("--alpha", default="10,15,20", metavar="DEG,...", help="slendernesses [degrees]")
-    p.add_argument("--sizes", default="0.5:8:0.05", metavar="START:STOP:STEP",
+    p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
+                   help="slendernesses [degrees]")
+    p.add_argument("--sizes", default=sizes_text(), metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s] (rocking)")
     p.add_argument("--damping", default="5,10,15", metavar="PCT,...",
                    help="damping ratios [%%] (response)")
     p.add_argument("--periods", default="0.02:10:0.02", metavar="START:STOP:STEP",
                    help="oscillator periods [s] (response)")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, metavar="S",
-                   help="free motion after the record [s] (default: 10 for rocking, "
-                        "0 for response spectra)")
-    p.add_argument("--jobs", type=options.jobs, default=2, help="threads")
+                   help=f"free motion after the record [s] (default: "
+                        f"{DEFAULT_FREE_MOTION_S:g} for rocking, 0 for response spectra)")
+    p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS, help="threads")
     p.add_argument("--csv", metavar="FILE", help="CSV output (default: standard output)")
     p.add_argument("--plot", metavar="FILE.png", help="draw the spectra")
     options.add_force_option(p)
@@ -31,7 +33,7 @@ def run(args) -> int:
     csv = options.output_file(args.csv, "--csv")
     plot = options.output_file(args.plot, "--plot")
     if args.free_motion is None:
-        args.free_motion = 10.0 if args.kind == "rocking" else 0.0
+        args.free_motion = DEFAULT_FREE_MOTION_S if args.kind == "rocking" else 0.0
     if args.kind == "response":
         damping = options.damping_pct(args.damping)
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)
