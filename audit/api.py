@@ -203,7 +203,7 @@ def design_suite(suite, site=None, site_override: bool = False, scale_to_site: b
     ntc_site : (float, float, float, str, str), optional
         NTC 2018 site a_g [g], F0 [-], T_C* [s], soil category A–E, topography T1–T4.
     """
-    from records import scale_to_site as scaled, with_design_site, with_ntc_site
+    from audit.engine.sites import scale_to_site as scaled, with_design_site, with_ntc_site
     if ntc_site is not None:
         ag_g, f0, tc_star_s, soil, topography = ntc_site
         try:

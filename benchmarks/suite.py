@@ -59,7 +59,7 @@ def load_suite(sources, site):
     suite = RecordSuite(entries, " + ".join(s.description for s in suites))
     if site:
         try:
-            from records import with_design_site
+            from audit.engine.sites import with_design_site
         except ImportError:
             print("# --site: this records package cannot set a design site; records keep their own",
                   file=sys.stderr)

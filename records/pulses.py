@@ -6,39 +6,13 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
-from records.motion import GroundMotion, Pulse
+from records.motion import GroundMotion, Pulse, pulse_acceleration
 
 PULSE_SHAPES = ("cosine", "sine")
 
 #: Samples per pulse period used for the tabulated copy of a pulse (plots, oscillator spectra);
 #: the rocking solver evaluates the closed form instead.
 SAMPLES_PER_PERIOD = 2000
-
-
-def pulse_acceleration(shape: str, amplitude: float, period_s: float, t: np.ndarray) -> np.ndarray:
-    """One-cycle pulse üg(t), zero outside 0 ≤ t ≤ T_p.
-
-    Parameters
-    ----------
-    shape : {"cosine", "sine"}
-        Type-B one-cosine pulse üg = a_p cos(2πt/T_p) or type-A one-sine pulse
-        üg = a_p sin(2πt/T_p).
-    amplitude : float
-        a_p [m/s²].
-    period_s : float
-        T_p [s].
-    t : numpy.ndarray
-        Times [s].
-
-    Returns
-    -------
-    numpy.ndarray
-        üg [m/s²].
-    """
-    phase = 2.0 * np.pi * np.asarray(t, dtype=float) / period_s
-    wave = np.cos(phase) if shape == "cosine" else np.sin(phase)
-    inside = (np.asarray(t) >= 0.0) & (np.asarray(t) <= period_s)
-    return np.where(inside, amplitude * wave, 0.0)
 
 
 def one_pulse(shape: str, amplitude_g: float, period_s: float, record_id: str | None = None,
@@ -48,7 +22,7 @@ def one_pulse(shape: str, amplitude_g: float, period_s: float, record_id: str | 
     Parameters
     ----------
     shape : {"cosine", "sine"}
-        Pulse shape, see :func:`pulse_acceleration`.
+        Pulse shape, see :func:`records.motion.pulse_acceleration`.
     amplitude_g : float
         a_p [g].
     period_s : float

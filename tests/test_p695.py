@@ -11,9 +11,10 @@ from scipy import signal
 
 from audit import G
 from audit.cli import main
+from audit.engine.sites import scale_to_site, with_design_site
 from audit.errors import InputError
 from records import (ENV_VARIABLE, P695_SUITES, GroundMotion, RecordEntry, RecordSuite,
-                     load_records, one_pulse, scale_to_site, with_design_site)
+                     load_records, one_pulse)
 from records import p695
 
 FAR_FIELD = "p695-far-field"

@@ -15,6 +15,7 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
+from records.sites import NTC2018_SITE_KEYS, NTC2018_SOILS, NTC2018_TOPOGRAPHIES
 
 #: FEMA 356 Table 1-6: effective damping β [-] → (B_S, B_1); linear between rows, held beyond.
 FEMA356_TABLE_1_6 = np.array([
@@ -155,21 +156,18 @@ class UBC97Spectrum(DesignSpectrum):
 
 #: NTC 2018 Tab. 3.2.IV: soil → (S_S lower bound, intercept, slope on F₀·a_g/g, upper bound,
 #: C_C coefficient, C_C exponent on T_C*); S_S = clip(intercept − slope·F₀·a_g/g).
-NTC2018_TABLE_3_2_IV = {
-    "A": (1.00, 1.00, 0.00, 1.00, 1.00, 0.00),
-    "B": (1.00, 1.40, 0.40, 1.20, 1.10, -0.20),
-    "C": (1.00, 1.70, 0.60, 1.50, 1.05, -0.33),
-    "D": (0.90, 2.40, 1.50, 1.80, 1.25, -0.50),
-    "E": (1.00, 2.00, 1.10, 1.60, 1.15, -0.40),
-}
+NTC2018_TABLE_3_2_IV = dict(zip(NTC2018_SOILS, (
+    (1.00, 1.00, 0.00, 1.00, 1.00, 0.00),
+    (1.00, 1.40, 0.40, 1.20, 1.10, -0.20),
+    (1.00, 1.70, 0.60, 1.50, 1.05, -0.33),
+    (0.90, 2.40, 1.50, 1.80, 1.25, -0.50),
+    (1.00, 2.00, 1.10, 1.60, 1.15, -0.40),
+)))
 #: NTC 2018 Tab. 3.2.V: topographic category → S_T.
-NTC2018_TABLE_3_2_V = {"T1": 1.0, "T2": 1.2, "T3": 1.2, "T4": 1.4}
+NTC2018_TABLE_3_2_V = dict(zip(NTC2018_TOPOGRAPHIES, (1.0, 1.2, 1.2, 1.4)))
 #: NTC 2018 Tab. 3.2.VII: soil → T_E [s]; T_F = 10 s for every soil.
-NTC2018_TABLE_3_2_VII_TE_S = {"A": 4.5, "B": 5.0, "C": 6.0, "D": 6.0, "E": 6.0}
+NTC2018_TABLE_3_2_VII_TE_S = dict(zip(NTC2018_SOILS, (4.5, 5.0, 6.0, 6.0, 6.0)))
 NTC2018_TF_S = 10.0
-#: Keys of a record's site (``RecordEntry.site``, manifest fields) that hold an NTC 2018 site, in
-#: the order of :class:`NTC2018Spectrum`'s fields: a_g [g], F₀ [-], T_C* [s], soil, topography.
-NTC2018_SITE_KEYS = ("ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil", "ntc_topography")
 
 
 @dataclass(frozen=True)

