@@ -1,6 +1,6 @@
 """FEMA 356 (2000) rocking procedure: Priestley's iteration on the site's design spectrum.
 
-Section 9 of the reference report (SPEC §6): β = 0.4 (1 − sqrt r) (Eq. 9.1) and the FEMA 356
+Section 9 of the reference report (Makris & Konstantinidis 2001): β = 0.4 (1 − sqrt r) (Eq. 9.1) and the FEMA 356
 general horizontal design spectrum of the site (S_XS, S_X1 of Table 3.1), modified for damping
 with Table 1-6, converted to displacement by Eq. 3.5. The estimate depends on the site and the
 block only, not on the recorded motion.

@@ -1,7 +1,8 @@
 """NTC 2018 + Circolare 21 Jan 2019 n. 7, §C8.7.1.2.1: local-mechanism checks of a free block.
 
-Specification: ``../shared/reference/guideline-procedures.md`` §1–2. A free-standing rectangular
-block at ground level is one rigid body rocking about its base corner (§2.3): α₀ = b/h, e* = 1,
+Implemented from the Circolare's text (§C8.7.1.2.1 and formulas [C8.7.1.3]–[C8.7.1.11]) as the
+project transcribed it. A free-standing rectangular block at ground level is one rigid body
+rocking about its base corner: α₀ = b/h, e* = 1,
 FC = 1, T₀ = 0, control point the centroid, so the spectral displacement is the centroid's,
 d = R [sin α − sin(α − θ)], and instability is at d₀ = b. The procedure *verifies* the block:
 
@@ -55,7 +56,7 @@ PERIOD_COEFFICIENT = {"SLV": 1.68, "SLC": 1.56}
 
 def spectral_acceleration(displacement_m, alpha_rad, radius_m, e_star=1.0,
                           confidence_factor=1.0, linear=False, g=G):
-    """Capacity curve a(d) = α(d)·g/(e*·FC) [m/s²] of the block (Eq. C8.7.1.3, §2.3).
+    """Capacity curve a(d) = α(d)·g/(e*·FC) [m/s²] of the block (Eq. C8.7.1.3, one rigid body rocking about its base corner).
 
     Parameters
     ----------
@@ -104,8 +105,8 @@ def running_maximum(period_s, values, upto_s):
 
 @dataclass(frozen=True)
 class NTC2018(Procedure):
-    """NTC 2018 / Circolare 2019 local-mechanism checks of a free-standing block (§2 of the
-    guideline synthesis), with the choices of its §2.7 as options.
+    """NTC 2018 / Circolare 2019 local-mechanism checks of a free-standing block, with the
+    choices the text leaves open as options.
 
     Attributes
     ----------

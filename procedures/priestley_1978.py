@@ -1,6 +1,6 @@
 """Priestley, Evison & Carr (1978): the rocking block as an oscillator on the record's spectrum.
 
-Section 8 of the reference report (SPEC §5): β = −0.34 ln r (Eq. 7.10) and the true
+Section 8 of the reference report (Makris & Konstantinidis 2001): β = −0.34 ln r (Eq. 7.10) and the true
 displacement spectrum of the record itself at that damping.
 """
 

@@ -143,8 +143,8 @@ class GroundMotion:
     def pgv(self) -> float:
         """Peak ground velocity [m/s].
 
-        Trapezoid-rule integral of (üg − mean üg) from v(0) = 0, with no filtering: the
-        processing of ``../shared/records/SOURCES.md``, so the figures can be compared.
+        Trapezoid-rule integral of (üg − mean üg) from v(0) = 0, with no filtering and no other
+        baseline correction (so PGV depends on this processing; PGA does not).
         Analytic pulses are integrated without removing the mean.
         """
         acc = self.acceleration if self.pulse else self.acceleration - self.acceleration.mean()

@@ -31,7 +31,7 @@ import numpy as np
 from audit import G
 from audit.errors import InputError
 from audit.files import write_file_atomically
-from records.catalogue import SEED_CATALOGUE
+from records.catalogue import SEED_CATALOGUE, download_hint
 from records.suite import RecordEntry, RecordSuite, site_of
 from records.motion import GroundMotion
 
@@ -51,11 +51,12 @@ SUITES = {
 }
 
 #: Seed records (catalogue id) shipped in the near-field pulse set: their fault-normal
-#: component (azimuth 032°, for a strike of 122°; ../shared/records/SOURCES.md §4).
+#: component (azimuth 032°, for the strike of 122° the set's component names imply).
 SHIPPED_SEED_RECORDS = {"rinaldi_1994": "rsn1063_rrs_032", "sylmar_1994": "rsn1086_syl_032",
                         "erzincan_1992": "rsn821_erz_032"}
-#: The one option that adds the seed records no package ships.
-ADD_SEED_RECORDS = "--records ../shared/records/seed-suite.toml"
+#: How a user adds the seed records no package ships.
+ADD_SEED_RECORDS = ("each names the PEER NGA-West2 file to save in a folder given as "
+                    "--records FOLDER")
 
 
 def cache_dir() -> Path:
@@ -241,8 +242,7 @@ def shipped_seed_suite() -> RecordSuite:
         if p695_id is None:
             entries.append(RecordEntry(
                 facts.id, None, facts, facts.component, site=site,
-                missing_reason=f"not shipped in a package: add it with {ADD_SEED_RECORDS} "
-                               "(or your own record files)"))
+                missing_reason=f"not shipped in a package: {download_hint(facts)}"))
             continue
         meta = {**shipped[p695_id], "p695_id": p695_id}
         component = f"fault-normal (rotated to 032 deg), {meta['component_name']} of FEMA P695"
@@ -252,4 +252,4 @@ def shipped_seed_suite() -> RecordSuite:
     return RecordSuite(tuple(entries), (
         f"the seed records shipped in {PACKAGE} {package_version()}: Rinaldi, Sylmar and "
         "Erzincan, fault-normal components of the FEMA P695 near-field set; the other four "
-        f"seed records are not shipped ({ADD_SEED_RECORDS} adds them)"))
+        f"seed records are not shipped: {ADD_SEED_RECORDS}"))

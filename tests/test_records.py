@@ -77,10 +77,15 @@ def test_extras_manifest(records_dir):
 
 
 def test_folder_of_at2_files(records_dir):
+    # the folder holds Pacoima Dam's PEER file (RSN 77, PUL164): the seven seed records, that
+    # one read from the folder under its catalogue id, then the eight other .AT2 files
     suite = load_records(records_dir / "raw")
-    assert len(suite) == 9
-    assert suite.get("RSN77_SFERN_PUL164").motion.pga_g == pytest.approx(1.219 * 9.80665 / G,
-                                                                         rel=0.005)
+    assert len(suite) == 7 + 8
+    pacoima = suite.get("pacoima_dam_1971")
+    assert pacoima.motion.pga_g == pytest.approx(1.219 * 9.80665 / G, rel=0.005)
+    assert pacoima.metadata == {"rsn": 77, "peer_file": "RSN77_SFERN_PUL164.AT2"}
+    assert suite.get("RSN1120_KOBE_TAK090").motion.pga_g == pytest.approx(0.671 * 9.80665 / G,
+                                                                          rel=0.005)
 
 
 def test_unit_conversion(tmp_path):

@@ -1,4 +1,4 @@
-"""The free-standing rigid block (SPEC §2, Eqs. 4.1–4.8)."""
+"""The free-standing rigid block (Eqs. 4.1–4.8 of Makris & Konstantinidis 2001)."""
 
 from __future__ import annotations
 

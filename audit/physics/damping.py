@@ -1,4 +1,4 @@
-"""Equivalent-damping laws and the Housner rocking "period" (SPEC §4, Section 7 and Eq. 8.1)."""
+"""Equivalent-damping laws and the Housner rocking "period" (Section 7 and Eq. 8.1 of Makris & Konstantinidis 2001)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Code design spectra: FEMA 356 general horizontal spectrum, UBC 97 (SPEC §6) and the
+"""Code design spectra: FEMA 356 general horizontal spectrum, UBC 97 and the
 NTC 2018 elastic spectrum (§3.2.3.2).
 
 Each code is a small object with ``acceleration(T, β)`` [g]; the displacement follows from
@@ -74,7 +74,7 @@ def _positive(value, field):
 
 @dataclass(frozen=True)
 class FEMA356Spectrum(DesignSpectrum):
-    """FEMA 356 general horizontal response spectrum (FEMA 356 §1.6.1.5, SPEC §6).
+    """FEMA 356 general horizontal response spectrum (FEMA 356 §1.6.1.5).
 
     Attributes
     ----------

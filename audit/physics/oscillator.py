@@ -1,4 +1,4 @@
-"""Response spectra of the viscously damped linear oscillator (SPEC §3, Eq. 3.2).
+"""Response spectra of the viscously damped linear oscillator (Eq. 3.2 of Makris & Konstantinidis 2001).
 
 u'' + 2ξω u' + ω² u = −üg, ω = 2π/T, 0 ≤ ξ < 1, solved exactly for ground acceleration that is
 linear between samples (Nigam & Jennings 1969): each step is x_{k+1} = Φ x_k + Γ₀ üg_k + Γ₁ üg_{k+1}

@@ -1,4 +1,4 @@
-"""Exact rocking response of a rigid block (SPEC §2, Eqs. 4.3–4.8) and rocking spectra (Section 5).
+"""Exact rocking response of a rigid block (Eqs. 4.3–4.8 of Makris & Konstantinidis 2001) and rocking spectra (Section 5).
 
 The equation of motion (Eq. 4.3)
 
