@@ -478,20 +478,23 @@ class Procedure:
 #: Exact events a check is audited against.
 EXACT_UPLIFT = "uplift"  # the exact block uplifts
 EXACT_ROTATION = "rotation"  # exact max θ ≥ the check's ``theta_limit_rad``, or overturning
+EXACT_OVERTURNING = "overturning"  # the exact block overturns
 
 @dataclass(frozen=True)
 class Check:
     """One limit-state check of a procedure, arrays over the block sizes of one slenderness.
 
-    A check is either in accelerations (``demand_m_s2`` ≤ ``capacity_m_s2``) or in
-    displacements (``demand_m`` ≤ ``capacity_m``); the other pair is NaN.
+    A check is in displacements (``demand_m`` ≤ ``capacity_m``), accelerations
+    (``demand_m_s2`` ≤ ``capacity_m_s2``) or velocities (``demand_m_s`` ≤ ``capacity_m_s``);
+    the other pairs are NaN.
 
     Attributes
     ----------
     limit_state : str
         Name of the limit state, e.g. ``SLD``, ``SLV-linear``, ``SLV``, ``SLC``.
     exact_event : str
-        :data:`EXACT_UPLIFT` or :data:`EXACT_ROTATION`: the exact response's "exceeded".
+        :data:`EXACT_UPLIFT`, :data:`EXACT_ROTATION` or :data:`EXACT_OVERTURNING`: the exact
+        response's "exceeded".
     passes : numpy.ndarray of bool
         The procedure's verdict per block.
     demand_m, capacity_m : numpy.ndarray
@@ -507,6 +510,8 @@ class Check:
         Period the demand was read at [s] (NaN for an acceleration check).
     detail : str
         The check in words, with the equations implemented (for the report).
+    demand_m_s, capacity_m_s : numpy.ndarray
+        Velocity demand and capacity [m/s] (NaN unless a velocity check).
     """
 
     limit_state: str
@@ -520,6 +525,8 @@ class Check:
     theta_limit_rad: np.ndarray
     period_s: np.ndarray
     detail: str
+    demand_m_s: np.ndarray | float = np.nan
+    capacity_m_s: np.ndarray | float = np.nan
 
 
 def rotation_at_displacement(displacement_m, alpha_rad, radius_m):

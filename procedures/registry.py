@@ -15,11 +15,13 @@ from importlib.metadata import entry_points
 from audit.errors import InputError
 from procedures.base import Procedure
 from procedures.fema_356 import FEMA356
+from procedures.housner_1963 import Housner1963
+from procedures.makris_roussos_2000 import MakrisRoussos2000
 from procedures.ntc_2018 import NTC2018
 from procedures.priestley_1978 import PriestleyEvisonCarr1978
 
 ENTRY_POINT_GROUP = "rocking_audit.procedures"
-BUILT_IN = (PriestleyEvisonCarr1978, FEMA356, NTC2018)
+BUILT_IN = (PriestleyEvisonCarr1978, FEMA356, NTC2018, Housner1963, MakrisRoussos2000)
 
 
 def available_procedures() -> dict[str, type[Procedure]]:

@@ -206,7 +206,8 @@ def _check_rows(record_id, procedure_name, alpha_deg, sizes, check, exact, i, g)
         "procedure_passes": np.asarray(check.passes, dtype=bool), "exact_exceeded": exceeded,
         "verdict": check_verdicts(check.passes, exceeded), "demand_m": check.demand_m,
         "capacity_m": check.capacity_m, "demand_g": check.demand_m_s2 / g,
-        "capacity_g": check.capacity_m_s2 / g, "demand_theta_rad": check.demand_theta_rad,
+        "capacity_g": check.capacity_m_s2 / g, "demand_m_s": check.demand_m_s,
+        "capacity_m_s": check.capacity_m_s, "demand_theta_rad": check.demand_theta_rad,
         "theta_limit_rad": check.theta_limit_rad, "period_s": check.period_s,
     })[CHECK_COLUMNS]
 

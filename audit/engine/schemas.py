@@ -77,8 +77,8 @@ GUIDE = {
         "alpha_deg": ("deg", "slenderness α"),
         "size_s": ("s", "block size 2π/p"),
         "limit_state": ("text", "limit state checked (SLD, SLV-linear, SLV, SLC)"),
-        "exact_event": ("text", "exact event audited against: uplift, or rotation (max θ ≥ "
-                                "theta_limit_rad, or overturning)"),
+        "exact_event": ("text", "exact event audited against: uplift, rotation (max θ ≥ "
+                                "theta_limit_rad, or overturning) or overturning"),
         "procedure_passes": ("bool", "the procedure's check is satisfied"),
         "exact_exceeded": ("bool", "the exact response exceeds the limit state"),
         "verdict": ("text", ", ".join(names(CHECK_VERDICTS))),
@@ -86,6 +86,8 @@ GUIDE = {
         "capacity_m": ("m", "displacement capacity"),
         "demand_g": ("g", "acceleration demand (empty for a displacement check)"),
         "capacity_g": ("g", "acceleration capacity"),
+        "demand_m_s": ("m/s", "velocity demand (a velocity check, e.g. Housner's S_v)"),
+        "capacity_m_s": ("m/s", "velocity capacity"),
         "demand_theta_rad": ("rad", "rotation θ(d) of the displacement demand"),
         "theta_limit_rad": ("rad", "exact max θ at which the limit state is exceeded"),
         "period_s": ("s", "period the demand was read at"),

@@ -14,7 +14,8 @@ import pandas as pd
 
 from audit.engine.ranking import worst_case
 from audit.engine.schemas import SUITE_COLUMNS, verdict_column
-from audit.engine.verdicts import UNECONOMIC_VERDICTS, UNSAFE_VERDICTS, VERDICTS
+from audit.engine.verdicts import (CHECK_VERDICTS, UNECONOMIC_CHECK_VERDICTS, UNECONOMIC_VERDICTS,
+                                   UNSAFE_CHECK_VERDICTS, UNSAFE_VERDICTS, VERDICTS, names)
 
 #: Percentiles of approx/exact written to ``suite.csv`` [%].
 RATIO_PERCENTILES = (16, 50, 84)
@@ -98,13 +99,15 @@ def suite_summary(suite: pd.DataFrame, titles: dict | None = None) -> list[dict]
     return summary
 
 
-def bottom_line(results: pd.DataFrame, procedures) -> list[dict]:
+def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list[dict]:
     """Per procedure: how many blocks it gets wrong on each side, and its worst case.
 
     Parameters
     ----------
     results : pandas.DataFrame
         ``results.csv`` rows (blocks with an exact response).
+    checks : pandas.DataFrame
+        ``checks.csv`` rows.
     procedures : list of procedures.Procedure
 
     Returns
@@ -112,12 +115,15 @@ def bottom_line(results: pd.DataFrame, procedures) -> list[dict]:
     list of dict
         ``name, blocks, records, count`` (per verdict), ``pct`` (per verdict, % of blocks),
         ``unsafe, uneconomic, unsafe_pct, uneconomic_pct, median_ratio`` (approx/exact where
-        both survive) and ``worst`` (the row of :func:`~audit.engine.histories.worst_case`, or
-        None).
+        both survive), ``worst`` (the row of :func:`~audit.engine.ranking.worst_case`, or
+        None) and ``checks``: per limit state, ``limit_state, blocks, count`` (per check
+        verdict), ``unsafe_pct`` (passed blocks the exact response exceeds, % of blocks) and
+        ``uneconomic_pct``.
     """
     lines = []
     for procedure in procedures:
         rows = results[results["procedure"] == procedure.name]
+        mine = checks[checks["procedure"] == procedure.name]
         total = len(rows)
         counts = rows["verdict"].value_counts()
         count = {v: int(counts.get(v, 0)) for v in VERDICTS}
@@ -126,14 +132,29 @@ def bottom_line(results: pd.DataFrame, procedures) -> list[dict]:
         ratios = rows["ratio"].astype(float).replace([np.inf, -np.inf], np.nan).dropna()
         worst = worst_case(rows)
         lines.append({
-            "name": procedure.name, "blocks": total, "records": int(rows["record"].nunique()),
+            "name": procedure.name, "blocks": total,
+            "records": len(set(rows["record"]) | set(mine["record"])),
             "count": count, "pct": {v: 100.0 * n / total if total else 0.0
                                     for v, n in count.items()},
             "unsafe": unsafe, "uneconomic": uneconomic,
             "unsafe_pct": 100.0 * unsafe / total if total else 0.0,
             "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
             "median_ratio": float(ratios.median()) if len(ratios) else None,
-            "worst": None if worst is None else worst.to_dict()})
+            "worst": None if worst is None else worst.to_dict(),
+            "checks": _check_lines(mine)})
+    return lines
+
+
+def _check_lines(checks: pd.DataFrame) -> list[dict]:
+    lines = []
+    for state, rows in checks.groupby("limit_state", sort=False):
+        counts = rows["verdict"].value_counts()
+        count = {v: int(counts.get(v, 0)) for v in names(CHECK_VERDICTS)}
+        lines.append({"limit_state": state, "blocks": len(rows), "count": count,
+                      "unsafe_pct": 100.0 * sum(count[v] for v in UNSAFE_CHECK_VERDICTS)
+                      / len(rows),
+                      "uneconomic_pct": 100.0 * sum(count[v] for v in UNECONOMIC_CHECK_VERDICTS)
+                      / len(rows)})
     return lines
 
 

@@ -76,7 +76,7 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
         return concat([getattr(part, name) for part in parts if len(getattr(part, name))],
                       columns)
 
-    results = cat("results", RESULT_COLUMNS)
+    results, checks = cat("results", RESULT_COLUMNS), cat("checks", CHECK_COLUMNS)
     suite_frame = suite_statistics(results)
     summary = {
         "version": __version__,
@@ -94,13 +94,13 @@ def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings
         "settings": settings.described(),
         "statistics": statistics(results),
         "suite": suite_summary(suite_frame, {proc.name: proc.title for proc in procedures}),
-        "bottom_line": bottom_line(results, procedures),
+        "bottom_line": bottom_line(results, checks, procedures),
         "histories": [item for part in parts for item in part.histories_meta],
         "mechanics": sensitivity_facts(),
     }
     return AuditRun(results, cat("spectra", SPECTRA_COLUMNS), cat("histories", HISTORY_COLUMNS),
                     cat("rocking", ROCKING_COLUMNS), cat("estimates_only", RESULT_COLUMNS),
-                    summary, checks=cat("checks", CHECK_COLUMNS), suite=suite_frame,
+                    summary, checks=checks, suite=suite_frame,
                     design_spectra=design_spectra(suite), mechanics=mechanics())
 
 

@@ -13,7 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from procedures.base import EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, NOT_CONVERGED, OVERTURN
+from procedures.base import (EXACT_OVERTURNING, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT,
+                             NOT_CONVERGED, OVERTURN)
 
 UNSAFE, UNECONOMIC, AGREES, NEUTRAL = "unsafe", "uneconomic", "agrees", "neutral"
 
@@ -97,6 +98,8 @@ UNSAFE_VERDICTS = on_side(ROTATION_VERDICTS, UNSAFE)
 UNECONOMIC_VERDICTS = on_side(ROTATION_VERDICTS, UNECONOMIC)
 #: Check verdicts where the guideline passes a block the exact response fails.
 UNSAFE_CHECK_VERDICTS = on_side(CHECK_VERDICTS, UNSAFE)
+#: Check verdicts where the guideline fails a block the exact response passes.
+UNECONOMIC_CHECK_VERDICTS = on_side(CHECK_VERDICTS, UNECONOMIC)
 
 
 def classify(exact_theta, exact_overturned, exact_uplifted, approx_theta, outcome,
@@ -142,11 +145,14 @@ def exact_exceeded(check, theta_peak, overturned, uplifted) -> np.ndarray:
     Returns
     -------
     numpy.ndarray of bool
-        ``uplifted`` for an uplift check; θ_peak ≥ θ_limit or overturned for a rotation check.
+        ``uplifted`` for an uplift check; θ_peak ≥ θ_limit or overturned for a rotation check;
+        ``overturned`` for an overturning check.
         Blocks with no exact response (NaN) are the caller's to mask.
     """
     if check.exact_event == EXACT_UPLIFT:
         return np.asarray(uplifted, dtype=bool)
+    if check.exact_event == EXACT_OVERTURNING:
+        return np.asarray(overturned, dtype=bool)
     if check.exact_event == EXACT_ROTATION:
         with np.errstate(invalid="ignore"):
             return (np.asarray(theta_peak) >= check.theta_limit_rad) | np.asarray(overturned,
