@@ -10,7 +10,7 @@ __version__ = "0.1.0"
 G = 9.81
 
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
-_API = ("Block", "RockingResponse", "AuditResult", "rock", "run")
+_API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "rock", "run", "margins")
 
 
 def __getattr__(name):

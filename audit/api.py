@@ -358,4 +358,67 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
     return AuditResult(audit_run)
 
 
-__all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite"]
+class MarginsResult:
+    """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity`` (DataFrames,
+    the columns of ``stripes.csv``, ``fragility.csv``, ``capacity.csv``), ``.summary`` and
+    ``.write(folder)``."""
+
+    def __init__(self, margins):
+        self.margins = margins
+        self.stripes, self.fragility = margins.stripes, margins.fragility
+        self.capacity, self.summary = margins.capacity, margins.summary
+
+    def write(self, out_dir) -> Path:
+        """Write the files into ``out_dir`` (atomically)."""
+        from audit.engine.margins import margins_files
+        from audit.files import write_files_atomically
+        write_files_atomically(Path(out_dir), margins_files(self.margins))
+        return Path(out_dir)
+
+    def _repr_html_(self) -> str:
+        lines = self.capacity.groupby("procedure", sort=False)[
+            ["ratio_to_exact_median", "achieved_p_fit"]].median()
+        return (f"<p><b>Design-level audit</b>, {self.summary['im']}: median CMR "
+                f"{self.fragility['cmr'].median():.3g}.</p>"
+                + lines.to_html(float_format=lambda v: f"{v:.3g}", na_rep="—"))
+
+
+def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
+            alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, site=None, scale_to_site: bool = False,
+            anchor_period_s=None, jobs: int = DEFAULT_JOBS,
+            free_motion_s: float = DEFAULT_FREE_MOTION_S) -> MarginsResult:
+    """The design-level audit: exact multiple-stripe fragility of every block, and where each
+    procedure draws its line against it (see :mod:`audit.engine.margins`).
+
+    Parameters
+    ----------
+    procedures, records :
+        As for :func:`run`.
+    im : str
+        ``pga`` [g], ``pgv`` [m/s] or ``sa:T`` (true 5 %-damped Sa at T [s], in g).
+    stripes : sequence of float, optional
+        Intensity levels (unit of ``im``); default 24 levels, 0.2–5 × the design intensity
+        (or the suite's median).
+    alpha_deg : sequence of float
+        Slendernesses [degrees].
+    sizes_s : array, optional
+        Block sizes 2π/p [s]; default 0.5 … 8 s in steps of 0.25 s.
+    site, scale_to_site, anchor_period_s :
+        The FEMA 356 design site (S_XS, S_X1 [g]) of every record, and the FEMA P695 scaling.
+    jobs, free_motion_s :
+        Solver threads; free motion after each record [s].
+    """
+    import numpy as np
+
+    from audit.engine.margins import IntensityMeasure, run_margins
+    from records import RecordSuite, load_records
+    suite = records if isinstance(records, RecordSuite) else load_records(records)
+    suite = design_suite(suite, site, site is not None, scale_to_site, anchor_period_s)
+    sizes_s = np.arange(0.5, 8.001, 0.25) if sizes_s is None else np.asarray(sizes_s, float)
+    return MarginsResult(run_margins(_procedures(procedures), suite, IntensityMeasure.parse(im),
+                                     stripes, alpha_deg, sizes_s, free_motion_s=free_motion_s,
+                                     jobs=jobs))
+
+
+__all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite", "margins",
+           "MarginsResult"]

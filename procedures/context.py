@@ -29,7 +29,17 @@ class RecordContext:
         self.entry = entry
         self.free_motion_s = free_motion_s
         self.jobs = jobs
-        self._spectra = {}
+        # the spectra are those of ``_motion`` × ``_factor``: scaled contexts share them
+        self._motion, self._factor, self._spectra = entry.motion, 1.0, {}
+
+    def scaled(self, entry, factor: float) -> RecordContext:
+        """The context of ``entry``, this context's record scaled by ``factor``: it reads the
+        same cached spectra × factor (a linear oscillator's response is linear in the ground
+        motion), so scaling a record to many levels computes its spectra once."""
+        other = RecordContext(entry, self.free_motion_s, self.jobs)
+        other._motion, other._factor = self._motion, self._factor * factor
+        other._spectra = self._spectra
+        return other
 
     def true_spectra(self, damping: float, displacement_only: bool = False):
         """True response spectra of the record at damping β [-] on :data:`SPECTRUM_PERIODS_S`;
@@ -38,9 +48,10 @@ class RecordContext:
         cached = self._spectra.get(key)
         if cached is None or (cached[1] and not displacement_only):
             self._spectra[key] = (response_spectra(
-                self.entry.motion, SPECTRUM_PERIODS_S, [key], self.free_motion_s, jobs=self.jobs,
+                self._motion, SPECTRUM_PERIODS_S, [key], self.free_motion_s, jobs=self.jobs,
                 displacement_only=displacement_only), displacement_only)
-        return self._spectra[key][0]
+        spectra = self._spectra[key][0]
+        return spectra if self._factor == 1.0 else spectra.scaled(self._factor)
 
     def true_displacement(self, damping: float):
         """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""

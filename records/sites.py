@@ -11,3 +11,11 @@ NTC2018_SITE_KEYS = ("ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil", "ntc_top
 NTC2018_SOILS = ("A", "B", "C", "D", "E")
 #: NTC 2018 topographic categories (§3.2.2, Tab. 3.2.III).
 NTC2018_TOPOGRAPHIES = ("T1", "T2", "T3", "T4")
+#: Site parameters that are accelerations [g]: a design site scaled by a factor scales these.
+ACCELERATION_SITE_KEYS = ("sxs_g", "sx1_g", "ntc_ag_g")
+
+
+def scaled_site(site: dict, factor: float) -> dict:
+    """A record's site with every design acceleration × ``factor`` (the design spectrum scaled)."""
+    return {key: value * factor if key in ACCELERATION_SITE_KEYS and value is not None else value
+            for key, value in site.items()}

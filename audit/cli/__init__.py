@@ -15,10 +15,10 @@ import sys
 import warnings
 
 from audit import __version__
-from audit.cli import design_spectrum, listing, options, report, rock, run, spectrum
+from audit.cli import design_spectrum, listing, margins, options, report, rock, run, spectrum
 from audit.errors import InputError, InputWarning
 
-COMMANDS = (listing, rock, spectrum, design_spectrum, run, report)
+COMMANDS = (listing, rock, spectrum, design_spectrum, run, margins, report)
 #: Exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it.
 EXIT_INTERRUPTED = 130
 

@@ -36,12 +36,12 @@ COLUMNS_JSON = "columns.json"
 REPORT_HTML = "report.html"
 
 
-def _json_ready(value):
+def json_ready(value):
     """Plain JSON: NaN and inf become null, numpy scalars become Python numbers."""
     if isinstance(value, dict):
-        return {str(k): _json_ready(v) for k, v in value.items()}
+        return {str(k): json_ready(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_json_ready(v) for v in value]
+        return [json_ready(v) for v in value]
     if isinstance(value, (np.bool_, bool)):
         return bool(value)
     if isinstance(value, (np.integer,)):
@@ -66,7 +66,7 @@ def run_files(run: AuditRun) -> dict[str, bytes]:
         RESULTS_CSV: _with_booleans(run.results).to_csv(index=False, float_format="%.10g").encode(),
         ESTIMATES_ONLY_CSV: _with_booleans(run.estimates_only).to_csv(
             index=False, float_format="%.10g").encode(),
-        SUMMARY_JSON: json.dumps(_json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
+        SUMMARY_JSON: json.dumps(json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
         SPECTRA_CSV: run.spectra.to_csv(index=False, float_format="%.8g").encode(),
         HISTORIES_CSV: run.histories.to_csv(index=False, float_format="%.7g").encode(),
         ROCKING_CSV: run.rocking.to_csv(index=False, float_format="%.10g").encode(),

@@ -141,6 +141,48 @@ GUIDE["mechanics.csv"] = {
     "y": ("-", "β [%] (Figure 7.1), θ/α [-] (4.1) or u [m] (7.2)"),
 }
 
+# the design-level audit (``python -m audit margins``)
+GUIDE["stripes.csv"] = {
+    "record": ("text", "record id"),
+    "alpha_deg": ("deg", "slenderness α"),
+    "size_s": ("s", "block size 2π/p"),
+    "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped true Sa [g])"),
+    "im_level": ("g or m/s", "the stripe's intensity, in the unit of im"),
+    "scale_factor": ("-", "factor the record is scaled by to reach the stripe"),
+    "exact_overturned": ("bool", "the exact response overturns"),
+    "exact_theta_rad": ("rad", "exact peak |θ| (α where the block overturns)"),
+    "PROCEDURE_overturns": ("bool", "one column per procedure: it predicts overturning (its "
+                                    "estimate overturns, or an overturning check fails)"),
+}
+GUIDE["fragility.csv"] = {
+    "alpha_deg": ("deg", "slenderness α"),
+    "size_s": ("s", "block size 2π/p"),
+    "im": ("text", "intensity measure"),
+    "records": ("-", "records at each stripe"),
+    "stripes": ("-", "intensity levels"),
+    "median": ("g or m/s", "lognormal fragility median θ (maximum likelihood, binomial counts)"),
+    "beta": ("-", "lognormal fragility β"),
+    "median_low": ("g or m/s", "lower 90 % bound of the median"),
+    "median_high": ("g or m/s", "upper 90 % bound of the median"),
+    "beta_low": ("-", "lower 90 % bound of β"),
+    "beta_high": ("-", "upper 90 % bound of β"),
+    "cmr": ("-", "collapse margin ratio: median / the site's design intensity"),
+    "records_with_islands": ("-", "records under which the block survives a stripe above its "
+                                  "first overturning one (depends on the stripe spacing)"),
+    "island_share": ("-", "records_with_islands / records"),
+}
+GUIDE["capacity.csv"] = {
+    "procedure": ("text", "guideline procedure"),
+    "alpha_deg": ("deg", "slenderness α"),
+    "size_s": ("s", "block size 2π/p"),
+    "guideline_im": ("g or m/s", "where the share of records for which the procedure predicts "
+                                 "overturning first reaches one half (ln-interpolated)"),
+    "ratio_to_exact_median": ("-", "guideline_im / the exact fragility's median"),
+    "achieved_p_fit": ("-", "exact P(overturn) at guideline_im, from the lognormal fit"),
+    "achieved_p_stripe": ("-", "exact share of records that overturn at the stripe nearest "
+                               "guideline_im"),
+}
+
 RESULT_COLUMNS = list(GUIDE["results.csv"])
 ROCKING_COLUMNS = list(GUIDE["rocking.csv"])
 SPECTRA_COLUMNS = list(GUIDE["spectra.csv"])

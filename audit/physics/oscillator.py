@@ -350,6 +350,12 @@ class ResponseSpectra:
     sv: np.ndarray
     sa: np.ndarray
 
+    def scaled(self, factor: float) -> ResponseSpectra:
+        """The spectra of the record scaled by ``factor``: a linear oscillator's response is
+        linear in the ground motion, so every spectrum is ``factor`` times this one."""
+        return ResponseSpectra(self.period_s, self.damping, self.sd * factor, self.sv * factor,
+                               self.sa * factor)
+
     @property
     def pseudo_velocity(self) -> np.ndarray:
         """PSv = ω·Sd [m/s], a pseudo spectrum (not max|u'|); 0 at T = 0."""
