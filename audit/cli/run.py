@@ -160,8 +160,12 @@ def run(args) -> int:
           f"in {summary['scheduler']}"
           + (f"; reused {len(summary['resumed'])} records of an interrupted run"
              if summary["resumed"] else ""))
+    grouped = {}  # one line per procedure and reason, whatever the number of records
     for item in summary["unauditable"]:
-        print(f"  not audited: {item['procedure']} × {item['record']}: {item['reason']}")
+        grouped.setdefault((item["procedure"], item["reason"]), []).append(item["record"])
+    for (procedure, reason), records in grouped.items():
+        which = records[0] if len(records) == 1 else f"{len(records)} records"
+        print(f"  not audited: {procedure} × {which}: {reason}")
     counts = result.results["verdict"].value_counts()
     print("Verdicts: " + ", ".join(f"{v} {n}" for v, n in counts.items()))
     print(f"Wrote {out_dir / REPORT_HTML} and results.csv, summary.json "
