@@ -1,0 +1,78 @@
+"""FEMA P-58 unanchored-content fragilities and the probabilistic audit's metrics, by hand."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.stats import norm
+
+from audit.api import Block
+from audit.engine.calibration import (brier_score, calibration, fit_lognormal_fragility,
+                                      log_likelihood, overturn_stripes)
+from procedures.fema_p58 import FEMAP58
+from procedures.registry import available_procedures
+from records import one_pulse
+
+
+def test_bookcase_4_shelves_at_half_a_metre_per_second():
+    # Φ(ln(0.5/0.361)/0.5) = 0.743 for E.20.22.104a (θ = 0.361 m/s, β = 0.5 in P-58 v3.1.2)
+    assert FEMAP58().probability("E.20.22.104a", 0.5) == pytest.approx(0.743, abs=5e-4)
+    assert FEMAP58().probability("E.20.22.104a", 0.361) == pytest.approx(0.5)
+    assert FEMAP58().probability("E.20.22.104a", 0.0) == 0.0
+
+
+def test_pga_rows_are_in_si():
+    # the control panel's median 0.69 g: half the panels at PGA = 0.69 × 9.81 m/s²
+    assert FEMAP58().probability("D.30.67.011a", 0.69 * 9.81) == pytest.approx(0.5)
+    assert not FEMAP58().component("D.30.67.011a").has_block
+
+
+@pytest.mark.parametrize("component_id, alpha_rad, p_rad_s", [
+    # 12-5/8 in deep × 56 in tall: b = 0.16034 m, h = 0.7112 m, α = atan(b/h), R = √(b² + h²)
+    # = 0.72905 m, p = √(3 × 9.81 / (4 × 0.72905)) = 3.1768 rad/s
+    ("E.20.22.104a", 0.22174, 3.1768),
+    # 15 in × 24 in: b = 0.1905 m, h = 0.3048 m, α = atan(0.625), R = 0.35944 m
+    ("E.20.22.112a", 0.55860, 4.5243),
+])
+def test_component_blocks(component_id, alpha_rad, p_rad_s):
+    component = FEMAP58().component(component_id)
+    block = Block.from_dimensions(component.depth_m, component.height_m)
+    assert math.radians(block.alpha_deg) == pytest.approx(alpha_rad, abs=1e-5)
+    assert block.p_rad_s == pytest.approx(p_rad_s, abs=1e-4)
+
+
+def test_registered_apart_from_the_rotation_procedures():
+    assert available_procedures(probabilistic=True)["femap58"] is FEMAP58
+
+
+def test_scores_by_hand():
+    predicted, observed = [0.1, 0.4, 0.8, 0.9], [False, True, True, False]
+    # (0.1² + 0.6² + 0.2² + 0.9²) / 4 = 1.22 / 4
+    assert brier_score(predicted, observed) == pytest.approx(0.305)
+    # ln 0.9 + ln 0.4 + ln 0.8 + ln 0.1
+    assert log_likelihood(predicted, observed) == pytest.approx(-3.547379, abs=1e-6)
+    assert log_likelihood([0.0], [True]) == -np.inf
+    table = calibration(predicted + [1.0], observed + [True], edges=[0.0, 0.5, 1.0])
+    np.testing.assert_array_equal(table.count, [2, 3])
+    np.testing.assert_allclose(table.mean_predicted, [0.25, 2.7 / 3])
+    np.testing.assert_allclose(table.observed_frequency, [0.5, 2 / 3])
+
+
+def test_fit_recovers_a_lognormal_from_its_expected_counts():
+    levels = np.geomspace(0.1, 2.0, 12)
+    trials = np.full(levels.size, 1_000_000)
+    events = np.round(trials * norm.cdf(np.log(levels / 0.42) / 0.35))
+    median, beta = fit_lognormal_fragility(levels, events, trials)
+    assert median == pytest.approx(0.42, rel=1e-3)
+    assert beta == pytest.approx(0.35, rel=1e-3)
+    assert np.isnan(fit_lognormal_fragility(levels, np.zeros(12), trials)[0])
+
+
+def test_no_stripe_overturns_below_uplift():
+    # a one-cycle sine pulse scaled to PGV = 1 mm/s has PGA of order 2π/T_p × 1 mm/s, far below
+    # g tan α = 2.21 m/s² of the 4-shelf bookcase: it cannot even uplift
+    block = Block.from_dimensions(FEMAP58().component("E.20.22.104a").depth_m,
+                                  FEMAP58().component("E.20.22.104a").height_m)
+    motion = one_pulse("sine", 0.5, 1.0)
+    outcome = overturn_stripes([motion], block.size_s, math.radians(block.alpha_deg), [1e-3])
+    assert outcome.shape == (1, 1) and not outcome[0, 0]
