@@ -75,8 +75,8 @@ class Calibration:
 
 def calibration(predicted, observed, edges=CALIBRATION_EDGES) -> Calibration:
     """Bin the outcomes by predicted probability (see :class:`Calibration`)."""
-    predicted = np.asarray(predicted, dtype=float)
-    observed = np.asarray(observed, dtype=float)
+    predicted = np.asarray(predicted, dtype=float).ravel()
+    observed = np.asarray(observed, dtype=float).ravel()
     edges = np.asarray(edges, dtype=float)
     index = np.clip(np.searchsorted(edges, predicted, side="right") - 1, 0, edges.size - 2)
     count = np.bincount(index, minlength=edges.size - 1)
