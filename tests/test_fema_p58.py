@@ -76,3 +76,29 @@ def test_no_stripe_overturns_below_uplift():
     motion = one_pulse("sine", 0.5, 1.0)
     outcome = overturn_stripes([motion], block.size_s, math.radians(block.alpha_deg), [1e-3])
     assert outcome.shape == (1, 1) and not outcome[0, 0]
+
+
+def test_fragility_command_files_agree(tmp_path, capsys):
+    import pandas as pd
+
+    from audit.cli import main
+    assert main(["fragility", "--records", "pulses", "--out", str(tmp_path)]) == 0
+    components = pd.read_csv(tmp_path / "fragility-components.csv")
+    stripes = pd.read_csv(tmp_path / "fragility-stripes.csv")
+    outcomes = pd.read_csv(tmp_path / "fragility-outcomes.csv")
+    # the nine P-58 components with dimensions; the PGA rows have none
+    assert len(components) == 9
+    # each stripe's count is the number of its records that overturn, file to file
+    counted = outcomes.groupby(["component", "pgv_m_s"])["exact_overturned"].sum()
+    np.testing.assert_array_equal(stripes.set_index(["component", "pgv_m_s"])["overturned"],
+                                  counted.loc[stripes.set_index(["component", "pgv_m_s"]).index])
+    page = (tmp_path / "fragility.html").read_text()
+    assert "ground-floor clause" in page and "E.20.22.104a" in page
+
+
+def test_fragility_command_unknown_procedure(tmp_path, capsys):
+    from audit.cli import main
+    out = tmp_path / "out"
+    assert main(["fragility", "--procedure", "nope", "--out", str(out)]) == 2
+    assert capsys.readouterr().err.count("\n") == 1
+    assert not out.exists()
