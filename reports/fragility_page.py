@@ -53,7 +53,7 @@ def render_fragility_page(folder, title: str) -> str:
     for i, component in components.iterrows():
         spec = _figure(component, stripes[stripes["component"] == component.component])
         figures.append(f'<div id="f{i}" style="display:inline-block"></div><script>'
-                       f'Plotly.newPlot("f{i}", ...(s => [s.data, s.layout])({to_json(spec)}));'
+                       f'(s => Plotly.newPlot("f{i}", s.data, s.layout))({to_json(spec)});'
                        f'</script>')
     columns = ["component", "alpha_deg", "p_rad_s", "exact_median_m_s", "exact_beta",
                "procedure_median_m_s", "procedure_beta", "median_ratio",
@@ -67,5 +67,5 @@ def render_fragility_page(folder, title: str) -> str:
             f"binomial likelihood. median_ratio is the procedure's median over the exact one "
             f"(below 1: the procedure expects overturning at a lower PGV). Brier score and "
             f"log-likelihood score the procedure's probability at every record's scaled PGV "
-            f"against the exact outcome; the exact fit's scores are given for comparison.</p>"
+            f"against the exact outcome; the exact fit's scores, in-sample (fitted to these outcomes), are given for comparison.</p>"
             f"{table}{''.join(figures)}</body></html>")
