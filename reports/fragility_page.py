@@ -67,5 +67,6 @@ def render_fragility_page(folder, title: str) -> str:
             f"binomial likelihood. median_ratio is the procedure's median over the exact one "
             f"(below 1: the procedure expects overturning at a lower PGV). Brier score and "
             f"log-likelihood score the procedure's probability at every record's scaled PGV "
-            f"against the exact outcome; the exact fit's scores, in-sample (fitted to these outcomes), are given for comparison.</p>"
+            f"against the exact outcome; the exact fit's scores, in-sample (fitted to these "
+            f"outcomes), are given for comparison.</p>"
             f"{table}{''.join(figures)}</body></html>")
