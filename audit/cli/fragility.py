@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import tempfile
 from pathlib import Path
 
 from audit.cli import options
@@ -44,10 +45,12 @@ def run(args) -> int:
     progress.stage(f"{procedure.title}: exact overturning of its components under "
                    f"{len(entries)} records scaled to each PGV stripe")
     tables = audit_procedure(procedure, [e.id for e in entries], [e.motion for e in entries])
-    write_files_atomically(out_dir, {name: table.to_csv(index=False).encode()
-                                     for name, table in tables.items()})
-    page = render_fragility_page(out_dir, f"{procedure.title} against the exact fragility "
-                                          f"({args.records})")
-    write_files_atomically(out_dir, {FRAGILITY_HTML: page.encode()})
+    files = {name: table.to_csv(index=False).encode() for name, table in tables.items()}
+    # the page is drawn from the files as saved, then everything is written together
+    with tempfile.TemporaryDirectory() as saved:
+        write_files_atomically(saved, files)
+        files[FRAGILITY_HTML] = render_fragility_page(
+            saved, f"{procedure.title} against the exact fragility ({args.records})").encode()
+    write_files_atomically(out_dir, files)
     progress.stage(f"wrote {out_dir / FRAGILITY_HTML} and the fragility-*.csv files")
     return 0
