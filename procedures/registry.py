@@ -13,8 +13,9 @@ from __future__ import annotations
 from importlib.metadata import entry_points
 
 from audit.errors import InputError
-from procedures.base import Procedure
+from procedures.base import ProbabilisticProcedure, Procedure
 from procedures.fema_356 import FEMA356
+from procedures.fema_p58 import FEMAP58
 from procedures.housner_1963 import Housner1963
 from procedures.makris_roussos_2000 import MakrisRoussos2000
 from procedures.ntc_2018 import NTC2018
@@ -22,12 +23,20 @@ from procedures.priestley_1978 import PriestleyEvisonCarr1978
 
 ENTRY_POINT_GROUP = "rocking_audit.procedures"
 BUILT_IN = (PriestleyEvisonCarr1978, FEMA356, NTC2018, Housner1963, MakrisRoussos2000)
+#: Probabilistic procedures (P(event | IM), audited by calibration, not by rotation) are kept
+#: apart so "all" keeps meaning every rotation procedure; plug-ins declare them in their own group.
+PROBABILISTIC_ENTRY_POINT_GROUP = "rocking_audit.probabilistic_procedures"
+PROBABILISTIC_BUILT_IN = (FEMAP58,)
 
 
-def available_procedures() -> dict[str, type[Procedure]]:
-    """Procedure classes by name: built-ins first, then the installed plug-ins."""
-    found = {cls.name: cls for cls in BUILT_IN}
-    for point in entry_points(group=ENTRY_POINT_GROUP):
+def available_procedures(probabilistic: bool = False) -> dict[str, type]:
+    """Procedure classes by name: built-ins first, then the installed plug-ins; the
+    probabilistic ones (subclasses of :class:`ProbabilisticProcedure`) when ``probabilistic``."""
+    built_in, group, base = ((PROBABILISTIC_BUILT_IN, PROBABILISTIC_ENTRY_POINT_GROUP,
+                              ProbabilisticProcedure) if probabilistic
+                             else (BUILT_IN, ENTRY_POINT_GROUP, Procedure))
+    found = {cls.name: cls for cls in built_in}
+    for point in entry_points(group=group):
         if point.name in found:
             continue
         try:
@@ -35,9 +44,9 @@ def available_procedures() -> dict[str, type[Procedure]]:
         except Exception as exc:  # a broken plug-in must not take the tool down
             raise InputError(f"procedure plug-in '{point.name}' ({point.value}): cannot be "
                              f"loaded: {exc}") from None
-        if not (isinstance(cls, type) and issubclass(cls, Procedure)):
+        if not (isinstance(cls, type) and issubclass(cls, base)):
             raise InputError(f"procedure plug-in '{point.name}' ({point.value}): is not a "
-                             f"subclass of procedures.base.Procedure")
+                             f"subclass of procedures.base.{base.__name__}")
         found[point.name] = cls
     return found
 

@@ -18,6 +18,11 @@ def run(args) -> int:
     print("Procedures:")
     for name, cls in available_procedures().items():
         print(f"  {name:<16} {cls.title} — {cls.damping_law}; {cls.spectrum_source}")
+    print("\nProbabilistic procedures (audit fragility --procedure NAME):")
+    for name, cls in available_procedures(probabilistic=True).items():
+        print(f"  {name:<16} {cls.title} — P({cls.event} | "
+              f"{'/'.join(sorted({c.intensity_measure for c in cls.components}))}) of "
+              f"{len(cls.components)} components")
     from audit.errors import InputError
     from records import P695_SUITES, PULSE_SUITE
     from records.p695 import overview
