@@ -38,11 +38,7 @@ def add_parser(sub):
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 design site S_XS,S_X1 [g] of every record (the records' own "
                         "sites are replaced): the design intensity of the CMR")
-    p.add_argument("--scale-to-site", action="store_true",
-                   help="with --site: scale the suite the FEMA P695 way to the design spectrum")
-    p.add_argument("--anchor-period", type=options.POSITIVE, metavar="S",
-                   help="with --scale-to-site: period where the suite median meets the design "
-                        "spectrum [s] (1 when not given)")
+    options.add_scaling_options(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS, help="solver threads")

@@ -158,6 +158,16 @@ def suite(args):
     return loaded
 
 
+def add_scaling_options(parser):
+    """``--scale-to-site`` and ``--anchor-period``: the FEMA P695 scaling to ``--site``."""
+    parser.add_argument("--scale-to-site", action="store_true",
+                        help="with --site: scale the suite the FEMA P695 way to the design "
+                             "spectrum")
+    parser.add_argument("--anchor-period", type=POSITIVE, metavar="S",
+                        help="with --scale-to-site: period where the suite median meets the "
+                             "design spectrum [s] (1 when not given)")
+
+
 def add_force_option(parser):
     parser.add_argument("--force", action="store_true",
                         help="start even when the estimated work is beyond the limits "

@@ -63,11 +63,7 @@ def add_parser(sub):
                    help="FEMA 356 design site S_XS,S_X1 [g] (§1.6) for every record without one")
     p.add_argument("--site-override", action="store_true",
                    help="with --site: also replace the sites records carry (Table 3.1)")
-    p.add_argument("--scale-to-site", action="store_true",
-                   help="with --site: scale the suite the FEMA P695 way to the design spectrum")
-    p.add_argument("--anchor-period", type=options.POSITIVE, metavar="S",
-                   help="with --scale-to-site: period where the suite median meets the design "
-                        "spectrum [s] (1 when not given)")
+    options.add_scaling_options(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record: a_g [g], F0, T_C* [s], soil category "
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
