@@ -14,16 +14,15 @@ DEFAULT_IM = "sa:1.0"
 
 
 def add_parser(sub):
-    import argparse
     p = sub.add_parser(
         "margins", help="fragility and collapse margins of blocks sized by each guideline",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+        formatter_class=options.HelpWithDefaults,
         description="Scale the suite's records to a set of intensity levels (stripes), count "
                     "how many overturn each block exactly, fit a lognormal fragility, and say "
                     "where each guideline draws its line: its overturning intensity, the exact "
                     "probability of overturning there, and the FEMA P695 collapse margin ratio. "
                     "Writes stripes.csv, fragility.csv, capacity.csv, summary.json.")
-    p.add_argument("procedure", help="registered procedure name, or 'all'")
+    p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
     p.add_argument("--im", default=DEFAULT_IM, metavar="pga|pgv|sa:T",
                    help="intensity measure: PGA [g], PGV [m/s] or the true 5 %%-damped "

@@ -158,6 +158,20 @@ def suite(args):
     return loaded
 
 
+class HelpWithDefaults(argparse.ArgumentDefaultsHelpFormatter):
+    """Shows each option's default, where it has one (not for on/off flags), and the
+    registered procedures for ``{registered}``: read only when help is shown, not on every
+    command's start-up."""
+
+    def _get_help_string(self, action):
+        if "{registered}" in action.help:
+            from importlib.metadata import entry_points
+            names = sorted(ep.name for ep in entry_points(group="rocking_audit.procedures"))
+            return action.help.replace("{registered}", ", ".join(names))
+        return (action.help if action.default is None or action.default is False
+                else super()._get_help_string(action))
+
+
 def add_scaling_options(parser):
     """``--scale-to-site`` and ``--anchor-period``: the FEMA P695 scaling to ``--site``."""
     parser.add_argument("--scale-to-site", action="store_true",

@@ -15,27 +15,9 @@ from audit.errors import InputError
 DEFAULT_OUT = "audit-out"
 
 
-def _registered() -> str:
-    """Names of the registered procedures, read from the entry points without loading them."""
-    from importlib.metadata import entry_points
-    return ", ".join(sorted(ep.name for ep in entry_points(group="rocking_audit.procedures")))
-
-
 def add_parser(sub):
-    import argparse
-
-    class Defaults(argparse.ArgumentDefaultsHelpFormatter):
-        """Shows each option's default, where it has one (not for on/off flags), and the
-        registered procedures: read only when help is shown, not on every command's start-up."""
-
-        def _get_help_string(self, action):
-            if "{registered}" in action.help:
-                return action.help.replace("{registered}", _registered())
-            return (action.help if action.default is None or action.default is False
-                    else super()._get_help_string(action))
-
     p = sub.add_parser("run", help="audit a procedure (or all) and write the HTML report",
-                       formatter_class=Defaults,
+                       formatter_class=options.HelpWithDefaults,
                        description="Audit guideline procedures against the exact rocking "
                                    "response; writes report.html, results.csv, summary.json "
                                    "and the other files described in columns.json.")
