@@ -359,14 +359,15 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
 
 
 class MarginsResult:
-    """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity`` (DataFrames,
-    the columns of ``stripes.csv``, ``fragility.csv``, ``capacity.csv``), ``.summary`` and
-    ``.write(folder)``."""
+    """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity``,
+    ``.required_alpha`` (DataFrames, the columns of the CSV files of the same names),
+    ``.summary`` and ``.write(folder)``."""
 
     def __init__(self, margins):
         self.margins = margins
         self.stripes, self.fragility = margins.stripes, margins.fragility
         self.capacity, self.summary = margins.capacity, margins.summary
+        self.required_alpha = margins.required_alpha
 
     def write(self, out_dir) -> Path:
         """Write the files into ``out_dir`` (atomically)."""
@@ -410,14 +411,17 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
     """
     import numpy as np
 
-    from audit.engine.margins import IntensityMeasure, run_margins
+    from audit.engine.margins import IntensityMeasure, required_alpha, run_margins
     from records import RecordSuite, load_records
     suite = records if isinstance(records, RecordSuite) else load_records(records)
     suite = design_suite(suite, site, site is not None, scale_to_site, anchor_period_s)
     sizes_s = np.arange(0.5, 8.001, 0.25) if sizes_s is None else np.asarray(sizes_s, float)
-    return MarginsResult(run_margins(_procedures(procedures), suite, IntensityMeasure.parse(im),
-                                     stripes, alpha_deg, sizes_s, free_motion_s=free_motion_s,
-                                     jobs=jobs))
+    chosen = _procedures(procedures)
+    run = run_margins(chosen, suite, IntensityMeasure.parse(im), stripes, alpha_deg, sizes_s,
+                      free_motion_s=free_motion_s, jobs=jobs)
+    run.required_alpha = required_alpha(chosen, suite, sizes_s, free_motion_s=free_motion_s,
+                                        jobs=jobs)
+    return MarginsResult(run)
 
 
 __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite", "margins",

@@ -100,5 +100,30 @@ def test_margins_from_python(tmp_path):
                            sizes_s=[SIZE_S], free_motion_s=8.0)
     assert len(result.fragility) == 1 and "fema356" in result._repr_html_()
     written = sorted(p.name for p in result.write(tmp_path / "m").iterdir())
-    assert written == ["capacity.csv", "columns.json", "fragility.csv", "stripes.csv",
-                       "summary.json"]
+    assert written == ["capacity.csv", "columns.json", "fragility.csv", "required_alpha.csv",
+                       "stripes.csv", "summary.json"]
+
+
+def test_required_alpha_is_where_the_share_stays_below_the_target():
+    from audit.engine.margins import _smallest_alpha_staying_below
+    alpha = np.array([2.0, 3.0, 4.0, 5.0, 6.0])
+    # not monotonic: below 10 % at 3°, above again at 4°, below for good from 5°
+    share = np.array([0.5, 0.05, 0.3, 0.08, 0.0])
+    assert _smallest_alpha_staying_below(alpha, share, 0.10) == pytest.approx(4 + 0.2 / 0.22)
+    assert _smallest_alpha_staying_below(alpha, np.zeros(5), 0.10) == 2.0
+    assert math.isnan(_smallest_alpha_staying_below(alpha, np.full(5, 0.5), 0.10))
+
+
+def test_required_alpha_against_brute_force():
+    from audit.engine.margins import required_alpha
+    grid = np.arange(6.0, 30.1, 4.0)
+    table = required_alpha(get_procedures("priestley1978"), _suite(), [2.0], grid,
+                           free_motion_s=8.0).set_index("procedure")["required_alpha_deg"]
+    share = np.array([np.mean([simulate(RigidBlock.from_size(2.0, math.radians(a)),
+                                        entry.motion, 8.0).overturned for entry in _suite()])
+                      for a in grid])
+    over = np.flatnonzero(share > 0.10)
+    j = over[-1]
+    expected = grid[j] + (share[j] - 0.10) / (share[j] - share[j + 1]) * (grid[j + 1] - grid[j])
+    assert table["exact@0.10"] == pytest.approx(expected)
+    assert 6.0 <= table["priestley1978"] <= 30.0

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 
@@ -52,7 +53,8 @@ def add_parser(sub):
 
 def run(args) -> int:
     from audit.cli.run import design_site
-    from audit.engine.margins import IntensityMeasure, margins_files, run_margins
+    from audit.engine.margins import (IntensityMeasure, margins_files, required_alpha,
+                                      run_margins)
     from audit.engine.progress import Progress
     from audit.files import check_output_dir, write_files_atomically
     from procedures import get_procedures
@@ -79,6 +81,9 @@ def run(args) -> int:
                               free_motion_s=args.free_motion, jobs=args.jobs, progress=progress)
     finally:
         progress.done()
+    progress.stage("required slenderness for each size: α from 2° to 40°, 1° apart")
+    margins.required_alpha = required_alpha(procedures, suite, sizes,
+                                            free_motion_s=args.free_motion, jobs=args.jobs)
     write_files_atomically(out_dir, margins_files(margins))
     fragility = margins.fragility
     print(f"Fragility of {len(fragility)} blocks on {suite.description} "
@@ -92,5 +97,13 @@ def run(args) -> int:
         print(f"  {name}: median exact P(overturn) where it draws its line "
               f"{rows['achieved_p_fit'].median():.2f}, its line / exact median "
               f"{rows['ratio_to_exact_median'].median():.2f}")
-    print(f"Wrote {out_dir}: stripes.csv, fragility.csv, capacity.csv, summary.json")
+    exact = margins.required_alpha.set_index(["procedure", "size_s"])["required_alpha_deg"]
+    for name in (p.name for p in procedures):
+        below = [size for size in sizes
+                 if exact.get((name, size), math.nan) < exact.get(("exact@0.10", size), math.nan)]
+        print(f"  {name} accepts blocks more slender than the exact 10 % curve for "
+              + (f"2π/p = {min(below):g}–{max(below):g} s ({len(below)} of {sizes.size} sizes)"
+                 if below else "no size"))
+    print(f"Wrote {out_dir}: stripes.csv, fragility.csv, capacity.csv, required_alpha.csv, "
+          "summary.json")
     return 0

@@ -36,6 +36,7 @@ from audit.errors import InputError
 from audit.physics.block import coefficient_of_restitution
 from audit.physics.design_spectra import FEMA356Spectrum
 from audit.physics.oscillator import response_spectra
+from audit.physics.rocking import rocking_spectrum
 from procedures.base import EXACT_OVERTURNING, OVERTURN
 from procedures.context import RecordContext
 from records.sites import scaled_site
@@ -127,6 +128,8 @@ class MarginsRun:
     fragility: pd.DataFrame
     capacity: pd.DataFrame
     summary: dict = field(default_factory=dict)
+    #: ``required_alpha.csv`` (:func:`required_alpha`), None when not computed.
+    required_alpha: pd.DataFrame | None = None
 
 
 def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=(10.0, 15.0, 20.0),
@@ -265,19 +268,89 @@ def _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted,
     return pd.DataFrame(rows)
 
 
+#: Slendernesses searched for the required slenderness [degrees], 1° apart.
+REQUIRED_ALPHA_GRID_DEG = np.arange(2.0, 40.01, 1.0)
+#: Exact shares of records overturning a block that the required-slenderness curves target.
+REQUIRED_ALPHA_TARGETS = (0.10, 0.50)
+
+
+def _smallest_alpha_staying_below(alpha_deg, share, limit) -> float:
+    """The smallest α above which ``share`` stays ≤ ``limit`` on the search: after the last
+    α where it exceeds the limit, interpolated linearly between that grid point and the next;
+    the first α of the grid if it never exceeds, NaN if it still does at the last."""
+    over = np.flatnonzero(share > limit)
+    if over.size == 0:
+        return float(alpha_deg[0])
+    j = over[-1]
+    if j == alpha_deg.size - 1:
+        return math.nan
+    t = (share[j] - limit) / (share[j] - share[j + 1])
+    return float(alpha_deg[j] + t * (alpha_deg[j + 1] - alpha_deg[j]))
+
+
+def required_alpha(procedures, suite, size_s, alpha_grid_deg=REQUIRED_ALPHA_GRID_DEG,
+                   targets=REQUIRED_ALPHA_TARGETS, g: float = G, free_motion_s: float = 10.0,
+                   jobs: int = 1) -> pd.DataFrame:
+    """For each size, the smallest slenderness each procedure accepts for the suite as given
+    (the site-scaled records), against the smallest α for which the exact share of those
+    records that overturn the block stays ≤ each target.
+
+    A procedure accepts a block when it predicts overturning for at most half the records (a
+    site-based one: not at all). Shares are not monotonic in α either, so each curve is "the
+    smallest α above which the share stays ≤ the target on the search": α on a 1° grid, the
+    last crossing interpolated linearly.
+
+    Returns
+    -------
+    pandas.DataFrame
+        ``procedure, size_s, required_alpha_deg``; the exact curves are named ``exact@0.10`` and
+        ``exact@0.50``.
+    """
+    entries = [entry for entry in suite if entry.motion is not None]
+    size_s = np.asarray(size_s, dtype=float)
+    alpha_grid_deg = np.asarray(alpha_grid_deg, dtype=float)
+    alpha_rad = np.radians(alpha_grid_deg)
+    p = 2.0 * np.pi / size_s
+    exact = np.zeros((alpha_rad.size, size_s.size))
+    predicted = {proc.name: np.zeros((alpha_rad.size, size_s.size)) for proc in procedures}
+    for entry in entries:
+        exact += rocking_spectrum(entry.motion, size_s, alpha_rad, g=g,
+                                  free_motion_s=free_motion_s, jobs=jobs).overturned
+        context = RecordContext(entry, free_motion_s, jobs)
+        for proc in procedures:
+            if proc.unmet_requirements(entry) is not None:
+                continue
+            for i, alpha in enumerate(alpha_rad):
+                predicted[proc.name][i] += predicts_overturning(proc.evaluate(
+                    entry, p, alpha, float(coefficient_of_restitution(alpha)), context, g))
+    rows = []
+    curves = [(f"exact@{target:.2f}", exact / len(entries), target) for target in targets]
+    curves += [(name, counts / len(entries), 0.5) for name, counts in predicted.items()]
+    for name, share, limit in curves:
+        for s, size in enumerate(size_s):
+            rows.append({"procedure": name, "size_s": float(size),
+                         "required_alpha_deg": _smallest_alpha_staying_below(
+                             alpha_grid_deg, share[:, s], limit)})
+    return pd.DataFrame(rows)
+
+
 def margins_files(run: MarginsRun) -> dict[str, bytes]:
     """The files of a design-level audit, as bytes (columns in ``columns.json``)."""
     from audit.engine.results import json_ready
     from audit.engine.schemas import column_guide
     guide = {name: columns for name, columns in column_guide().items()
-             if name in ("stripes.csv", "fragility.csv", "capacity.csv")}
-    return {"stripes.csv": run.stripes.to_csv(index=False, float_format="%.8g").encode(),
-            "fragility.csv": run.fragility.to_csv(index=False, float_format="%.6g").encode(),
-            "capacity.csv": run.capacity.to_csv(index=False, float_format="%.6g").encode(),
+             if name in ("stripes.csv", "fragility.csv", "capacity.csv", "required_alpha.csv")}
+    files = {"stripes.csv": run.stripes.to_csv(index=False, float_format="%.8g").encode(),
+             "fragility.csv": run.fragility.to_csv(index=False, float_format="%.6g").encode(),
+             "capacity.csv": run.capacity.to_csv(index=False, float_format="%.6g").encode()}
+    if run.required_alpha is not None:
+        files["required_alpha.csv"] = run.required_alpha.to_csv(index=False,
+                                                                float_format="%.4g").encode()
+    return {**files,
             "summary.json": json.dumps(json_ready(run.summary), indent=1,
                                        ensure_ascii=False).encode(),
             "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
 
 
 __all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "predicts_overturning",
-           "margins_files"]
+           "margins_files", "required_alpha"]

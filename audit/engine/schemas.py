@@ -183,6 +183,16 @@ GUIDE["capacity.csv"] = {
                                "guideline_im"),
 }
 
+GUIDE["required_alpha.csv"] = {
+    "procedure": ("text", "guideline procedure (the α it accepts: it predicts overturning for at "
+                          "most half the records), or exact@0.10 / exact@0.50 (the exact share "
+                          "of records overturning the block stays ≤ 10 % / 50 %)"),
+    "size_s": ("s", "block size 2π/p"),
+    "required_alpha_deg": ("deg", "smallest α above which the share stays within the limit on "
+                                  "a 1° search, the last crossing interpolated; empty when none "
+                                  "up to 40°"),
+}
+
 RESULT_COLUMNS = list(GUIDE["results.csv"])
 ROCKING_COLUMNS = list(GUIDE["rocking.csv"])
 SPECTRA_COLUMNS = list(GUIDE["spectra.csv"])
