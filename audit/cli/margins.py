@@ -81,7 +81,7 @@ def run(args) -> int:
                               free_motion_s=args.free_motion, jobs=args.jobs, progress=progress)
     finally:
         progress.done()
-    progress.stage("required slenderness for each size: α from 2° to 40°, 1° apart")
+    progress.stage("required slenderness for each size: α from 2° to 40°, 2° apart")
     margins.required_alpha = required_alpha(procedures, suite, sizes,
                                             free_motion_s=args.free_motion, jobs=args.jobs)
     write_files_atomically(out_dir, margins_files(margins))

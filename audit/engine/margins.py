@@ -168,6 +168,8 @@ def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=
     shape = (len(entries), levels.size, alpha_rad.size, size_s.size)
     exact_over, exact_theta = np.zeros(shape, dtype=bool), np.zeros(shape)
     predicted = {proc.name: np.zeros(shape, dtype=bool) for proc in procedures}
+    # records each procedure could evaluate (its fractions are over these alone)
+    evaluated = {proc.name: np.zeros(len(entries), dtype=bool) for proc in procedures}
     for k, entry in enumerate(entries):
         factors = levels / intensities[k]
         exact_over[k], exact_theta[k] = stripe_outcomes(entry.motion, factors, size_s, alpha_rad,
@@ -183,6 +185,7 @@ def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=
             for proc in procedures:
                 if proc.unmet_requirements(scaled) is not None:
                     continue
+                evaluated[proc.name][k] = True
                 for i, alpha in enumerate(alpha_rad):
                     evaluation = proc.evaluate(scaled, p, alpha,
                                                float(coefficient_of_restitution(alpha)), context, g)
@@ -192,7 +195,8 @@ def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=
     stripes = _stripe_rows(entries, levels, intensities, alpha_deg, size_s, im, exact_over,
                            exact_theta, predicted)
     fragility, fits = _fragility_rows(levels, alpha_deg, size_s, im, exact_over, design)
-    capacity = _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted, fits)
+    capacity = _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted,
+                              evaluated, fits)
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
                "design_im": design, "records": [e.id for e in entries],
                "records_source": suite.description, "design_site": suite.design_site,
@@ -245,11 +249,15 @@ def _fragility_rows(levels, alpha_deg, size_s, im, exact_over, design):
     return pd.DataFrame(rows), fits
 
 
-def _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted, fits):
+def _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted, evaluated,
+                   fits):
     rows = []
     exact_fraction = exact_over.mean(axis=0)  # (stripe, α, size)
     for proc in procedures:
-        fraction = predicted[proc.name].mean(axis=0)
+        mine = evaluated[proc.name]
+        # over the records it could evaluate; NaN (no line) where it could evaluate none
+        fraction = (predicted[proc.name][mine].mean(axis=0) if mine.any()
+                    else np.full(exact_fraction.shape, np.nan))
         for i, alpha in enumerate(alpha_deg):
             for s, size in enumerate(size_s):
                 line = _half_crossing(levels, fraction[:, i, s])
@@ -268,8 +276,8 @@ def _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted,
     return pd.DataFrame(rows)
 
 
-#: Slendernesses searched for the required slenderness [degrees], 1° apart.
-REQUIRED_ALPHA_GRID_DEG = np.arange(2.0, 40.01, 1.0)
+#: Slendernesses searched for the required slenderness [degrees], 2° apart.
+REQUIRED_ALPHA_GRID_DEG = np.arange(2.0, 40.01, 2.0)
 #: Exact shares of records overturning a block that the required-slenderness curves target.
 REQUIRED_ALPHA_TARGETS = (0.10, 0.50)
 
@@ -296,9 +304,9 @@ def required_alpha(procedures, suite, size_s, alpha_grid_deg=REQUIRED_ALPHA_GRID
     records that overturn the block stays ≤ each target.
 
     A procedure accepts a block when it predicts overturning for at most half the records (a
-    site-based one: not at all). Shares are not monotonic in α either, so each curve is "the
-    smallest α above which the share stays ≤ the target on the search": α on a 1° grid, the
-    last crossing interpolated linearly.
+    site-based one: not at all), over the records it can evaluate. Shares are not monotonic in
+    α either, so each curve is "the smallest α above which the share stays ≤ the target on the
+    search": α on a 2° grid, the last crossing interpolated linearly.
 
     Returns
     -------
@@ -313,6 +321,7 @@ def required_alpha(procedures, suite, size_s, alpha_grid_deg=REQUIRED_ALPHA_GRID
     p = 2.0 * np.pi / size_s
     exact = np.zeros((alpha_rad.size, size_s.size))
     predicted = {proc.name: np.zeros((alpha_rad.size, size_s.size)) for proc in procedures}
+    evaluated = dict.fromkeys(predicted, 0)
     for entry in entries:
         exact += rocking_spectrum(entry.motion, size_s, alpha_rad, g=g,
                                   free_motion_s=free_motion_s, jobs=jobs).overturned
@@ -320,12 +329,15 @@ def required_alpha(procedures, suite, size_s, alpha_grid_deg=REQUIRED_ALPHA_GRID
         for proc in procedures:
             if proc.unmet_requirements(entry) is not None:
                 continue
+            evaluated[proc.name] += 1
             for i, alpha in enumerate(alpha_rad):
                 predicted[proc.name][i] += predicts_overturning(proc.evaluate(
                     entry, p, alpha, float(coefficient_of_restitution(alpha)), context, g))
     rows = []
     curves = [(f"exact@{target:.2f}", exact / len(entries), target) for target in targets]
-    curves += [(name, counts / len(entries), 0.5) for name, counts in predicted.items()]
+    # a procedure that could evaluate no record draws no curve
+    curves += [(name, counts / evaluated[name], 0.5) for name, counts in predicted.items()
+               if evaluated[name]]
     for name, share, limit in curves:
         for s, size in enumerate(size_s):
             rows.append({"procedure": name, "size_s": float(size),

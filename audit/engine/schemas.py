@@ -189,7 +189,7 @@ GUIDE["required_alpha.csv"] = {
                           "of records overturning the block stays ≤ 10 % / 50 %)"),
     "size_s": ("s", "block size 2π/p"),
     "required_alpha_deg": ("deg", "smallest α above which the share stays within the limit on "
-                                  "a 1° search, the last crossing interpolated; empty when none "
+                                  "a 2° search, the last crossing interpolated; empty when none "
                                   "up to 40°"),
 }
 
