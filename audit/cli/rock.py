@@ -21,7 +21,8 @@ def add_parser(sub):
                                                       low_open=True, high_open=True),
                    required=True, metavar="DEG", help="slenderness α [degrees]")
     p.add_argument("--r", type=options.number("must lie between 0 and 1", 0, 1),
-                   help="coefficient of restitution (default Eq. 4.8)")
+                   help="coefficient of restitution (same as --restitution VALUE)")
+    options.add_restitution_option(p)
     options.add_excitation_options(p)
     p.add_argument("--duration", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
                    metavar="S", help=f"free motion simulated after the excitation [s] (default "
@@ -43,14 +44,18 @@ def run(args) -> int:
     if (args.p is None) == (args.size is None):
         raise InputError("give the block size: exactly one of --p RAD_PER_S or --size SECONDS")
     alpha = math.radians(args.alpha)
-    block = (RigidBlock(args.p, alpha, args.r) if args.p is not None
-             else RigidBlock.from_size(args.size, alpha, args.r))
+    if args.r is not None and args.restitution != "housner":
+        raise InputError("give the impact model once: --r or --restitution, not both")
+    r = args.r if args.r is not None else options.restitution(args)
+    block = (RigidBlock(args.p, alpha, r) if args.p is not None
+             else RigidBlock.from_size(args.size, alpha, r))
     motion = options.motion(args)
     options.check_cost(args, [motion], args.duration, blocks=1)
     response = simulate(block, motion, free_motion_s=args.duration)
     result = {
         "record": motion.id, "p": block.p, "size_s": block.size_s, "alpha_deg": args.alpha,
-        "r": block.r, "R_m": block.radius,
+        "r": block.r, "restitution": f"{r:g}" if args.r is not None else str(r),
+        "R_m": block.radius,
         "overturned": response.overturned,
         "overturn_time": None if math.isnan(response.overturn_time) else response.overturn_time,
         "peak_rotation": response.peak_rotation,
