@@ -48,3 +48,21 @@ def test_jumping_has_no_friction_bound():
     h, v = pivot_reactions(0.0, 10.0, 0.0, 1, 2.0, math.radians(10), G)
     assert v < 0
     assert required_friction([h], [v]) == math.inf
+
+
+def test_validity_of_a_whole_response():
+    from audit.physics.block import RigidBlock
+    from audit.physics.reactions import rocking_validity
+    from audit.physics.rocking import simulate
+    from records.motion import GroundMotion
+    t = np.arange(0, 2, 0.01)
+    alpha = math.radians(15)
+    block = RigidBlock.from_size(4.0, alpha)
+    # below uplift the block rests on its base: H = m ü_g, V = m g, so μ_req = PGA / g
+    still = GroundMotion(id="still", acceleration=0.2 * G * np.sin(2 * np.pi * t), dt=0.01)
+    friction, jumps = rocking_validity(simulate(block, still, free_motion_s=1.0), still)
+    assert friction == pytest.approx(0.2, rel=1e-6) and not jumps
+    # a rocking block needs at least tan α (at uplift)
+    rocking = GroundMotion(id="rock", acceleration=0.4 * G * np.sin(2 * np.pi * t), dt=0.01)
+    friction, jumps = rocking_validity(simulate(block, rocking, free_motion_s=1.0), rocking)
+    assert friction >= math.tan(alpha) * (1 - 1e-9) and not jumps

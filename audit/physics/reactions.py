@@ -57,4 +57,42 @@ def required_friction(horizontal, vertical):
     return float(ratio.max()) if ratio.size else 0.0
 
 
-__all__ = ["pivot_reactions", "required_friction"]
+def rocking_validity(response, motion):
+    """Friction the pure-rocking response requires and whether it jumps, over the whole response.
+
+    Evaluated at every solver output point of ``response.history()`` (sampling grid, turning
+    points, both sides of each impact). At rest on the base H = m ü_g, V = m g; at an impact
+    (θ = 0) both pivots are reached, so both are evaluated.
+
+    Parameters
+    ----------
+    response : RockingResponse
+    motion : records.GroundMotion
+
+    Returns
+    -------
+    required_friction : float
+        max |H| / V [-] (inf when the block would jump).
+    jumps : bool
+        V < 0 somewhere.
+    """
+    block = response.block
+    time, theta, omega = response.history()
+    ground = motion.acceleration_at(time)
+    at_rest = (theta == 0) & (omega == 0)
+    on_base = ~at_rest & (theta == 0)
+    sides = [np.sign(theta[~at_rest & ~on_base])]
+    points = [(theta[~at_rest & ~on_base], omega[~at_rest & ~on_base], ground[~at_rest & ~on_base])]
+    for side in (1.0, -1.0):
+        sides.append(side)
+        points.append((theta[on_base], omega[on_base], ground[on_base]))
+    horizontal, vertical = [ground[at_rest] / block.g], [np.ones(int(at_rest.sum()))]
+    for side, (th, om, ug) in zip(sides, points):
+        h, v = pivot_reactions(th, om, ug, side, block.p, block.alpha, block.g)
+        horizontal.append(np.atleast_1d(h))
+        vertical.append(np.atleast_1d(v))
+    horizontal, vertical = np.concatenate(horizontal), np.concatenate(vertical)
+    return required_friction(horizontal, vertical), bool(np.any(vertical < 0))
+
+
+__all__ = ["pivot_reactions", "required_friction", "rocking_validity"]
