@@ -46,3 +46,22 @@ def test_spectrum_uses_the_model():
     for i in range(2):
         assert np.array_equal(by_model.theta_peak[i], by_value[i].theta_peak[0])
     assert np.all(by_model.theta_peak < housner.theta_peak)
+
+
+def test_r_one_conserves_energy_between_and_at_impacts():
+    # after the excitation, E / (m g R) = cos(α − |θ|) + θ'² / (2 p²) (I_O = 4/3 m R², p² = 3g/4R)
+    # is constant along the free rocking, and r = 1 keeps it through each impact
+    from records.motion import GroundMotion
+    from audit.physics.rocking import simulate
+    t = np.arange(0, 1, 0.01)
+    motion = GroundMotion(id="pulse", acceleration=0.22 * 9.81 * np.sin(2 * np.pi * t), dt=0.01)
+    block = RigidBlock.from_size(4.0, math.radians(10), Restitution.parse("1.0"))
+    response = simulate(block, motion, free_motion_s=6.0)
+    assert not response.overturned
+    time, theta, omega = response.history()
+    free = time > response.excitation_end
+    energy = np.cos(block.alpha - np.abs(theta[free])) + omega[free] ** 2 / (2 * block.p ** 2)
+    assert response.impact_times[response.impact_times > response.excitation_end].size >= 2
+    assert np.ptp(energy) < 1e-7 * (1 - math.cos(block.alpha))
+    before, after = response.impact_velocities.T
+    assert np.allclose(np.abs(after), np.abs(before), rtol=1e-12)
