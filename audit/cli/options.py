@@ -182,6 +182,17 @@ def add_scaling_options(parser):
                              "design spectrum [s] (1 when not given)")
 
 
+def add_restitution_option(parser):
+    parser.add_argument("--restitution", default="housner", metavar="housner|VALUE|xFACTOR",
+                        help="impact model: Eq. 4.8 (housner, default), a fixed coefficient of "
+                             "restitution r, or a multiple of Eq. 4.8 (e.g. x0.9)")
+
+
+def restitution(args):
+    from audit.physics.block import Restitution
+    return Restitution.parse(args.restitution, "--restitution")
+
+
 def add_force_option(parser):
     parser.add_argument("--force", action="store_true",
                         help="start even when the estimated work is beyond the limits "

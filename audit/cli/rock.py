@@ -21,8 +21,12 @@ def add_parser(sub):
                                                       low_open=True, high_open=True),
                    required=True, metavar="DEG", help="slenderness α [degrees]")
     p.add_argument("--r", type=options.number("must lie between 0 and 1", 0, 1),
-                   help="coefficient of restitution (default Eq. 4.8)")
+                   help="coefficient of restitution (same as --restitution VALUE)")
+    options.add_restitution_option(p)
     options.add_excitation_options(p)
+    p.add_argument("--friction", type=options.POSITIVE, metavar="MU",
+                   help="friction coefficient μ: mark the block as sliding when pure rocking "
+                        "needs more (or tan α ≥ μ)")
     p.add_argument("--duration", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
                    metavar="S", help=f"free motion simulated after the excitation [s] (default "
                                      f"{DEFAULT_FREE_MOTION_S:g})")
@@ -43,14 +47,22 @@ def run(args) -> int:
     if (args.p is None) == (args.size is None):
         raise InputError("give the block size: exactly one of --p RAD_PER_S or --size SECONDS")
     alpha = math.radians(args.alpha)
-    block = (RigidBlock(args.p, alpha, args.r) if args.p is not None
-             else RigidBlock.from_size(args.size, alpha, args.r))
+    if args.r is not None and args.restitution != "housner":
+        raise InputError("give the impact model once: --r or --restitution, not both")
+    r = args.r if args.r is not None else options.restitution(args)
+    block = (RigidBlock(args.p, alpha, r) if args.p is not None
+             else RigidBlock.from_size(args.size, alpha, r))
     motion = options.motion(args)
     options.check_cost(args, [motion], args.duration, blocks=1)
     response = simulate(block, motion, free_motion_s=args.duration)
+    from audit.physics.reactions import rocking_validity
+    friction, jumps = rocking_validity(response, motion)
+    slides = (None if args.friction is None
+              else bool(friction > args.friction or math.tan(block.alpha) >= args.friction))
     result = {
         "record": motion.id, "p": block.p, "size_s": block.size_s, "alpha_deg": args.alpha,
-        "r": block.r, "R_m": block.radius,
+        "r": block.r, "restitution": f"{r:g}" if args.r is not None else str(r),
+        "R_m": block.radius,
         "overturned": response.overturned,
         "overturn_time": None if math.isnan(response.overturn_time) else response.overturn_time,
         "peak_rotation": response.peak_rotation,
@@ -62,6 +74,8 @@ def run(args) -> int:
         "impacts": response.n_impacts,
         "cycle_durations": response.cycle_durations.tolist(),
         "uplifted": response.uplifted,
+        "required_friction": None if math.isinf(friction) else friction,
+        "jumps": jumps, "friction": args.friction, "slides": slides,
     }
     outputs = {}
     if history:
@@ -103,7 +117,11 @@ def run(args) -> int:
           f"  free-vibration peak |θ|    {free}\n"
           f"  peak |θ'|                  {response.peak_angular_velocity:.6g} rad/s\n"
           f"  impacts                    {response.n_impacts}\n"
-          f"  full rocking cycles [s]    {cycles}{more}")
+          f"  full rocking cycles [s]    {cycles}{more}\n"
+          f"  required friction |H|/V    "
+          f"{'n/a (jumps: V < 0)' if jumps else f'{friction:.4f}'} (tan α = {math.tan(block.alpha):.4f})"
+          + ("" if slides is None else f"\n  {'with μ = ' + format(args.friction, 'g'):<27}"
+             f"{'SLIDES: pure rocking does not apply' if slides else 'rocks without sliding'}"))
     if args.plot:
         print(f"Plot written to {args.plot}")
     return 0

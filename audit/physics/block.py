@@ -49,6 +49,53 @@ def coefficient_of_restitution(alpha_rad):
 
 
 @dataclass(frozen=True)
+class Restitution:
+    """The impact model: which coefficient of restitution r each block gets.
+
+    r is the ratio of kinetic energies after and before an impact, so the angular velocity
+    is multiplied by sqrt(r) (Eq. 4.6–4.7). ``factor`` scales Eq. 4.8 (the upper bound for
+    pure rocking; shake-table studies often measure less); ``value`` fixes r for every block.
+
+    Attributes
+    ----------
+    factor : float
+        Multiple of Eq. 4.8 [-] (1 for Housner's model); ignored when ``value`` is set.
+    value : float, optional
+        A fixed r [-] for every block.
+    """
+
+    factor: float = 1.0
+    value: float | None = None
+
+    @classmethod
+    def parse(cls, text: str, option: str = "--restitution") -> Restitution:
+        """``housner`` (Eq. 4.8), a fixed r ``VALUE`` in (0, 1], or ``xFACTOR`` times Eq. 4.8."""
+        word = str(text).strip().lower()
+        if word == "housner":
+            return cls()
+        scaled = word.startswith("x") or word.endswith("x")
+        try:
+            number = float(word.strip("x"))
+        except ValueError:
+            number = math.nan
+        if not (math.isfinite(number) and 0 < number <= 1):
+            raise InputError(f"{option}: expected housner, a coefficient of restitution in (0, 1] "
+                             f"or xFACTOR with a factor in (0, 1], got {text!r}")
+        return cls(factor=number) if scaled else cls(value=number)
+
+    def r(self, alpha_rad):
+        """Coefficient of restitution r [-] of a block of slenderness ``alpha_rad`` [rad]."""
+        if self.value is not None:
+            return np.full_like(np.asarray(alpha_rad, dtype=float), self.value)[()]
+        return self.factor * coefficient_of_restitution(alpha_rad)
+
+    def __str__(self):
+        if self.value is not None:
+            return f"{self.value:g}"
+        return "housner" if self.factor == 1.0 else f"x{self.factor:g}"
+
+
+@dataclass(frozen=True)
 class RigidBlock:
     """A rectangular rigid block rocking on a rigid base.
 
@@ -58,15 +105,16 @@ class RigidBlock:
         Frequency parameter [rad/s]; the block's "size" on spectra is 2π/p [s].
     alpha : float
         Slenderness α [rad], 0 < α < π/4.
-    r : float
-        Coefficient of restitution (energy ratio per impact); Eq. 4.8 when not given.
+    r : float or Restitution
+        Coefficient of restitution (energy ratio per impact), or the impact model giving it;
+        Eq. 4.8 when not given.
     g : float
         Acceleration of gravity [m/s²].
     """
 
     p: float
     alpha: float
-    r: float | None = None
+    r: float | Restitution | None = None
     g: float = G
 
     def __post_init__(self):
@@ -75,8 +123,9 @@ class RigidBlock:
         if not (math.isfinite(self.alpha) and 0 < self.alpha < math.pi / 4):
             raise InputError(f"block alpha: must lie between 0 and 45 degrees, got "
                              f"{math.degrees(self.alpha):g} degrees")
-        if self.r is None:
-            object.__setattr__(self, "r", float(coefficient_of_restitution(self.alpha)))
+        model = Restitution() if self.r is None else self.r
+        if isinstance(model, Restitution):
+            object.__setattr__(self, "r", float(model.r(self.alpha)))
         if not (math.isfinite(self.r) and 0 < self.r <= 1):
             raise InputError(f"block r: coefficient of restitution must lie in (0, 1], got {self.r}")
         if not (math.isfinite(self.g) and self.g > 0):

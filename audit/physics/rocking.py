@@ -562,8 +562,9 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
         Block sizes 2π/p [s].
     alpha_rad : array
         Slendernesses α [rad].
-    r : float, optional
-        Coefficient of restitution for every block; Eq. 4.8 of each α when not given.
+    r : float or Restitution, optional
+        Coefficient of restitution for every block, or the impact model giving each α its r;
+        Eq. 4.8 of each α when not given.
     g : float, optional
         Acceleration of gravity [m/s²].
     jobs : int
