@@ -79,3 +79,16 @@ def test_fragility_command_unknown_procedure(tmp_path, capsys):
     assert main(["fragility", "--procedure", "nope", "--out", str(out)]) == 2
     assert capsys.readouterr().err.count("\n") == 1
     assert not out.exists()
+
+
+def test_fragility_files_match_the_column_guide():
+    from audit.engine.calibration import PGV_LEVELS_M_S
+    from audit.engine.fragility_audit import audit_procedure
+    from audit.engine.schemas import GUIDE
+    from procedures.fema_p58 import FEMAP58
+    from records import pulse_suite
+    entries = list(pulse_suite())[:2]
+    tables = audit_procedure(FEMAP58(), [e.id for e in entries], [e.motion for e in entries],
+                             PGV_LEVELS_M_S[::4])
+    for name, table in tables.items():
+        assert list(table.columns) == list(GUIDE[name]), name

@@ -193,6 +193,51 @@ GUIDE["required_alpha.csv"] = {
                                   "up to 40°"),
 }
 
+# the audit of a probabilistic procedure (``python -m audit fragility``)
+_COMPONENT = ("text", "component of the procedure (e.g. FEMA P-58 E.20.22.104a)")
+GUIDE["fragility-components.csv"] = {
+    "component": _COMPONENT,
+    "description": ("text", "the component in words"),
+    "half_width_m": ("m", "b of its block: depth/2 (uniform contents)"),
+    "half_height_m": ("m", "h of its block: height/2"),
+    "alpha_deg": ("deg", "slenderness α = atan(b/h)"),
+    "p_rad_s": ("rad/s", "frequency parameter p"),
+    "procedure_median_m_s": ("m/s", "the procedure's fragility median (PGV)"),
+    "procedure_beta": ("-", "the procedure's fragility β"),
+    "exact_median_m_s": ("m/s", "exact fragility median, lognormal fitted to the stripes"),
+    "exact_beta": ("-", "exact fragility β"),
+    "median_ratio": ("-", "procedure median / exact median (below 1: overturning expected at "
+                          "a lower PGV)"),
+    "conservative_at_median": ("bool", "procedure median ≤ exact median"),
+    "brier": ("-", "Brier score of the procedure's probabilities against the exact outcomes"),
+    "log_likelihood": ("-", "Bernoulli log-likelihood of the same"),
+    "exact_fit_brier": ("-", "Brier score of the exact fit (in-sample, for comparison)"),
+    "exact_fit_log_likelihood": ("-", "log-likelihood of the exact fit (in-sample)"),
+    "outcomes": ("-", "records × stripes scored"),
+}
+GUIDE["fragility-stripes.csv"] = {
+    "component": _COMPONENT,
+    "pgv_m_s": ("m/s", "the stripe's PGV, every record scaled to it"),
+    "records": ("-", "records at the stripe"),
+    "overturned": ("-", "records whose exact response overturns the component's block"),
+    "procedure_probability": ("-", "the procedure's P(overturn) at the stripe"),
+}
+GUIDE["fragility-outcomes.csv"] = {
+    "component": _COMPONENT,
+    "record": ("text", "record id"),
+    "pgv_m_s": ("m/s", "the stripe's PGV"),
+    "exact_overturned": ("bool", "the exact response overturns"),
+    "procedure_probability": ("-", "the procedure's P(overturn) there"),
+}
+GUIDE["fragility-calibration.csv"] = {
+    "component": _COMPONENT,
+    "predicted_lower": ("-", "lower edge of the bin of predicted probability"),
+    "predicted_upper": ("-", "upper edge"),
+    "outcomes": ("-", "outcomes in the bin"),
+    "mean_predicted": ("-", "mean predicted probability in the bin"),
+    "observed_frequency": ("-", "share of them that overturn exactly"),
+}
+
 RESULT_COLUMNS = list(GUIDE["results.csv"])
 ROCKING_COLUMNS = list(GUIDE["rocking.csv"])
 SPECTRA_COLUMNS = list(GUIDE["spectra.csv"])
