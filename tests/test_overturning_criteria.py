@@ -60,6 +60,14 @@ def test_impulse_criterion_reproduces_eqs_27_and_47():
             float(one_sine_no_impact_amplitude(ratio)), abs=1e-6)
 
 
+def test_impulse_criterion_of_the_one_cosine_pulse_in_closed_form():
+    # the block uplifts at t = 0 under a_p cos(ω_p t): p∫₀^T (a/g) cos(ω_p s) e^{−ps} ds = α with
+    # T = 2π/ω_p gives a/(αg) = (1 + (ω_p/p)²) / (1 − e^{−2π p/ω_p}), worked by hand
+    for ratio in (0.5, 1.0, 2.0, 3.0):
+        closed = (1 + ratio ** 2) / (1 - math.exp(-2 * math.pi / ratio))
+        assert impulse_minimum_amplitude(ratio, ONE_COSINE) == pytest.approx(closed, rel=1e-7)
+
+
 def test_published_lines_and_housner_eq_12():
     ratios = np.array([0.5, 1.0, 2.0, 3.0])
     np.testing.assert_allclose(linear_minimum_amplitude(ratios, ONE_SINE),
