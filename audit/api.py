@@ -360,21 +360,34 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
 
 class MarginsResult:
     """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity``,
-    ``.required_alpha`` (DataFrames, the columns of the CSV files of the same names),
-    ``.summary`` and ``.write(folder)``."""
+    ``.required_alpha``, ``.scan`` (DataFrames, the columns of the CSV files of the same
+    names), ``.summary``, ``.write(folder)`` (the files and ``margins.html``) and
+    ``.report(path)``."""
 
     def __init__(self, margins):
         self.margins = margins
         self.stripes, self.fragility = margins.stripes, margins.fragility
         self.capacity, self.summary = margins.capacity, margins.summary
-        self.required_alpha = margins.required_alpha
+        self.required_alpha, self.scan = margins.required_alpha, margins.scan
+
+    def files(self) -> dict[str, bytes]:
+        """Every file of the audit, the page drawn from the CSV files as saved."""
+        from audit.engine.margins import margins_files
+        from reports.margins_page import MARGINS_HTML, render_margins_page
+        return with_page(margins_files(self.margins), MARGINS_HTML, render_margins_page)
 
     def write(self, out_dir) -> Path:
-        """Write the files into ``out_dir`` (atomically)."""
-        from audit.engine.margins import margins_files
+        """Write the files and ``margins.html`` into ``out_dir`` (atomically, together)."""
         from audit.files import write_files_atomically
-        write_files_atomically(Path(out_dir), margins_files(self.margins))
+        write_files_atomically(Path(out_dir), self.files())
         return Path(out_dir)
+
+    def report(self, path) -> Path:
+        """Write ``margins.html`` alone to ``path``."""
+        from audit.files import write_file_atomically
+        from reports.margins_page import MARGINS_HTML
+        write_file_atomically(Path(path), self.files()[MARGINS_HTML])
+        return Path(path)
 
     def _repr_html_(self) -> str:
         lines = self.capacity.groupby("procedure", sort=False)[
@@ -384,10 +397,24 @@ class MarginsResult:
                 + lines.to_html(float_format=lambda v: f"{v:.3g}", na_rep="—"))
 
 
+def with_page(files: dict, page_name: str, render) -> dict:
+    """``files`` and the page ``render(folder)`` draws from them as saved (in a scratch folder),
+    so that a page is always the picture of exactly the files beside it."""
+    import tempfile
+
+    from audit.files import write_files_atomically
+    with tempfile.TemporaryDirectory() as saved:
+        write_files_atomically(saved, files)
+        return {**files, page_name: render(saved).encode()}
+
+
 def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
-            alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, site=None, scale_to_site: bool = False,
-            anchor_period_s=None, jobs: int = DEFAULT_JOBS,
-            free_motion_s: float = DEFAULT_FREE_MOTION_S) -> MarginsResult:
+            alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, blocks=(), site=None,
+            scale_to_site: bool = False, anchor_period_s=None, ntc_site=None,
+            restitution="housner", jobs: int = DEFAULT_JOBS,
+            free_motion_s: float = DEFAULT_FREE_MOTION_S, scheduler: str = DEFAULT_SCHEDULER,
+            progress=False, partial_dir=None, resume: bool = False,
+            required: bool = True) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
     procedure draws its line against it (see :mod:`audit.engine.margins`).
 
@@ -401,26 +428,68 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
         Intensity levels (unit of ``im``); default 24 levels, 0.2–5 × the design intensity
         (or the suite's median).
     alpha_deg : sequence of float
-        Slendernesses [degrees].
+        Slendernesses of the grid [degrees].
     sizes_s : array, optional
-        Block sizes 2π/p [s]; default 0.5 … 8 s in steps of 0.25 s.
-    site, scale_to_site, anchor_period_s :
-        The FEMA 356 design site (S_XS, S_X1 [g]) of every record, and the FEMA P695 scaling.
+        Block sizes 2π/p of the grid [s]; default 0.5 … 8 s in steps of 0.25 s.
+    blocks : sequence of str or Block
+        Blocks by their dimensions beside the grid: ``"WIDTHxHEIGHT"`` [m] or
+        :meth:`Block.from_dimensions`.
+    site, scale_to_site, anchor_period_s, ntc_site :
+        The FEMA 356 design site (S_XS, S_X1 [g]) of every record, the FEMA P695 scaling and
+        the NTC 2018 site, see :func:`design_suite`.
+    restitution : str
+        The impact model: ``housner`` (Eq. 4.8), a fixed r, or ``xFACTOR`` times Eq. 4.8.
     jobs, free_motion_s :
-        Solver threads; free motion after each record [s].
+        Solver threads (worker processes with ``scheduler="dask"``); free motion after each
+        record [s].
+    scheduler, partial_dir, resume :
+        Where records are computed; keep each record's stripes in ``partial_dir`` as they
+        complete and reuse them with ``resume``.
+    progress : bool or callable
+        A progress bar on standard error, or ``progress(done, total, record_id, how)``.
+    required : bool
+        Also search the required slenderness of each size (``required_alpha``).
     """
     import numpy as np
 
-    from audit.engine.margins import IntensityMeasure, required_alpha, run_margins
+    from audit.engine.blocks import NamedBlock, parse_blocks
+    from audit.engine.margins import IntensityMeasure, amplitude_scans, run_margins
+    from audit.engine.progress import Progress
+    from audit.engine.required_alpha import required_alpha
+    from audit.engine.scheduler import open_scheduler
+    from audit.physics.block import Restitution
     from records import RecordSuite, load_records
     suite = records if isinstance(records, RecordSuite) else load_records(records)
-    suite = design_suite(suite, site, site is not None, scale_to_site, anchor_period_s)
+    suite = design_suite(suite, site, site is not None, scale_to_site, anchor_period_s, ntc_site)
     sizes_s = np.arange(0.5, 8.001, 0.25) if sizes_s is None else np.asarray(sizes_s, float)
+    named = [NamedBlock(b.width_m, b.height_m, b.g) if isinstance(b, Block) else b
+             for b in blocks if not isinstance(b, str)]
+    named += parse_blocks([b for b in blocks if isinstance(b, str)])
+    impact = restitution if isinstance(restitution, Restitution) else Restitution.parse(restitution)
     chosen = _procedures(procedures)
-    run = run_margins(chosen, suite, IntensityMeasure.parse(im), stripes, alpha_deg, sizes_s,
-                      free_motion_s=free_motion_s, jobs=jobs)
-    run.required_alpha = required_alpha(chosen, suite, sizes_s, free_motion_s=free_motion_s,
-                                        jobs=jobs)
+    intensity = IntensityMeasure.parse(im)
+    bar = Progress(len(suite), "record") if progress is True else None
+    report = bar or progress or None
+    try:
+        with open_scheduler(scheduler, jobs) as executor:
+            if bar:
+                bar.stage(f"exact fragility on {len(suite)} records × "
+                          f"{len(stripes) if stripes is not None else 'the default'} stripes "
+                          f"of {intensity.name}")
+            run = run_margins(chosen, suite, intensity, stripes, alpha_deg, sizes_s, named,
+                              impact, free_motion_s=free_motion_s, jobs=jobs, progress=report,
+                              scheduler=executor, partial_dir=partial_dir, resume=resume)
+            if required:
+                if bar:
+                    bar.stage("required slenderness of each size: α from 2° to 40°, 2° apart, "
+                              "the exact curves bisected")
+                run.required_alpha = required_alpha(chosen, suite, sizes_s,
+                                                    restitution=impact, free_motion_s=free_motion_s,
+                                                    jobs=jobs, scheduler=executor, progress=report)
+    finally:
+        if bar is not None:
+            bar.done()
+    run.scan = amplitude_scans(run, suite, impact, free_motion_s=free_motion_s, jobs=jobs)
     return MarginsResult(run)
 
 

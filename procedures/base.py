@@ -419,6 +419,12 @@ class Procedure:
             return f"no {self.title} site parameters ({', '.join(missing)})"
         return None
 
+    def reads_record(self, entry) -> bool:
+        """Whether the procedure reads the record itself for ``entry`` (its spectrum, its PGA),
+        not only the site's design spectrum: a record scaled to a level then gives each record
+        its own answer, a design spectrum scaled to the level one answer for all."""
+        return self.requires_motion
+
     def evaluate(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> Evaluation:
         """The procedure's estimate, the spectrum it read and its checks for blocks
         (p [rad/s], α [rad], r [-]) under the record ``entry``.

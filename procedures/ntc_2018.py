@@ -153,6 +153,9 @@ class NTC2018(Procedure):
             return self.demand
         return CODE_SPECTRUM if any(key in entry.site for key in SITE_KEYS) else RECORD_BASED
 
+    def reads_record(self, entry) -> bool:
+        return self.demand_variant(entry) == RECORD_BASED
+
     def unmet_requirements(self, entry) -> str | None:
         if self.demand_variant(entry) == CODE_SPECTRUM:
             missing = [key for key in SITE_KEYS if entry.site.get(key) is None]

@@ -97,33 +97,106 @@ def test_intensity_measures_and_bad_input(tmp_path, capsys):
 def test_margins_from_python(tmp_path):
     import audit
     result = audit.margins("fema356", _suite(), im="pga", stripes=LEVELS_G, alpha_deg=[15],
-                           sizes_s=[SIZE_S], free_motion_s=8.0)
+                           sizes_s=[SIZE_S], free_motion_s=8.0, required=False)
     assert len(result.fragility) == 1 and "fema356" in result._repr_html_()
     written = sorted(p.name for p in result.write(tmp_path / "m").iterdir())
-    assert written == ["capacity.csv", "columns.json", "fragility.csv", "required_alpha.csv",
-                       "stripes.csv", "summary.json"]
+    assert written == ["capacity.csv", "columns.json", "fragility.csv", "margins.html",
+                       "scan.csv", "stripes.csv", "summary.json"]
+
+
+def test_block_by_its_dimensions():
+    from audit.engine.blocks import parse_blocks
+    (block,) = parse_blocks(["0.4x2.0"])
+    # α = atan(b/h) = atan(0.2/1.0); p = √(3g/(4R)), R = √(0.2² + 1²) (Eq. 4.2)
+    assert block.alpha_deg == pytest.approx(math.degrees(math.atan(0.2)), rel=1e-12)
+    p = math.sqrt(3 * 9.81 / (4 * math.hypot(0.2, 1.0)))
+    assert block.size_s == pytest.approx(2 * math.pi / p, rel=1e-12)
+    assert [b.label for b in parse_blocks(["0.4x2,0.8x2.4", "1x3"])] == ["0.4x2", "0.8x2.4", "1x3"]
+    for bad in ("0.4", "2x0.4", "0x1", "axb"):
+        with pytest.raises(InputError, match="--block"):
+            parse_blocks([bad])
+
+
+def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
+    from audit.engine.blocks import NamedBlock
+    block = NamedBlock(0.8, 4.0)
+    procedures = get_procedures("priestley1978")
+    named = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
+                        (ALPHA_DEG,), [SIZE_S], named_blocks=[block], free_motion_s=8.0)
+    twin = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
+                       (block.alpha_deg,), [block.size_s], free_motion_s=8.0)
+    rows = named.stripes[named.stripes["block_m"] == "0.8x4"].reset_index(drop=True)
+    assert len(rows) == 3 * LEVELS_G.size
+    for column in ("exact_overturned", "exact_theta_rad", "priestley1978_overturns"):
+        assert list(rows[column]) == list(twin.stripes[column])
+    assert named.fragility.iloc[-1]["median"] == twin.fragility.iloc[0]["median"]
+
+
+def test_required_alpha_bisects_the_last_crossing_against_brute_force():
+    from audit.engine.required_alpha import required_alpha
+    grid = np.arange(6.0, 30.1, 4.0)
+    table = required_alpha(get_procedures("priestley1978"), _suite(), [2.0], grid,
+                           targets=(0.10,), bisections=3, free_motion_s=8.0)
+    table = table.set_index("procedure")
+
+    def share(alpha_deg):  # every record solved afresh, one block at a time
+        return np.mean([simulate(RigidBlock.from_size(2.0, math.radians(alpha_deg)),
+                                 entry.motion, 8.0).overturned for entry in _suite()])
+    shares = np.array([share(a) for a in grid])
+    j = np.flatnonzero(shares > 0.10)[-1]
+    low, high = grid[j], grid[j + 1]
+    for _ in range(3):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if share(middle) > 0.10 else (low, middle)
+    assert table.loc["exact@0.10", "required_alpha_deg"] == pytest.approx(high, abs=1e-12)
+    assert table.loc["exact@0.10", "exact_overturning_share"] == pytest.approx(share(high))
+    assert 6.0 <= table.loc["priestley1978", "required_alpha_deg"] <= 30.0
 
 
 def test_required_alpha_is_where_the_share_stays_below_the_target():
-    from audit.engine.margins import _smallest_alpha_staying_below
+    from audit.engine.required_alpha import interpolated_alpha
     alpha = np.array([2.0, 3.0, 4.0, 5.0, 6.0])
     # not monotonic: below 10 % at 3°, above again at 4°, below for good from 5°
     share = np.array([0.5, 0.05, 0.3, 0.08, 0.0])
-    assert _smallest_alpha_staying_below(alpha, share, 0.10) == pytest.approx(4 + 0.2 / 0.22)
-    assert _smallest_alpha_staying_below(alpha, np.zeros(5), 0.10) == 2.0
-    assert math.isnan(_smallest_alpha_staying_below(alpha, np.full(5, 0.5), 0.10))
+    assert interpolated_alpha(alpha, share, 0.10) == pytest.approx(4 + 0.2 / 0.22)
+    assert interpolated_alpha(alpha, np.zeros(5), 0.10) == 2.0
+    assert math.isnan(interpolated_alpha(alpha, np.full(5, 0.5), 0.10))
 
 
-def test_required_alpha_against_brute_force():
-    from audit.engine.margins import required_alpha
-    grid = np.arange(6.0, 30.1, 4.0)
-    table = required_alpha(get_procedures("priestley1978"), _suite(), [2.0], grid,
-                           free_motion_s=8.0).set_index("procedure")["required_alpha_deg"]
-    share = np.array([np.mean([simulate(RigidBlock.from_size(2.0, math.radians(a)),
-                                        entry.motion, 8.0).overturned for entry in _suite()])
-                      for a in grid])
-    over = np.flatnonzero(share > 0.10)
-    j = over[-1]
-    expected = grid[j] + (share[j] - 0.10) / (share[j] - share[j + 1]) * (grid[j + 1] - grid[j])
-    assert table["exact@0.10"] == pytest.approx(expected)
-    assert 6.0 <= table["priestley1978"] <= 30.0
+def test_resumed_and_dask_margins_are_identical(tmp_path):
+    pytest.importorskip("distributed")
+    import audit
+    from audit.engine.partial import kept_parts
+    common = dict(im="pga", stripes=LEVELS_G, alpha_deg=[15], sizes_s=[SIZE_S],
+                  free_motion_s=8.0, required=False)
+    local = audit.margins("priestley1978", _suite(), **common)
+    partial = tmp_path / ".partial"
+    audit.margins("priestley1978", _suite(), partial_dir=partial, **common)
+    assert len(kept_parts(partial)) == 3  # one part per record, kept for a resume
+    resumed = audit.margins("priestley1978", _suite(), partial_dir=partial, resume=True, **common)
+    assert resumed.summary["resumed"] == [e.id for e in _suite()]
+    on_dask = audit.margins("priestley1978", _suite(), scheduler="dask", jobs=2, **common)
+    for other in (resumed, on_dask):
+        assert other.stripes.equals(local.stripes)
+        assert other.fragility.equals(local.fragility)
+
+
+def test_margins_page_from_the_files(tmp_path):
+    import audit
+    from audit.engine.blocks import NamedBlock
+    result = audit.margins(["priestley1978", "fema356"], _suite(), im="pga", stripes=LEVELS_G,
+                           alpha_deg=[15], sizes_s=[SIZE_S], blocks=["0.8x4"],
+                           free_motion_s=8.0)
+    page = (result.write(tmp_path / "m") / "margins.html").read_text()
+    share = result.required_alpha.set_index("procedure").loc["fema356", "exact_overturning_share"]
+    assert (f"Blocks sized by FEMA 356 (2000) for S_XS = 1.5 g, S_X1 = 0.9 g" in page
+            and f"overturn in a median {share:.0%}" in page)
+    assert "0.8x4 m (α = " in page and 'id="scan0"' in page and 'id="required"' in page
+    assert result.summary["blocks"][0]["alpha_deg"] == NamedBlock(0.8, 4.0).alpha_deg
+
+
+def test_margins_command_names_the_block_option(tmp_path, capsys):
+    assert main(["margins", "all", "--block", "2x1", "--out", str(tmp_path / "m")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--block" in err[0]
+    assert not (tmp_path / "m").exists()

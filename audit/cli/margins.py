@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import math
+import shutil
 import time
 from pathlib import Path
 
 from audit.cli import options
+from audit.cli.run import design_site
 from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, alpha_text)
 from audit.errors import InputError
+from audit.files import write_files_atomically
 
 DEFAULT_OUT = "audit-out/margins"
 DEFAULT_IM = "sa:1.0"
@@ -22,7 +25,8 @@ def add_parser(sub):
                     "how many overturn each block exactly, fit a lognormal fragility, and say "
                     "where each guideline draws its line: its overturning intensity, the exact "
                     "probability of overturning there, and the FEMA P695 collapse margin ratio. "
-                    "Writes stripes.csv, fragility.csv, capacity.csv, summary.json.")
+                    "Writes margins.html, stripes.csv, fragility.csv, capacity.csv, "
+                    "required_alpha.csv, scan.csv and summary.json.")
     p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
     p.add_argument("--im", default=DEFAULT_IM, metavar="pga|pgv|sa:T",
@@ -41,10 +45,14 @@ def add_parser(sub):
     options.add_scaling_options(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
-    p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS, help="solver threads")
+    options.add_block_option(p)
+    options.add_restitution_option(p)
+    p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
+                   help="solver threads, or worker processes with --scheduler dask")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
                    metavar="S", help="free motion after each record [s]")
     p.add_argument("--out", metavar="DIR", default=DEFAULT_OUT, help="output directory")
+    options.add_scheduler_options(p)
     options.add_force_option(p)
     p.add_argument("--skip-bad-records", action="store_true",
                    help="audit the readable records and list the unreadable ones")
@@ -52,13 +60,19 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.cli.run import design_site
-    from audit.engine.margins import (IntensityMeasure, margins_files, required_alpha,
-                                      run_margins)
+    from audit.api import margins
+    from audit.engine.blocks import parse_blocks
+    from audit.engine.fragility import DEFAULT_STRIPES
+    from audit.engine.margins import IntensityMeasure
+    from audit.engine.partial import PARTIAL_DIR
     from audit.engine.progress import Progress
-    from audit.files import check_output_dir, write_files_atomically
+    from audit.engine.scheduler import check_scheduler
+    from audit.files import check_output_dir
     from procedures import get_procedures
+    from reports.margins_page import MARGINS_HTML
     out_dir = check_output_dir(Path(args.out))
+    out_dir_existed = out_dir.exists()
+    scheduler = check_scheduler(args.scheduler)
     im = IntensityMeasure.parse(args.im)
     levels = options.float_list(args.stripes, "--stripes") if args.stripes else None
     if levels is not None and not all(level > 0 for level in levels):
@@ -66,44 +80,57 @@ def run(args) -> int:
     procedures = get_procedures(args.procedure)
     sizes = options.sizes(args.sizes)
     alphas = options.alphas_deg(args.alpha)
+    blocks = parse_blocks(args.block)
+    restitution = options.restitution(args)
     args.site_override = bool(args.site)  # one design site: the audit is of that site
     suite = design_site(args, options.suite(args))
-    stripes = len(levels) if levels is not None else 24
+    stripes = len(levels) if levels is not None else DEFAULT_STRIPES
+    grid_blocks = sizes.size * alphas.size + len(blocks)
+    # the stripes, then the required-α grid (20 α per size) and its bisections
     options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
-                       blocks=stripes * sizes.size * alphas.size)
+                       blocks=stripes * grid_blocks + sizes.size * (20 + 8))
     start = time.perf_counter()
     progress = Progress(len(suite), "record")
-    progress.stage(f"exact fragility of {alphas.size * sizes.size} blocks on {len(suite)} "
-                   f"records × {stripes} stripes of {im.name}; {', '.join(p.name for p in procedures)}"
-                   " at the same stripes")
+    progress.stage(f"exact fragility of {grid_blocks} blocks on {len(suite)} records × "
+                   f"{stripes} stripes of {im.name}; {', '.join(p.name for p in procedures)} at "
+                   "the same stripes; then the required slenderness of each size")
     try:
-        margins = run_margins(procedures, suite, im, levels, alphas, sizes,
-                              free_motion_s=args.free_motion, jobs=args.jobs, progress=progress)
+        result = margins(procedures, suite, im.name, levels, alphas, sizes, blocks,
+                         restitution=restitution, jobs=args.jobs, free_motion_s=args.free_motion,
+                         scheduler=scheduler, progress=progress,
+                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume)
+    except KeyboardInterrupt:
+        return options.interrupted(out_dir, out_dir_existed)
     finally:
         progress.done()
-    progress.stage("required slenderness for each size: α from 2° to 40°, 2° apart")
-    margins.required_alpha = required_alpha(procedures, suite, sizes,
-                                            free_motion_s=args.free_motion, jobs=args.jobs)
-    write_files_atomically(out_dir, margins_files(margins))
-    fragility = margins.fragility
-    print(f"Fragility of {len(fragility)} blocks on {suite.description} "
-          f"({time.perf_counter() - start:.1f} s)")
-    if margins.summary["design_im"]:
+    progress.stage(f"writing the tables and {MARGINS_HTML} to {out_dir}")
+    write_files_atomically(out_dir, result.files())
+    shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
+    _print_summary(result, suite, im, procedures, sizes, time.perf_counter() - start)
+    print(f"Wrote {out_dir / MARGINS_HTML} and stripes.csv, fragility.csv, capacity.csv, "
+          "required_alpha.csv, scan.csv, summary.json")
+    return 0
+
+
+def _print_summary(result, suite, im, procedures, sizes, seconds) -> None:
+    fragility, summary = result.fragility, result.summary
+    print(f"Fragility of {len(fragility)} blocks on {suite.description} in "
+          f"{summary['scheduler']} ({seconds:.1f} s)"
+          + (f"; reused {len(summary['resumed'])} records of an interrupted run"
+             if summary["resumed"] else ""))
+    if summary["design_im"]:
         print(f"  median CMR {fragility['cmr'].median():.2f} (design {im.name} = "
-              f"{margins.summary['design_im']:.3g} {im.unit})")
+              f"{summary['design_im']:.3g} {im.unit})")
     print(f"  blocks with islands of survival above overturning: "
           f"{(fragility['records_with_islands'] > 0).mean():.0%}")
-    for name, rows in margins.capacity.groupby("procedure", sort=False):
+    for name, rows in result.capacity.groupby("procedure", sort=False):
         print(f"  {name}: median exact P(overturn) where it draws its line "
               f"{rows['achieved_p_fit'].median():.2f}, its line / exact median "
               f"{rows['ratio_to_exact_median'].median():.2f}")
-    exact = margins.required_alpha.set_index(["procedure", "size_s"])["required_alpha_deg"]
+    exact = result.required_alpha.set_index(["procedure", "size_s"])["required_alpha_deg"]
     for name in (p.name for p in procedures):
         below = [size for size in sizes
                  if exact.get((name, size), math.nan) < exact.get(("exact@0.10", size), math.nan)]
         print(f"  {name} accepts blocks more slender than the exact 10 % curve for "
               + (f"2π/p = {min(below):g}–{max(below):g} s ({len(below)} of {sizes.size} sizes)"
                  if below else "no size"))
-    print(f"Wrote {out_dir}: stripes.csv, fragility.csv, capacity.csv, required_alpha.csv, "
-          "summary.json")
-    return 0

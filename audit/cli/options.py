@@ -193,6 +193,41 @@ def restitution(args):
     return Restitution.parse(args.restitution, "--restitution")
 
 
+def add_scheduler_options(parser):
+    """``--scheduler`` and ``--resume``, for commands whose unit of work is one record."""
+    from audit.engine.defaults import DEFAULT_SCHEDULER
+    parser.add_argument("--scheduler", default=DEFAULT_SCHEDULER,
+                        metavar="local|dask|tcp://HOST:PORT",
+                        help="where records are computed: this process, a Dask LocalCluster "
+                             "of --jobs worker processes, or an existing Dask cluster")
+    parser.add_argument("--resume", action="store_true",
+                        help="reuse the per-record results that an interrupted run left in "
+                             "OUT/.partial")
+
+
+def add_block_option(parser):
+    parser.add_argument("--block", action="append", metavar="WIDTHxHEIGHT",
+                        help="a block by its full width × full height [m], e.g. 0.8x2.0, beside "
+                             "the grid (repeat it, or separate blocks by commas)")
+
+
+def interrupted(out_dir: Path, out_dir_existed: bool) -> int:
+    """After Ctrl-C: keep the parts already stored (``--resume`` completes the run), or leave
+    nothing when there are none; the message on stderr, exit status 130."""
+    import shutil
+
+    from audit.engine.partial import PARTIAL_DIR, kept_parts
+    kept = kept_parts(out_dir / PARTIAL_DIR)
+    if not kept:  # interrupted before the first record was stored: leave nothing
+        shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
+        if not out_dir_existed and out_dir.is_dir() and not any(out_dir.iterdir()):
+            out_dir.rmdir()
+    print(f"interrupted; {len(kept)} record(s) kept in {out_dir / PARTIAL_DIR}: the same "
+          "command with --resume completes the run" if kept else
+          "interrupted; nothing written", file=sys.stderr)
+    return 130
+
+
 def add_force_option(parser):
     parser.add_argument("--force", action="store_true",
                         help="start even when the estimated work is beyond the limits "

@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import shutil
-import sys
 import time
 from pathlib import Path
 
 from audit.cli import options
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER, alpha_text, sizes_text)
+                                   DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
 from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out"
@@ -54,12 +53,7 @@ def add_parser(sub):
     p.add_argument("--skip-bad-records", action="store_true",
                    help="audit the readable records of a suite and list the unreadable ones "
                         "(default: stop at the first)")
-    p.add_argument("--scheduler", default=DEFAULT_SCHEDULER,
-                   metavar="local|dask|tcp://HOST:PORT",
-                   help="where records are audited: this process, a Dask LocalCluster "
-                        "of --jobs worker processes, or an existing Dask cluster")
-    p.add_argument("--resume", action="store_true",
-                   help="reuse the per-record results that an interrupted run left in OUT/.partial")
+    options.add_scheduler_options(p)
     p.add_argument("--detail", metavar="ID,...", help="records whose detail the report shows")
     p.set_defaults(func=run)
 
@@ -84,7 +78,7 @@ def design_site(args, suite):
 
 def run(args) -> int:
     from audit.api import run as run_api
-    from audit.engine.partial import PARTIAL_DIR, kept_parts
+    from audit.engine.partial import PARTIAL_DIR
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML
     from audit.engine.scheduler import check_scheduler
@@ -117,15 +111,7 @@ def run(args) -> int:
                          scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
                          resume=args.resume, detail=detail)
     except KeyboardInterrupt:
-        kept = kept_parts(out_dir / PARTIAL_DIR)
-        if not kept:  # interrupted before the first record was stored: leave nothing
-            shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
-            if not out_dir_existed and out_dir.is_dir() and not any(out_dir.iterdir()):
-                out_dir.rmdir()
-        print(f"interrupted; {len(kept)} record(s) kept in {out_dir / PARTIAL_DIR}: the same "
-              "command with --resume completes the run" if kept else
-              "interrupted; nothing written", file=sys.stderr)
-        return 130
+        return options.interrupted(out_dir, out_dir_existed)
     finally:
         progress.done()
     computed = time.perf_counter() - start

@@ -162,7 +162,7 @@ def overturning_pattern(overturned) -> OverturningPattern:
 
 
 def stripe_outcomes(motion, factors, size_s, alpha_rad, g: float, free_motion_s: float,
-                    jobs: int = 1) -> tuple[np.ndarray, np.ndarray]:
+                    jobs: int = 1, r=None) -> tuple[np.ndarray, np.ndarray]:
     """Exact overturning and peak rotation of blocks under ``motion`` scaled by each factor.
 
     Parameters
@@ -176,13 +176,15 @@ def stripe_outcomes(motion, factors, size_s, alpha_rad, g: float, free_motion_s:
         Slendernesses [rad].
     g, free_motion_s, jobs :
         Gravity [m/s²], free motion after the record [s], solver threads.
+    r : float or audit.physics.block.Restitution, optional
+        The impact model; Eq. 4.8 when not given.
 
     Returns
     -------
     overturned, theta_peak_rad : numpy.ndarray
         Shaped (stripe, α, size).
     """
-    spectra = [rocking_spectrum(motion.scaled(float(f)), size_s, alpha_rad, g=g,
+    spectra = [rocking_spectrum(motion.scaled(float(f)), size_s, alpha_rad, r=r, g=g,
                                 free_motion_s=free_motion_s, jobs=jobs) for f in factors]
     return (np.stack([s.overturned for s in spectra]),
             np.stack([s.theta_peak for s in spectra]))

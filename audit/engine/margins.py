@@ -30,13 +30,16 @@ import numpy as np
 import pandas as pd
 
 from audit import G
+from audit.engine.blocks import BlockList
 from audit.engine.fragility import fit_lognormal, overturning_pattern, stripe_levels, \
     stripe_outcomes
+from audit.engine.partial import PartialStore
+from audit.engine.scheduler import computed_parts
 from audit.errors import InputError
-from audit.physics.block import coefficient_of_restitution
+from audit.physics.block import Restitution
 from audit.physics.design_spectra import FEMA356Spectrum
 from audit.physics.oscillator import response_spectra
-from audit.physics.rocking import rocking_spectrum
+from audit.physics.rocking import rocking_blocks
 from procedures.base import EXACT_OVERTURNING, OVERTURN
 from procedures.context import RecordContext
 from records.sites import scaled_site
@@ -122,19 +125,121 @@ def _half_crossing(levels, fraction) -> float:
 @dataclass
 class MarginsRun:
     """Everything the design-level audit produced (``stripes.csv``, ``fragility.csv``,
-    ``capacity.csv`` and ``summary``)."""
+    ``capacity.csv``, ``scan.csv`` and ``summary``)."""
 
     stripes: pd.DataFrame
     fragility: pd.DataFrame
     capacity: pd.DataFrame
     summary: dict = field(default_factory=dict)
-    #: ``required_alpha.csv`` (:func:`required_alpha`), None when not computed.
+    #: ``required_alpha.csv`` (:func:`~audit.engine.required_alpha.required_alpha`), None when
+    #: not computed.
     required_alpha: pd.DataFrame | None = None
+    #: ``scan.csv`` (:func:`amplitude_scans`), None when not computed.
+    scan: pd.DataFrame | None = None
+
+
+@dataclass(frozen=True)
+class MarginsSettings:
+    """What every record's stripes depend on (and the key of a resumable part).
+
+    Attributes
+    ----------
+    im : IntensityMeasure
+    levels : tuple of float
+        Stripes, ascending [unit of ``im``].
+    design_im : float or None
+        The site's design intensity [unit of ``im``]: design spectra are scaled by
+        level / design_im.
+    blocks : audit.engine.blocks.BlockList
+    restitution : audit.physics.block.Restitution
+    g, free_motion_s : float
+        Gravity [m/s²], free motion after each record [s].
+    jobs : int
+        Solver threads of a task.
+    """
+
+    im: IntensityMeasure
+    levels: tuple
+    design_im: float | None
+    blocks: BlockList
+    restitution: Restitution
+    g: float
+    free_motion_s: float
+    jobs: int
+
+    def as_dict(self) -> dict:
+        return {"kind": "margins stripes", "im": self.im.name, "levels": list(self.levels),
+                "design_im": self.design_im, "alpha_deg": self.blocks.alpha_deg.tolist(),
+                "size_s": self.blocks.size_s.tolist(), "block_m": self.blocks.label.tolist(),
+                "restitution": str(self.restitution), "g": self.g,
+                "free_motion_s": self.free_motion_s}
+
+
+@dataclass
+class RecordStripes:
+    """One record's part of the design-level audit: arrays shaped (stripe, block).
+
+    Attributes
+    ----------
+    record_id : str
+    intensity : float
+        The record's intensity as given [unit of the intensity measure].
+    exact_overturned, exact_theta_rad : numpy.ndarray
+    predicted : dict
+        Per procedure name, whether it predicts overturning (False where it cannot evaluate).
+    evaluated : dict
+        Per procedure name, whether it could evaluate the record.
+    """
+
+    record_id: str
+    intensity: float
+    exact_overturned: np.ndarray
+    exact_theta_rad: np.ndarray
+    predicted: dict
+    evaluated: dict
+
+
+def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripes:
+    """The exact response and every procedure's prediction for one record scaled to each stripe
+    (the unit of work of the design-level audit)."""
+    blocks, levels = settings.blocks, np.asarray(settings.levels, dtype=float)
+    intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
+    factors = levels / intensity
+    shape = (levels.size, len(blocks))
+    exact_over, exact_theta = np.zeros(shape, dtype=bool), np.zeros(shape)
+    groups = blocks.groups()
+    for alpha, index in groups:
+        over, theta = stripe_outcomes(entry.motion, factors, blocks.size_s[index], [alpha],
+                                      settings.g, settings.free_motion_s, settings.jobs,
+                                      r=settings.restitution)
+        exact_over[:, index], exact_theta[:, index] = over[:, 0], theta[:, 0]
+    p = 2.0 * np.pi / blocks.size_s
+    predicted = {proc.name: np.zeros(shape, dtype=bool) for proc in procedures}
+    evaluated = dict.fromkeys(predicted, False)
+    base = RecordContext(entry, settings.free_motion_s, settings.jobs)
+    for j, factor in enumerate(factors):
+        # the record to the level; its design spectrum to the level too, where the site's
+        # design intensity is known
+        site_factor = levels[j] / settings.design_im if settings.design_im else 1.0
+        scaled = replace(entry, motion=entry.motion.scaled(float(factor)),
+                         site=scaled_site(entry.site, float(site_factor)))
+        context = base.scaled(scaled, float(factor))
+        for proc in procedures:
+            if proc.unmet_requirements(scaled) is not None:
+                continue
+            evaluated[proc.name] = True
+            for alpha, index in groups:
+                evaluation = proc.evaluate(scaled, p[index], alpha,
+                                           float(settings.restitution.r(alpha)), context,
+                                           settings.g)
+                predicted[proc.name][j, index] = predicts_overturning(evaluation)
+    return RecordStripes(entry.id, intensity, exact_over, exact_theta, predicted, evaluated)
 
 
 def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=(10.0, 15.0, 20.0),
-                size_s=None, g: float = G, free_motion_s: float = 10.0, jobs: int = 1,
-                progress=None) -> MarginsRun:
+                size_s=None, named_blocks=(), restitution: Restitution | None = None,
+                g: float = G, free_motion_s: float = 10.0, jobs: int = 1, progress=None,
+                scheduler: str = "local", partial_dir=None, resume: bool = False) -> MarginsRun:
     """Multiple-stripe exact fragility of every block and each procedure's line against it.
 
     Parameters
@@ -147,73 +252,93 @@ def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=
         Stripes [unit of ``im``]; default :func:`~audit.engine.fragility.stripe_levels` around
         the design intensity, else the suite's median intensity.
     alpha_deg : sequence of float
-        Slendernesses [degrees].
+        Slendernesses of the grid [degrees].
     size_s : array
-        Block sizes 2π/p [s].
+        Block sizes 2π/p of the grid [s].
+    named_blocks : sequence of audit.engine.blocks.NamedBlock
+        Blocks by their dimensions, beside the grid.
+    restitution : audit.physics.block.Restitution, optional
+        The impact model (Eq. 4.8 when not given).
     g, free_motion_s, jobs :
-        Gravity [m/s²], free motion after each record [s], solver threads.
+        Gravity [m/s²], free motion after each record [s], solver threads (worker processes of
+        ``scheduler="dask"``).
     progress : callable, optional
         ``progress(done, total, record_id, how)`` after each record.
+    scheduler, partial_dir, resume :
+        Where records are computed, the folder of parts kept as they complete, and whether to
+        reuse them (as for :func:`audit.engine.suite_run.run_audit`).
     """
     entries = [entry for entry in suite if entry.motion is not None]
     if not entries:
         raise InputError(f"--records: no record of {suite.description} has a file")
-    size_s = np.asarray(size_s, dtype=float)
-    alpha_rad = np.radians(np.asarray(alpha_deg, dtype=float))
-    p = 2.0 * np.pi / size_s
-    intensities = np.array([im.of_record(e.motion, free_motion_s) for e in entries])
     design = im.of_design_site(suite.design_site)
-    levels = np.sort(np.asarray(levels if levels is not None else stripe_levels(
-        design if design else float(np.median(intensities))), dtype=float))
-    shape = (len(entries), levels.size, alpha_rad.size, size_s.size)
-    exact_over, exact_theta = np.zeros(shape, dtype=bool), np.zeros(shape)
-    predicted = {proc.name: np.zeros(shape, dtype=bool) for proc in procedures}
-    # records each procedure could evaluate (its fractions are over these alone)
-    evaluated = {proc.name: np.zeros(len(entries), dtype=bool) for proc in procedures}
-    for k, entry in enumerate(entries):
-        factors = levels / intensities[k]
-        exact_over[k], exact_theta[k] = stripe_outcomes(entry.motion, factors, size_s, alpha_rad,
-                                                        g, free_motion_s, jobs)
-        base = RecordContext(entry, free_motion_s, jobs)
-        for j, factor in enumerate(factors):
-            # the record to the level; its design spectrum to the level too, where the site's
-            # design intensity is known
-            site_factor = levels[j] / design if design else 1.0
-            scaled = replace(entry, motion=entry.motion.scaled(float(factor)),
-                             site=scaled_site(entry.site, float(site_factor)))
-            context = base.scaled(scaled, float(factor))
-            for proc in procedures:
-                if proc.unmet_requirements(scaled) is not None:
-                    continue
-                evaluated[proc.name][k] = True
-                for i, alpha in enumerate(alpha_rad):
-                    evaluation = proc.evaluate(scaled, p, alpha,
-                                               float(coefficient_of_restitution(alpha)), context, g)
-                    predicted[proc.name][k, j, i] = predicts_overturning(evaluation)
-        if progress:
-            progress(k + 1, len(entries), entry.id, "stripes computed")
-    stripes = _stripe_rows(entries, levels, intensities, alpha_deg, size_s, im, exact_over,
-                           exact_theta, predicted)
-    fragility, fits = _fragility_rows(levels, alpha_deg, size_s, im, exact_over, design)
-    capacity = _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted,
-                              evaluated, fits)
+    if levels is None:
+        centre = design if design else float(np.median(
+            [im.of_record(e.motion, free_motion_s) for e in entries]))
+        levels = stripe_levels(centre)
+    blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
+    if not len(blocks):
+        raise InputError("--sizes/--block: no block to audit")
+    settings = MarginsSettings(im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()),
+                               design, blocks, restitution or Restitution(), float(g),
+                               float(free_motion_s), int(jobs))
+    store = PartialStore(partial_dir, procedures, settings, resume) if partial_dir else None
+    parts, resumed, where = computed_parts(record_stripes, entries, procedures, settings,
+                                           scheduler, store, resume, progress)
+    levels = np.asarray(settings.levels)
+    intensities = np.array([part.intensity for part in parts])
+    exact_over = np.stack([part.exact_overturned for part in parts])  # (record, stripe, block)
+    exact_theta = np.stack([part.exact_theta_rad for part in parts])
+    predicted = {proc.name: np.stack([part.predicted[proc.name] for part in parts])
+                 for proc in procedures}
+    evaluated = {proc.name: np.array([part.evaluated[proc.name] for part in parts])
+                 for proc in procedures}
+    stripes = _stripe_rows(entries, levels, intensities, blocks, im, exact_over, exact_theta,
+                           predicted)
+    fragility, fits = _fragility_rows(levels, blocks, im, exact_over, design)
+    capacity = _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits)
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
                "design_im": design, "records": [e.id for e in entries],
                "records_source": suite.description, "design_site": suite.design_site,
-               "scaling": suite.scaling,
-               "procedures": [{"name": proc.name, "title": proc.title} for proc in procedures],
-               "grid": {"alpha_deg": [float(a) for a in alpha_deg], "size_s": size_s.tolist()}}
+               "scaling": suite.scaling, "restitution": str(settings.restitution),
+               "scheduler": where, "resumed": resumed,
+               "procedures": [{"name": proc.name, "title": proc.title,
+                               "reads": _reading(proc, entries)} for proc in procedures],
+               "grid": {"alpha_deg": [float(a) for a in alpha_deg],
+                        "size_s": np.asarray(size_s if size_s is not None else (),
+                                             dtype=float).tolist()},
+               "blocks": [{"block_m": b.label, "width_m": b.width_m, "height_m": b.height_m,
+                           "alpha_deg": b.alpha_deg, "size_s": b.size_s}
+                          for b in named_blocks]}
     return MarginsRun(stripes, fragility, capacity, summary)
 
 
-def _stripe_rows(entries, levels, intensities, alpha_deg, size_s, im, exact_over, exact_theta,
+#: How a procedure meets the stripes, by whether it reads the records (the report says it).
+READINGS = {True: "each record scaled to the level: a fragility, the share of records for "
+                  "which it predicts overturning",
+            False: "the site's design spectrum scaled to the level: a step, one answer for "
+                   "every record"}
+
+
+def _reading(procedure, entries) -> str:
+    """Which reading of the stripes a procedure gets, over the records it can evaluate."""
+    readings = {procedure.reads_record(e) for e in entries
+                if procedure.unmet_requirements(e) is None}
+    if not readings:
+        return "none: it can evaluate no record of the suite"
+    return "; ".join(READINGS[reading] for reading in sorted(readings, reverse=True))
+
+
+def _block_columns(blocks: BlockList, index) -> dict:
+    return {"alpha_deg": blocks.alpha_deg[index], "size_s": blocks.size_s[index],
+            "block_m": blocks.label[index]}
+
+
+def _stripe_rows(entries, levels, intensities, blocks, im, exact_over, exact_theta,
                  predicted) -> pd.DataFrame:
-    n_records, n_levels, n_alpha, n_size = exact_over.shape
-    index = np.indices(exact_over.shape).reshape(4, -1)
-    record, level, alpha, size = index
+    record, level, block = np.indices(exact_over.shape).reshape(3, -1)
     frame = pd.DataFrame({
-        "record": np.array([e.id for e in entries])[record],
-        "alpha_deg": np.asarray(alpha_deg, dtype=float)[alpha], "size_s": size_s[size],
+        "record": np.array([e.id for e in entries])[record], **_block_columns(blocks, block),
         "im": im.name, "im_level": levels[level],
         "scale_factor": levels[level] / intensities[record],
         "exact_overturned": exact_over.reshape(-1), "exact_theta_rad": exact_theta.reshape(-1)})
@@ -222,147 +347,135 @@ def _stripe_rows(entries, levels, intensities, alpha_deg, size_s, im, exact_over
     return frame
 
 
-def _fragility_rows(levels, alpha_deg, size_s, im, exact_over, design):
-    rows, fits = [], {}
+def _fragility_rows(levels, blocks, im, exact_over, design):
+    rows, fits = [], []
     n_records = exact_over.shape[0]
-    for i, alpha in enumerate(alpha_deg):
-        for s, size in enumerate(size_s):
-            counts = exact_over[:, :, i, s].sum(axis=0)
-            pattern = overturning_pattern(exact_over[:, :, i, s])
-            try:
-                fit = fit_lognormal(levels, np.full(levels.size, n_records), counts)
-            except ValueError:
-                fit = None
-            fits[(i, s)] = fit
-            nan = math.nan
-            rows.append({
-                "alpha_deg": float(alpha), "size_s": float(size), "im": im.name,
-                "records": n_records, "stripes": levels.size,
-                "median": fit.median if fit else nan, "beta": fit.beta if fit else nan,
-                "median_low": fit.median_band[0] if fit else nan,
-                "median_high": fit.median_band[1] if fit else nan,
-                "beta_low": fit.beta_band[0] if fit else nan,
-                "beta_high": fit.beta_band[1] if fit else nan,
-                "cmr": fit.median / design if fit and design else nan,
-                "records_with_islands": int(pattern.islands.sum()),
-                "island_share": float(pattern.islands.mean())})
+    nan = math.nan
+    for b in range(len(blocks)):
+        counts = exact_over[:, :, b].sum(axis=0)
+        pattern = overturning_pattern(exact_over[:, :, b])
+        try:
+            fit = fit_lognormal(levels, np.full(levels.size, n_records), counts)
+        except ValueError:
+            fit = None
+        fits.append(fit)
+        rows.append({
+            **_block_columns(blocks, b), "im": im.name, "records": n_records,
+            "stripes": levels.size, "median": fit.median if fit else nan,
+            "beta": fit.beta if fit else nan,
+            "median_low": fit.median_band[0] if fit else nan,
+            "median_high": fit.median_band[1] if fit else nan,
+            "beta_low": fit.beta_band[0] if fit else nan,
+            "beta_high": fit.beta_band[1] if fit else nan,
+            "cmr": fit.median / design if fit and design else nan,
+            "records_with_islands": int(pattern.islands.sum()),
+            "island_share": float(pattern.islands.mean())})
     return pd.DataFrame(rows), fits
 
 
-def _capacity_rows(procedures, levels, alpha_deg, size_s, exact_over, predicted, evaluated,
-                   fits):
+def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits):
     rows = []
-    exact_fraction = exact_over.mean(axis=0)  # (stripe, α, size)
+    exact_fraction = exact_over.mean(axis=0)  # (stripe, block)
     for proc in procedures:
         mine = evaluated[proc.name]
         # over the records it could evaluate; NaN (no line) where it could evaluate none
         fraction = (predicted[proc.name][mine].mean(axis=0) if mine.any()
                     else np.full(exact_fraction.shape, np.nan))
-        for i, alpha in enumerate(alpha_deg):
-            for s, size in enumerate(size_s):
-                line = _half_crossing(levels, fraction[:, i, s])
-                fit = fits[(i, s)]
-                nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
-                    else None
-                rows.append({
-                    "procedure": proc.name, "alpha_deg": float(alpha), "size_s": float(size),
-                    "guideline_im": line,
-                    "ratio_to_exact_median": line / fit.median if fit and math.isfinite(line)
-                    else math.nan,
-                    "achieved_p_fit": float(fit.probability(line)) if fit and math.isfinite(line)
-                    else math.nan,
-                    "achieved_p_stripe": float(exact_fraction[nearest, i, s])
-                    if nearest is not None else math.nan})
+        for b in range(len(blocks)):
+            line = _half_crossing(levels, fraction[:, b])
+            fit = fits[b]
+            known = fit is not None and math.isfinite(line)
+            nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
+                else None
+            rows.append({
+                "procedure": proc.name, **_block_columns(blocks, b), "guideline_im": line,
+                "ratio_to_exact_median": line / fit.median if known else math.nan,
+                "achieved_p_fit": float(fit.probability(line)) if known else math.nan,
+                "achieved_p_stripe": float(exact_fraction[nearest, b])
+                if nearest is not None else math.nan})
     return pd.DataFrame(rows)
 
 
-#: Slendernesses searched for the required slenderness [degrees], 2° apart.
-REQUIRED_ALPHA_GRID_DEG = np.arange(2.0, 40.01, 2.0)
-#: Exact shares of records overturning a block that the required-slenderness curves target.
-REQUIRED_ALPHA_TARGETS = (0.10, 0.50)
+#: Blocks drawn with a fine amplitude scan: the named blocks, else the grid's most islanded.
+SCAN_BLOCKS = 3
+#: Step of the fine amplitude scan, as a ratio of scale factors (0.2 %).
+SCAN_STEP = 1.002
 
 
-def _smallest_alpha_staying_below(alpha_deg, share, limit) -> float:
-    """The smallest α above which ``share`` stays ≤ ``limit`` on the search: after the last
-    α where it exceeds the limit, interpolated linearly between that grid point and the next;
-    the first α of the grid if it never exceeds, NaN if it still does at the last."""
-    over = np.flatnonzero(share > limit)
-    if over.size == 0:
-        return float(alpha_deg[0])
-    j = over[-1]
-    if j == alpha_deg.size - 1:
-        return math.nan
-    t = (share[j] - limit) / (share[j] - share[j + 1])
-    return float(alpha_deg[j] + t * (alpha_deg[j + 1] - alpha_deg[j]))
+def amplitude_scans(run: MarginsRun, suite, restitution: Restitution | None = None,
+                    g: float = G, free_motion_s: float = 10.0, jobs: int = 1) -> pd.DataFrame:
+    """A fine amplitude scan of chosen blocks: why the first overturning intensity is not a
+    number to build on.
 
-
-def required_alpha(procedures, suite, size_s, alpha_grid_deg=REQUIRED_ALPHA_GRID_DEG,
-                   targets=REQUIRED_ALPHA_TARGETS, g: float = G, free_motion_s: float = 10.0,
-                   jobs: int = 1) -> pd.DataFrame:
-    """For each size, the smallest slenderness each procedure accepts for the suite as given
-    (the site-scaled records), against the smallest α for which the exact share of those
-    records that overturn the block stays ≤ each target.
-
-    A procedure accepts a block when it predicts overturning for at most half the records (a
-    site-based one: not at all), over the records it can evaluate. Shares are not monotonic in
-    α either, so each curve is "the smallest α above which the share stays ≤ the target on the
-    search": α on a 2° grid, the last crossing interpolated linearly.
+    The blocks are the named ones (``--block``), else the :data:`SCAN_BLOCKS` grid blocks with
+    the most records showing islands; for each, the record whose stripes show islands (else
+    the one overturning it at the lowest stripe) is scaled in steps of :data:`SCAN_STEP` from
+    the stripe below its first overturning stripe to two stripes above it.
 
     Returns
     -------
     pandas.DataFrame
-        ``procedure, size_s, required_alpha_deg``; the exact curves are named ``exact@0.10`` and
-        ``exact@0.50``.
+        ``record, alpha_deg, size_s, block_m, scale_factor, im_level, exact_overturned,
+        exact_theta_rad`` (the columns of ``scan.csv``).
     """
-    entries = [entry for entry in suite if entry.motion is not None]
-    size_s = np.asarray(size_s, dtype=float)
-    alpha_grid_deg = np.asarray(alpha_grid_deg, dtype=float)
-    alpha_rad = np.radians(alpha_grid_deg)
-    p = 2.0 * np.pi / size_s
-    exact = np.zeros((alpha_rad.size, size_s.size))
-    predicted = {proc.name: np.zeros((alpha_rad.size, size_s.size)) for proc in procedures}
-    evaluated = dict.fromkeys(predicted, 0)
-    for entry in entries:
-        exact += rocking_spectrum(entry.motion, size_s, alpha_rad, g=g,
-                                  free_motion_s=free_motion_s, jobs=jobs).overturned
-        context = RecordContext(entry, free_motion_s, jobs)
-        for proc in procedures:
-            if proc.unmet_requirements(entry) is not None:
-                continue
-            evaluated[proc.name] += 1
-            for i, alpha in enumerate(alpha_rad):
-                predicted[proc.name][i] += predicts_overturning(proc.evaluate(
-                    entry, p, alpha, float(coefficient_of_restitution(alpha)), context, g))
-    rows = []
-    curves = [(f"exact@{target:.2f}", exact / len(entries), target) for target in targets]
-    # a procedure that could evaluate no record draws no curve
-    curves += [(name, counts / evaluated[name], 0.5) for name, counts in predicted.items()
-               if evaluated[name]]
-    for name, share, limit in curves:
-        for s, size in enumerate(size_s):
-            rows.append({"procedure": name, "size_s": float(size),
-                         "required_alpha_deg": _smallest_alpha_staying_below(
-                             alpha_grid_deg, share[:, s], limit)})
-    return pd.DataFrame(rows)
+    fragility, stripes = run.fragility, run.stripes
+    named = fragility[fragility["block_m"] != ""]
+    chosen = named if len(named) else fragility.sort_values(
+        ["records_with_islands", "island_share"], ascending=False, kind="stable").head(SCAN_BLOCKS)
+    motions = {entry.id: entry.motion for entry in suite if entry.motion is not None}
+    levels = np.asarray(run.summary["levels"])
+    frames = []
+    for block in chosen.itertuples():
+        rows = stripes[(stripes["alpha_deg"] == block.alpha_deg)
+                       & (stripes["size_s"] == block.size_s)
+                       & (stripes["block_m"] == block.block_m)]
+        over = rows.pivot(index="record", columns="im_level", values="exact_overturned")
+        if not over.to_numpy().any():
+            continue
+        pattern = overturning_pattern(over.to_numpy(dtype=bool))
+        first = np.where(pattern.first_stripe < 0, levels.size, pattern.first_stripe)
+        k = int(np.argmax(pattern.islands)) if pattern.islands.any() else int(np.argmin(first))
+        record = over.index[k]
+        factor_per_im = float(rows.loc[rows["record"] == record, "scale_factor"].iloc[0]
+                              / rows.loc[rows["record"] == record, "im_level"].iloc[0])
+        low = levels[max(first[k] - 1, 0)]
+        high = levels[min(first[k] + 2, levels.size - 1)]
+        im_levels = low * SCAN_STEP ** np.arange(int(np.log(high / low) / np.log(SCAN_STEP)) + 1)
+        peaks = np.array([rocking_blocks(motions[record].scaled(float(level * factor_per_im)),
+                                         [block.size_s], [math.radians(block.alpha_deg)],
+                                         r=restitution, g=g, free_motion_s=free_motion_s,
+                                         jobs=jobs)[0] for level in im_levels])
+        frames.append(pd.DataFrame({
+            "record": record, "alpha_deg": block.alpha_deg, "size_s": block.size_s,
+            "block_m": block.block_m, "scale_factor": im_levels * factor_per_im,
+            "im_level": im_levels, "exact_overturned": peaks[:, 3] > 0,
+            "exact_theta_rad": peaks[:, 0]}))
+    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=SCAN_COLUMNS)
+
+
+SCAN_COLUMNS = ["record", "alpha_deg", "size_s", "block_m", "scale_factor", "im_level",
+                "exact_overturned", "exact_theta_rad"]
 
 
 def margins_files(run: MarginsRun) -> dict[str, bytes]:
     """The files of a design-level audit, as bytes (columns in ``columns.json``)."""
     from audit.engine.results import json_ready
     from audit.engine.schemas import column_guide
-    guide = {name: columns for name, columns in column_guide().items()
-             if name in ("stripes.csv", "fragility.csv", "capacity.csv", "required_alpha.csv")}
     files = {"stripes.csv": run.stripes.to_csv(index=False, float_format="%.8g").encode(),
              "fragility.csv": run.fragility.to_csv(index=False, float_format="%.6g").encode(),
              "capacity.csv": run.capacity.to_csv(index=False, float_format="%.6g").encode()}
     if run.required_alpha is not None:
         files["required_alpha.csv"] = run.required_alpha.to_csv(index=False,
                                                                 float_format="%.4g").encode()
+    if run.scan is not None:
+        files["scan.csv"] = run.scan.to_csv(index=False, float_format="%.8g").encode()
+    guide = {name: columns for name, columns in column_guide().items() if name in files}
     return {**files,
             "summary.json": json.dumps(json_ready(run.summary), indent=1,
                                        ensure_ascii=False).encode(),
             "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
 
 
-__all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "predicts_overturning",
-           "margins_files", "required_alpha"]
+__all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "MarginsSettings", "RecordStripes",
+           "record_stripes", "predicts_overturning", "amplitude_scans", "margins_files",
+           "SCAN_COLUMNS"]

@@ -35,6 +35,8 @@ class Progress:
         the signature of :func:`audit.engine.suite_run.run_audit`'s ``progress``."""
         self.count, self.total = done, total
         if self.bar is not None:
+            if done < self.bar.n:  # a new pass over the same records
+                self.bar.reset(total=total)
             self.bar.total = total
             self.bar.update(done - self.bar.n)
             self.bar.set_postfix_str(what)

@@ -1,7 +1,8 @@
 """Where the records of an audit are computed: this process, or a Dask cluster.
 
-The unit of work is :func:`~audit.engine.record_audit.audit_record` (one record, every procedure,
-the whole grid); records are independent, so a suite spreads over workers with no other
+The unit of work is one record: :func:`~audit.engine.record_audit.audit_record` for an audit
+(every procedure, the whole grid), a record's stripes for the design-level audit
+(:mod:`audit.engine.margins`); records are independent, so a suite spreads over workers with no other
 communication. ``local`` runs them one after the other in this process (the exact solver
 uses ``jobs`` threads); ``dask`` starts a ``dask.distributed`` LocalCluster of ``jobs``
 single-threaded worker processes; ``tcp://HOST:PORT`` uses an existing Dask cluster. The
@@ -17,7 +18,7 @@ package records, the record travels by value.
 from __future__ import annotations
 
 import time
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
 
@@ -86,13 +87,14 @@ def resolve(item):
     return replace(item.entry, motion=GroundMotion(acceleration=motion.acceleration, **given))
 
 
-def timed_audit(item, procedures, settings):
-    """Audit one record (entry or reference): ``(RecordAudit, seconds)``, or None if unresolved."""
+def timed(task, item, *args):
+    """``task(entry, *args)`` on one record (entry or reference): ``(part, seconds)``, or None
+    if the reference cannot be resolved."""
     entry = resolve(item)
     if entry is None:
         return None
     start = time.perf_counter()
-    part = audit_record(entry, procedures, settings)
+    part = task(entry, *args)
     return part, time.perf_counter() - start
 
 
@@ -100,11 +102,17 @@ class LocalScheduler:
     """Records one after the other in this process; the solver uses ``settings.jobs`` threads."""
 
     description = "this process"
+    #: Solver threads of a task: None keeps the settings' ``jobs``.
+    solver_threads = None
+
+    def map(self, task, entries, *args):
+        """Yield ``(index, task(entry, *args), seconds)`` for each entry, in order."""
+        for index, entry in enumerate(entries):
+            yield (index, *timed(task, entry, *args))
 
     def audit(self, entries, procedures, settings):
         """Yield ``(index, RecordAudit, seconds)`` for each entry, in order."""
-        for index, entry in enumerate(entries):
-            yield (index, *timed_audit(entry, procedures, settings))
+        return self.map(audit_record, entries, procedures, settings)
 
 
 class DaskScheduler:
@@ -116,24 +124,25 @@ class DaskScheduler:
     description : str
     """
 
+    #: Each task runs the solver on one thread: the cluster's workers are the parallelism.
+    solver_threads = 1
+
     def __init__(self, client, description: str):
         self.client, self.description = client, description
         #: Ids of the records sent by value (no file the workers could read back).
         self.by_value = []
 
-    def audit(self, entries, procedures, settings):
-        """Yield ``(index, RecordAudit, seconds)`` in order of completion.
+    def map(self, task, entries, *args):
+        """Yield ``(index, task(entry, *args), seconds)`` in order of completion.
 
-        Each task runs the solver on one thread: the cluster's workers are the parallelism.
-        A record sent by reference that a worker cannot read back is sent again by value.
+        ``args`` (procedures, settings) are scattered once to every worker. A record sent by
+        reference that a worker cannot read back is sent again by value.
         """
         from distributed import as_completed
-        settings = replace(settings, jobs=1)
-        procedures = self.client.scatter(list(procedures), broadcast=True)
+        args = [self.client.scatter(arg, broadcast=True) for arg in args]
         items = [by_reference(entry) for entry in entries]
         self.by_value += [entry.id for entry, item in zip(entries, items) if item is entry]
-        futures = [self.client.submit(timed_audit, item, procedures, settings, pure=False)
-                   for item in items]
+        futures = [self.client.submit(timed, task, item, *args, pure=False) for item in items]
         index_of = {future.key: index for index, future in enumerate(futures)}
         pending = as_completed(futures)
         for future in pending:
@@ -141,12 +150,16 @@ class DaskScheduler:
             future.release()
             if outcome is None:
                 self.by_value.append(entries[index].id)
-                retry = self.client.submit(timed_audit, entries[index], procedures, settings,
-                                           pure=False)
+                retry = self.client.submit(timed, task, entries[index], *args, pure=False)
                 index_of[retry.key] = index
                 pending.add(retry)
                 continue
             yield (index, *outcome)
+
+    def audit(self, entries, procedures, settings):
+        """Yield ``(index, RecordAudit, seconds)`` in order of completion."""
+        return self.map(audit_record, entries, list(procedures),
+                        replace(settings, jobs=self.solver_threads))
 
 
 @contextmanager
@@ -186,5 +199,56 @@ def open_scheduler(spec: str, jobs: int):
         yield DaskScheduler(client, f"the Dask cluster at {spec} ({workers} workers)")
 
 
-__all__ = ["open_scheduler", "check_scheduler", "LocalScheduler", "DaskScheduler",
-           "RecordReference", "by_reference", "resolve", "timed_audit"]
+def computed_parts(task, entries, procedures, settings, scheduler: str, store=None,
+                   resume: bool = False, progress=None):
+    """``task(entry, procedures, settings)`` of every entry, where ``scheduler`` says, each part
+    stored as it completes and reused from ``store`` when resuming.
+
+    Parameters
+    ----------
+    task : callable
+        The unit of work of one record (module level, so that Dask can send it).
+    entries : list of records.RecordEntry
+    procedures : list of procedures.Procedure
+    settings : dataclass with ``jobs``
+        The run's settings (their ``jobs`` also sizes a ``dask`` LocalCluster).
+    scheduler : str or LocalScheduler or DaskScheduler
+        ``local``, ``dask`` or ``tcp://HOST:PORT`` (opened for this call and closed), or a
+        scheduler already open (:func:`open_scheduler`), for several calls.
+    store : audit.engine.partial.PartialStore, optional
+    resume : bool
+        Reuse the matching parts already in ``store``.
+    progress : callable, optional
+        ``progress(done, total, record_id, how)`` after each record.
+
+    Returns
+    -------
+    parts : list
+        One per entry, in order.
+    resumed : list of str
+        Ids of the records whose parts came from ``store``.
+    description : str
+        Where the parts were computed.
+    """
+    progress = progress or (lambda done, total, record_id, how: None)
+    parts = [store.load(entry) if store and resume else None for entry in entries]
+    resumed = [entry.id for entry, part in zip(entries, parts) if part is not None]
+    for count, record_id in enumerate(resumed, start=1):
+        progress(count, len(entries), record_id, "reused from an interrupted run")
+    todo = [i for i, part in enumerate(parts) if part is None]
+    with (open_scheduler(scheduler, settings.jobs) if isinstance(scheduler, str)
+          else nullcontext(scheduler)) as executor:
+        threads = executor.solver_threads
+        task_settings = settings if threads is None else replace(settings, jobs=threads)
+        for count, (k, part, seconds) in enumerate(
+                executor.map(task, [entries[i] for i in todo], list(procedures), task_settings),
+                start=len(resumed) + 1):
+            parts[todo[k]] = part
+            if store:
+                store.save(entries[todo[k]], part)
+            progress(count, len(entries), entries[todo[k]].id, f"computed in {seconds:.1f} s")
+    return parts, resumed, executor.description
+
+
+__all__ = ["computed_parts", "open_scheduler", "check_scheduler", "LocalScheduler", "DaskScheduler",
+           "RecordReference", "by_reference", "resolve", "timed"]

@@ -146,6 +146,8 @@ GUIDE["stripes.csv"] = {
     "record": ("text", "record id"),
     "alpha_deg": ("deg", "slenderness α"),
     "size_s": ("s", "block size 2π/p"),
+    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
+                     "empty for a block of the α × size grid"),
     "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped true Sa [g])"),
     "im_level": ("g or m/s", "the stripe's intensity, in the unit of im"),
     "scale_factor": ("-", "factor the record is scaled by to reach the stripe"),
@@ -157,6 +159,8 @@ GUIDE["stripes.csv"] = {
 GUIDE["fragility.csv"] = {
     "alpha_deg": ("deg", "slenderness α"),
     "size_s": ("s", "block size 2π/p"),
+    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
+                     "empty for a block of the α × size grid"),
     "im": ("text", "intensity measure"),
     "records": ("-", "records at each stripe"),
     "stripes": ("-", "intensity levels"),
@@ -175,6 +179,8 @@ GUIDE["capacity.csv"] = {
     "procedure": ("text", "guideline procedure"),
     "alpha_deg": ("deg", "slenderness α"),
     "size_s": ("s", "block size 2π/p"),
+    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
+                     "empty for a block of the α × size grid"),
     "guideline_im": ("g or m/s", "where the share of records for which the procedure predicts "
                                  "overturning first reaches one half (ln-interpolated)"),
     "ratio_to_exact_median": ("-", "guideline_im / the exact fragility's median"),
@@ -189,8 +195,23 @@ GUIDE["required_alpha.csv"] = {
                           "of records overturning the block stays ≤ 10 % / 50 %)"),
     "size_s": ("s", "block size 2π/p"),
     "required_alpha_deg": ("deg", "smallest α above which the share stays within the limit on "
-                                  "a 2° search, the last crossing interpolated; empty when none "
-                                  "up to 40°"),
+                                  "a 2° search: for the exact curves the last crossing bisected "
+                                  "to 0.125° (the bracket's upper end), for a procedure "
+                                  "interpolated linearly; empty when none up to 40°"),
+    "exact_overturning_share": ("-", "exact share of the records (as audited: site-scaled with "
+                                     "--scale-to-site) that overturn the block of this size and "
+                                     "required_alpha_deg: how safe the block the curve accepts is"),
+}
+GUIDE["scan.csv"] = {
+    "record": ("text", "record id"),
+    "alpha_deg": ("deg", "slenderness α"),
+    "size_s": ("s", "block size 2π/p"),
+    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
+                     "empty for a block of the α × size grid"),
+    "scale_factor": ("-", "factor the record is scaled by (0.2 % apart)"),
+    "im_level": ("g or m/s", "the scaled record's intensity, in the unit of the run's im"),
+    "exact_overturned": ("bool", "the exact response overturns"),
+    "exact_theta_rad": ("rad", "exact peak |θ| (α where the block overturns)"),
 }
 
 # the audit of a probabilistic procedure (``python -m audit fragility``)

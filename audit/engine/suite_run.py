@@ -19,8 +19,8 @@ from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAUL
 from audit.engine.figure_data import design_spectra, mechanics, sensitivity_facts
 from audit.engine.grid import size_grid
 from audit.engine.partial import PartialStore
-from audit.engine.record_audit import RecordAudit, concat
-from audit.engine.scheduler import open_scheduler
+from audit.engine.record_audit import RecordAudit, audit_record, concat
+from audit.engine.scheduler import computed_parts
 from audit.engine.audit_run import AuditRun
 from audit.engine.schemas import (CHECK_COLUMNS, HISTORY_COLUMNS, RESULT_COLUMNS, ROCKING_COLUMNS,
                                   SPECTRA_COLUMNS)
@@ -158,22 +158,10 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
         raise InputError(f"--detail: unknown record(s) {', '.join(unknown)} in "
                          f"{suite.description}")
     store = PartialStore(partial_dir, procedures, settings, resume) if partial_dir else None
-    progress = progress or (lambda done, total, record_id, how: None)
-    parts = [store.load(entry) if store and resume else None for entry in entries]
-    resumed = [entry.id for entry, part in zip(entries, parts) if part is not None]
-    for count, record_id in enumerate(resumed, start=1):
-        progress(count, len(entries), record_id, "reused from an interrupted run")
-    todo = [i for i, part in enumerate(parts) if part is None]
-    with open_scheduler(scheduler, jobs) as executor:
-        for count, (k, part, seconds) in enumerate(
-                executor.audit([entries[i] for i in todo], procedures, settings),
-                start=len(resumed) + 1):
-            parts[todo[k]] = part
-            if store:
-                store.save(entries[todo[k]], part)
-            progress(count, len(entries), part.record_id, f"computed in {seconds:.1f} s")
+    parts, resumed, where = computed_parts(audit_record, entries, procedures, settings, scheduler,
+                                           store, resume, progress)
     run = combine(parts, procedures, suite, settings)
-    run.summary.update(scheduler=executor.description, resumed=resumed, detail=list(detail))
+    run.summary.update(scheduler=where, resumed=resumed, detail=list(detail))
     if claims:
         run.claims = evaluate_claims(run, suite)
     return run

@@ -548,11 +548,70 @@ class RockingSpectrum:
             for i in range(self.alpha_rad.size)], ignore_index=True)
 
 
+def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
+                   free_motion_s: float = DEFAULT_FREE_MOTION_S,
+                   steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
+                   rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1) -> np.ndarray:
+    """Peaks of blocks given one by one, ``size_s[i]`` with ``alpha_rad[i]``, under one motion.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+        Ground acceleration [m/s²].
+    size_s, alpha_rad : array
+        Size 2π/p [s] and slenderness α [rad] of each block (same length).
+    r : float or Restitution, optional
+        Coefficient of restitution for every block, or the impact model giving each α its r;
+        Eq. 4.8 of each α when not given.
+    g : float, optional
+        Acceleration of gravity [m/s²].
+    jobs : int
+        Threads sharing the blocks (the kernel releases the GIL).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shaped (block, 5): max |θ| [rad], max |θ'| [rad/s], max |θ| after the excitation
+        [rad], overturned, uplifted (the last two 0 or 1).
+    """
+    size_s = np.atleast_1d(np.asarray(size_s, dtype=float))
+    alpha = np.atleast_1d(np.asarray(alpha_rad, dtype=float))
+    if not (size_s.size and np.all(np.isfinite(size_s) & (size_s > 0))):
+        raise InputError("sizes: every 2π/p must be a positive number of seconds")
+    # RigidBlock validates α, r and g once per slenderness, with the same messages as elsewhere
+    unique, inverse = np.unique(alpha, return_inverse=True)
+    blocks = [RigidBlock(2 * np.pi / size_s.max(), a, r, **({} if g is None else {"g": g}))
+              for a in unique]
+    p = 2.0 * np.pi / size_s
+    ratio = np.sqrt(np.array([b.r for b in blocks]))[inverse.ravel()]
+    args = _motion_arguments(motion, free_motion_s)
+    out = np.empty((p.size, 5))
+    # longest runs (small blocks: many steps) first, spread round-robin over the threads
+    order = np.argsort(p, kind="stable")[::-1]
+    chunks = [order[i::max(1, jobs)] for i in range(max(1, jobs))]
+
+    def run(chunk):
+        part = np.empty((chunk.size, 5))
+        _spectrum(*args, p[chunk], alpha[chunk], ratio[chunk], blocks[0].g,
+                  steps_per_radian, rest_tolerance, part)
+        out[chunk] = part
+
+    # even one chunk runs in a worker thread, so that Ctrl-C reaches the main thread at once
+    # instead of after the compiled kernel returns; on an interrupt nothing waits for the rest
+    pool = ThreadPoolExecutor(len(chunks))
+    try:
+        list(pool.map(run, chunks))
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
+    return out
+
+
 def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
                      free_motion_s: float = DEFAULT_FREE_MOTION_S,
                      steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
                      rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1) -> RockingSpectrum:
-    """Peak rotation and angular velocity of every block of a (α, 2π/p) grid under one motion.
+    """Peak rotation and angular velocity of every block of a (α, 2π/p) grid under one motion
+    (:func:`rocking_blocks` over the grid).
 
     Parameters
     ----------
@@ -576,39 +635,14 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
     """
     size_s = np.atleast_1d(np.asarray(size_s, dtype=float))
     alpha_rad = np.atleast_1d(np.asarray(alpha_rad, dtype=float))
-    if not (size_s.size and np.all(np.isfinite(size_s) & (size_s > 0))):
-        raise InputError("sizes: every 2π/p must be a positive number of seconds")
-    # RigidBlock validates α, r and g once per slenderness, with the same messages as elsewhere
-    blocks = [RigidBlock(2 * np.pi / size_s.max(), a, r, **({} if g is None else {"g": g}))
-              for a in alpha_rad]
     grid_alpha, grid_size = np.meshgrid(alpha_rad, size_s, indexing="ij")
-    p = (2.0 * np.pi / grid_size).ravel()
-    alpha = grid_alpha.ravel()
-    ratio = np.sqrt(np.repeat([b.r for b in blocks], size_s.size))
-    args = _motion_arguments(motion, free_motion_s)
-    out = np.empty((p.size, 5))
-    # longest runs (small blocks: many steps) first, spread round-robin over the threads
-    order = np.argsort(p)[::-1]
-    chunks = [order[i::max(1, jobs)] for i in range(max(1, jobs))]
-
-    def run(chunk):
-        part = np.empty((chunk.size, 5))
-        _spectrum(*args, p[chunk], alpha[chunk], ratio[chunk], blocks[0].g,
-                  steps_per_radian, rest_tolerance, part)
-        out[chunk] = part
-
-    # even one chunk runs in a worker thread, so that Ctrl-C reaches the main thread at once
-    # instead of after the compiled kernel returns; on an interrupt nothing waits for the rest
-    pool = ThreadPoolExecutor(len(chunks))
-    try:
-        list(pool.map(run, chunks))
-    finally:
-        pool.shutdown(wait=False, cancel_futures=True)
+    out = rocking_blocks(motion, grid_size.ravel(), grid_alpha.ravel(), r, g, free_motion_s,
+                         steps_per_radian, rest_tolerance, jobs)
     shape = grid_size.shape
     return RockingSpectrum(size_s, alpha_rad, out[:, 0].reshape(shape), out[:, 1].reshape(shape),
                            out[:, 2].reshape(shape), out[:, 3].reshape(shape).astype(bool),
                            out[:, 4].reshape(shape).astype(bool))
 
 
-__all__ = ["simulate", "rocking_spectrum", "RockingResponse", "RockingSpectrum",
+__all__ = ["simulate", "rocking_spectrum", "rocking_blocks", "RockingResponse", "RockingSpectrum",
            "coefficient_of_restitution", "DEFAULT_FREE_MOTION_S"]

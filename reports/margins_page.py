@@ -1,0 +1,319 @@
+"""The page of a design-level audit (``margins.html``), rendered from its saved files only.
+
+What it shows, in the order an engineer reads it: one sentence per procedure to quote (how
+often blocks it accepts overturn in site-consistent records), the required-slenderness chart,
+the margins per procedure, the collapse margin ratio over the grid, fragility curves of chosen
+blocks with each guideline's line, the fine amplitude scan (why the first overturning intensity
+is no number to build on), and the worst blocks.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from scipy.special import ndtr
+
+from reports.palette import _EXTRA_COLOURS
+from reports.plots import _axis, _layout, to_json
+
+MARGINS_HTML = "margins.html"
+#: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].
+CURVE_SIZES_S = (1.0, 2.0, 4.0)
+#: Tick labels of a logarithmic intensity axis.
+LOG_TICKS = (0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 1, 2, 3, 5, 10, 20)
+#: Rows of the worst-blocks table per procedure.
+WORST_ROWS = 5
+_EXACT_COLOURS = {"exact@0.10": "#000000", "exact@0.50": "#7f7f7f"}
+_CSS = ("body{font-family:DejaVu Sans,Helvetica,Arial,sans-serif;max-width:1100px;margin:2em auto;"
+        "padding:0 1em;color:#222}table{border-collapse:collapse;font-size:13px;margin:1em 0}"
+        "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#f2f2f2}"
+        ".quote{background:#f7f7f0;border-left:4px solid #b58900;padding:.6em 1em;margin:.6em 0}"
+        ".note{color:#555;font-size:13px}")
+
+
+def _procedure_colour(names: list, name: str) -> str:
+    return _EXTRA_COLOURS[names.index(name) % len(_EXTRA_COLOURS)] if name in names else "#000"
+
+
+def _keys(frame: pd.DataFrame) -> pd.Series:
+    """Which block each row is about: its dimensions, else its grid α and size (the files round
+    α and size to different digits, so a named block is matched by name)."""
+    grid = frame["alpha_deg"].map("{:.6g}".format) + "|" + frame["size_s"].map("{:.6g}".format)
+    return frame["block_m"].where(frame["block_m"] != "", grid)
+
+
+def _label(row) -> str:
+    if isinstance(row.get("block_m"), str) and row["block_m"]:
+        return f"{row['block_m']} m (α = {row['alpha_deg']:.3g}°, 2π/p = {row['size_s']:.3g} s)"
+    return f"α = {row['alpha_deg']:g}°, 2π/p = {row['size_s']:g} s"
+
+
+def _site_words(summary) -> str:
+    site = summary.get("design_site") or {}
+    if not site.get("sxs_g"):
+        return "the records as audited"
+    scaled = " scaled to the site (FEMA P695)" if summary.get("scaling") else ""
+    return f"S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g{scaled}"
+
+
+def _sentences(required: pd.DataFrame, summary, titles) -> list[str]:
+    """One sentence per procedure: how often the blocks it accepts overturn."""
+    records = len(summary["records"])
+    out = []
+    for name, rows in required.groupby("procedure", sort=False):
+        if name.startswith("exact@"):
+            continue
+        share = rows["exact_overturning_share"].dropna()
+        if share.empty:
+            out.append(f"{titles.get(name, name)} accepts no block up to α = 40° at any size.")
+            continue
+        out.append(
+            f"Blocks sized by {titles.get(name, name)} for {_site_words(summary)} (the most "
+            f"slender block it accepts at each size 2π/p = {rows['size_s'].min():g}–"
+            f"{rows['size_s'].max():g} s) overturn in a median {share.median():.0%} "
+            f"(range {share.min():.0%}–{share.max():.0%}) of the {records} records audited.")
+    return out
+
+
+def _required_figure(required: pd.DataFrame, names: list, titles) -> dict:
+    data = []
+    for name, rows in required.groupby("procedure", sort=False):
+        exact = name.startswith("exact@")
+        colour = _EXACT_COLOURS.get(name) or _procedure_colour(names, name)
+        label = (f"exact: ≤ {float(name[6:]):.0%} of records overturn" if exact
+                 else titles.get(name, name))
+        data.append({"type": "scatter", "mode": "lines+markers", "x": rows["size_s"],
+                     "y": rows["required_alpha_deg"], "name": label,
+                     "customdata": rows["exact_overturning_share"],
+                     "line": {"color": colour, "width": 2.5 if exact else 1.5,
+                              "dash": "solid" if name == "exact@0.10" else
+                              "dot" if exact else "dash"},
+                     "marker": {"size": 4},
+                     "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}°<br>"
+                                      "exact share overturning there: %{customdata:.0%}"
+                                      "<extra></extra>"})
+    layout = _layout(440)
+    layout["xaxis"] = _axis("block size 2π/p [s]")
+    layout["yaxis"] = _axis("required α [°]")
+    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.18, "yanchor": "top"}
+    layout["margin"]["b"] = 120
+    return {"data": data, "layout": layout}
+
+
+def _cmr_figure(fragility: pd.DataFrame) -> dict:
+    grid = fragility[fragility["block_m"].fillna("") == ""]
+    pivot = grid.pivot_table(index="alpha_deg", columns="size_s", values="cmr", aggfunc="first")
+    alphas = pivot.index.to_numpy(dtype=float)
+    data = [{"type": "heatmap", "x": pivot.columns.to_numpy(dtype=float), "y": alphas,
+             "z": pivot.to_numpy(dtype=float), "zmin": 0, "zmid": 1, "zmax": 4,
+             "colorscale": [[0, "#b2182b"], [0.25, "#f7f7f7"], [1, "#2166ac"]], "ygap": 2,
+             "colorbar": {"title": {"text": "CMR"}, "thickness": 12},
+             "hovertemplate": "α = %{y:g}°, 2π/p = %{x:g} s<br>CMR = %{z:.3g}<extra></extra>"}]
+    layout = _layout(120 + 50 * max(len(alphas), 1))
+    layout["xaxis"] = _axis("block size 2π/p [s]")
+    layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
+    return {"data": data, "layout": layout}
+
+
+def _fragility_figure(block, stripes, capacity, names, titles, summary) -> dict:
+    im, unit = summary["im"], summary["im_unit"]
+    rows = stripes.groupby("im_level")["exact_overturned"].mean()
+    levels = rows.index.to_numpy(dtype=float)
+    x = np.geomspace(levels.min(), levels.max(), 200)
+    data = [{"type": "scatter", "mode": "markers", "x": levels, "y": rows.to_numpy(),
+             "name": "exact, share of records", "marker": {"color": "#000", "size": 7},
+             "hovertemplate": f"{im} = %{{x:.3g}} {unit}: %{{y:.0%}} overturn<extra></extra>"}]
+    if math.isfinite(block["median"]):
+        z = np.log(x / block["median"]) / block["beta"]
+        data.append({"type": "scatter", "mode": "lines", "x": x, "y": ndtr(z),
+                     "name": f"exact, lognormal fit (median {block['median']:.3g} {unit}, "
+                             f"β {block['beta']:.2f})", "line": {"color": "#000", "width": 2}})
+    shapes, notes = [], []
+    if summary.get("design_im"):
+        shapes.append(_vertical(summary["design_im"], "#b58900", "dot"))
+        notes.append(_top_note(summary["design_im"], "design", "#b58900"))
+    for row in capacity.itertuples():
+        if not math.isfinite(row.guideline_im):
+            continue
+        colour = _procedure_colour(names, row.procedure)
+        shapes.append(_vertical(row.guideline_im, colour, "dash"))
+        data.append({"type": "scatter", "mode": "markers", "x": [row.guideline_im],
+                     "y": [row.achieved_p_fit], "name": f"{titles.get(row.procedure, row.procedure)}"
+                     f": line at {row.guideline_im:.3g} {unit}, exact P there "
+                     f"{row.achieved_p_fit:.0%}",
+                     "marker": {"color": colour, "size": 11, "symbol": "diamond"}})
+    layout = _layout(380, shapes=shapes, annotations=notes)
+    layout["title"] = {"text": _label(block), "font": {"size": 13}}
+    # whole labels on the log axis: plotly's minor labels read "2" for 0.2
+    ticks = [t for t in LOG_TICKS if levels.min() / 1.5 <= t <= levels.max() * 1.5]
+    layout["xaxis"] = _axis(f"{im} [{unit}]", type="log", tickvals=ticks,
+                            ticktext=[f"{t:g}" for t in ticks])
+    layout["yaxis"] = _axis("P(overturn)", range=[-0.02, 1.02], tickformat=".0%")
+    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.22, "yanchor": "top",
+                        "font": {"size": 11}}
+    layout["margin"]["b"] = 150
+    layout["height"] = 480
+    return {"data": data, "layout": layout}
+
+
+def _vertical(x, colour, dash) -> dict:
+    return {"type": "line", "xref": "x", "x0": x, "x1": x, "yref": "y domain", "y0": 0, "y1": 1,
+            "line": {"color": colour, "dash": dash, "width": 1.5}}
+
+
+def _top_note(x, text, colour) -> dict:
+    return {"text": text, "x": math.log10(x), "xref": "x", "yref": "y domain", "y": 1.0,
+            "yanchor": "bottom", "showarrow": False, "font": {"size": 11, "color": colour}}
+
+
+def _scan_figure(scan: pd.DataFrame, summary) -> dict:
+    unit = summary["im_unit"]
+    first = scan.loc[scan["exact_overturned"], "im_level"].min()
+    survives = scan[~scan["exact_overturned"] & (scan["im_level"] > first)]
+    theta_ratio = scan["exact_theta_rad"] / np.radians(scan["alpha_deg"])
+    data = [{"type": "scatter", "mode": "markers", "x": scan["im_level"], "y": theta_ratio,
+             "marker": {"size": 5, "color": np.where(scan["exact_overturned"], "#d62728",
+                                                     "#1f77b4").tolist()},
+             "name": "each scaled record (red: overturns)",
+             "hovertemplate": f"{summary['im']} = %{{x:.5g}} {unit}<br>peak θ/α = %{{y:.3f}}"
+                              "<extra></extra>"}]
+    row = scan.iloc[0]
+    layout = _layout(330, shapes=[_vertical(first, "#d62728", "dot")])
+    layout["title"] = {"text": f"{row['record']}, {_label(row)}: overturns first at "
+                               f"{first:.4g} {unit}; survives {len(survives)} higher levels "
+                               "of the scan", "font": {"size": 12}}
+    layout["xaxis"] = _axis(f"{summary['im']} of the scaled record [{unit}] (0.2 % steps)")
+    layout["yaxis"] = _axis("peak θ/α [-]", range=[0, 1.05])
+    layout["showlegend"] = False
+    return {"data": data, "layout": layout}
+
+
+def _plot(figure_id: str, spec: dict) -> str:
+    return (f'<div id="{figure_id}"></div><script>(s => Plotly.newPlot("{figure_id}", s.data, '
+            f's.layout, {{displaylogo: false}}))({to_json(spec)});</script>')
+
+
+def _table(frame: pd.DataFrame) -> str:
+    return frame.to_html(index=False, na_rep="—", border=0,
+                         float_format=lambda v: f"{v:.3g}")
+
+
+def _margins_table(fragility, capacity, required, titles) -> pd.DataFrame:
+    exact10 = required[required["procedure"] == "exact@0.10"].set_index("size_s")
+    rows = []
+    for name, rows_p in capacity.groupby("procedure", sort=False):
+        mine = required[required["procedure"] == name].set_index("size_s")
+        below = [s for s in mine.index if mine.loc[s, "required_alpha_deg"]
+                 < exact10["required_alpha_deg"].get(s, math.nan)]
+        rows.append({"procedure": titles.get(name, name),
+                     "median line / exact median": rows_p["ratio_to_exact_median"].median(),
+                     "median exact P(overturn) at its line (fit)": rows_p["achieved_p_fit"].median(),
+                     "same, nearest stripe": rows_p["achieved_p_stripe"].median(),
+                     "sizes where it accepts more slender blocks than the exact 10 % curve":
+                         f"{min(below):g}–{max(below):g} s ({len(below)} of {len(mine)})"
+                         if below else "none"})
+    return pd.DataFrame(rows)
+
+
+def render_margins_page(folder) -> str:
+    """The HTML page of the design-level audit saved in ``folder``, plotly.js inlined."""
+    from plotly.offline import get_plotlyjs
+    folder = Path(folder)
+    summary = json.loads((folder / "summary.json").read_text())
+    # block_m as text: empty for a grid block
+    read = {name: pd.read_csv(folder / f"{name}.csv", converters={"block_m": str})
+            if (folder / f"{name}.csv").exists() else None
+            for name in ("stripes", "fragility", "capacity", "required_alpha", "scan")}
+    stripes, fragility, capacity = read["stripes"], read["fragility"], read["capacity"]
+    required, scan = read["required_alpha"], read["scan"]
+    titles = {p["name"]: p["title"] for p in summary["procedures"]}
+    names = [p["name"] for p in summary["procedures"]]
+    parts = [f"<h1>How safe is a block sized by each guideline?</h1>"
+             f"<p>{len(summary['records'])} records of {html.escape(summary['records_source'])}"
+             f", design site {html.escape(_site_words(summary))}; intensity measure "
+             f"{html.escape(summary['im'])} [{summary['im_unit']}], {len(summary['levels'])} "
+             f"stripes from {min(summary['levels']):.3g} to {max(summary['levels']):.3g}; "
+             f"impact model r = {html.escape(summary.get('restitution', 'housner'))} "
+             f"(housner: Eq. 4.8).</p>"]
+    if required is not None:
+        parts.append("<h2>The numbers to quote</h2>")
+        parts += [f'<p class="quote">{html.escape(s)}</p>'
+                  for s in _sentences(required, summary, titles)]
+        parts.append("<h2>Required slenderness</h2><p>For each size, the most slender block "
+                     "(smallest α) each guideline accepts for these records (it predicts "
+                     "overturning for at most half of them), against the smallest α above which "
+                     "the exact share of records overturning the block stays within 10 % (solid "
+                     "black) and 50 % (dotted). Where a guideline's curve lies below the exact "
+                     "10 % curve, blocks it accepts overturn in more than 10 % of the records. "
+                     "The share is not monotonic in α, so each exact curve is the smallest α "
+                     "above which it stays within the target on a 2° search, the last crossing "
+                     "bisected to 0.125°.</p>")
+        parts.append(_plot("required", _required_figure(required, names, titles)))
+        parts.append("<h2>Margins per procedure</h2><p>Each guideline's line is where the share "
+                     "of records for which it predicts overturning first reaches one half; the "
+                     "achieved probability is the exact P(overturn) there. Medians over the "
+                     "blocks.</p>")
+        parts.append(_table(_margins_table(fragility, capacity, required, titles)))
+    parts.append("<h3>How each procedure meets the stripes</h3><ul>" + "".join(
+        f"<li><b>{html.escape(p['title'])}</b>: {html.escape(p['reads'])}</li>"
+        for p in summary["procedures"]) + "</ul>")
+    if summary.get("design_im") and (fragility["block_m"] == "").any():
+        parts.append("<h2>Collapse margin ratio over the grid</h2><p>CMR = median of the exact "
+                     "fragility / the site's design intensity (FEMA P695). Red: below 1, the "
+                     "block is more likely than not to overturn at the design intensity.</p>")
+        parts.append(_plot("cmr", _cmr_figure(fragility)))
+    parts.append("<h2>Fragility curves</h2><p>Dots: the share of records that overturn the "
+                 "block at each stripe (not monotonic: islands); line: the lognormal of "
+                 "greatest binomial likelihood; dashed verticals: where each guideline draws its "
+                 "line (diamond: the exact P there); dotted: the design intensity.</p>")
+    stripe_keys, capacity_keys = _keys(stripes), _keys(capacity)
+    chosen = _chosen_blocks(fragility)
+    for i, (key, (_, block)) in enumerate(zip(_keys(chosen), chosen.iterrows())):
+        parts.append(_plot(f"fragility{i}", _fragility_figure(
+            block, stripes[stripe_keys == key], capacity[capacity_keys == key], names, titles,
+            summary)))
+    if scan is not None and len(scan):
+        parts.append("<h2>Why the first overturning intensity is not a number</h2><p>One record "
+                     "scaled in 0.2 % steps around the stripes where it first overturns the "
+                     "block: overturning comes and goes in ever narrower windows, so the smallest "
+                     "overturning intensity depends on the step of the scan. The share of records "
+                     "that overturn at an intensity is the number to build on.</p>")
+        for i, (_, rows) in enumerate(scan.groupby(["alpha_deg", "size_s", "block_m"],
+                                                   sort=False)):
+            parts.append(_plot(f"scan{i}", _scan_figure(rows.reset_index(drop=True), summary)))
+    parts.append("<h2>Worst blocks</h2><p>Per procedure, the blocks with the largest exact "
+                 "probability of overturning where the guideline draws its line.</p>")
+    worst = (capacity.dropna(subset=["achieved_p_fit"])
+             .sort_values("achieved_p_fit", ascending=False, kind="stable")
+             .groupby("procedure", sort=False).head(WORST_ROWS))
+    parts.append(_table(worst.assign(procedure=worst["procedure"].map(lambda n: titles.get(n, n)))))
+    parts.append(f"<h2>Islands</h2><p>{(fragility['records_with_islands'] > 0).mean():.0%} of "
+                 f"the blocks have at least one record under which the block survives a stripe "
+                 f"above its first overturning one; on average "
+                 f"{fragility['island_share'].mean():.0%} of the records per block do (at this "
+                 f"stripe spacing).</p>")
+    title = "Design-level audit: fragility and collapse margins"
+    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"
+            f"<style>{_CSS}</style><script>{get_plotlyjs()}</script></head><body>"
+            + "".join(parts) + "</body></html>")
+
+
+def _chosen_blocks(fragility: pd.DataFrame) -> pd.DataFrame:
+    """Blocks whose fragility curves are drawn: the named ones and, per α, the grid blocks of
+    :data:`CURVE_SIZES_S` (the nearest sizes of the grid)."""
+    named = fragility[fragility["block_m"] != ""]
+    grid = fragility[fragility["block_m"] == ""]
+    picked = []
+    for _, rows in grid.groupby("alpha_deg"):
+        sizes = rows["size_s"].to_numpy()
+        for size in CURVE_SIZES_S:
+            picked.append(rows.index[int(np.argmin(np.abs(sizes - size)))])
+    return pd.concat([named, grid.loc[list(dict.fromkeys(picked))]])
+
+
+__all__ = ["render_margins_page", "MARGINS_HTML"]
