@@ -126,3 +126,18 @@ def test_rock_with_history_does_not_load_pandas(tmp_path):
                             cwd=ROOT, timeout=600)
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "h.csv").is_file()
+
+
+def test_rock_a_block_given_by_its_dimensions(capsys):
+    """--block 0.4x2.0: α = atan(b/h) = atan(0.2), p = √(3g/(4R)) with R = √(0.2² + 1²) [m]."""
+    assert main(["rock", "--block", "0.4x2.0", "--pulse", "cosine", "--amplitude", "0.3",
+                 "--pulse-period", "2", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["alpha_deg"] == pytest.approx(math.degrees(math.atan(0.2)), rel=1e-12)
+    assert result["p"] == pytest.approx(math.sqrt(3 * 9.81 / (4 * math.hypot(0.2, 1.0))),
+                                        rel=1e-12)
+    assert result["R_m"] == pytest.approx(math.hypot(0.2, 1.0)) and result["block_m"] == "0.4x2"
+    for extra in (["--alpha", "10"], ["--size", "2"]):
+        assert main(["rock", "--block", "0.4x2", *extra, "--pulse", "cosine", "--amplitude",
+                     "0.3", "--pulse-period", "2"]) == 2
+        assert "--block" in capsys.readouterr().err

@@ -19,7 +19,10 @@ def add_parser(sub):
     p.add_argument("--size", type=options.POSITIVE, metavar="SECONDS", help="block size 2π/p [s]")
     p.add_argument("--alpha", type=options.number("must lie between 0 and 45 degrees", 0, 45,
                                                       low_open=True, high_open=True),
-                   required=True, metavar="DEG", help="slenderness α [degrees]")
+                   metavar="DEG", help="slenderness α [degrees]")
+    p.add_argument("--block", metavar="WIDTHxHEIGHT",
+                   help="the block by its full width × full height [m], e.g. 0.8x2.0, instead "
+                        "of --p/--size and --alpha")
     p.add_argument("--r", type=options.number("must lie between 0 and 1", 0, 1),
                    help="coefficient of restitution (same as --restitution VALUE)")
     options.add_restitution_option(p)
@@ -44,14 +47,31 @@ def run(args) -> int:
     from audit.physics.rocking import simulate
     plot = options.output_file(args.plot, "--plot")
     history = options.output_file(args.history, "--history")
-    if (args.p is None) == (args.size is None):
-        raise InputError("give the block size: exactly one of --p RAD_PER_S or --size SECONDS")
-    alpha = math.radians(args.alpha)
     if args.r is not None and args.restitution != "housner":
         raise InputError("give the impact model once: --r or --restitution, not both")
     r = args.r if args.r is not None else options.restitution(args)
-    block = (RigidBlock(args.p, alpha, r) if args.p is not None
-             else RigidBlock.from_size(args.size, alpha, r))
+    named = None
+    if args.block is not None:
+        from audit.engine.blocks import parse_blocks
+        if args.p is not None or args.size is not None or args.alpha is not None:
+            raise InputError("--block: give the block once, by its dimensions or by --p/--size "
+                             "and --alpha")
+        blocks = parse_blocks([args.block])
+        if len(blocks) != 1:
+            raise InputError(f"--block: rock takes one block, got '{args.block}'")
+        named = blocks[0]
+        block = RigidBlock.from_dimensions(named.width_m / 2, named.height_m / 2, r)
+        args.alpha = math.degrees(block.alpha)
+    else:
+        if (args.p is None) == (args.size is None):
+            raise InputError("give the block size: exactly one of --p RAD_PER_S or --size "
+                             "SECONDS (or the block by --block WIDTHxHEIGHT)")
+        if args.alpha is None:
+            raise InputError("give the slenderness: --alpha DEG (or the block by --block "
+                             "WIDTHxHEIGHT)")
+        alpha = math.radians(args.alpha)
+        block = (RigidBlock(args.p, alpha, r) if args.p is not None
+                 else RigidBlock.from_size(args.size, alpha, r))
     motion = options.motion(args)
     options.check_cost(args, [motion], args.duration, blocks=1)
     response = simulate(block, motion, free_motion_s=args.duration)
@@ -62,7 +82,7 @@ def run(args) -> int:
     result = {
         "record": motion.id, "p": block.p, "size_s": block.size_s, "alpha_deg": args.alpha,
         "r": block.r, "restitution": f"{r:g}" if args.r is not None else str(r),
-        "R_m": block.radius,
+        "R_m": block.radius, "block_m": named.label if named else None,
         "overturned": response.overturned,
         "overturn_time": None if math.isnan(response.overturn_time) else response.overturn_time,
         "peak_rotation": response.peak_rotation,
@@ -107,7 +127,8 @@ def run(args) -> int:
             else f"{response.peak_rotation_free_vibration / block.alpha:.4f} α (largest turning point)")
     cycles = ", ".join(f"{d:.3f}" for d in response.cycle_durations[:8]) or "—"
     more = " …" if response.cycle_durations.size > 8 else ""
-    print(f"Block p = {block.p:.4g} rad/s (2π/p = {block.size_s:.4g} s, R = {block.radius:.3g} m), "
+    print((f"Block {named.label} m (width × height): " if named else "Block ")
+          + f"p = {block.p:.4g} rad/s (2π/p = {block.size_s:.4g} s, R = {block.radius:.3g} m), "
           f"α = {args.alpha:g}°, r = {block.r:.4f}\n"
           f"Excitation: {motion.id}: {motion.component}{source}\n"
           f"Result: {state}\n"
