@@ -220,14 +220,23 @@ def _margins_table(fragility, capacity, required, titles) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def _read(path: Path) -> pd.DataFrame | None:
+    """A saved table, ``block_m`` as text: empty for a grid block (pandas 3 reads an empty
+    field as NaN even through a ``str`` converter)."""
+    if not path.exists():
+        return None
+    frame = pd.read_csv(path)
+    if "block_m" in frame:
+        frame["block_m"] = frame["block_m"].fillna("").astype(str)
+    return frame
+
+
 def render_margins_page(folder) -> str:
     """The HTML page of the design-level audit saved in ``folder``, plotly.js inlined."""
     from plotly.offline import get_plotlyjs
     folder = Path(folder)
     summary = json.loads((folder / "summary.json").read_text())
-    # block_m as text: empty for a grid block
-    read = {name: pd.read_csv(folder / f"{name}.csv", converters={"block_m": str})
-            if (folder / f"{name}.csv").exists() else None
+    read = {name: _read(folder / f"{name}.csv")
             for name in ("stripes", "fragility", "capacity", "required_alpha", "scan")}
     stripes, fragility, capacity = read["stripes"], read["fragility"], read["capacity"]
     required, scan = read["required_alpha"], read["scan"]
