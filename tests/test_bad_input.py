@@ -588,7 +588,7 @@ def test_ctrl_c_stops_with_one_line_exit_130_and_nothing_written(tmp_path):
     # no output file; only records finished before the interruption, kept for --resume
     kept = sorted((tmp_path / "out" / ".partial").glob("*"))
     if kept:
-        assert [p.name for p in tmp_path.rglob("*") if p.is_file()] == [p.name for p in kept]
+        assert sorted(p.name for p in tmp_path.rglob("*") if p.is_file()) == [p.name for p in kept]
         assert lines[0] == (f"interrupted; {len(kept)} record(s) kept in out/.partial: the same "
                             "command with --resume completes the run"), err
     else:
