@@ -303,7 +303,8 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
         ntc_site=None, jobs: int = DEFAULT_JOBS, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         agree_band: float = DEFAULT_AGREE_BAND, robustness: float = DEFAULT_ROBUSTNESS,
         scheduler: str = DEFAULT_SCHEDULER, detail=(), progress: bool = False,
-        partial_dir=None, resume: bool = False) -> AuditResult:
+        partial_dir=None, resume: bool = False, restitution="housner", vertical: bool = False,
+        friction: float | None = None, sensitivity=()) -> AuditResult:
     """Audit guideline procedures on a suite of records over a grid of blocks.
 
     Parameters
@@ -336,6 +337,15 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
         A progress bar on standard error, or ``progress(done, total, record_id, how)``.
     partial_dir, resume :
         Keep each record's part in ``partial_dir`` as it completes; reuse them with ``resume``.
+    restitution : str
+        The impact model: ``housner`` (Eq. 4.8), a fixed r, or ``xFACTOR`` times Eq. 4.8.
+    vertical : bool
+        Include the records' vertical components in the exact response, where they have one.
+    friction : float, optional
+        Friction coefficient μ of the base [-]: flags blocks that would slide.
+    sensitivity : sequence of str
+        Alternative models (``"restitution=x0.9,x0.8"``, ``"vertical"``): flags verdicts that
+        change under one of them.
 
     Returns
     -------
@@ -351,7 +361,10 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
         audit_run = run_audit(chosen, suite, alpha_deg, sizes_s, jobs=jobs,
                               free_motion_s=free_motion_s, progress=bar or progress or None,
                               agree_band=agree_band, robustness=robustness, scheduler=scheduler,
-                              partial_dir=partial_dir, resume=resume, detail=list(detail))
+                              partial_dir=partial_dir, resume=resume, detail=list(detail),
+                              restitution=restitution, vertical=vertical, friction=friction,
+                              sensitivity=[sensitivity] if isinstance(sensitivity, str)
+                              else sensitivity)
     finally:
         if bar is not None:
             bar.done()

@@ -3,7 +3,10 @@
 One ``[[record]]`` per record: ``id`` (a catalogue id gets the Table 5.1 facts and the FEMA 356
 site of Table 3.1), ``file`` relative to the manifest, ``format`` (``peer-at2`` or
 ``columns``), for text files ``column``, ``dt`` [s] and ``units``, a ``component`` in words,
-site fields, or ``missing = true`` for a record without a file.
+site fields, or ``missing = true`` for a record without a file. A record's vertical component,
+where it has one: ``vertical_file`` (same format, dt and units as ``file``; ``vertical_column``
+for text files, default ``column``) and ``vertical_positive`` (``up``, the default, or ``down``
+as in PEER's DWN files).
 """
 
 from __future__ import annotations
@@ -23,7 +26,9 @@ from records.readers import MAX_DT_S, MIN_DT_S, UNIT_FACTORS, read_at2, read_col
 FORMATS = ("peer-at2", "columns")
 #: Site parameters a manifest entry may carry: FEMA 356 (Table 3.1) and NTC 2018 (§3.2).
 _MANIFEST_FIELDS = {"id", "file", "format", "column", "dt", "units", "component", "missing",
-                    *SITE_FIELDS}
+                    "vertical_file", "vertical_column", "vertical_positive", *SITE_FIELDS}
+#: Directions a vertical component's positive values may point.
+VERTICAL_DIRECTIONS = ("up", "down")
 
 
 def _check_field(fields: dict, key: str, where: str):
@@ -64,6 +69,10 @@ _FIELD_RULES = {
            f"a number of seconds in [{MIN_DT_S:g}, {MAX_DT_S:g}]"),
     "units": (str, lambda v: v in UNIT_FACTORS, f"one of {', '.join(UNIT_FACTORS)}"),
     "component": (str, None, "a string"),
+    "vertical_file": (str, bool, "a non-empty string (a path relative to the manifest)"),
+    "vertical_column": (int, lambda v: v >= 1, "a whole number ≥ 1"),
+    "vertical_positive": (str, lambda v: v in VERTICAL_DIRECTIONS,
+                          f"one of {', '.join(VERTICAL_DIRECTIONS)}"),
     "missing": (bool, None, "true or false"),
     "site_class": (str, None, "a string"),
     "sxs_g": ((int, float), _positive_finite, "a positive number of g"),
@@ -177,18 +186,34 @@ def _read_entry(folder: Path, fields: dict, where: str, record_id: str) -> Groun
         raise InputError(f"{where}: file: missing (or mark the record missing = true)")
     if "format" not in fields:
         raise InputError(f"{where}: format: missing, expected one of {', '.join(FORMATS)}")
-    file = folder / fields["file"]
-    if not file.is_file():
-        raise InputError(f"{where}: file: {file} not found" if not file.exists()
-                         else f"{where}: file: {file} is not a file")
-    component = fields.get("component", "")
     if fields["format"] == "peer-at2":
-        ignored = {"column", "dt", "units"} & set(fields)
+        ignored = {"column", "vertical_column", "dt", "units"} & set(fields)
         if ignored:
             raise InputError(f"{where}: {', '.join(sorted(ignored))}: not used by format "
                              f"peer-at2 (the AT2 header states them)")
+    if "vertical_file" not in fields:
+        unused = {"vertical_column", "vertical_positive"} & set(fields)
+        if unused:
+            raise InputError(f"{where}: {', '.join(sorted(unused))}: needs vertical_file")
+    motion = _read_file(folder, fields, "file", fields.get("column", 1), where, record_id)
+    if "vertical_file" not in fields:
+        return motion
+    up = _read_file(folder, fields, "vertical_file",
+                    fields.get("vertical_column", fields.get("column", 1)), where, record_id)
+    return motion.with_vertical(up, down=fields.get("vertical_positive", "up") == "down")
+
+
+def _read_file(folder: Path, fields: dict, key: str, column: int, where: str,
+               record_id: str) -> GroundMotion:
+    """The motion in the file of field ``key`` (``file`` or ``vertical_file``)."""
+    file = folder / fields[key]
+    if not file.is_file():
+        raise InputError(f"{where}: {key}: {file} not found" if not file.exists()
+                         else f"{where}: {key}: {file} is not a file")
+    component = fields.get("component", "")
+    if fields["format"] == "peer-at2":
         return read_at2(file, record_id, component)
-    return read_columns(file, fields.get("column", 1), fields.get("dt"), fields.get("units"),
-                        record_id, component)
+    return read_columns(file, column, fields.get("dt"), fields.get("units"), record_id,
+                        component)
 
 

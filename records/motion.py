@@ -75,6 +75,11 @@ class GroundMotion:
         SHA-256 of the data file ("" for analytic motions).
     pulse : Pulse or None
         Set for analytic pulses, so the solver can use the closed form between samples.
+    metadata : dict
+        What the source says about the record (event, station, ...).
+    vertical : numpy.ndarray or None
+        The vertical ground acceleration üv at the same samples [m/s², positive up], where the
+        record has one; the exact solver reads it only when asked (``--vertical``).
     """
 
     id: str
@@ -85,6 +90,7 @@ class GroundMotion:
     sha256: str = ""
     pulse: Pulse | None = None
     metadata: dict = field(default_factory=dict)
+    vertical: np.ndarray | None = None
 
     def __post_init__(self):
         where = self.source or self.id
@@ -97,6 +103,15 @@ class GroundMotion:
         if not (np.isfinite(self.dt) and self.dt > 0):
             raise InputError(f"{where}: dt: must be a positive number of seconds, got {self.dt}")
         object.__setattr__(self, "acceleration", acc)
+        if self.vertical is not None:
+            up = np.ascontiguousarray(self.vertical, dtype=float)
+            if up.shape != acc.shape:
+                raise InputError(f"{where}: vertical: needs one sample per horizontal sample "
+                                 f"({acc.size}), got {up.size}")
+            if not np.all(np.isfinite(up)):
+                bad = int(np.flatnonzero(~np.isfinite(up))[0])
+                raise InputError(f"{where}: vertical: sample {bad + 1} is not a finite number")
+            object.__setattr__(self, "vertical", up)
 
     @property
     def duration(self) -> float:
@@ -116,7 +131,8 @@ class GroundMotion:
         return np.interp(t, self.time, self.acceleration, right=0.0)
 
     def scaled(self, factor: float, component: str | None = None) -> GroundMotion:
-        """The same record with every acceleration (and an analytic pulse's amplitude) × factor.
+        """The same record with every acceleration (the vertical one too, and an analytic pulse's
+        amplitude) × factor.
 
         Parameters
         ----------
@@ -127,7 +143,22 @@ class GroundMotion:
         """
         pulse = self.pulse and replace(self.pulse, amplitude=self.pulse.amplitude * factor)
         return replace(self, acceleration=self.acceleration * factor, pulse=pulse,
+                       vertical=None if self.vertical is None else self.vertical * factor,
                        component=self.component if component is None else component)
+
+    def with_vertical(self, vertical: GroundMotion, down: bool = False) -> GroundMotion:
+        """This record with the vertical component of ``vertical`` (another file of the same
+        station), on this record's samples (linear between its own, zero past its end).
+
+        Parameters
+        ----------
+        vertical : GroundMotion
+            The vertical record, positive up unless ``down``.
+        down : bool
+            Its positive values point down (PEER's DWN files): the sign is flipped.
+        """
+        up = np.interp(self.time, vertical.time, vertical.acceleration, right=0.0)
+        return replace(self, vertical=-up if down else up)
 
     @property
     def pga(self) -> float:

@@ -227,7 +227,7 @@ def _read(path: Path) -> pd.DataFrame | None:
         return None
     frame = pd.read_csv(path)
     if "block_m" in frame:
-        frame["block_m"] = frame["block_m"].fillna("").astype(str)
+        frame["block_m"] = frame["block_m"].astype(object).fillna("").astype(str)
     return frame
 
 

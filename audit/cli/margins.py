@@ -124,11 +124,15 @@ def _print_summary(result, suite, im, procedures, sizes, seconds) -> None:
     print(f"  blocks with islands of survival above overturning: "
           f"{(fragility['records_with_islands'] > 0).mean():.0%}")
     for name, rows in result.capacity.groupby("procedure", sort=False):
+        if rows["achieved_p_fit"].isna().all():
+            print(f"  {name}: draws no line (it can evaluate none of these records)")
+            continue
         print(f"  {name}: median exact P(overturn) where it draws its line "
               f"{rows['achieved_p_fit'].median():.2f}, its line / exact median "
               f"{rows['ratio_to_exact_median'].median():.2f}")
     exact = result.required_alpha.set_index(["procedure", "size_s"])["required_alpha_deg"]
-    for name in (p.name for p in procedures):
+    drawn = set(result.required_alpha["procedure"])
+    for name in (p.name for p in procedures if p.name in drawn):
         below = [size for size in sizes
                  if exact.get((name, size), math.nan) < exact.get(("exact@0.10", size), math.nan)]
         print(f"  {name} accepts blocks more slender than the exact 10 % curve for "

@@ -188,6 +188,25 @@ def add_restitution_option(parser):
                              "restitution r, or a multiple of Eq. 4.8 (e.g. x0.9)")
 
 
+def add_vertical_option(parser):
+    parser.add_argument("--vertical", action="store_true",
+                        help="include the records' vertical components (gravity g + üv in the "
+                             "equation of motion and at uplift), where they have one")
+
+
+def add_ground_truth_options(parser):
+    """The exact model's assumptions beyond the impact model: vertical motion, the friction of
+    the base, and the alternative models a verdict's sensitivity is measured against."""
+    add_vertical_option(parser)
+    parser.add_argument("--friction", type=POSITIVE, metavar="MU",
+                        help="friction coefficient μ of the base: flag blocks whose pure-rocking "
+                             "response needs more (exact_slides)")
+    parser.add_argument("--sensitivity", action="append", metavar="restitution=MODEL,...|vertical",
+                        help="rerun the exact response under alternative models, e.g. "
+                             "restitution=x0.9,x0.8 or vertical, and flag verdicts that change "
+                             "(exact_model_sensitive)")
+
+
 def restitution(args):
     from audit.physics.block import Restitution
     return Restitution.parse(args.restitution, "--restitution")
@@ -253,6 +272,14 @@ def motion(args):
     if not args.record:
         raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine")
     return resolve_motion(suite(args), args.record).motion
+
+
+def vertical_motion(motion, vertical: bool):
+    """``motion``, checked to have the vertical component ``--vertical`` asks for."""
+    if vertical and motion.vertical is None:
+        raise InputError(f"--vertical: {motion.id} has no vertical component (give it in the "
+                         "manifest as vertical_file, or a PEER UP/DWN file beside the record)")
+    return motion
 
 
 def add_records_option(parser):

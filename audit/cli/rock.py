@@ -27,9 +27,10 @@ def add_parser(sub):
                    help="coefficient of restitution (same as --restitution VALUE)")
     options.add_restitution_option(p)
     options.add_excitation_options(p)
+    options.add_vertical_option(p)
     p.add_argument("--friction", type=options.POSITIVE, metavar="MU",
-                   help="friction coefficient μ: mark the block as sliding when pure rocking "
-                        "needs more (or tan α ≥ μ)")
+                   help="friction coefficient μ: mark the block as sliding when its pure-rocking "
+                        "response needs more")
     p.add_argument("--duration", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
                    metavar="S", help=f"free motion simulated after the excitation [s] (default "
                                      f"{DEFAULT_FREE_MOTION_S:g})")
@@ -72,13 +73,12 @@ def run(args) -> int:
         alpha = math.radians(args.alpha)
         block = (RigidBlock(args.p, alpha, r) if args.p is not None
                  else RigidBlock.from_size(args.size, alpha, r))
-    motion = options.motion(args)
+    motion = options.vertical_motion(options.motion(args), args.vertical)
     options.check_cost(args, [motion], args.duration, blocks=1)
-    response = simulate(block, motion, free_motion_s=args.duration)
-    from audit.physics.reactions import rocking_validity
-    friction, jumps = rocking_validity(response, motion)
-    slides = (None if args.friction is None
-              else bool(friction > args.friction or math.tan(block.alpha) >= args.friction))
+    response = simulate(block, motion, free_motion_s=args.duration, vertical=args.vertical)
+    from audit.engine.ground_truth import slides
+    friction = response.required_friction
+    sliding = None if args.friction is None else bool(slides(friction, args.friction))
     result = {
         "record": motion.id, "p": block.p, "size_s": block.size_s, "alpha_deg": args.alpha,
         "r": block.r, "restitution": f"{r:g}" if args.r is not None else str(r),
@@ -95,7 +95,8 @@ def run(args) -> int:
         "cycle_durations": response.cycle_durations.tolist(),
         "uplifted": response.uplifted,
         "required_friction": None if math.isinf(friction) else friction,
-        "jumps": jumps, "friction": args.friction, "slides": slides,
+        "jumps": response.jumps, "friction": args.friction, "slides": sliding,
+        "vertical": args.vertical,
     }
     outputs = {}
     if history:
@@ -140,9 +141,9 @@ def run(args) -> int:
           f"  impacts                    {response.n_impacts}\n"
           f"  full rocking cycles [s]    {cycles}{more}\n"
           f"  required friction |H|/V    "
-          f"{'n/a (jumps: V < 0)' if jumps else f'{friction:.4f}'} (tan α = {math.tan(block.alpha):.4f})"
-          + ("" if slides is None else f"\n  {'with μ = ' + format(args.friction, 'g'):<27}"
-             f"{'SLIDES: pure rocking does not apply' if slides else 'rocks without sliding'}"))
+          f"{'n/a (jumps: V < 0)' if response.jumps else f'{friction:.4f}'} (tan α = {math.tan(block.alpha):.4f})"
+          + ("" if sliding is None else f"\n  {'with μ = ' + format(args.friction, 'g'):<27}"
+             f"{'SLIDES: pure rocking does not apply' if sliding else 'rocks without sliding'}"))
     if args.plot:
         print(f"Plot written to {args.plot}")
     return 0

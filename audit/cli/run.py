@@ -49,6 +49,8 @@ def add_parser(sub):
                    help="NTC 2018 site for every record: a_g [g], F0, T_C* [s], soil category "
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
                         "its demand off this code spectrum instead of the record's")
+    options.add_restitution_option(p)
+    options.add_ground_truth_options(p)
     options.add_force_option(p)
     p.add_argument("--skip-bad-records", action="store_true",
                    help="audit the readable records of a suite and list the unreadable ones "
@@ -78,6 +80,7 @@ def design_site(args, suite):
 
 def run(args) -> int:
     from audit.api import run as run_api
+    from audit.engine.ground_truth import parse_sensitivity
     from audit.engine.partial import PARTIAL_DIR
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML
@@ -92,10 +95,14 @@ def run(args) -> int:
     procedures = get_procedures(args.procedure)
     sizes = options.sizes(args.sizes)
     alphas = options.alphas_deg(args.alpha)
+    restitution = str(options.restitution(args))
+    sensitivity = parse_sensitivity(args.sensitivity)
     suite = design_site(args, options.suite(args))
-    # the fragility flag solves every block twice more (record × (1 ± ε))
+    # the fragility flag solves every block twice more (record × (1 ± ε)), each alternative
+    # model once more
     options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
-                       blocks=sizes.size * alphas.size * (3 if args.robustness else 1),
+                       blocks=sizes.size * alphas.size * ((3 if args.robustness else 1)
+                                                          + len(sensitivity)),
                        oscillators=SPECTRUM_PERIODS_S.size * (3 + alphas.size * len(procedures)))
     start = time.perf_counter()
     detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
@@ -109,7 +116,9 @@ def run(args) -> int:
                          free_motion_s=args.free_motion, progress=progress,
                          agree_band=args.agree_band, robustness=args.robustness,
                          scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
-                         resume=args.resume, detail=detail)
+                         resume=args.resume, detail=detail, restitution=restitution,
+                         vertical=args.vertical, friction=args.friction,
+                         sensitivity=sensitivity)
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)
     finally:

@@ -22,6 +22,7 @@ def add_parser(sub):
                    help=f"free motion after the record [s] (default: "
                         f"{DEFAULT_FREE_MOTION_S:g} for rocking, 0 for response spectra)")
     options.add_restitution_option(p)
+    options.add_vertical_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS, help="threads")
     p.add_argument("--csv", metavar="FILE", help="CSV output (default: standard output)")
     p.add_argument("--plot", metavar="FILE.png", help="draw the spectra")
@@ -48,11 +49,11 @@ def run(args) -> int:
         alphas = np.radians(options.alphas_deg(args.alpha))
         restitution = options.restitution(args)
         sizes = options.sizes(args.sizes)
-        motion = options.motion(args)
+        motion = options.vertical_motion(options.motion(args), args.vertical)
         options.check_cost(args, [motion], args.free_motion, blocks=sizes.size * alphas.size)
         from audit.physics.rocking import rocking_spectrum
         frame = rocking_spectrum(motion, sizes, alphas, restitution, free_motion_s=args.free_motion,
-                                 jobs=args.jobs).to_frame()
+                                 jobs=args.jobs, vertical=args.vertical).to_frame()
         from reports.figures import draw_rocking_spectra as draw
     figure = ({plot: options.figure_png(lambda fig: draw(fig, frame, motion.id))}
               if plot else {})

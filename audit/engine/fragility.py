@@ -185,7 +185,8 @@ def stripe_outcomes(motion, factors, size_s, alpha_rad, g: float, free_motion_s:
         Shaped (stripe, α, size).
     """
     spectra = [rocking_spectrum(motion.scaled(float(f)), size_s, alpha_rad, r=r, g=g,
-                                free_motion_s=free_motion_s, jobs=jobs) for f in factors]
+                                free_motion_s=free_motion_s, jobs=jobs, reactions=False)
+               for f in factors]
     return (np.stack([s.overturned for s in spectra]),
             np.stack([s.theta_peak for s in spectra]))
 

@@ -1,7 +1,8 @@
 """The unit of work of an audit: one record, every procedure, every block of the grid.
 
 For one record: its response spectra (Figures 5.x), its exact rocking spectra (also at the
-record scaled by 1 ± ε, for the fragile-overturning flag), one :meth:`~procedures.base.
+record scaled by 1 ± ε, for the fragile-overturning flag, and under each alternative ground-truth
+model of ``--sensitivity``), one :meth:`~procedures.base.
 Procedure.evaluate` call per procedure and slenderness, the verdicts of each estimate and check
 (:mod:`audit.engine.verdicts`), and the time histories worth drawing
 (:mod:`audit.engine.histories`).
@@ -19,12 +20,12 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from audit.engine.ground_truth import alternatives, slides
 from audit.engine.histories import simulate_histories
 from audit.engine.schemas import (CHECK_COLUMNS, HISTORY_COLUMNS, RESULT_COLUMNS, ROCKING_COLUMNS,
                                   SPECTRA_COLUMNS)
 from audit.engine.settings import FIGURE_5_DAMPING, AuditSettings
 from audit.engine.verdicts import check_verdicts, classify, exact_exceeded
-from audit.physics.block import coefficient_of_restitution
 from audit.physics.rocking import rocking_spectrum
 from procedures.base import OVERTURN, STORED_SPECTRUM_PERIODS_S
 from procedures.context import RecordContext
@@ -80,19 +81,26 @@ def fragile_overturning(motion, settings: AuditSettings, overturned: np.ndarray)
         return None
     fragile = np.zeros(overturned.shape, dtype=bool)
     for factor in (1.0 - settings.robustness, 1.0 + settings.robustness):
-        other = rocking_spectrum(motion.scaled(factor), np.asarray(settings.size_s),
-                                 np.radians(settings.alpha_deg), g=settings.g,
-                                 free_motion_s=settings.free_motion_s, jobs=settings.jobs)
+        other = _exact_spectrum(motion.scaled(factor), settings, settings.ground_truth,
+                                reactions=False)
         fragile |= other.overturned != overturned
     return fragile
 
 
+def _exact_spectrum(motion, settings: AuditSettings, model, reactions: bool):
+    """The exact rocking spectrum of the grid under one ground-truth model."""
+    return rocking_spectrum(motion, np.asarray(settings.size_s), np.radians(settings.alpha_deg),
+                            r=model.impact, g=settings.g, free_motion_s=settings.free_motion_s,
+                            jobs=settings.jobs, reactions=reactions, vertical=model.vertical)
+
+
 def _exact_response(motion, settings: AuditSettings):
-    """The exact rocking spectrum of the grid and its fragile blocks."""
-    exact = rocking_spectrum(motion, np.asarray(settings.size_s), np.radians(settings.alpha_deg),
-                             g=settings.g, free_motion_s=settings.free_motion_s,
-                             jobs=settings.jobs)
-    return exact, fragile_overturning(motion, settings, exact.overturned)
+    """The exact rocking spectrum of the grid (with the pivot reactions), its fragile blocks,
+    and its overturning and peaks under each alternative model of ``settings.sensitivity``."""
+    exact = _exact_spectrum(motion, settings, settings.ground_truth, reactions=True)
+    others = [_exact_spectrum(motion, settings, model, reactions=False)
+              for model in alternatives(settings.ground_truth, settings.sensitivity)]
+    return exact, fragile_overturning(motion, settings, exact.overturned), others
 
 
 def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
@@ -111,6 +119,7 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     sizes = np.asarray(settings.size_s, dtype=float)
     alpha_deg = np.asarray(settings.alpha_deg, dtype=float)
     alpha_rad = np.radians(alpha_deg)
+    impact = settings.ground_truth.impact
     p = 2.0 * np.pi / sizes
     motion = entry.motion
     context = RecordContext(entry, settings.free_motion_s, settings.jobs)
@@ -137,8 +146,9 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                                 "reason": f"no record file ({entry.missing_reason}): "
                                           "estimate shown, no exact comparison"})
         for i, alpha in enumerate(alpha_rad):
-            evaluation = procedure.evaluate(entry, p, alpha, float(coefficient_of_restitution(alpha)),
-                                            context, settings.g)
+            # the guideline sizes the same block: its r is the impact model's
+            evaluation = procedure.evaluate(entry, p, alpha, float(impact.r(alpha)), context,
+                                            settings.g)
             evaluations.append((procedure.name, i, evaluation))
             if evaluation.spectrum_sd_m is not None:  # the spectrum it read (Figures 8.x, 9.x)
                 spectra.append(pd.DataFrame({
@@ -146,12 +156,13 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                     "damping_pct": 100.0 * evaluation.estimate.damping,
                     "period_s": STORED_SPECTRUM_PERIODS_S, "sd_m": evaluation.spectrum_sd_m,
                     "sv_m_s": np.nan, "sa_g": np.nan}))
-    exact, fragile = exact_job.result() if exact_job is not None else (None, None)
+    exact, fragile, others = (exact_job.result() if exact_job is not None
+                              else (None, None, []))
     results, estimates_only, checks = [], [], []
     for name, i, evaluation in evaluations:
         if evaluation.estimate is not None:
             rows = _result_rows(entry.id, name, alpha_deg[i], sizes, p, evaluation.estimate,
-                                exact, fragile, i, settings.agree_band)
+                                exact, fragile, others, i, settings)
             (results if exact is not None else estimates_only).append(rows)
         if exact is not None:  # a check is audited only against an exact response
             checks += [_check_rows(entry.id, name, alpha_deg[i], sizes, check, exact, i,
@@ -167,20 +178,30 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                        concat(checks, CHECK_COLUMNS), unauditable, histories_meta)
 
 
-def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact, fragile, i,
-                 agree_band):
+def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact, fragile,
+                 others, i, settings: AuditSettings):
     nan = np.full(sizes.shape, np.nan)
+    band = settings.agree_band
     if exact is None:
         exact_theta, exact_over, exact_omega, exact_up, verdict = nan, nan, nan, nan, ""
-        exact_fragile = nan
+        exact_fragile = friction = jumps = sliding = sensitive = nan
     else:
         exact_theta = exact.theta_peak[i]
         exact_over = exact.overturned[i]
         exact_omega = exact.omega_peak[i]
         exact_up = exact.uplifted[i]
         exact_fragile = nan if fragile is None else fragile[i]
+        friction, jumps = exact.required_friction[i], exact.jumps[i]
+        sliding = slides(friction, settings.friction)
         verdict = classify(exact_theta, exact_over, exact_up, estimate.theta, estimate.outcome,
-                           agree_band)
+                           band)
+        sensitive = nan
+        if others:  # the verdict class under each alternative model of the ground truth
+            sensitive = np.zeros(sizes.shape, dtype=bool)
+            for other in others:
+                sensitive |= classify(other.theta_peak[i], other.overturned[i],
+                                      other.uplifted[i], estimate.theta, estimate.outcome,
+                                      band) != verdict
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where(np.isin(verdict, ["agrees", "conservative", "unconservative"]),
                          estimate.theta / exact_theta, np.nan)
@@ -189,6 +210,8 @@ def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact
         "size_s": sizes, "p_rad_s": p, "exact_theta_rad": exact_theta,
         "exact_overturned": exact_over, "exact_uplifted": exact_up,
         "exact_fragile": exact_fragile, "exact_omega_rad_s": exact_omega,
+        "exact_required_friction": friction, "exact_jumps": jumps, "exact_slides": sliding,
+        "exact_model_sensitive": sensitive,
         "approx_theta_rad": estimate.theta, "approx_overturned": estimate.outcome == OVERTURN,
         "approx_period_s": estimate.period_s, "approx_outcome": estimate.outcome,
         "approx_fixed_points": estimate.fixed_points, "approx_cycle": estimate.cycle,

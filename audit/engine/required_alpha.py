@@ -63,7 +63,7 @@ def record_grid(entry, procedures, settings: SearchSettings) -> RecordGrid:
     size_s, alpha_rad = np.asarray(settings.size_s), np.radians(settings.alpha_deg)
     exact = rocking_spectrum(entry.motion, size_s, alpha_rad, r=settings.restitution,
                              g=settings.g, free_motion_s=settings.free_motion_s,
-                             jobs=settings.jobs).overturned
+                             jobs=settings.jobs, reactions=False).overturned
     context = RecordContext(entry, settings.free_motion_s, settings.jobs)
     predicted, evaluated = {}, {}
     for proc in procedures:

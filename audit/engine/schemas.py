@@ -29,6 +29,16 @@ _RESULTS = {
     "exact_fragile": ("bool", "the overturning verdict changes with the record scaled by "
                               "1 ± ε (summary.json settings.robustness); empty when not checked"),
     "exact_omega_rad_s": ("rad/s", "exact peak |θ'|"),
+    "exact_required_friction": ("-", "friction coefficient max |H|/V the exact pure-rocking "
+                                     "response needs at its pivot (inf where it would jump)"),
+    "exact_jumps": ("bool", "the vertical pivot reaction of the exact response becomes "
+                            "negative: the block would leave the ground"),
+    "exact_slides": ("bool", "the response needs more friction than --friction μ: the block "
+                             "would slide, and the verdict is about a model that does not "
+                             "apply; empty without --friction"),
+    "exact_model_sensitive": ("bool", "the verdict class changes under an alternative "
+                                      "ground-truth model of --sensitivity (summary.json "
+                                      "settings.sensitivity); empty when not checked"),
     "approx_theta_rad": ("rad", "the procedure's rotation (its iteration from θ₀/α = 0.1); "
                                 "empty where it predicts overturning or does not settle"),
     "approx_overturned": ("bool", "the procedure predicts overturning"),
@@ -59,6 +69,10 @@ GUIDE = {
         "omega_peak_rad_s": ("rad/s", "exact peak |θ'|"),
         "theta_after_rad": ("rad", "exact peak |θ| after the excitation ends"),
         "uplifted": ("bool", "the block uplifts at all"),
+        "required_friction": ("-", "friction coefficient max |H|/V the pure-rocking response "
+                                   "needs at its pivot (inf where it would jump)"),
+        "jumps": ("bool", "the vertical pivot reaction becomes negative: the block would leave "
+                          "the ground"),
     },
     "spectra.csv": {
         "record": ("text", "record id"),
@@ -268,8 +282,9 @@ CLAIM_COLUMNS = list(GUIDE["claims.csv"])
 HISTORY_COLUMNS = list(GUIDE["histories.csv"])
 DESIGN_SPECTRA_COLUMNS = list(GUIDE["design-spectra.csv"])
 MECHANICS_COLUMNS = list(GUIDE["mechanics.csv"])
-#: Columns holding booleans in ``results.csv`` (``exact_fragile`` is empty when not checked).
-BOOLEAN_COLUMNS = ("exact_overturned", "exact_uplifted", "exact_fragile", "approx_overturned")
+#: Columns holding booleans in ``results.csv`` (empty where not checked).
+BOOLEAN_COLUMNS = ("exact_overturned", "exact_uplifted", "exact_fragile", "exact_jumps",
+                   "exact_slides", "exact_model_sensitive", "approx_overturned")
 
 
 def column_guide() -> dict:

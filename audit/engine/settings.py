@@ -8,6 +8,7 @@ from audit import G
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_ROBUSTNESS, DEFAULT_SIZES)
 from audit.engine.grid import size_grid
+from audit.engine.ground_truth import GroundTruth
 from audit.physics.defaults import DEFAULT_REST_TOLERANCE, DEFAULT_STEPS_PER_RADIAN
 from procedures.base import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
                              MAX_ITERATIONS, TOLERANCE_RATIO)
@@ -36,6 +37,18 @@ class AuditSettings:
         ε of the fragility flag: exact spectra also at the record × (1 ± ε) [-]; 0 = off.
     g : float
         Acceleration of gravity [m/s²].
+    restitution : str
+        The exact solver's impact model (``housner``, a fixed r, or ``xFACTOR`` times Eq. 4.8;
+        :class:`~audit.physics.block.Restitution`); the procedures read the same block's r.
+    vertical : bool
+        The exact solver includes the records' vertical components, where they have one.
+    friction : float or None
+        Friction coefficient μ of the base [-]: blocks whose pure-rocking response needs more
+        are flagged ``exact_slides``; None: not checked.
+    sensitivity : tuple of str
+        Alternative ground-truth models, each an impact model or ``vertical``: the exact
+        response is rerun under each and a verdict that changes is flagged
+        ``exact_model_sensitive``.
     jobs : int
         Threads of the exact solver (not part of what is computed).
     """
@@ -46,13 +59,23 @@ class AuditSettings:
     agree_band: float = DEFAULT_AGREE_BAND
     robustness: float = DEFAULT_ROBUSTNESS
     g: float = G
+    restitution: str = "housner"
+    vertical: bool = False
+    friction: float | None = None
+    sensitivity: tuple = ()
     jobs: int = 1
+
+    @property
+    def ground_truth(self) -> GroundTruth:
+        """The exact model the run solves."""
+        return GroundTruth(self.restitution, self.vertical)
 
     def as_dict(self) -> dict:
         """Plain values for ``summary.json`` (angles in degrees, sizes in s)."""
         values = asdict(self)
         values.pop("jobs")
-        values.update(alpha_deg=list(self.alpha_deg), size_s=list(self.size_s))
+        values.update(alpha_deg=list(self.alpha_deg), size_s=list(self.size_s),
+                      sensitivity=list(self.sensitivity))
         return values
 
     def described(self) -> dict:

@@ -116,9 +116,12 @@ def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list
         ``name, blocks, records, count`` (per verdict), ``pct`` (per verdict, % of blocks),
         ``unsafe, uneconomic, unsafe_pct, uneconomic_pct, median_ratio`` (approx/exact where
         both survive), ``worst`` (the row of :func:`~audit.engine.ranking.worst_case`, or
-        None) and ``checks``: per limit state, ``limit_state, blocks, count`` (per check
+        None), ``checks``: per limit state, ``limit_state, blocks, count`` (per check
         verdict), ``unsafe_pct`` (passed blocks the exact response exceeds, % of blocks) and
-        ``uneconomic_pct``.
+        ``uneconomic_pct``; and where pure rocking stops being valid, counted apart (their
+        verdicts stay in ``count``): ``jumps``, ``slides`` and ``slides_unsafe`` (None without
+        ``--friction``), ``model_sensitive`` and ``model_sensitive_unsafe`` (verdicts that change
+        under an alternative ground-truth model; None without ``--sensitivity``).
     """
     lines = []
     for procedure in procedures:
@@ -131,6 +134,7 @@ def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list
         uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
         ratios = rows["ratio"].astype(float).replace([np.inf, -np.inf], np.nan).dropna()
         worst = worst_case(rows)
+        unsafe_rows = rows["verdict"].isin(UNSAFE_VERDICTS)
         lines.append({
             "name": procedure.name, "blocks": total,
             "records": len(set(rows["record"]) | set(mine["record"])),
@@ -141,8 +145,20 @@ def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list
             "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
             "median_ratio": float(ratios.median()) if len(ratios) else None,
             "worst": None if worst is None else worst.to_dict(),
-            "checks": _check_lines(mine)})
+            "checks": _check_lines(mine),
+            "jumps": int(rows["exact_jumps"].eq(True).sum()),
+            **_flagged(rows, "exact_slides", "slides", unsafe_rows),
+            **_flagged(rows, "exact_model_sensitive", "model_sensitive", unsafe_rows)})
     return lines
+
+
+def _flagged(rows: pd.DataFrame, column: str, name: str, unsafe: pd.Series) -> dict:
+    """Blocks flagged in ``column`` and the unsafe verdicts among them; None where the flag was
+    not checked (the column is empty)."""
+    flagged = rows[column].eq(True)
+    checked = bool(rows[column].isin((True, False)).any())
+    return {name: int(flagged.sum()) if checked else None,
+            f"{name}_unsafe": int((flagged & unsafe).sum()) if checked else None}
 
 
 def _check_lines(checks: pd.DataFrame) -> list[dict]:

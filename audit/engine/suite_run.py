@@ -24,7 +24,9 @@ from audit.engine.scheduler import computed_parts
 from audit.engine.audit_run import AuditRun
 from audit.engine.schemas import (CHECK_COLUMNS, HISTORY_COLUMNS, RESULT_COLUMNS, ROCKING_COLUMNS,
                                   SPECTRA_COLUMNS)
+from audit.engine.ground_truth import parse_sensitivity
 from audit.engine.settings import AuditSettings
+from audit.physics.block import Restitution
 from audit.engine.suite import bottom_line, suite_statistics, suite_summary
 from audit.engine.verdicts import VERDICTS
 from audit.errors import InputError
@@ -108,7 +110,8 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
               free_motion_s: float = DEFAULT_FREE_MOTION_S, progress=None, g: float = G,
               agree_band: float = DEFAULT_AGREE_BAND, robustness: float = DEFAULT_ROBUSTNESS,
               scheduler: str = DEFAULT_SCHEDULER, partial_dir=None, resume: bool = False,
-              detail=(), claims: bool = True) -> AuditRun:
+              detail=(), claims: bool = True, restitution="housner", vertical: bool = False,
+              friction: float | None = None, sensitivity=()) -> AuditRun:
     """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid.
 
     Parameters
@@ -141,6 +144,11 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
         Record ids whose per-record detail the report should show (``summary["detail"]``).
     claims : bool
         Check the claims of the reference report (``AuditRun.claims``).
+    restitution, vertical, friction, sensitivity :
+        The exact model's assumptions (:class:`~audit.engine.settings.AuditSettings`):
+        impact model (``housner``, a fixed r, ``xFACTOR``), the records' vertical components,
+        the base's friction coefficient μ [-] (None: not checked), and the alternative models
+        (``restitution=x0.9``, ``vertical``) the verdicts' sensitivity is measured against.
 
     Returns
     -------
@@ -150,7 +158,9 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
     sizes = size_grid(*DEFAULT_SIZES) if sizes is None else np.asarray(sizes, dtype=float)
     settings = AuditSettings(tuple(float(a) for a in alpha_deg), tuple(float(s) for s in sizes),
                              float(free_motion_s), float(agree_band), float(robustness), float(g),
-                             int(jobs))
+                             str(Restitution.parse(restitution)), bool(vertical),
+                             None if friction is None else float(friction),
+                             parse_sensitivity(sensitivity), int(jobs))
     entries = list(suite)
     known = {entry.id for entry in entries}
     unknown = [record_id for record_id in detail if record_id not in known]

@@ -47,6 +47,8 @@ INTERPRETED_STEP_S = 5e-6
 
 # Ground-motion kinds understood by the kernel.
 _SAMPLED, _COSINE, _SINE = 0, 1, 2
+# The kernel's vertical ground acceleration when there is none (horizontal motion only).
+_NO_VERTICAL = np.empty(0)
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
@@ -60,44 +62,101 @@ def _ground(t, kind, a0, slope, t0, amp, omega_p):
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def _theta_acc(theta, ug, side, p2, alpha, g):
-    """Eq. 4.3 with sgn(θ) replaced by the side of the current pivot."""
+def _theta_acc(theta, ug, uv, side, p2, alpha, g):
+    """Eq. 4.3 with sgn(θ) replaced by the side of the current pivot, and gravity g + üv under
+    a vertical ground acceleration üv (Eq. 4.3 with g → g + üv in its moment of the weight;
+    p² = 3g/(4R) keeps the nominal g). Without vertical motion üv = 0 and (1 + 0/g)·sin φ is
+    sin φ exactly, so the horizontal-only response is unchanged to the last bit."""
     phi = side * alpha - theta
-    return -p2 * (math.sin(phi) + ug / g * math.cos(phi))
+    return -p2 * ((1.0 + uv / g) * math.sin(phi) + ug / g * math.cos(phi))
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _lifts(ug, uv, g, tan_alpha):
+    """Whether the ground lifts a block at rest: |üg| > (g + üv) tan α."""
+    return abs(ug) > (g + uv) * tan_alpha
 
 
 @numba.njit(cache=True, nogil=True)
-def _rk4(theta, omega, t, h, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p):
-    """One classical Runge–Kutta step of length h from (θ, θ') at t."""
+def pivot_reactions(theta, omega, ug, uv, side, p2, alpha, g):
+    """Horizontal and vertical reactions H/(mg), V/(mg) [-] at the pivot of a rocking block.
+
+    Newton's law for the centroid of the block (mass m, R = 3g/(4p²), α) rocking about a
+    corner, with s = ±1 the side of the pivot and φ = sα − θ; the centroid sits at
+    (−R sin φ, R cos φ) from the pivot, so
+
+        H / m = üg      + R (θ'' cos φ + θ'² sin φ)
+        V / m = g + üv  + R (θ'' sin φ − θ'² cos φ)
+
+    with θ'' from Eq. 4.3. Pure rocking needs V ≥ 0 (else the block jumps) and a friction
+    coefficient μ ≥ |H| / V; at uplift (θ = θ' = 0, |üg| = g tan α, θ'' = 0) that is the
+    classic μ ≥ tan α (derivation in docs/ground-truth-assumptions.md).
+
+    Parameters
+    ----------
+    theta, omega : float
+        θ [rad] and θ' [rad/s].
+    ug, uv : float
+        Horizontal and vertical ground accelerations [m/s²].
+    side : float
+        +1 rocking on the corner of θ > 0, −1 on the other.
+    p2 : float
+        p² [rad²/s²].
+    alpha, g : float
+        α [rad]; acceleration of gravity [m/s²].
+    """
+    phi = side * alpha - theta
+    theta_acc = _theta_acc(theta, ug, uv, side, p2, alpha, g)
+    radius = 0.75 * g / p2
+    horizontal = ug + radius * (theta_acc * math.cos(phi) + omega * omega * math.sin(phi))
+    vertical = g + uv + radius * (theta_acc * math.sin(phi) - omega * omega * math.cos(phi))
+    return horizontal / g, vertical / g
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _friction_ratio(horizontal, vertical):
+    """|H| / V, infinite where V ≤ 0 (no friction keeps a jumping block in place)."""
+    return abs(horizontal) / vertical if vertical > 0.0 else math.inf
+
+
+@numba.njit(cache=True, nogil=True)
+def _rk4(theta, omega, t, h, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p, v0, vslope):
+    """One classical Runge–Kutta step of length h from (θ, θ') at t; the vertical ground
+    acceleration is v0 + vslope·(t − t0) on the interval (zero without vertical motion)."""
     u1 = _ground(t, kind, a0, slope, t0, amp, omega_p)
     u2 = _ground(t + 0.5 * h, kind, a0, slope, t0, amp, omega_p)
     u3 = _ground(t + h, kind, a0, slope, t0, amp, omega_p)
+    w1 = v0 + vslope * (t - t0)
+    w2 = v0 + vslope * (t + 0.5 * h - t0)
+    w3 = v0 + vslope * (t + h - t0)
     k1t = omega
-    k1w = _theta_acc(theta, u1, side, p2, alpha, g)
+    k1w = _theta_acc(theta, u1, w1, side, p2, alpha, g)
     k2t = omega + 0.5 * h * k1w
-    k2w = _theta_acc(theta + 0.5 * h * k1t, u2, side, p2, alpha, g)
+    k2w = _theta_acc(theta + 0.5 * h * k1t, u2, w2, side, p2, alpha, g)
     k3t = omega + 0.5 * h * k2w
-    k3w = _theta_acc(theta + 0.5 * h * k2t, u2, side, p2, alpha, g)
+    k3w = _theta_acc(theta + 0.5 * h * k2t, u2, w2, side, p2, alpha, g)
     k4t = omega + h * k3w
-    k4w = _theta_acc(theta + h * k3t, u3, side, p2, alpha, g)
+    k4w = _theta_acc(theta + h * k3t, u3, w3, side, p2, alpha, g)
     return (theta + h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t),
             omega + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w))
 
 
 @numba.njit(cache=True, nogil=True)
 def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
-            kind, a0, slope, t0, amp, omega_p):
+            kind, a0, slope, t0, amp, omega_p, v0, vslope):
     """Step length τ in [lo, hi] at which θ (which=0) or θ' (which=1) equals ``target``.
 
     The bracket must hold a sign change of (value − target). Newton steps use the exact
     derivative of the continuous Runge–Kutta trajectory (θ' or Eq. 4.3), with bisection
     whenever Newton leaves the bracket. Returns (τ, θ(τ), θ'(τ)).
     """
-    th, om = _rk4(theta, omega, t, hi, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p)
+    th, om = _rk4(theta, omega, t, hi, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p,
+                  v0, vslope)
     hi_positive = ((th if which == 0 else om) - target) > 0.0
     tau = 0.5 * (lo + hi)
     for _ in range(100):
-        th, om = _rk4(theta, omega, t, tau, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p)
+        th, om = _rk4(theta, omega, t, tau, side, p2, alpha, g, kind, a0, slope, t0, amp,
+                      omega_p, v0, vslope)
         f = (th if which == 0 else om) - target
         if f == 0.0 or hi - lo < 1e-15 * (1.0 + t):
             break
@@ -110,38 +169,53 @@ def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
             slope_f = om
         else:
             slope_f = _theta_acc(th, _ground(t + tau, kind, a0, slope, t0, amp, omega_p),
-                                 side, p2, alpha, g)
+                                 v0 + vslope * (t + tau - t0), side, p2, alpha, g)
         step = tau - f / slope_f if slope_f != 0.0 else 0.5 * (lo + hi)
         tau = step if lo < step < hi else 0.5 * (lo + hi)
     return tau, th, om
 
 
 @numba.njit(cache=True, nogil=True)
-def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
+def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out,
-              turns_out, stride=1):
+              turns_out, stride=1, reactions=False):
     """Simulate one block; see :func:`simulate`. History arrays of length 0 store nothing;
-    otherwise every ``stride``-th sample is stored.
+    otherwise every ``stride``-th sample is stored. ``vertical`` holds the vertical ground
+    acceleration at the samples of ``acc`` [m/s²], or nothing (horizontal motion only).
 
     ``impacts_out`` rows: time, episode, θ' just before and just after the impact;
     ``turns_out`` rows: time and θ of each turning point (θ' = 0).
 
+    With ``reactions``, the pivot reactions (:func:`pivot_reactions`) are evaluated at the end
+    of every Runge–Kutta step of the rocking motion and on both sides of every impact; at rest
+    on the base H = m üg and V = m (g + üv), whose largest ratio over the samples is capped at
+    tan α (beyond it the block uplifts, at exactly tan α).
+
     Returns (peak |θ|, peak |θ'|, peak |θ| after the excitation, overturned, overturn time,
-    number of impacts, uplifted, peak θ signed, number of turning points).
+    number of impacts, uplifted, peak θ signed, number of turning points, max |H|/V (the
+    friction pure rocking requires, inf where the block would jump), min V/(mg)); the last two
+    are NaN without ``reactions``.
     """
     n_rec = acc.size
     n_seg = n_rec - 1 + n_tail
     t_exc_end = (n_rec - 1) * dt
     store = theta_out.size > 0
+    has_vertical = vertical.size > 0
     p2 = p * p
-    threshold = g * math.tan(alpha)
+    tan_alpha = math.tan(alpha)
     rest_omega2 = 2.0 * rest_tolerance * p2 * alpha * alpha
     n_sub = max(1, int(math.ceil(dt * p * steps_per_radian)))
     h_sub = dt / n_sub
     last_exceed = -1
+    max_ratio = 0.0
+    min_vertical = math.inf
     for i in range(n_rec):
-        if abs(acc[i]) > threshold:
+        uv = vertical[i] if has_vertical else 0.0
+        if _lifts(acc[i], uv, g, tan_alpha):
             last_exceed = i
+        if reactions:
+            max_ratio = max(max_ratio, min(_friction_ratio(acc[i], g + uv), tan_alpha))
+            min_vertical = min(min_vertical, (g + uv) / g)
 
     theta = theta0
     omega = omega0
@@ -168,10 +242,15 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
             break  # at rest and the ground can no longer lift it: nothing more happens
         t0 = k * dt
         t1 = (k + 1) * dt
+        v0 = 0.0
+        vslope = 0.0
         if k < n_rec - 1:
             seg_kind = kind
             a0 = acc[k]
             slope = (acc[k + 1] - acc[k]) / dt
+            if has_vertical:
+                v0 = vertical[k]
+                vslope = (vertical[k + 1] - vertical[k]) / dt
         else:
             seg_kind = _SAMPLED
             a0 = 0.0
@@ -182,14 +261,16 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
             if resting:
                 ua = _ground(t, seg_kind, a0, slope, t0, amp, omega_p)
                 ub = _ground(t1, seg_kind, a0, slope, t0, amp, omega_p)
-                if abs(ua) > threshold:
+                if _lifts(ua, v0 + vslope * (t - t0), g, tan_alpha):
                     t_up, u_up = t, ua
-                elif abs(ub) > threshold:
-                    # first time |üg| reaches g tan α: bisection is exact enough and only runs at uplifts
+                elif _lifts(ub, v0 + vslope * dt, g, tan_alpha):
+                    # first time |üg| reaches (g + üv) tan α: bisection is exact enough and only
+                    # runs at uplifts
                     lo, hi = t, t1
                     for _ in range(60):
                         mid = 0.5 * (lo + hi)
-                        if abs(_ground(mid, seg_kind, a0, slope, t0, amp, omega_p)) > threshold:
+                        if _lifts(_ground(mid, seg_kind, a0, slope, t0, amp, omega_p),
+                                  v0 + vslope * (mid - t0), g, tan_alpha):
                             hi = mid
                         else:
                             lo = mid
@@ -208,12 +289,12 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
 
             h = min(h_sub, t1 - t)
             th_n, om_n = _rk4(theta, omega, t, h, side, p2, alpha, g,
-                              seg_kind, a0, slope, t0, amp, omega_p)
+                              seg_kind, a0, slope, t0, amp, omega_p, v0, vslope)
             lo = 0.0
             if omega * om_n < 0.0:
                 # a peak of |θ| inside the step
                 tau, th_e, om_e = _locate(1, 0.0, 0.0, h, theta, omega, t, side, p2, alpha, g,
-                                          seg_kind, a0, slope, t0, amp, omega_p)
+                                          seg_kind, a0, slope, t0, amp, omega_p, v0, vslope)
                 lo = tau
                 if abs(th_e) >= alpha:
                     th_n = th_e  # overturned before the turning point: handled below
@@ -230,7 +311,7 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
                         peak_after = abs(th_e)
             if side * th_n >= alpha:
                 tau, th_o, om_o = _locate(0, side * alpha, 0.0, h, theta, omega, t, side, p2, alpha,
-                                          g, seg_kind, a0, slope, t0, amp, omega_p)
+                                          g, seg_kind, a0, slope, t0, amp, omega_p, v0, vslope)
                 overturned = True
                 t_over = t + tau
                 peak = alpha
@@ -243,21 +324,31 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
             if side * th_n < 0.0:
                 # impact: θ returns to zero inside the step (after the turning point, if any)
                 tau, th_i, om_i = _locate(0, 0.0, lo, h, theta, omega, t, side, p2, alpha, g,
-                                          seg_kind, a0, slope, t0, amp, omega_p)
+                                          seg_kind, a0, slope, t0, amp, omega_p, v0, vslope)
                 if abs(om_i) > peak_omega:
                     peak_omega = abs(om_i)
                 t_imp = t + tau
                 if n_impacts < impacts_out.shape[0]:
                     impacts_out[n_impacts, 0] = t_imp
                     impacts_out[n_impacts, 1] = episode
+                u_imp = _ground(t_imp, seg_kind, a0, slope, t0, amp, omega_p)
+                w_imp = v0 + vslope * (t_imp - t0)
+                if reactions:  # on the old pivot just before, on the new one just after
+                    hr, vr = pivot_reactions(0.0, om_i, u_imp, w_imp, side, p2, alpha, g)
+                    max_ratio = max(max_ratio, _friction_ratio(hr, vr))
+                    min_vertical = min(min_vertical, vr)
                 omega = velocity_ratio * om_i
                 theta = 0.0
                 side = 1.0 if omega > 0.0 else -1.0
                 t = t_imp
                 if omega == 0.0 or (omega * omega < rest_omega2 and
-                        abs(_ground(t, seg_kind, a0, slope, t0, amp, omega_p)) <= threshold):
+                                    not _lifts(u_imp, w_imp, g, tan_alpha)):
                     resting = True
                     omega = 0.0
+                elif reactions:
+                    hr, vr = pivot_reactions(0.0, omega, u_imp, w_imp, side, p2, alpha, g)
+                    max_ratio = max(max_ratio, _friction_ratio(hr, vr))
+                    min_vertical = min(min_vertical, vr)
                 if n_impacts < impacts_out.shape[0]:
                     impacts_out[n_impacts, 2] = om_i
                     impacts_out[n_impacts, 3] = omega
@@ -266,6 +357,12 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
             theta = th_n
             omega = om_n
             t += h
+            if reactions:
+                hr, vr = pivot_reactions(theta, omega,
+                                         _ground(t, seg_kind, a0, slope, t0, amp, omega_p),
+                                         v0 + vslope * (t - t0), side, p2, alpha, g)
+                max_ratio = max(max_ratio, _friction_ratio(hr, vr))
+                min_vertical = min(min_vertical, vr)
             if abs(omega) > peak_omega:
                 peak_omega = abs(omega)
             if abs(theta) > peak:
@@ -285,36 +382,43 @@ def _simulate(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
         fill = math.nan if overturned else 0.0
         theta_out[filled:] = fill
         omega_out[filled:] = fill
+    if not reactions:
+        max_ratio = math.nan
+        min_vertical = math.nan
     return (peak, peak_omega, peak_after, overturned, t_over, n_impacts, uplifted, peak_signed,
-            n_turns)
+            n_turns, max_ratio, min_vertical)
 
 
 @numba.njit(cache=True, nogil=True)
-def _spectrum(acc, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
-              steps_per_radian, rest_tolerance, out):
-    """Peaks of many blocks under one motion; fills ``out`` (n_blocks × 5)."""
+def _spectrum(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
+              steps_per_radian, rest_tolerance, reactions, out):
+    """Peaks of many blocks under one motion; fills ``out`` (n_blocks × 7)."""
     empty = np.empty(0)
     no_events = np.empty((0, 4))
     for i in range(p.size):
-        res = _simulate(acc, dt, n_tail, kind, amp, omega_p, p[i], alpha[i], velocity_ratio[i], g,
-                        steps_per_radian, rest_tolerance, 0.0, 0.0, empty, empty, no_events,
-                        no_events)
+        res = _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p[i], alpha[i],
+                        velocity_ratio[i], g, steps_per_radian, rest_tolerance, 0.0, 0.0, empty,
+                        empty, no_events, no_events, 1, reactions)
         out[i, 0] = res[0]
         out[i, 1] = res[1]
         out[i, 2] = res[2]
         out[i, 3] = 1.0 if res[3] else 0.0
         out[i, 4] = 1.0 if res[6] else 0.0
+        out[i, 5] = res[9]
+        out[i, 6] = res[10]
 
 
-def _motion_arguments(motion, free_motion_s):
-    """Kernel arguments describing the excitation of a GroundMotion."""
+def _motion_arguments(motion, free_motion_s, vertical: bool = False):
+    """Kernel arguments describing the excitation of a GroundMotion (its vertical component
+    too with ``vertical``, where it has one)."""
     if free_motion_s < 0 or not math.isfinite(free_motion_s):
         raise InputError(f"duration of free motion: must be ≥ 0 s, got {free_motion_s}")
     n_tail = int(math.ceil(free_motion_s / motion.dt - 1e-9))
+    up = motion.vertical if vertical and motion.vertical is not None else _NO_VERTICAL
     if motion.pulse is None:
-        return motion.acceleration, motion.dt, n_tail, _SAMPLED, 0.0, 0.0
+        return motion.acceleration, up, motion.dt, n_tail, _SAMPLED, 0.0, 0.0
     kind = _COSINE if motion.pulse.shape == "cosine" else _SINE
-    return (motion.acceleration, motion.dt, n_tail, kind, motion.pulse.amplitude,
+    return (motion.acceleration, up, motion.dt, n_tail, kind, motion.pulse.amplitude,
             2.0 * math.pi / motion.pulse.period_s)
 
 
@@ -354,6 +458,11 @@ class RockingResponse:
     block : RigidBlock
     excitation_end : float
         End of the excitation [s].
+    required_friction : float
+        Friction coefficient max |H|/V [-] the pure-rocking response needs at its pivot
+        (:func:`pivot_reactions`; inf where it would jump).
+    min_vertical_reaction : float
+        Smallest vertical reaction V/(mg) [-]; below zero the block would jump.
     """
 
     time: np.ndarray
@@ -374,6 +483,14 @@ class RockingResponse:
     uplifted: bool
     block: RigidBlock
     excitation_end: float
+    required_friction: float = math.nan
+    min_vertical_reaction: float = math.nan
+
+    @property
+    def jumps(self) -> bool:
+        """Whether the vertical pivot reaction becomes negative: the block would leave the
+        ground, which pure rocking does not model."""
+        return bool(self.min_vertical_reaction < 0)
 
     @property
     def peak_rotation_ratio(self) -> float:
@@ -443,7 +560,7 @@ class RockingResponse:
 def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTION_S,
              steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
              rest_tolerance: float = DEFAULT_REST_TOLERANCE, initial_rotation: float = 0.0,
-             initial_velocity: float = 0.0) -> RockingResponse:
+             initial_velocity: float = 0.0, vertical: bool = False) -> RockingResponse:
     """Exact rocking response of one block to one ground motion (Eq. 4.3).
 
     Parameters
@@ -460,6 +577,8 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
         Rebound amplitude, as a fraction of α, below which an impact ends in rest [-].
     initial_rotation, initial_velocity : float
         θ(0) [rad] and θ'(0) [rad/s]; the block starts at rest when both are zero.
+    vertical : bool
+        Include the motion's vertical component (gravity g + üv), where it has one.
 
     Returns
     -------
@@ -468,8 +587,8 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
     if abs(initial_rotation) >= block.alpha:
         raise InputError(f"initial rotation: |θ0| must be below α = {block.alpha:g} rad, "
                          f"got {initial_rotation:g}")
-    args = _motion_arguments(motion, free_motion_s)
-    n_samples = motion.acceleration.size + args[2]
+    args = _motion_arguments(motion, free_motion_s, vertical)
+    n_samples = motion.acceleration.size + args[3]
     stride = -(-n_samples // HISTORY_CAPACITY)
     n_out = (n_samples - 1) // stride + 1
     theta = np.empty(n_out)
@@ -480,7 +599,7 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
     kernel = tiered(_simulate, n_steps * INTERPRETED_STEP_S)
     res = kernel(*args, block.p, block.alpha, math.sqrt(block.r), block.g, steps_per_radian,
                  rest_tolerance, initial_rotation, initial_velocity, theta, omega, impacts, turns,
-                 stride)
+                 stride, True)
     n_kept = min(int(res[5]), IMPACT_CAPACITY)
     n_turns = min(int(res[8]), IMPACT_CAPACITY)
     return RockingResponse(
@@ -492,6 +611,7 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
         peak_rotation_signed=float(res[7]), peak_angular_velocity=float(res[1]),
         peak_rotation_after_excitation=float(res[2]), n_impacts=int(res[5]),
         uplifted=bool(res[6]), block=block, excitation_end=motion.duration,
+        required_friction=float(res[9]), min_vertical_reaction=float(res[10]),
     )
 
 
@@ -514,6 +634,10 @@ class RockingSpectrum:
     theta_after : numpy.ndarray
         max |θ| after the excitation [rad].
     overturned, uplifted : numpy.ndarray of bool
+    required_friction : numpy.ndarray
+        Friction coefficient max |H|/V [-] pure rocking needs (inf where the block would jump).
+    min_vertical_reaction : numpy.ndarray
+        Smallest vertical pivot reaction V/(mg) [-]; below zero the block would jump.
     """
 
     size_s: np.ndarray
@@ -523,6 +647,13 @@ class RockingSpectrum:
     theta_after: np.ndarray
     overturned: np.ndarray
     uplifted: np.ndarray
+    required_friction: np.ndarray
+    min_vertical_reaction: np.ndarray
+
+    @property
+    def jumps(self) -> np.ndarray:
+        """Blocks whose vertical pivot reaction becomes negative (they would leave the ground)."""
+        return self.min_vertical_reaction < 0
 
     @property
     def p(self) -> np.ndarray:
@@ -536,22 +667,24 @@ class RockingSpectrum:
 
     def to_frame(self):
         """One row per block: ``alpha_deg, size_s, p_rad_s, theta_peak_rad, theta_ratio,
-        overturned, omega_peak_rad_s, theta_after_rad, uplifted`` (the CSV of ``spectrum`` and
-        ``rocking.csv``)."""
+        overturned, omega_peak_rad_s, theta_after_rad, uplifted, required_friction, jumps`` (the
+        CSV of ``spectrum`` and ``rocking.csv``)."""
         import pandas as pd  # here, so that one simulation (``rock``) does not load pandas
         alpha_deg = np.round(np.degrees(self.alpha_rad), 10)  # 15, not 14.999999999999998
         return pd.concat([pd.DataFrame({
             "alpha_deg": alpha_deg[i], "size_s": self.size_s, "p_rad_s": self.p,
             "theta_peak_rad": self.theta_peak[i], "theta_ratio": self.theta_ratio[i],
             "overturned": self.overturned[i], "omega_peak_rad_s": self.omega_peak[i],
-            "theta_after_rad": self.theta_after[i], "uplifted": self.uplifted[i]})
+            "theta_after_rad": self.theta_after[i], "uplifted": self.uplifted[i],
+            "required_friction": self.required_friction[i], "jumps": self.jumps[i]})
             for i in range(self.alpha_rad.size)], ignore_index=True)
 
 
 def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
                    free_motion_s: float = DEFAULT_FREE_MOTION_S,
                    steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
-                   rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1) -> np.ndarray:
+                   rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1,
+                   reactions: bool = False, vertical: bool = False) -> np.ndarray:
     """Peaks of blocks given one by one, ``size_s[i]`` with ``alpha_rad[i]``, under one motion.
 
     Parameters
@@ -567,12 +700,17 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
         Acceleration of gravity [m/s²].
     jobs : int
         Threads sharing the blocks (the kernel releases the GIL).
+    reactions : bool
+        Also evaluate the pivot reactions over the response (about 10 % more work).
+    vertical : bool
+        Include the motion's vertical component (gravity g + üv), where it has one.
 
     Returns
     -------
     numpy.ndarray
-        Shaped (block, 5): max |θ| [rad], max |θ'| [rad/s], max |θ| after the excitation
-        [rad], overturned, uplifted (the last two 0 or 1).
+        Shaped (block, 7): max |θ| [rad], max |θ'| [rad/s], max |θ| after the excitation
+        [rad], overturned, uplifted (0 or 1), the friction coefficient pure rocking requires
+        [-] and the smallest vertical reaction V/(mg) [-] (both NaN without ``reactions``).
     """
     size_s = np.atleast_1d(np.asarray(size_s, dtype=float))
     alpha = np.atleast_1d(np.asarray(alpha_rad, dtype=float))
@@ -584,16 +722,16 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
               for a in unique]
     p = 2.0 * np.pi / size_s
     ratio = np.sqrt(np.array([b.r for b in blocks]))[inverse.ravel()]
-    args = _motion_arguments(motion, free_motion_s)
-    out = np.empty((p.size, 5))
+    args = _motion_arguments(motion, free_motion_s, vertical)
+    out = np.empty((p.size, 7))
     # longest runs (small blocks: many steps) first, spread round-robin over the threads
     order = np.argsort(p, kind="stable")[::-1]
     chunks = [order[i::max(1, jobs)] for i in range(max(1, jobs))]
 
     def run(chunk):
-        part = np.empty((chunk.size, 5))
+        part = np.empty((chunk.size, 7))
         _spectrum(*args, p[chunk], alpha[chunk], ratio[chunk], blocks[0].g,
-                  steps_per_radian, rest_tolerance, part)
+                  steps_per_radian, rest_tolerance, reactions, part)
         out[chunk] = part
 
     # even one chunk runs in a worker thread, so that Ctrl-C reaches the main thread at once
@@ -609,7 +747,8 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
 def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
                      free_motion_s: float = DEFAULT_FREE_MOTION_S,
                      steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
-                     rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1) -> RockingSpectrum:
+                     rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1,
+                     reactions: bool = True, vertical: bool = False) -> RockingSpectrum:
     """Peak rotation and angular velocity of every block of a (α, 2π/p) grid under one motion
     (:func:`rocking_blocks` over the grid).
 
@@ -628,6 +767,8 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
         Acceleration of gravity [m/s²].
     jobs : int
         Threads sharing the blocks (the kernel releases the GIL).
+    reactions, vertical : bool
+        As for :func:`rocking_blocks`.
 
     Returns
     -------
@@ -637,12 +778,14 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
     alpha_rad = np.atleast_1d(np.asarray(alpha_rad, dtype=float))
     grid_alpha, grid_size = np.meshgrid(alpha_rad, size_s, indexing="ij")
     out = rocking_blocks(motion, grid_size.ravel(), grid_alpha.ravel(), r, g, free_motion_s,
-                         steps_per_radian, rest_tolerance, jobs)
+                         steps_per_radian, rest_tolerance, jobs, reactions, vertical)
     shape = grid_size.shape
     return RockingSpectrum(size_s, alpha_rad, out[:, 0].reshape(shape), out[:, 1].reshape(shape),
                            out[:, 2].reshape(shape), out[:, 3].reshape(shape).astype(bool),
-                           out[:, 4].reshape(shape).astype(bool))
+                           out[:, 4].reshape(shape).astype(bool), out[:, 5].reshape(shape),
+                           out[:, 6].reshape(shape))
 
 
-__all__ = ["simulate", "rocking_spectrum", "rocking_blocks", "RockingResponse", "RockingSpectrum",
+__all__ = ["simulate", "rocking_spectrum", "rocking_blocks", "pivot_reactions", "RockingResponse",
+           "RockingSpectrum",
            "coefficient_of_restitution", "DEFAULT_FREE_MOTION_S"]
