@@ -136,7 +136,11 @@ class DaskScheduler:
         """Yield ``(index, task(entry, *args), seconds)`` in order of completion.
 
         ``args`` (procedures, settings) are scattered once to every worker. A record sent by
-        reference that a worker cannot read back is sent again by value.
+        reference that a worker cannot read back is sent again by value. A worker lost mid-run
+        needs nothing here: the Dask scheduler gives its tasks to the other workers (up to
+        ``distributed.scheduler.allowed-failures`` deaths per task); ``retries=`` would only
+        re-run a task that raised, which for a deterministic record raises again
+        (tests/test_dask_cluster.py).
         """
         from distributed import as_completed
         args = [self.client.scatter(arg, broadcast=True) for arg in args]
