@@ -5,7 +5,8 @@ soon as it is computed (written to a temporary name, then renamed: a kill leaves
 whole file or none). The file name and the stored key hash everything the part depends on:
 the tool version, the procedures (names, classes, attributes), the :class:`AuditSettings`
 (grid, free motion, band, ε, g) and the record (id, site, facts, file SHA-256, a digest of
-the acceleration samples as audited, so scaled records differ, and pulse parameters). A
+the acceleration samples as audited, so scaled records differ, of the vertical samples where
+there are some, and pulse parameters). A
 resumed run reuses a part only when the key matches. Pickle is safe here: these are the
 tool's own files, in the run's output directory.
 """
@@ -52,6 +53,8 @@ def record_key(entry) -> str:
             "component": entry.component, "missing_reason": entry.missing_reason}
     if motion is not None:
         item.update(sha256=motion.sha256, samples=motion_digest(motion), pulse=repr(motion.pulse))
+        if motion.vertical is not None:
+            item["vertical"] = hashlib.sha256(motion.vertical.tobytes()).hexdigest()
     return _sha(json.dumps(item, sort_keys=True, default=repr))
 
 
