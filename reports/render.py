@@ -86,11 +86,13 @@ def _bottom_line(procedure: dict, line: dict, names: dict, band: float) -> dict:
 def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
     """The guidelines' estimates for one block: lines to draw and words for the caption."""
     lines, words = [], []
+    first = {}  # each procedure's row, in one pass over the block's few rows
+    for row in match.to_dict("records"):
+        first.setdefault(row["procedure"], row)
     for colour, procedure in zip(PROCEDURE_COLOURS, procedures):
-        rows = match[match["procedure"] == procedure["name"]]
-        if rows.empty:
+        row = first.get(procedure["name"])
+        if row is None:
             continue
-        row = rows.iloc[0]
         words.append(f"{procedure['title']}: {plots.describe_guideline(row)} ({row['verdict']})")
         if row["approx_outcome"] == "converged":
             lines.append((procedure["title"],

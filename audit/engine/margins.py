@@ -31,6 +31,7 @@ import pandas as pd
 
 from audit import G
 from audit.engine.blocks import BlockList
+from audit.engine.csv_text import csv_bytes
 from audit.engine.fragility import fit_lognormal, overturning_pattern, stripe_levels, \
     stripe_outcomes
 from audit.engine.partial import PartialStore
@@ -461,14 +462,13 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
     """The files of a design-level audit, as bytes (columns in ``columns.json``)."""
     from audit.engine.results import json_ready
     from audit.engine.schemas import column_guide
-    files = {"stripes.csv": run.stripes.to_csv(index=False, float_format="%.8g").encode(),
-             "fragility.csv": run.fragility.to_csv(index=False, float_format="%.6g").encode(),
-             "capacity.csv": run.capacity.to_csv(index=False, float_format="%.6g").encode()}
+    files = {"stripes.csv": csv_bytes(run.stripes, "%.8g"),
+             "fragility.csv": csv_bytes(run.fragility, "%.6g"),
+             "capacity.csv": csv_bytes(run.capacity, "%.6g")}
     if run.required_alpha is not None:
-        files["required_alpha.csv"] = run.required_alpha.to_csv(index=False,
-                                                                float_format="%.4g").encode()
+        files["required_alpha.csv"] = csv_bytes(run.required_alpha, "%.4g")
     if run.scan is not None:
-        files["scan.csv"] = run.scan.to_csv(index=False, float_format="%.8g").encode()
+        files["scan.csv"] = csv_bytes(run.scan, "%.8g")
     guide = {name: columns for name, columns in column_guide().items() if name in files}
     return {**files,
             "summary.json": json.dumps(json_ready(run.summary), indent=1,

@@ -18,6 +18,7 @@ import pandas as pd
 
 from audit.errors import InputError
 from audit.files import write_files_atomically
+from audit.engine.csv_text import csv_bytes
 from audit.engine.schemas import BOOLEAN_COLUMNS, RESULT_COLUMNS, column_guide
 from audit.engine.audit_run import AuditRun
 
@@ -63,18 +64,17 @@ def _with_booleans(frame):
 def run_files(run: AuditRun) -> dict[str, bytes]:
     """The data files of a run, as bytes (``columns.json`` describes every column)."""
     return {
-        RESULTS_CSV: _with_booleans(run.results).to_csv(index=False, float_format="%.10g").encode(),
-        ESTIMATES_ONLY_CSV: _with_booleans(run.estimates_only).to_csv(
-            index=False, float_format="%.10g").encode(),
+        RESULTS_CSV: csv_bytes(_with_booleans(run.results), "%.10g"),
+        ESTIMATES_ONLY_CSV: csv_bytes(_with_booleans(run.estimates_only), "%.10g"),
         SUMMARY_JSON: json.dumps(json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
-        SPECTRA_CSV: run.spectra.to_csv(index=False, float_format="%.8g").encode(),
-        HISTORIES_CSV: run.histories.to_csv(index=False, float_format="%.7g").encode(),
-        ROCKING_CSV: run.rocking.to_csv(index=False, float_format="%.10g").encode(),
-        CHECKS_CSV: run.checks.to_csv(index=False, float_format="%.10g").encode(),
-        SUITE_CSV: run.suite.to_csv(index=False, float_format="%.6g").encode(),
+        SPECTRA_CSV: csv_bytes(run.spectra, "%.8g"),
+        HISTORIES_CSV: csv_bytes(run.histories, "%.7g"),
+        ROCKING_CSV: csv_bytes(run.rocking, "%.10g"),
+        CHECKS_CSV: csv_bytes(run.checks, "%.10g"),
+        SUITE_CSV: csv_bytes(run.suite, "%.6g"),
         CLAIMS_CSV: run.claims.to_csv(index=False).encode(),
-        DESIGN_SPECTRA_CSV: run.design_spectra.to_csv(index=False, float_format="%.8g").encode(),
-        MECHANICS_CSV: run.mechanics.to_csv(index=False, float_format="%.7g").encode(),
+        DESIGN_SPECTRA_CSV: csv_bytes(run.design_spectra, "%.8g"),
+        MECHANICS_CSV: csv_bytes(run.mechanics, "%.7g"),
         COLUMNS_JSON: json.dumps(column_guide(), indent=1, ensure_ascii=False).encode(),
     }
 

@@ -1,0 +1,52 @@
+"""CSV text of the output tables, the bytes pandas' ``to_csv(index=False, float_format=...)``
+writes, about three times faster.
+
+pandas formats every cell through its generic formatter (a NaN test and a Python call per
+value), which took half a second of a seed-suite audit; here each column is turned into its
+texts in one list comprehension and the rows joined once. A test checks byte equality with
+pandas on every kind of cell the tables hold.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+
+_QUOTE_IF = (",", '"', "\n", "\r")
+
+
+def _cell(value, float_format: str) -> str:
+    """One cell of an object column as pandas writes it."""
+    kind = type(value)
+    if value is None or (kind is float and value != value):
+        return ""
+    if kind is str:
+        if any(mark in value for mark in _QUOTE_IF):
+            return '"' + value.replace('"', '""') + '"'
+        return value
+    if kind is float:
+        return float_format % value
+    return str(value)
+
+
+def _column(values, float_format: str) -> list[str]:
+    kind = values.dtype.kind
+    if kind == "f":
+        return ["" if x != x else float_format % x for x in values.tolist()]
+    if kind in "iu":
+        return list(map(str, values.tolist()))
+    if kind == "b":
+        return ["True" if x else "False" for x in values.tolist()]
+    return [_cell(x, float_format) for x in values.tolist()]
+
+
+def csv_bytes(frame: pd.DataFrame, float_format: str) -> bytes:
+    """``frame`` as CSV (header, no index, floats by ``float_format`` such as ``"%.10g"``,
+    empty cells for NaN and None, fields quoted only where they hold a comma, quote or line
+    break), UTF-8."""
+    columns = [_column(frame[name].to_numpy(), float_format) for name in frame.columns]
+    header = ",".join(_cell(str(name), float_format) for name in frame.columns)
+    rows = "".join(",".join(row) + "\n" for row in zip(*columns))
+    return (header + "\n" + rows).encode()
+
+
+__all__ = ["csv_bytes"]
