@@ -158,12 +158,14 @@ def test_list_shows_the_search_metadata_and_the_missing_file(peer_download, caps
 
 
 def test_folder_without_search_results_reads_its_files_unscaled(peer_download, records_dir):
+    from audit import G
     (peer_download / "_SearchResults.csv").unlink()
-    entry = load_records(peer_download).get("RSN879_LANDERS_LCN260")
-    np.testing.assert_allclose(entry.motion.acceleration / _at2_g(records_dir / "raw" / LANDERS[0]),
-                               entry.motion.acceleration[0] / _at2_g(records_dir / "raw" /
-                                                                     LANDERS[0])[0])
-    assert "scale_factor" not in entry.metadata
+    suite = load_records(peer_download)
+    assert "RSN879_LANDERS_LCN-UP" in [entry.id for entry in suite]  # every file, as before
+    entry = suite.get("RSN879_LANDERS_LCN260")
+    np.testing.assert_allclose(entry.motion.acceleration,
+                               G * _at2_g(records_dir / "raw" / LANDERS[0]), rtol=1e-12)
+    assert entry.metadata == {}
 
 
 @pytest.mark.parametrize("header, scale, field", [
