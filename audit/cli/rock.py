@@ -73,7 +73,7 @@ def run(args) -> int:
         block = (RigidBlock(args.p, alpha, r) if args.p is not None
                  else RigidBlock.from_size(args.size, alpha, r))
     motion = options.motion(args)
-    options.check_cost(args, [motion], args.duration, blocks=1)
+    options.check_cost(args, [motion], args.duration, blocks=1, free_motion_option="--duration")
     response = simulate(block, motion, free_motion_s=args.duration)
     from audit.physics.reactions import rocking_validity
     friction, jumps = rocking_validity(response, motion)
