@@ -87,7 +87,7 @@ def _search_results(folder, rows, header=HEADER):
              ",,,,", " -- Summary of PEER Ground Motion Database Search Criteria --,,,,",
              "Magnitude Min:,6.5,,,", ",,,,", " -- Summary of Metadata of Selected Records --,,,,",
              header, *rows, ",,,,,,,,,,,,,,,,,,,,",
-             " These records were obtained from the NGA-West2 On-Line Ground-Motion Database Tool,,,",
+             " These records were obtained from the NGA-West2 On-Line Ground-Motion Database,,,",
              " These records are UNSCALED, AS RECORDED,,,"]
     (folder / "_SearchResults.csv").write_text("\n".join(lines) + "\n")
 
