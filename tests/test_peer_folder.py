@@ -69,3 +69,115 @@ def test_list_says_which_files_to_download(capsys, monkeypatch):
         facts = SEED_CATALOGUE[record]
         assert f"RSN {facts.rsn}" in out and facts.peer_file in out
     assert "shared" not in out and "SPEC" not in out
+
+
+# --- a PEER download folder: the .AT2 files and the _SearchResults.csv beside them -------------
+
+LANDERS = ("RSN879_LANDERS_LCN260.AT2", "RSN879_LANDERS_LCN345.AT2")
+HEADER = ("Result ID, Spectral Ordinate, Record Sequence Number, Mean Squared Error, Scale Factor,"
+          " Tp-Pulse Period (sec), Earthquake Name, Year, Station Name, Magnitude, Mechanism,"
+          " Rjb (km), Rrup (km), Vs30 (m/sec), Lowest Useable Frequency (Hz),"
+          " Horizontal-1 Acc. Filename, Horizontal-2 Acc. Filename, Vertical Acc. Filename,,,")
+
+
+def _search_results(folder, rows, header=HEADER):
+    """A _SearchResults.csv in PEER's layout: the search criteria, the records table (leading
+    spaces, names in doubled quotes, trailing empty columns), a blank row, then notes."""
+    lines = [" PEER Ground Motion Database, Time Series Search Report -- NGA-West2,,,,",
+             ",,,,", " -- Summary of PEER Ground Motion Database Search Criteria --,,,,",
+             "Magnitude Min:,6.5,,,", ",,,,", " -- Summary of Metadata of Selected Records --,,,,",
+             header, *rows, ",,,,,,,,,,,,,,,,,,,,",
+             " These records were obtained from the NGA-West2 On-Line Ground-Motion Database,,,",
+             " These records are UNSCALED, AS RECORDED,,,"]
+    (folder / "_SearchResults.csv").write_text("\n".join(lines) + "\n")
+
+
+def _row(number, rsn, scale, event, station, files):
+    return (f"{number}, SRSS,{rsn},0.1,{scale}, -,\" \"\"{event}\"\"\",1992,\" \"\"{station}\"\"\","
+            f"7.28, strike slip,2.19,2.19,1369,0.1, {files[0]}, {files[1]} , {files[2]}  ,,,")
+
+
+def _at2_g(path):
+    """Accelerations of an AT2 file in g, read apart from the project's reader: the values
+    after the four header lines."""
+    return np.array(" ".join(path.read_text().splitlines()[4:]).split(), dtype=float)
+
+
+@pytest.fixture
+def peer_download(records_dir, tmp_path, monkeypatch):
+    """Two real Landers components, a vertical file, a Kobe record whose first component was
+    not downloaded, and the search results listing them (Landers × 1.5, Kobe × 2)."""
+    monkeypatch.delenv("ROCKING_AUDIT_RECORDS", raising=False)
+    raw = records_dir / "raw"
+    for name in LANDERS:
+        (tmp_path / name).symlink_to(raw / name)
+    (tmp_path / "RSN879_LANDERS_LCN-UP.AT2").symlink_to(raw / LANDERS[0])
+    (tmp_path / "RSN1120_KOBE_TAK090.AT2").symlink_to(raw / "RSN1120_KOBE_TAK090.AT2")
+    _search_results(tmp_path, [
+        _row(1, 879, 1.5, "Landers", "Lucerne", (*LANDERS, "RSN879_LANDERS_LCN-UP.AT2")),
+        _row(2, 1120, 2, "Kobe_ Japan", "Takatori ",
+             ("RSN1120_KOBE_TAK000.AT2", "RSN1120_KOBE_TAK090.AT2", "---"))])
+    return tmp_path
+
+
+def test_peer_download_folder_scales_the_listed_horizontal_components(peer_download,
+                                                                      records_dir):
+    from audit import G
+    suite = load_records(peer_download)
+    assert [entry.id for entry in suite] == ["RSN879_LANDERS_LCN260", "RSN879_LANDERS_LCN345",
+                                             "RSN1120_KOBE_TAK000", "RSN1120_KOBE_TAK090"]
+    for name in LANDERS:  # the vertical file is not a record
+        entry = suite.get(name.removesuffix(".AT2"))
+        np.testing.assert_allclose(entry.motion.acceleration,
+                                   1.5 * G * _at2_g(records_dir / "raw" / name), rtol=1e-12)
+        assert "× 1.5" in entry.component and "scale factor" in entry.component
+        assert entry.metadata == {
+            "rsn": 879, "event": "Landers", "station": "Lucerne", "mechanism": "strike slip",
+            "year": 1992, "magnitude": 7.28, "rjb_km": 2.19, "rrup_km": 2.19, "vs30_m_s": 1369.0,
+            "scale_factor": 1.5, "peer_file": name,
+            "search_results": str(peer_download / "_SearchResults.csv"),
+            "vertical_file": "RSN879_LANDERS_LCN-UP.AT2"}
+    kobe = suite.get("RSN1120_KOBE_TAK090")
+    assert kobe.metadata["station"] == "Takatori" and "vertical_file" not in kobe.metadata
+    np.testing.assert_allclose(kobe.motion.acceleration,
+                               2 * G * _at2_g(records_dir / "raw" / "RSN1120_KOBE_TAK090.AT2"))
+    missing = suite.get("RSN1120_KOBE_TAK000")
+    assert missing.missing and missing.metadata["rsn"] == 1120
+    assert missing.missing_reason == ("RSN1120_KOBE_TAK000.AT2 is listed in _SearchResults.csv "
+                                      "but not in the folder")
+
+
+def test_list_shows_the_search_metadata_and_the_missing_file(peer_download, capsys):
+    assert main(["list", "--records", str(peer_download)]) == 0
+    out = capsys.readouterr().out
+    assert "PEER NGA-West2 search results" in out and "1 listed file(s) not in the folder" in out
+    assert ("Landers 1992, Lucerne: RSN 879, M 7.28, strike slip, Rjb 2.2 km, Rrup 2.2 km, "
+            "Vs30 1369 m/s, scaled × 1.5") in out
+    assert "RSN1120_KOBE_TAK000: MISSING: RSN1120_KOBE_TAK000.AT2 is listed" in out
+    assert "LCN-UP" not in out.split("Records (")[1].split("\n", 1)[1]
+
+
+def test_folder_without_search_results_reads_its_files_unscaled(peer_download, records_dir):
+    from audit import G
+    (peer_download / "_SearchResults.csv").unlink()
+    suite = load_records(peer_download)
+    assert "RSN879_LANDERS_LCN-UP" in [entry.id for entry in suite]  # every file, as before
+    entry = suite.get("RSN879_LANDERS_LCN260")
+    np.testing.assert_allclose(entry.motion.acceleration,
+                               G * _at2_g(records_dir / "raw" / LANDERS[0]), rtol=1e-12)
+    assert entry.metadata == {}
+
+
+@pytest.mark.parametrize("header, scale, field", [
+    ("Record ID, Record Sequence Number, Scale Factor", "1.5", "Result ID"),
+    (HEADER.replace(" Scale Factor,", " Factor,"), "1.5", "Scale Factor"),
+    (HEADER, "one and a half", "Scale Factor"),
+    (HEADER, "-1", "Scale Factor"),
+])
+def test_bad_search_results_stop_with_one_line_naming_the_file_and_field(
+        peer_download, capsys, header, scale, field):
+    _search_results(peer_download, [_row(1, 879, scale, "Landers", "Lucerne",
+                                         (*LANDERS, "---"))], header)
+    assert main(["list", "--records", str(peer_download)]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and "_SearchResults.csv" in err[0] and field in err[0]

@@ -47,4 +47,23 @@ def run(args) -> int:
         site = (f" [FEMA site {entry.site.get('site_class') or '?'}: S_XS {entry.site['sxs_g']:g} g, "
                 f"S_X1 {entry.site['sx1_g']:g} g]" if entry.site.get("sxs_g") else "")
         print(f"  {entry.id:<20} {entry.name}: {state}{site}")
+        facts = seismology(entry.metadata)
+        if facts:
+            print(f"  {'':<20} {facts}")
     return 0
+
+
+#: Metadata key → how ``list`` shows it (P695 records name the mechanism ``fault_type``).
+FACT_FORMATS = (("rsn", "RSN {}"), ("magnitude", "M {:g}"), ("mechanism", "{}"),
+                ("fault_type", "{}"), ("rjb_km", "Rjb {:.1f} km"), ("rrup_km", "Rrup {:.1f} km"),
+                ("vs30_m_s", "Vs30 {:.0f} m/s"), ("scale_factor", "scaled × {:g}"))
+
+
+def seismology(metadata: dict) -> str:
+    """The event, station, magnitude, distances [km], Vs30 [m/s] and scale factor a record's
+    metadata holds, on one line (empty where it holds none), e.g. "Landers 1992, Joshua Tree:
+    RSN 864, M 7.28, strike slip, Rjb 11.0 km, Rrup 11.0 km, Vs30 379 m/s"."""
+    event = " ".join(str(metadata[key]) for key in ("event", "year") if key in metadata)
+    where = ", ".join(text for text in (event, metadata.get("station", "")) if text)
+    facts = ", ".join(form.format(metadata[key]) for key, form in FACT_FORMATS if key in metadata)
+    return ": ".join(text for text in (where, facts) if text)

@@ -15,6 +15,8 @@ from audit.files import write_files_atomically
 
 DEFAULT_OUT = "audit-out/margins"
 DEFAULT_IM = "sa:1.0"
+#: Block sizes 2π/p of the margins grid: START:STOP:STEP [s].
+DEFAULT_MARGINS_SIZES = "0.5:8:0.25"
 
 
 def add_parser(sub):
@@ -37,7 +39,7 @@ def add_parser(sub):
                         "0.2–5 × the site's design intensity (or the suite's median)")
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
-    p.add_argument("--sizes", default="0.5:8:0.25", metavar="START:STOP:STEP",
+    p.add_argument("--sizes", default=DEFAULT_MARGINS_SIZES, metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s]")
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 design site S_XS,S_X1 [g] of every record (the records' own "
@@ -88,7 +90,11 @@ def run(args) -> int:
     grid_blocks = sizes.size * alphas.size + len(blocks)
     # the stripes, then the required-α grid (20 α per size) and its bisections
     options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
-                       blocks=stripes * grid_blocks + sizes.size * (20 + 8))
+                       blocks=stripes * grid_blocks + sizes.size * (20 + 8),
+                       settings=(("--stripes", stripes, DEFAULT_STRIPES),
+                                 *options.grid_settings(sizes.size, alphas.size,
+                                                        DEFAULT_MARGINS_SIZES),
+                                 ("--block", len(blocks), 0)))
     start = time.perf_counter()
     progress = Progress(len(suite), "record")
     progress.stage(f"exact fragility of {grid_blocks} blocks on {len(suite)} records × "

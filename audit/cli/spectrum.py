@@ -5,6 +5,10 @@ from __future__ import annotations
 from audit.cli import options
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, alpha_text, sizes_text
 
+#: Defaults of the response spectra: damping ratios [%] and oscillator periods [s].
+DEFAULT_DAMPING_PCT = "5,10,15"
+DEFAULT_PERIODS = "0.02:10:0.02"
+
 
 def add_parser(sub):
     p = sub.add_parser("spectrum", help="rocking spectra (default) or oscillator response spectra")
@@ -14,9 +18,9 @@ def add_parser(sub):
                    help="slendernesses [degrees]")
     p.add_argument("--sizes", default=sizes_text(), metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s] (rocking)")
-    p.add_argument("--damping", default="5,10,15", metavar="PCT,...",
+    p.add_argument("--damping", default=DEFAULT_DAMPING_PCT, metavar="PCT,...",
                    help="damping ratios [%%] (response)")
-    p.add_argument("--periods", default="0.02:10:0.02", metavar="START:STOP:STEP",
+    p.add_argument("--periods", default=DEFAULT_PERIODS, metavar="START:STOP:STEP",
                    help="oscillator periods [s] (response)")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, metavar="S",
                    help=f"free motion after the record [s] (default: "
@@ -41,7 +45,11 @@ def run(args) -> int:
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)
         motion = options.motion(args)
         options.check_cost(args, [motion], args.free_motion,
-                           oscillators=periods.size * damping.size)
+                           oscillators=periods.size * damping.size, settings=(
+                               ("--periods", periods.size,
+                                options.values_in(DEFAULT_PERIODS, "--periods")),
+                               ("--damping", damping.size,
+                                options.values_in(DEFAULT_DAMPING_PCT, "--damping"))))
         from audit.physics.oscillator import response_spectra
         frame = response_spectra(motion, periods, damping, args.free_motion).to_frame()
         from reports.figures import draw_response_spectra as draw
@@ -50,7 +58,8 @@ def run(args) -> int:
         restitution = options.restitution(args)
         sizes = options.sizes(args.sizes)
         motion = options.vertical_motion(options.motion(args), args.vertical)
-        options.check_cost(args, [motion], args.free_motion, blocks=sizes.size * alphas.size)
+        options.check_cost(args, [motion], args.free_motion, blocks=sizes.size * alphas.size,
+                           settings=options.grid_settings(sizes.size, alphas.size))
         from audit.physics.rocking import rocking_spectrum
         frame = rocking_spectrum(motion, sizes, alphas, restitution, free_motion_s=args.free_motion,
                                  jobs=args.jobs, vertical=args.vertical).to_frame()

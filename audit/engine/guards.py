@@ -6,7 +6,9 @@ sample for every period and damping ratio) and divides by throughputs measured o
 machine, kept low so the estimate is an upper bound in practice. Above
 :data:`WARN_SECONDS` a command prints one line with the estimate and proceeds; above
 :data:`REFUSE_SECONDS` or :data:`REFUSE_MEMORY_BYTES` it stops with an InputError unless
-``--force`` is given. Light: no scientific import.
+``--force`` is given, naming what makes the work large: of the settings the work is
+proportional to (the free motion, the longest record, the number of records, the command's grids),
+the one furthest beyond its usual size. Light: no scientific import.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import sys
 from dataclasses import dataclass
 
 from audit.errors import InputError
+from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 
 #: Rocking-kernel samples (one block × one sample) per second and thread, a low measured figure.
 ROCKING_SAMPLES_PER_S = 1.0e7
@@ -30,6 +33,37 @@ WARN_SECONDS = 60.0
 REFUSE_SECONDS = 900.0
 #: Estimated memory above which a command refuses to start without ``--force`` [byte].
 REFUSE_MEMORY_BYTES = 2.0e9
+#: Records of a usual suite: the largest built-in one (FEMA P695 near-field, 56 components).
+USUAL_RECORDS = 56
+#: Samples of a usual record: the longest of the FEMA P695 sets (90–100 s).
+USUAL_RECORD_SAMPLES = 18_000
+
+
+@dataclass(frozen=True)
+class Setting:
+    """An option of a command that the work is proportional to.
+
+    Attributes
+    ----------
+    option : str
+        The option, e.g. ``"--sizes"``.
+    count : int
+        Values it gives (sizes, slendernesses, stripes, periods, ...).
+    default : int
+        Values it gives by default (0 where it has none: one value counts as usual).
+    """
+
+    option: str
+    count: int
+    default: int
+
+
+@dataclass(frozen=True)
+class Cause:
+    """One factor of the work and how many times its usual size it is [-]."""
+
+    ratio: float
+    text: str
 
 
 @dataclass(frozen=True)
@@ -44,11 +78,17 @@ class Estimate:
         Expected peak memory of the data [byte].
     work : str
         What is being computed, in words (e.g. "453 blocks × 2 records × 14,000 samples").
+    cause : str
+        The factor of the time furthest beyond its usual size, with what to do about it.
+    memory_cause : str
+        The same for the memory (the longest record, or its free motion where it is stored).
     """
 
     seconds: float
     memory_bytes: float
     work: str
+    cause: str = ""
+    memory_cause: str = ""
 
 
 def samples_with_tail(motion, free_motion_s: float) -> int:
@@ -57,7 +97,8 @@ def samples_with_tail(motion, free_motion_s: float) -> int:
 
 
 def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0,
-             jobs: int = 1) -> Estimate:
+             jobs: int = 1, settings: tuple[Setting, ...] = (),
+             free_motion_option: str = "--free-motion") -> Estimate:
     """Cost of ``blocks`` rocking runs and ``oscillators`` (period × damping) runs per motion.
 
     Parameters
@@ -71,6 +112,10 @@ def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 
         Oscillators (period × damping ratio) per motion.
     jobs : int
         Threads sharing the rocking runs.
+    settings : tuple of Setting
+        The command's options that ``blocks`` and ``oscillators`` are proportional to.
+    free_motion_option : str
+        The option that sets ``free_motion_s`` (``--duration`` for ``rock``).
     """
     motions = list(motions)
     samples = [samples_with_tail(m, free_motion_s) for m in motions]
@@ -82,7 +127,34 @@ def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 
     parts += [f"{oscillators:,} oscillators"] if oscillators else []
     work = (f"{' and '.join(parts)} × {len(samples)} record(s) × "
             f"up to {max(samples, default=0):,} samples")
-    return Estimate(seconds, max(stored, default=0) * BYTES_PER_SAMPLE, work)
+    if not motions:
+        return Estimate(seconds, 0.0, work)
+    free_motion = _free_motion_cause(motions, samples, free_motion_s, free_motion_option)
+    record = _record_cause(max(motions, key=lambda m: m.acceleration.size))
+    causes = [free_motion, record,
+              Cause(len(motions) / USUAL_RECORDS,
+                    f"the {len(motions):,} records of the suite (--records): audit fewer"),
+              *(Cause(s.count / max(s.default, 1),
+                      f"{s.option}, {s.count:,} values ({s.default:,} by default): give fewer")
+                for s in settings)]
+    memory = max([free_motion, record] if oscillators else [record], key=lambda c: c.ratio)
+    return Estimate(seconds, max(stored) * BYTES_PER_SAMPLE, work,
+                    max(causes, key=lambda c: c.ratio).text, memory.text)
+
+
+def _free_motion_cause(motions, samples, free_motion_s: float, option: str) -> Cause:
+    """The free motion, as the factor by which it multiplies the samples beyond those of the
+    default free motion (or none, where it is shorter)."""
+    usual = sum(samples_with_tail(m, min(free_motion_s, DEFAULT_FREE_MOTION_S)) for m in motions)
+    return Cause(sum(samples) / usual,
+                 f"{option} {free_motion_s:g} s (free motion after each record): shorten it")
+
+
+def _record_cause(motion) -> Cause:
+    """The longest record, against the usual length."""
+    return Cause(motion.acceleration.size / USUAL_RECORD_SAMPLES,
+                 f"record {motion.id}, {motion.duration:g} s long "
+                 f"({motion.acceleration.size:,} samples): shorten it or leave it out")
 
 
 def check(cost: Estimate, force: bool, out=None) -> None:
@@ -91,11 +163,12 @@ def check(cost: Estimate, force: bool, out=None) -> None:
     too_long = cost.seconds > REFUSE_SECONDS
     too_big = cost.memory_bytes > REFUSE_MEMORY_BYTES
     if (too_long or too_big) and not force:
-        reason = (f"about {_duration(cost.seconds)}" if too_long
-                  else f"about {cost.memory_bytes / 1e9:.1f} GB of memory")
+        reason, cause = ((f"about {_duration(cost.seconds)}", cost.cause) if too_long
+                         else (f"about {cost.memory_bytes / 1e9:.1f} GB of memory",
+                               cost.memory_cause))
         raise InputError(f"work: {cost.work} would take {reason}, beyond the limit of "
-                         f"{_duration(REFUSE_SECONDS)} / {REFUSE_MEMORY_BYTES / 1e9:g} GB; "
-                         f"reduce it (coarser --sizes, fewer records) or add --force")
+                         f"{_duration(REFUSE_SECONDS)} / {REFUSE_MEMORY_BYTES / 1e9:g} GB, "
+                         f"mostly because of {cause}; or add --force")
     if cost.seconds > WARN_SECONDS:
         print(f"warning: {cost.work}: this may take up to {_duration(cost.seconds)}",
               file=out)
