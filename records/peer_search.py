@@ -8,8 +8,9 @@ blank row (the notes and the spectra follow). Header names carry leading spaces 
 files; they are compared here without case and extra spaces.
 
 The ``.AT2`` files are written unscaled: each horizontal component listed becomes one record
-scaled by the listed factor. Vertical components are not audited (a rocking block is excited
-horizontally); their file name is kept in the metadata.
+scaled by the listed factor. Vertical components are not records of their own: each horizontal
+component carries its station's, which the exact solver reads with ``--vertical``; the file
+name is kept in the metadata.
 """
 
 from __future__ import annotations
@@ -165,6 +166,12 @@ def read_search_results(path: str | Path) -> list[SearchRecord]:
     return records
 
 
+def pointing_down(file_name: str) -> bool:
+    """Whether a PEER vertical file counts positive down: its name ends in ``DWN`` (``UP``
+    and ``-V`` files count positive up)."""
+    return Path(file_name).stem.upper().endswith("DWN")
+
+
 def record_id(rsn: int, file_name: str) -> str:
     """Id of a component: its file's stem, as for any ``.AT2`` file of a folder, with
     ``RSN<n>_`` put in front where the stem does not start with it."""
@@ -189,9 +196,16 @@ def _component(record: SearchRecord, number: int, file_name: str, search_results
             entry_id, None, component=component, metadata=metadata,
             missing_reason=f"{file_name} is listed in {search_results.name} but not in the "
                            f"folder")
-    return entry_id, str(file), lambda: RecordEntry(
-        entry_id, read_at2(file, entry_id).scaled(record.scale_factor, component),
-        component=component, metadata=metadata)
+    vertical = files.get((record.vertical_file or "").lower())
+
+    def read():
+        motion = read_at2(file, entry_id)
+        if vertical is not None:  # the station's vertical component, for --vertical
+            motion = motion.with_vertical(read_at2(vertical), down=pointing_down(vertical.name))
+        return RecordEntry(entry_id, motion.scaled(record.scale_factor, component),
+                           component=component, metadata=metadata)
+
+    return entry_id, str(file), read
 
 
 def search_folder(search_results: Path, files: list[Path], read_other,
@@ -215,7 +229,8 @@ def search_folder(search_results: Path, files: list[Path], read_other,
     RecordSuite
         Each horizontal component listed, in the order of the table, scaled by its record's
         factor (missing where its file is not in the folder), then the folder's other
-        ``.AT2`` files. Vertical components are left out.
+        ``.AT2`` files. Vertical components are not records of their own: each horizontal one
+        carries its station's (UP, or DWN with the sign turned), for ``--vertical``.
     """
     records = read_search_results(search_results)
     by_name = {file.name.lower(): file for file in files}
@@ -237,4 +252,4 @@ def search_folder(search_results: Path, files: list[Path], read_other,
     return collect(readers, "; ".join([
         f"the PEER NGA-West2 search results {search_results}: {len(readers) - len(others)} "
         f"horizontal component(s) of {len(records)} record(s), each scaled by its listed scale "
-        f"factor, vertical components not audited", *filter(None, notes)]), skip_bad)
+        f"factor, vertical components carried for --vertical", *filter(None, notes)]), skip_bad)

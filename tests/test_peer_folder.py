@@ -137,8 +137,13 @@ def test_peer_download_folder_scales_the_listed_horizontal_components(peer_downl
             "scale_factor": 1.5, "peer_file": name,
             "search_results": str(peer_download / "_SearchResults.csv"),
             "vertical_file": "RSN879_LANDERS_LCN-UP.AT2"}
+        # the station's vertical file (here a copy of LCN260) rides along, scaled the same
+        np.testing.assert_allclose(entry.motion.vertical,
+                                   1.5 * G * _at2_g(records_dir / "raw" / LANDERS[0]),
+                                   rtol=1e-12)
     kobe = suite.get("RSN1120_KOBE_TAK090")
     assert kobe.metadata["station"] == "Takatori" and "vertical_file" not in kobe.metadata
+    assert kobe.motion.vertical is None
     np.testing.assert_allclose(kobe.motion.acceleration,
                                2 * G * _at2_g(records_dir / "raw" / "RSN1120_KOBE_TAK090.AT2"))
     missing = suite.get("RSN1120_KOBE_TAK000")
@@ -181,3 +186,10 @@ def test_bad_search_results_stop_with_one_line_naming_the_file_and_field(
     assert main(["list", "--records", str(peer_download)]) == 2
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 1 and "_SearchResults.csv" in err[0] and field in err[0]
+
+
+def test_peer_vertical_files_say_which_way_is_positive():
+    from records.peer_search import pointing_down
+    assert pointing_down("RSN77_SFERN_PUL-DWN.AT2") and pointing_down("rsn1_x-dwn.at2")
+    assert not pointing_down("RSN879_LANDERS_LCN-UP.AT2")
+    assert not pointing_down("RSN1063_NORTHR_RRS-V.AT2")
