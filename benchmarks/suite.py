@@ -12,11 +12,14 @@ that a difference of BLAS settings is never measured as a Dask speed-up (the osc
 coefficients are closed-form now; no BLAS call remains on the hot path).
 
     python benchmarks/suite.py                       # FEMA P695 far-field, --site 1.5,0.9
+    python benchmarks/suite.py --enlarge 440 --procedures priestley1978,fema356,ntc2018
     python benchmarks/suite.py --records ../shared/records/seed-suite.toml \\
         --records ../shared/records/extras.toml --repeat 2
 
 The default suite ``p695-far-field`` (44 components) needs the FEMA P695 suites; where the
 records package does not provide it, the benchmark says so and uses the seed and extra records.
+``--enlarge N`` stands in for a database no one ships: every component at several scale factors
+(geometric, 0.5–2) and both polarities, N records in all, each a distinct motion.
 """
 
 from __future__ import annotations
@@ -31,6 +34,8 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+
+import numpy as np
 
 #: The shared records folder: that of $ROCKING_AUDIT_RECORDS, else ../shared/records.
 SHARED = Path(os.environ.get("ROCKING_AUDIT_RECORDS") or Path(__file__).resolve().parents[2]
@@ -68,14 +73,32 @@ def load_suite(sources, site):
     return suite
 
 
-def measure(mode, sources, site, workers):
+def enlarged(suite, size: int):
+    """``size`` records from the suite's components, each at one of ⌈size / (2 × components)⌉
+    scale factors (geometric, 0.5–2) in one of both polarities."""
+    from dataclasses import replace
+
+    from records import RecordSuite
+    per_polarity = -(-size // (2 * len(suite)))
+    factors = np.geomspace(0.5, 2.0, per_polarity) if per_polarity > 1 else np.array([1.0])
+    entries = [replace(entry, id=f"{entry.id}@{sign * factor:+.3f}",
+                       motion=entry.motion.scaled(sign * factor))
+               for factor in factors for sign in (1, -1) for entry in suite]
+    return RecordSuite(tuple(entries[:size]), f"{suite.description}, enlarged to {size} "
+                       f"records ({per_polarity} scale factors × 2 polarities)")
+
+
+def measure(mode, sources, site, workers, size, procedure_names):
     """One timed audit in this process (run as a child): a JSON line on stdout."""
     from audit.engine.record_audit import audit_record
     from audit.engine.settings import AuditSettings
     from audit.engine.suite_run import run_audit
     from procedures import get_procedures
     suite = load_suite(sources, site)
-    procedures = get_procedures("all")
+    if size:
+        suite = enlarged(suite, size)
+    procedures = [procedure for name in procedure_names.split(",")
+                  for procedure in get_procedures(name.strip())]
     warm = AuditSettings(alpha_deg=(15.0,), size_s=(2.0,))
     audit_record(suite.entries[0], procedures, warm)   # compiled solver loaded before timing
     seconds, worker_rss = {}, []
@@ -109,6 +132,7 @@ def measure(mode, sources, site, workers):
     blocks = len(run.rocking)
     print(json.dumps({
         "mode": mode, "suite": suite.description, "records": len(suite), "blocks": blocks,
+        "procedures": [p.name for p in procedures],
         "wall_s": wall, "cluster_start_s": cluster_start, "record_s": seconds,
         "self_maxrss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
         "worker_maxrss_mb": [rss / 1024 for rss in worker_rss],
@@ -118,7 +142,8 @@ def measure(mode, sources, site, workers):
 
 
 def child(mode, args):
-    command = [sys.executable, __file__, "--child", mode, "--workers", str(args.workers)]
+    command = [sys.executable, __file__, "--child", mode, "--workers", str(args.workers),
+               "--enlarge", str(args.enlarge), "--procedures", args.procedures]
     command += [item for source in args.records for item in ("--records", source)]
     command += ["--site", args.site] if args.site else []
     blas = {name: str(args.blas_threads) for name in BLAS_VARIABLES} if args.blas_threads else {}
@@ -138,21 +163,28 @@ def main():
     parser.add_argument("--repeat", type=int, default=1, help="runs of each mode (medians)")
     parser.add_argument("--blas-threads", type=int, default=1,
                         help="BLAS threads of both modes, as Dask workers have (0: leave unset)")
+    parser.add_argument("--enlarge", type=int, default=0, metavar="N",
+                        help="audit N records made of the suite's components scaled and "
+                             "reversed (0: the suite as it is)")
+    parser.add_argument("--procedures", default="all", help="procedures audited ('all' or "
+                                                             "names, comma-separated)")
+    parser.add_argument("--modes", default="local,dask", help="local, dask or both")
     parser.add_argument("--child", choices=("local", "dask"), help=argparse.SUPPRESS)
     args = parser.parse_args()
     args.records = args.records or ["p695-far-field"]
     site = [float(v) for v in args.site.split(",")] if args.site else None
     if args.child:
-        return measure(args.child, args.records, site, args.workers)
+        return measure(args.child, args.records, site, args.workers, args.enlarge,
+                       args.procedures)
 
-    runs = {"local": [], "dask": []}
+    runs = {mode: [] for mode in args.modes.split(",")}
     for _ in range(args.repeat):
         for mode in runs:       # side by side, alternating
             runs[mode].append(child(mode, args))
-    first = runs["local"][0]
+    first = next(iter(runs.values()))[0]
     print(f"suite: {first['suite']}")
     print(f"{first['records']} records (mean length {first['duration_s']:.1f} s), "
-          f"{first['blocks']} exact blocks, every registered procedure, "
+          f"{first['blocks']} exact blocks, {', '.join(first['procedures'])}, "
           f"{args.workers} workers/threads, {args.repeat} run(s) each, medians, "
           f"BLAS threads {args.blas_threads or 'unset'}")
     print(f"{'mode':<6} {'wall s':>8} {'s/record':>9} {'ms/block':>9} {'core-s/rec':>11} "
@@ -166,10 +198,13 @@ def main():
         print(f"{mode:<6} {wall:8.1f} {wall / first['records']:9.2f} "
               f"{1000 * wall / first['blocks']:9.2f} {cost:11.2f} "
               f"{max(i['self_maxrss_mb'] for i in items):10.0f} {workers:>14}")
-    print(f"dask cluster start-up {statistics.median(i['cluster_start_s'] for i in runs['dask']):.1f} s "
-          "(not in the wall time); a record's results pickled: "
-          f"{first['record_result_mb']:.2f} MB")
-    cost = per_record_cost["dask"]      # one record on one single-threaded worker
+    if runs.get("dask"):
+        print(f"dask cluster start-up "
+              f"{statistics.median(i['cluster_start_s'] for i in runs['dask']):.1f} s (not in the "
+              "wall time)")
+    print(f"a record's results pickled: {first['record_result_mb']:.2f} MB")
+    # one record on one single-threaded worker (or one core of the local run)
+    cost = per_record_cost.get("dask", per_record_cost.get("local"))
     print(f"\nprojection, {NGA_WEST2_COMPONENTS} NGA-West2 components at the default grid, "
           f"{cost:.1f} core-s per record (records of ~{first['duration_s']:.0f} s):")
     for workers in (2, 16, 64, 256, 1024):
