@@ -21,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, ClassVar
 
+import numba
 import numpy as np
 
 from audit import G
@@ -237,16 +238,30 @@ def _cycle_length(recent: np.ndarray) -> np.ndarray:
     return length
 
 
+@numba.njit(cache=True, nogil=True)
 def _may_repeat(recent: np.ndarray) -> np.ndarray:
     """Whether a row of ``recent`` may hold a settled cycle (see :func:`_cycle_length`).
 
     A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
     L before it, for some L, to :data:`CYCLE_TOLERANCE_RATIO` of the whole window's spread
-    (which bounds the spread of the last L iterates).
+    (which bounds the spread of the last L iterates); NaN (before the first iterates) is left
+    out of the spread and repeats nothing. Compiled: it runs at every iteration of every block
+    still iterating, where a dozen small array operations cost more than the map itself.
     """
-    gaps = np.abs(recent[:, -1:] - recent[:, -1 - _CYCLE_SIZES[:, 0]])
-    spread = np.fmax.reduce(recent, axis=1) - np.fmin.reduce(recent, axis=1)  # NaN ignored
-    return np.any(gaps <= CYCLE_TOLERANCE_RATIO * spread[:, None], axis=1)
+    rows, width = recent.shape
+    out = np.zeros(rows, dtype=np.bool_)
+    for row in range(rows):
+        high, low = -np.inf, np.inf
+        for value in recent[row]:
+            if value == value:
+                high, low = max(high, value), min(low, value)
+        bound = CYCLE_TOLERANCE_RATIO * (high - low) if high >= low else np.nan
+        newest = recent[row, width - 1]
+        for length in range(2, MAX_CYCLE_LENGTH + 1):
+            if abs(newest - recent[row, width - 1 - length]) <= bound:
+                out[row] = True
+                break
+    return out
 
 
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,

@@ -12,6 +12,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import signal
 from scipy.optimize import brentq
 
@@ -172,3 +174,22 @@ def test_pacoima_6s_settles_in_a_two_cycle_around_a_repelling_fixed_point(pacoim
     assert estimate.outcome[0] == "not-converged" and np.isnan(estimate.theta[0])
     np.testing.assert_allclose([float(v) for v in estimate.cycle[0].split(";")], cycle, atol=0.005)
     assert "2-cycle" in estimate.detail[0]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.lists(st.one_of(st.floats(0, 1), st.just(float("nan"))), min_size=16,
+                         max_size=16), min_size=1, max_size=6),
+       st.integers(2, 8))
+def test_cycle_precheck_against_array_operations(rows, length):
+    """The compiled pre-check of settled cycles against the same test written with array
+    operations: newest iterate within CYCLE_TOLERANCE_RATIO × window spread of the one L
+    before, NaN left out of the spread."""
+    from procedures.base import CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH, _may_repeat
+    recent = np.array(rows, dtype=float)
+    recent[0, -1] = recent[0, -1 - length]  # one row that repeats exactly (if not NaN)
+    sizes = np.arange(2, MAX_CYCLE_LENGTH + 1)
+    gaps = np.abs(recent[:, -1:] - recent[:, -1 - sizes])
+    spread = np.fmax.reduce(recent, axis=1) - np.fmin.reduce(recent, axis=1)
+    with np.errstate(invalid="ignore"):
+        expected = np.any(gaps <= CYCLE_TOLERANCE_RATIO * spread[:, None], axis=1)
+    assert np.array_equal(_may_repeat(recent), expected)
