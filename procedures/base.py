@@ -239,29 +239,51 @@ def _cycle_length(recent: np.ndarray) -> np.ndarray:
 
 
 @numba.njit(cache=True, nogil=True)
-def _may_repeat(recent: np.ndarray) -> np.ndarray:
-    """Whether a row of ``recent`` may hold a settled cycle (see :func:`_cycle_length`).
+def _may_repeat(window: np.ndarray) -> bool:
+    """Whether the iterates ``window`` (newest last) may hold a settled cycle (see
+    :func:`_cycle_length`).
 
     A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
     L before it, for some L, to :data:`CYCLE_TOLERANCE_RATIO` of the whole window's spread
     (which bounds the spread of the last L iterates); NaN (before the first iterates) is left
-    out of the spread and repeats nothing. Compiled: it runs at every iteration of every block
-    still iterating, where a dozen small array operations cost more than the map itself.
+    out of the spread and repeats nothing.
+    """
+    high, low = -np.inf, np.inf
+    for value in window:
+        if value == value:
+            high, low = max(high, value), min(low, value)
+    bound = CYCLE_TOLERANCE_RATIO * (high - low) if high >= low else np.nan
+    newest = window[-1]
+    for length in range(2, MAX_CYCLE_LENGTH + 1):
+        if abs(newest - window[-1 - length]) <= bound:
+            return True
+    return False
+
+
+@numba.njit(cache=True, nogil=True)
+def _advance(recent: np.ndarray, new: np.ndarray, tolerance: float):
+    """One step of the iteration's bookkeeping for every block still iterating: ``new``
+    overturns (θ/α ≥ 1) or has converged (|Δθ|/α ≤ ``tolerance``), is pushed into the window
+    ``recent`` (1 for an overturning one), and the others may have settled in a cycle.
+
+    Compiled, with :func:`_may_repeat`: it runs at every iteration, where a dozen small array
+    operations cost several times the map itself (a chaotic block iterates 2000 times).
+
+    Returns
+    -------
+    over, done, maybe : numpy.ndarray of bool
     """
     rows, width = recent.shape
-    out = np.zeros(rows, dtype=np.bool_)
+    over = np.zeros(rows, dtype=np.bool_)
+    done = np.zeros(rows, dtype=np.bool_)
+    maybe = np.zeros(rows, dtype=np.bool_)
     for row in range(rows):
-        high, low = -np.inf, np.inf
-        for value in recent[row]:
-            if value == value:
-                high, low = max(high, value), min(low, value)
-        bound = CYCLE_TOLERANCE_RATIO * (high - low) if high >= low else np.nan
-        newest = recent[row, width - 1]
-        for length in range(2, MAX_CYCLE_LENGTH + 1):
-            if abs(newest - recent[row, width - 1 - length]) <= bound:
-                out[row] = True
-                break
-    return out
+        over[row] = new[row] >= 1.0
+        done[row] = not over[row] and abs(new[row] - recent[row, width - 1]) <= tolerance
+        recent[row, :width - 1] = recent[row, 1:].copy()
+        recent[row, width - 1] = 1.0 if over[row] else new[row]
+        maybe[row] = not (over[row] or done[row]) and _may_repeat(recent[row])
+    return over, done, maybe
 
 
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
@@ -307,12 +329,8 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         if not live.size:
             break
         new = _rotation_map(displacement, recent[:, -1], live_p, live_scale)
-        over = new >= 1.0
-        done = ~over & (np.abs(new - recent[:, -1]) <= tolerance)
-        recent[:, :-1] = recent[:, 1:]
-        recent[:, -1] = np.where(over, 1.0, new)
+        over, done, maybe = _advance(recent, np.ascontiguousarray(new, dtype=float), tolerance)
         settled = over | done
-        maybe = ~settled & _may_repeat(recent)
         if maybe.any():
             length = np.zeros(live.size, dtype=int)
             length[maybe] = _cycle_length(recent[maybe])

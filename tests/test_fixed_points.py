@@ -192,4 +192,4 @@ def test_cycle_precheck_against_array_operations(rows, length):
     spread = np.fmax.reduce(recent, axis=1) - np.fmin.reduce(recent, axis=1)
     with np.errstate(invalid="ignore"):
         expected = np.any(gaps <= CYCLE_TOLERANCE_RATIO * spread[:, None], axis=1)
-    assert np.array_equal(_may_repeat(recent), expected)
+    assert [_may_repeat(row) for row in recent] == expected.tolist()

@@ -701,7 +701,7 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
     jobs : int
         Threads sharing the blocks (the kernel releases the GIL).
     reactions : bool
-        Also evaluate the pivot reactions over the response (about 10 % more work).
+        Also evaluate the pivot reactions over the response (about 25 % more work).
     vertical : bool
         Include the motion's vertical component (gravity g + üv), where it has one.
 
