@@ -21,7 +21,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, ClassVar
 
-import numba
 import numpy as np
 
 from audit import G
@@ -238,54 +237,6 @@ def _cycle_length(recent: np.ndarray) -> np.ndarray:
     return length
 
 
-@numba.njit(cache=True, nogil=True)
-def _may_repeat(window: np.ndarray) -> bool:
-    """Whether the iterates ``window`` (newest last) may hold a settled cycle (see
-    :func:`_cycle_length`).
-
-    A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
-    L before it, for some L, to :data:`CYCLE_TOLERANCE_RATIO` of the whole window's spread
-    (which bounds the spread of the last L iterates); NaN (before the first iterates) is left
-    out of the spread and repeats nothing.
-    """
-    high, low = -np.inf, np.inf
-    for value in window:
-        if value == value:
-            high, low = max(high, value), min(low, value)
-    bound = CYCLE_TOLERANCE_RATIO * (high - low) if high >= low else np.nan
-    newest = window[-1]
-    for length in range(2, MAX_CYCLE_LENGTH + 1):
-        if abs(newest - window[-1 - length]) <= bound:
-            return True
-    return False
-
-
-@numba.njit(cache=True, nogil=True)
-def _advance(recent: np.ndarray, new: np.ndarray, tolerance: float):
-    """One step of the iteration's bookkeeping for every block still iterating: ``new``
-    overturns (θ/α ≥ 1) or has converged (|Δθ|/α ≤ ``tolerance``), is pushed into the window
-    ``recent`` (1 for an overturning one), and the others may have settled in a cycle.
-
-    Compiled, with :func:`_may_repeat`: it runs at every iteration, where a dozen small array
-    operations cost several times the map itself (a chaotic block iterates 2000 times).
-
-    Returns
-    -------
-    over, done, maybe : numpy.ndarray of bool
-    """
-    rows, width = recent.shape
-    over = np.zeros(rows, dtype=np.bool_)
-    done = np.zeros(rows, dtype=np.bool_)
-    maybe = np.zeros(rows, dtype=np.bool_)
-    for row in range(rows):
-        over[row] = new[row] >= 1.0
-        done[row] = not over[row] and abs(new[row] - recent[row, width - 1]) <= tolerance
-        recent[row, :width - 1] = recent[row, 1:].copy()
-        recent[row, width - 1] = 1.0 if over[row] else new[row]
-        maybe[row] = not (over[row] or done[row]) and _may_repeat(recent[row])
-    return over, done, maybe
-
-
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
                      g: float = G, initial_ratio: float = INITIAL_ROTATION_RATIO,
                      tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
@@ -313,6 +264,7 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         value or cycle within the cap), and the settled cycle's θ/α ascending
         (``0.5753;0.8854``, empty when there is none).
     """
+    from procedures.iteration_kernels import advance  # compiled: numba loads only here
     p = np.asarray(p, dtype=float)
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
@@ -329,7 +281,8 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         if not live.size:
             break
         new = _rotation_map(displacement, recent[:, -1], live_p, live_scale)
-        over, done, maybe = _advance(recent, np.ascontiguousarray(new, dtype=float), tolerance)
+        over, done, maybe = advance(recent, np.ascontiguousarray(new, dtype=float), tolerance,
+                                    CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH)
         settled = over | done
         if maybe.any():
             length = np.zeros(live.size, dtype=int)

@@ -184,7 +184,8 @@ def test_cycle_precheck_against_array_operations(rows, length):
     """The compiled pre-check of settled cycles against the same test written with array
     operations: newest iterate within CYCLE_TOLERANCE_RATIO × window spread of the one L
     before, NaN left out of the spread."""
-    from procedures.base import CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH, _may_repeat
+    from procedures.base import CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH
+    from procedures.iteration_kernels import may_repeat
     recent = np.array(rows, dtype=float)
     recent[0, -1] = recent[0, -1 - length]  # one row that repeats exactly (if not NaN)
     sizes = np.arange(2, MAX_CYCLE_LENGTH + 1)
@@ -192,4 +193,5 @@ def test_cycle_precheck_against_array_operations(rows, length):
     spread = np.fmax.reduce(recent, axis=1) - np.fmin.reduce(recent, axis=1)
     with np.errstate(invalid="ignore"):
         expected = np.any(gaps <= CYCLE_TOLERANCE_RATIO * spread[:, None], axis=1)
-    assert [_may_repeat(row) for row in recent] == expected.tolist()
+    assert [may_repeat(row, CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH)
+            for row in recent] == expected.tolist()
