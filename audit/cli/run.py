@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import shutil
+import sys
 import time
 from pathlib import Path
 
@@ -98,6 +99,11 @@ def run(args) -> int:
     restitution = str(options.restitution(args))
     sensitivity = parse_sensitivity(args.sensitivity)
     suite = design_site(args, options.suite(args))
+    if args.vertical or "vertical" in sensitivity:
+        with_vertical = sum(e.motion is not None and e.motion.vertical is not None for e in suite)
+        if not with_vertical:
+            print(f"warning: --vertical: none of the {len(suite)} records has a vertical "
+                  "component; the exact response stays horizontal", file=sys.stderr)
     # the fragility flag solves every block twice more (record × (1 ± ε)), each alternative
     # model once more
     options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,

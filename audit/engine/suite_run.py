@@ -47,7 +47,8 @@ def record_summary(entry) -> dict:
         item.update(source=str(source.absolute()) if source and source.is_file()
                     else motion.source, sha256=motion.sha256, dt_s=motion.dt,
                     duration_s=motion.duration, pga_g=motion.pga_g, pgv_m_s=motion.pgv,
-                    npts=int(motion.acceleration.size))
+                    npts=int(motion.acceleration.size),
+                    vertical_component=motion.vertical is not None)
     return item
 
 
