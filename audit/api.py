@@ -13,7 +13,9 @@ command line prints.
 
 from __future__ import annotations
 
+import functools
 import math
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -23,7 +25,7 @@ from audit import G
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_JOBS, DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER)
 from audit.engine.audit_run import AuditRun
-from audit.engine.suite_run import run_audit
+from audit.engine.suite_run import compute_suite, write_suite
 from audit.errors import InputError
 from audit.physics.block import RigidBlock
 from audit.physics.rocking import RockingResponse as _Response
@@ -228,16 +230,28 @@ def design_suite(suite, site=None, site_override: bool = False, scale_to_site: b
 
 
 class AuditResult:
-    """An audit's results as DataFrames, its bottom line, and its files and report.
+    """An audit's files in a folder, its tables as DataFrames (read on first use), its bottom
+    line, and its report.
 
     Attributes
     ----------
-    run : audit.engine.audit_run.AuditRun
-        Everything the audit produced (also ``.spectra``, ``.rocking``, ``.histories``).
+    folder : Path
+        Where the data files are (a scratch folder kept with the result unless ``run`` was
+        given one).
+    summary : dict
+        Everything of ``summary.json``.
     """
 
-    def __init__(self, run: AuditRun):
-        self.run = run
+    def __init__(self, folder, summary: dict, scratch=None):
+        self.folder, self.summary = Path(folder), summary
+        self._scratch = scratch  # a TemporaryDirectory, removed with the result
+
+    @functools.cached_property
+    def run(self) -> AuditRun:
+        """Everything the audit produced (also ``.spectra``, ``.rocking``, ``.histories``),
+        read from its files."""
+        from audit.engine.results import load_run
+        return load_run(self.folder)
 
     results = property(lambda self: self.run.results,
                        doc="One row per procedure × record × α × size (``results.csv``).")
@@ -247,7 +261,6 @@ class AuditResult:
                       doc="Limit-state checks against the exact response (``checks.csv``).")
     claims = property(lambda self: self.run.claims,
                       doc="The reference report's claims, checked (``claims.csv``).")
-    summary = property(lambda self: self.run.summary, doc="Everything of ``summary.json``.")
 
     @property
     def bottom_line(self) -> pd.DataFrame:
@@ -271,31 +284,42 @@ class AuditResult:
         return pd.DataFrame(rows)
 
     def write(self, out_dir) -> Path:
-        """Write the result files and ``report.html`` into ``out_dir`` (atomically)."""
-        from audit.engine.results import save_run
-        from reports import render_report
-        save_run(self.run, out_dir, render_report)
+        """Write the result files and ``report.html`` into ``out_dir`` (atomically, together)."""
+        import shutil
+
+        from audit.engine.results import COLUMNS_JSON, DATA_FILES, REPORT_HTML
+        from audit.files import staged_folder
+        with staged_folder(out_dir) as staging:
+            for name in (*DATA_FILES, COLUMNS_JSON):
+                shutil.copyfile(self.folder / name, staging / name)
+            self.report(staging / REPORT_HTML)
         return Path(out_dir)
 
     def report(self, path) -> Path:
-        """Write only the self-contained HTML report to ``path``."""
+        """Write only the self-contained HTML report to ``path``, drawn from the files as saved
+        (the rows of the records it shows, read in bounded memory)."""
+        from audit.engine.results import load_run
         from audit.files import write_file_atomically
-        from audit.engine.results import parse_run, run_files
         from reports import render_report
-        saved = parse_run(run_files(self.run))  # rendered from exactly what would be saved
-        write_file_atomically(Path(path), render_report(saved).encode("utf-8"))
+        html = render_report(load_run(self.folder, shown=True))
+        write_file_atomically(Path(path), html.encode("utf-8"))
         return Path(path)
 
     def _repr_html_(self) -> str:
         table = self.bottom_line[["title", "records", "blocks", "unsafe_pct",
                                   "uneconomic_pct", "agrees_pct", "median_ratio"]]
         return (f"<p><b>Rocking audit</b> on {self.summary['records_source']}: "
-                f"{len(self.results)} block comparisons.</p>"
+                f"{self.blocks} block comparisons.</p>"
                 + table.to_html(index=False, float_format=lambda v: f"{v:.3g}", na_rep="—"))
 
     def __repr__(self) -> str:
         return (f"AuditResult({', '.join(p['name'] for p in self.summary['procedures'])} on "
-                f"{self.summary['records_source']}: {len(self.results)} block comparisons)")
+                f"{self.summary['records_source']}: {self.blocks} block comparisons)")
+
+    @property
+    def blocks(self) -> int:
+        """Blocks compared with the exact response, every procedure."""
+        return sum(line["blocks"] for line in self.summary["bottom_line"])
 
 
 def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, site=None,
@@ -304,7 +328,7 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
         agree_band: float = DEFAULT_AGREE_BAND, robustness: float = DEFAULT_ROBUSTNESS,
         scheduler: str = DEFAULT_SCHEDULER, detail=(), progress: bool = False,
         partial_dir=None, resume: bool = False, restitution="housner", vertical: bool = False,
-        friction: float | None = None, sensitivity=()) -> AuditResult:
+        friction: float | None = None, sensitivity=(), out_dir=None) -> AuditResult:
     """Audit guideline procedures on a suite of records over a grid of blocks.
 
     Parameters
@@ -346,6 +370,11 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
     sensitivity : sequence of str
         Alternative models (``"restitution=x0.9,x0.8"``, ``"vertical"``): flags verdicts that
         change under one of them.
+    out_dir : str or Path, optional
+        Write the result files and ``report.html`` there (atomically, together), record by
+        record: memory does not grow with the suite beyond a small term per record until the
+        tables are read (``.results``, ``.run``). Default: the data files in a scratch folder
+        kept with the result (``.write(out_dir)`` saves them later).
 
     Returns
     -------
@@ -353,22 +382,35 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
     """
     from records import RecordSuite, load_records
     from audit.engine.progress import Progress
+    from audit.engine.results import REPORT_HTML
+    from audit.files import staged_folder
     suite = records if isinstance(records, RecordSuite) else load_records(records)
     suite = design_suite(suite, site, site_override, scale_to_site, anchor_period_s, ntc_site)
     chosen = _procedures(procedures)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
-        audit_run = run_audit(chosen, suite, alpha_deg, sizes_s, jobs=jobs,
-                              free_motion_s=free_motion_s, progress=bar or progress or None,
-                              agree_band=agree_band, robustness=robustness, scheduler=scheduler,
-                              partial_dir=partial_dir, resume=resume, detail=list(detail),
-                              restitution=restitution, vertical=vertical, friction=friction,
-                              sensitivity=[sensitivity] if isinstance(sensitivity, str)
-                              else sensitivity)
+        computed = compute_suite(chosen, suite, alpha_deg, sizes_s, jobs=jobs,
+                                 free_motion_s=free_motion_s, progress=bar or progress or None,
+                                 agree_band=agree_band, robustness=robustness,
+                                 scheduler=scheduler, partial_dir=partial_dir, resume=resume,
+                                 detail=list(detail), restitution=restitution,
+                                 vertical=vertical, friction=friction,
+                                 sensitivity=[sensitivity] if isinstance(sensitivity, str)
+                                 else sensitivity)
     finally:
         if bar is not None:
             bar.done()
-    return AuditResult(audit_run)
+    stage = progress if isinstance(progress, Progress) else bar
+    if out_dir is None:
+        scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
+        return AuditResult(scratch.name, write_suite(computed, scratch.name, stage), scratch)
+    with staged_folder(out_dir) as staging:  # files appear only when all are written
+        result = AuditResult(staging, write_suite(computed, staging, stage))
+        if stage is not None:
+            stage.stage(f"writing the report to {out_dir}")
+        result.report(staging / REPORT_HTML)
+    result.folder = Path(out_dir)
+    return result
 
 
 class MarginsResult:

@@ -11,6 +11,7 @@ import os
 import shutil
 import tempfile
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 from audit.errors import InputError
@@ -91,13 +92,15 @@ def clean_stale_staging(out_dir: Path) -> None:
             continue
 
 
-def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None:
-    """Write ``files`` (name → content) into ``out_dir``, all or nothing.
+@contextmanager
+def staged_folder(out_dir: str | Path):
+    """A staging folder whose files replace those of ``out_dir`` when the block ends without an
+    error, all or nothing.
 
-    Everything is written into a staging folder next to ``out_dir`` first (named
-    ``.NAME-staging-PID-…``; stale ones of killed runs are removed here); each file is then
-    moved into place with an atomic rename. Files of ``out_dir`` that are not in ``files`` are
-    left alone. An OS error names ``out_dir``, never the staging folder.
+    The folder is made next to ``out_dir`` (named ``.NAME-staging-PID-…``; stale ones of killed
+    runs are removed here) so that each file then moves into place with an atomic rename; it is
+    removed in any case. Files of ``out_dir`` that are not staged are left alone, and so are
+    the staging folder's own folders. An OS error names ``out_dir``, never the staging folder.
     """
     out_dir = check_output_dir(out_dir, "output folder")
     clean_stale_staging(out_dir)
@@ -108,17 +111,26 @@ def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None
     except OSError as exc:
         raise InputError(f"{out_dir}: cannot write: {exc.strerror}") from None
     try:
-        for name, content in files.items():
-            (staging / name).write_bytes(content)
+        yield staging
+        names = sorted(path.name for path in staging.iterdir() if path.is_file())
         out_dir.mkdir(exist_ok=True)
-        for name in files:
+        for name in names:
             if (out_dir / name).is_dir():
                 raise InputError(f"{out_dir / name}: is a folder, cannot be replaced by a file")
+        for name in names:
             os.replace(staging / name, out_dir / name)
     except OSError as exc:
         raise InputError(f"{out_dir}: cannot write: {exc.strerror}") from None
     finally:
         shutil.rmtree(staging, ignore_errors=True)
+
+
+def write_files_atomically(out_dir: str | Path, files: dict[str, bytes]) -> None:
+    """Write ``files`` (name → content) into ``out_dir``, all or nothing
+    (:func:`staged_folder`)."""
+    with staged_folder(out_dir) as staging:
+        for name, content in files.items():
+            (staging / name).write_bytes(content)
 
 
 def write_atomically(files: dict[Path, bytes]) -> None:

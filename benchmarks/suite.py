@@ -1,12 +1,13 @@
 """Suite-scale audit: the local scheduler against a Dask LocalCluster, on one suite of records.
 
 Every registered procedure on every record of the suite over the default grid (α = 10, 15, 20°;
-2π/p = 0.5 … 8 s step 0.05), computed (a) in one process with the solver on ``--workers``
+2π/p = 0.5 … 8 s step 0.05), computed and written (the data files and the report, as
+``python -m audit run`` writes them) (a) in one process with the solver on ``--workers``
 threads and (b) on a Dask LocalCluster of ``--workers`` single-threaded worker processes. Each
 mode runs in a fresh child process, after a warm-up that loads the compiled solver, so its peak
 memory is its own: ``resource.getrusage`` maxrss of the child, and of each Dask worker (asked on
 the worker before the cluster closes). Reports wall time, time per record and per block, the
-size of a record's results, and a projection for the ~21,000 NGA-West2 components.
+size of a record's results and of the run's files, and a projection for the ~21,000 NGA-West2 components.
 Both modes run with one BLAS thread (``--blas-threads``), as Dask's nanny starts its workers, so
 that a difference of BLAS settings is never measured as a Dask speed-up (the oscillator's
 coefficients are closed-form now; no BLAS call remains on the hot path).
@@ -29,6 +30,7 @@ import json
 import os
 import pickle
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -90,9 +92,11 @@ def enlarged(suite, size: int):
 
 def measure(mode, sources, site, workers, size, procedure_names):
     """One timed audit in this process (run as a child): a JSON line on stdout."""
+    import tempfile
+
+    from audit.api import run as run_api
     from audit.engine.record_audit import audit_record
     from audit.engine.settings import AuditSettings
-    from audit.engine.suite_run import run_audit
     from procedures import get_procedures
     suite = load_suite(sources, site)
     if size:
@@ -107,9 +111,11 @@ def measure(mode, sources, site, workers, size, procedure_names):
         seconds[record_id] = float(how.split()[-2])
         print(f"#   [{done}/{total}] {record_id}: {how}", file=sys.stderr, flush=True)
 
+    out_dir = Path(tempfile.mkdtemp(prefix="suite-benchmark-")) / "out"
     start = time.perf_counter()
     if mode == "local":
-        run = run_audit(procedures, suite, jobs=workers, progress=progress)
+        summary = run_api(procedures, suite, jobs=workers, progress=progress,
+                          out_dir=out_dir).summary
         cluster_start = 0.0
     else:
         import logging
@@ -121,22 +127,25 @@ def measure(mode, sources, site, workers, size, procedure_names):
             client.run(audit_record, suite.entries[0], procedures, warm)
             cluster_start = time.perf_counter() - start
             start = time.perf_counter()
-            run = run_audit(procedures, suite, jobs=workers, progress=progress,
-                            scheduler=cluster.scheduler_address)
+            summary = run_api(procedures, suite, jobs=workers, progress=progress,
+                              scheduler=cluster.scheduler_address, out_dir=out_dir).summary
             wall = time.perf_counter() - start
             worker_rss = list(client.run(
                 lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss).values())
     if mode == "local":
         wall = time.perf_counter() - start
     part = audit_record(suite.entries[0], procedures, AuditSettings())
-    blocks = len(run.rocking)
+    blocks = (sum(not item["missing"] for item in summary["records"])
+              * len(summary["grid"]["alpha_deg"]) * len(summary["grid"]["size_s"]))
+    files_mb = sum(path.stat().st_size for path in out_dir.iterdir()) / 2**20
+    shutil.rmtree(out_dir.parent)
     print(json.dumps({
         "mode": mode, "suite": suite.description, "records": len(suite), "blocks": blocks,
         "procedures": [p.name for p in procedures],
         "wall_s": wall, "cluster_start_s": cluster_start, "record_s": seconds,
         "self_maxrss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
         "worker_maxrss_mb": [rss / 1024 for rss in worker_rss],
-        "record_result_mb": len(pickle.dumps(part)) / 2**20,
+        "record_result_mb": len(pickle.dumps(part)) / 2**20, "files_mb": files_mb,
         "duration_s": statistics.mean(e.motion.duration for e in suite),
     }), flush=True)
 
@@ -202,7 +211,8 @@ def main():
         print(f"dask cluster start-up "
               f"{statistics.median(i['cluster_start_s'] for i in runs['dask']):.1f} s (not in the "
               "wall time)")
-    print(f"a record's results pickled: {first['record_result_mb']:.2f} MB")
+    print(f"a record's results pickled: {first['record_result_mb']:.2f} MB; the run's files "
+          f"(CSV, JSON, report): {first['files_mb']:.0f} MB")
     # one record on one single-threaded worker (or one core of the local run)
     cost = per_record_cost.get("dask", per_record_cost.get("local"))
     print(f"\nprojection, {NGA_WEST2_COMPONENTS} NGA-West2 components at the default grid, "
@@ -210,8 +220,9 @@ def main():
     for workers in (2, 16, 64, 256, 1024):
         minutes = NGA_WEST2_COMPONENTS * cost / workers / 60
         print(f"  {workers:5d} Dask workers: {minutes:8.1f} min ({minutes / 60:.2f} h)")
-    print(f"  driver memory to combine every record's results: "
-          f"~{NGA_WEST2_COMPONENTS * first['record_result_mb'] / 1024:.0f} GB")
+    print(f"  disk for every record's stored part while the run goes: "
+          f"~{NGA_WEST2_COMPONENTS * first['record_result_mb'] / 1024:.0f} GB; the driver "
+          "writes the files record by record (see the maxrss column across suite sizes)")
 
 
 if __name__ == "__main__":

@@ -16,19 +16,14 @@ import pandas as pd
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from audit import G
-from audit.engine.ranking import WORST_CLASSES, rank_worst
+from audit.engine.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_key,
+                                  rank_worst)
 from audit.engine.schemas import GUIDE
 from audit.engine.verdicts import (CHECK_VERDICTS, CLAIM_STATUSES, ROTATION_VERDICTS,
                                    UNSAFE_VERDICTS, VERDICTS, meanings, names)
 from reports import plots
 from reports.palette import CHECK_COLOURS, VERDICT_COLOURS
 
-#: Above this many records the suite statistics come first and per-record detail is given only
-#: for the records asked for (``summary["detail"]``) or the :data:`WORST_RECORDS` worst ones.
-LARGE_SUITE = 10
-WORST_RECORDS = 3
-#: Rows per procedure and class in the worst-cases table.
-WORST_ROWS = 5
 #: Colours of the guidelines' estimates in the time histories.
 PROCEDURE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
 
@@ -55,10 +50,6 @@ class _Figures:
     def add(self, figure_id: str, spec: dict) -> dict:
         self.specs[figure_id] = spec
         return {"id": figure_id, "height": spec["layout"]["height"]}
-
-
-def _key(record, alpha, size) -> tuple:
-    return record, round(float(alpha), 6), round(float(size), 6)
 
 
 def _history_id(record, alpha, size) -> str:
@@ -131,24 +122,27 @@ def _history_figure(pending, histories: dict, results: dict, meta, procedures, n
 
 
 def _worst_cases(run, procedures, names, metas) -> list[dict]:
-    """Per procedure and class, the worst blocks whose time history the run simulated."""
-    drawn = {_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
+    """Per procedure and class, the worst blocks whose time history the run simulated (the run
+    holds the rows of the records shown, which include those blocks; the totals are the
+    whole suite's, from the bottom line)."""
+    drawn = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
+    counts = {line["name"]: line["count"] for line in run.summary["bottom_line"]}
     tables = []
     for procedure in procedures:
         rows = run.results[run.results["procedure"] == procedure["name"]]
         for verdict, column, largest, reason in WORST_CLASSES:
             hits = rank_worst(rows[rows["verdict"] == verdict], column, largest)
-            keys = [_key(r, a, s) for r, a, s in
+            keys = [block_key(r, a, s) for r, a, s in
                     zip(hits["record"], hits["alpha_deg"], hits["size_s"])]
             hits = hits[[k in drawn for k in keys]].head(WORST_ROWS)
             tables.append({"procedure": procedure, "reason": reason, "verdict": verdict,
-                           "total": int((rows["verdict"] == verdict).sum()), "rows": [{
+                           "total": counts[procedure["name"]][verdict], "rows": [{
                                "where": _where(row, names), "exact": plots.describe_exact(row),
                                "guideline": plots.describe_guideline(row),
                                "ratio": row["ratio"], "fragile": row["exact_fragile"] is True,
                                "link": _history_id(row["record"], row["alpha_deg"],
                                                    row["size_s"]),
-                               "key": _key(row["record"], row["alpha_deg"], row["size_s"])}
+                               "key": block_key(row["record"], row["alpha_deg"], row["size_s"])}
                                for _, row in hits.iterrows()]})
     return tables
 
@@ -198,7 +192,7 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
         section["histories"] = [
             _history_figure(pending, *by_record, meta=meta, procedures=procedures, names=names)
             for meta in run.summary.get("histories", [])
-            if meta["record"] == rid and _key(rid, meta["alpha_deg"], meta["size_s"]) not in drawn]
+            if meta["record"] == rid and block_key(rid, meta["alpha_deg"], meta["size_s"]) not in drawn]
         sections.append(section)
     return sections
 
@@ -277,9 +271,9 @@ def _suite_section(run, procedures, pending) -> dict | None:
     return {"figures": maps, "sentences": sentences}
 
 
-def _checks_section(run, names, pending) -> dict | None:
-    checks = run.checks
-    if checks is None or checks.empty:
+def _checks_section(run, names, pending, detail_ids) -> dict | None:
+    checks = run.checks[run.checks["record"].isin(detail_ids)]
+    if checks.empty:
         return None
     titles = {p["name"]: p["title"] for p in run.summary["procedures"]}
     classes = list(CHECK_MEANING)
@@ -320,13 +314,10 @@ def _claims_section(run) -> dict | None:
 
 def _detail_records(run, records) -> list[dict]:
     """Records with a per-record section: all of a small suite; of a large one, those asked for
-    (``summary["detail"]``) or the worst ones (most unsafe blocks)."""
+    (``summary["detail"]``) or the worst ones (most unsafe blocks, ``summary["worst_records"]``)."""
     if len(records) <= LARGE_SUITE:
         return records
-    asked = run.summary.get("detail") or []
-    if not asked:
-        unsafe = run.results[run.results["verdict"].isin(UNSAFE_VERDICTS)]
-        asked = list(unsafe["record"].value_counts().index[:WORST_RECORDS])
+    asked = run.summary["detail"] or run.summary["worst_records"]
     return [r for r in records if r["id"] in asked]
 
 
@@ -361,7 +352,7 @@ def render_report(run, generated: datetime | None = None) -> str:
     worst_histories = [_history_figure(pending, *by_record, meta=meta, procedures=procedures,
                                        names=names)
                        for meta in metas
-                       if _key(meta["record"], meta["alpha_deg"], meta["size_s"]) in shown]
+                       if block_key(meta["record"], meta["alpha_deg"], meta["size_s"]) in shown]
     verdict_maps = []
     for procedure in procedures:
         rows = run.results[run.results["procedure"] == procedure["name"]]
@@ -385,7 +376,7 @@ def render_report(run, generated: datetime | None = None) -> str:
         worst_histories=worst_histories, verdict_maps=verdict_maps, sections=sections,
         mechanics=_mechanics(run, pending), statistics=statistics, large=large,
         suite=_suite_section(run, procedures, pending),
-        checks=_checks_section(run, names, pending), claims=_claims_section(run),
+        checks=_checks_section(run, names, pending, detail_ids), claims=_claims_section(run),
         check_colours=CHECK_COLOURS, check_meaning=CHECK_MEANING,
         verdicts=VERDICTS, verdict_meaning=VERDICT_MEANING, verdict_colours=VERDICT_COLOURS,
         unsafe_verdicts=UNSAFE_VERDICTS, records=records, g=G, band_pct=100.0 * band,

@@ -49,7 +49,7 @@ def test_local_run_fills_suite_statistics(local_run):
     assert len(suite) == 3 * len(GRID["alpha_deg"]) * len(GRID["sizes"])  # priestley, fema, ntc
     assert suite.loc[suite["procedure"] == "priestley1978", "records"].eq(3).all()
     fractions = suite.filter(like="frac_").drop(columns="frac_unsafe").sum(axis=1)
-    np.testing.assert_allclose(fractions, 1.0, atol=1e-12)
+    np.testing.assert_allclose(fractions, 1.0, atol=5e-6)  # as saved: 6 significant digits
     assert local_run.summary["scheduler"] == "this process"
     assert local_run.summary["detail"] == ["sylmar_1994"] and local_run.summary["resumed"] == []
 

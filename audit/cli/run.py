@@ -125,14 +125,11 @@ def run(args) -> int:
                          scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
                          resume=args.resume, detail=detail, restitution=restitution,
                          vertical=args.vertical, friction=args.friction,
-                         sensitivity=sensitivity)
+                         sensitivity=sensitivity, out_dir=out_dir)
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)
     finally:
         progress.done()
-    computed = time.perf_counter() - start
-    progress.stage(f"writing the results and the report to {out_dir}")
-    result.write(out_dir)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     total = time.perf_counter() - start
     summary = result.summary
@@ -146,8 +143,12 @@ def run(args) -> int:
     for (procedure, reason), records in grouped.items():
         which = records[0] if len(records) == 1 else f"{len(records)} records"
         print(f"  not audited: {procedure} × {which}: {reason}")
-    counts = result.results["verdict"].value_counts()
-    print("Verdicts: " + ", ".join(f"{v} {n}" for v, n in counts.items()))
+    counts = {}
+    for line in summary["bottom_line"]:
+        for verdict, n in line["count"].items():
+            counts[verdict] = counts.get(verdict, 0) + n
+    print("Verdicts: " + ", ".join(f"{v} {n}" for v, n in
+                                   sorted(counts.items(), key=lambda item: -item[1]) if n))
     print(f"Wrote {out_dir / REPORT_HTML} and results.csv, summary.json "
-          f"({computed:.1f} s computing, {total:.1f} s in all)")
+          f"in {total:.1f} s")
     return 0

@@ -164,6 +164,13 @@ def evaluate_claim(ctx: ClaimContext, claim: dict) -> dict:
     return row
 
 
+def claimed_records(claims: list[dict] | None = None) -> set[str]:
+    """Ids of the records the claims (default: every claim of ``claims.toml``) are about: the
+    only records whose rows :func:`evaluate_claims` reads."""
+    return {record for claim in (load_claims() if claims is None else claims)
+            for record in claim["records"]}
+
+
 def evaluate_claims(run, suite=None, claims: list[dict] | None = None) -> pd.DataFrame:
     """The reproduction checklist of the reference report for an audit run.
 
@@ -188,4 +195,4 @@ def evaluate_claims(run, suite=None, claims: list[dict] | None = None) -> pd.Dat
     return pd.DataFrame(rows, columns=CLAIM_COLUMNS)
 
 
-__all__ = ["evaluate_claims", "load_claims", "grade", "STATUSES", "EVALUATORS"]
+__all__ = ["evaluate_claims", "claimed_records", "load_claims", "grade", "STATUSES", "EVALUATORS"]

@@ -39,14 +39,15 @@ def _column(values, float_format: str) -> list[str]:
     return [_cell(x, float_format) for x in values.tolist()]
 
 
-def csv_bytes(frame: pd.DataFrame, float_format: str) -> bytes:
-    """``frame`` as CSV (header, no index, floats by ``float_format`` such as ``"%.10g"``,
+def csv_bytes(frame: pd.DataFrame, float_format: str, header: bool = True) -> bytes:
+    """``frame`` as CSV (header unless ``header`` is false, no index, floats by ``float_format`` such as ``"%.10g"``,
     empty cells for NaN and None, fields quoted only where they hold a comma, quote or line
     break), UTF-8."""
     columns = [_column(frame[name].to_numpy(), float_format) for name in frame.columns]
-    header = ",".join(_cell(str(name), float_format) for name in frame.columns)
     rows = "".join(",".join(row) + "\n" for row in zip(*columns))
-    return (header + "\n" + rows).encode()
+    if header:
+        rows = ",".join(_cell(str(name), float_format) for name in frame.columns) + "\n" + rows
+    return rows.encode()
 
 
 __all__ = ["csv_bytes"]

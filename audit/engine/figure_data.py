@@ -35,24 +35,28 @@ FIGURE_7_1_RATIOS = (0.1, 0.3, 0.5, 0.7)
 FIGURE_7_1_IMPACTS = (2, 4, 6, 8)
 
 
-def design_spectra(entries) -> pd.DataFrame:
-    """``design-spectra.csv``: UBC 97 once (record empty), FEMA 356 per record with a site."""
+def ubc97_design_spectrum() -> pd.DataFrame:
+    """The rows of ``design-spectra.csv`` common to every record: UBC 97 at 5 %."""
     periods = DESIGN_PERIODS_S
     ubc = UBC97Spectrum()
-    frames = [pd.DataFrame({"record": "", "code": "UBC 97 zone 4, S_D", "damping_pct": 5.0,
-                            "period_s": periods, "sa_g": ubc.acceleration(periods, 0.05),
-                            "sd_m": ubc.displacement(periods, 0.05)})]
-    for entry in entries:
-        site = entry.site or {}
-        if entry.motion is None or not (site.get("sxs_g") and site.get("sx1_g")):
-            continue
-        spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
-        frames += [pd.DataFrame({"record": entry.id, "code": "FEMA 356",
-                                 "damping_pct": 100.0 * d, "period_s": periods,
-                                 "sa_g": spectrum.acceleration(periods, d),
-                                 "sd_m": spectrum.displacement(periods, d)})
-                   for d in FIGURE_5_DAMPING]
-    return pd.concat(frames, ignore_index=True)[DESIGN_SPECTRA_COLUMNS]
+    return pd.DataFrame({"record": "", "code": "UBC 97 zone 4, S_D", "damping_pct": 5.0,
+                         "period_s": periods, "sa_g": ubc.acceleration(periods, 0.05),
+                         "sd_m": ubc.displacement(periods, 0.05)})[DESIGN_SPECTRA_COLUMNS]
+
+
+def site_design_spectra(entry) -> pd.DataFrame:
+    """The rows of ``design-spectra.csv`` of one record: FEMA 356 at each Figure 5 damping where
+    it has a file and a site (none otherwise)."""
+    site = entry.site or {}
+    if entry.motion is None or not (site.get("sxs_g") and site.get("sx1_g")):
+        return pd.DataFrame(columns=DESIGN_SPECTRA_COLUMNS)
+    periods = DESIGN_PERIODS_S
+    spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
+    return pd.concat([pd.DataFrame({"record": entry.id, "code": "FEMA 356",
+                                    "damping_pct": 100.0 * d, "period_s": periods,
+                                    "sa_g": spectrum.acceleration(periods, d),
+                                    "sd_m": spectrum.displacement(periods, d)})
+                      for d in FIGURE_5_DAMPING], ignore_index=True)[DESIGN_SPECTRA_COLUMNS]
 
 
 def mechanics() -> pd.DataFrame:
@@ -94,5 +98,5 @@ def sensitivity_facts() -> dict:
     return {**SENSITIVITY_BLOCK, "beta": float(damping_priestley(coefficient_of_restitution(alpha)))}
 
 
-__all__ = ["design_spectra", "mechanics", "sensitivity_facts", "SENSITIVITY_BLOCK",
-           "SENSITIVITY_PULSES_G"]
+__all__ = ["ubc97_design_spectrum", "site_design_spectra", "mechanics", "sensitivity_facts",
+           "SENSITIVITY_BLOCK", "SENSITIVITY_PULSES_G"]

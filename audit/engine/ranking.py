@@ -1,9 +1,19 @@
 """Which blocks a procedure gets most wrong: the ranking the drawn time histories, the worst-cases
-table and the bottom line's worst case all share (light: pandas only, no solver)."""
+table and the bottom line's worst case all share, and which records the report shows (light:
+pandas only, no solver)."""
 
 from __future__ import annotations
 
 import pandas as pd
+
+from audit.engine.verdicts import UNSAFE_VERDICTS
+
+#: Above this many records the suite statistics come first and per-record detail is given only
+#: for the records asked for (``summary["detail"]``) or the :data:`WORST_RECORDS` worst ones.
+LARGE_SUITE = 10
+WORST_RECORDS = 3
+#: Rows per procedure and class in the worst-cases table.
+WORST_ROWS = 5
 
 #: The worst blocks drawn as time histories, per procedure: (verdict, column ranked, largest
 #: first?, reason). Missed overturnings rank by how small the procedure's rotation is.
@@ -33,4 +43,59 @@ def worst_case(rows: pd.DataFrame):
     return None
 
 
-__all__ = ["WORST_CLASSES", "rank_worst", "worst_case"]
+def block_key(record, alpha_deg, size_s) -> tuple:
+    """A block of a record, as the drawn time histories name it."""
+    return record, round(float(alpha_deg), 6), round(float(size_s), 6)
+
+
+class ShownRecords:
+    """The records whose rows the report reads, folded over the records one part at a time: the
+    records with the most unsafe blocks, and those holding the worst drawn blocks of each
+    procedure and class (the worst-cases table). The report then ranks those records' rows
+    again and finds the same blocks, with no need for the others.
+
+    Parameters
+    ----------
+    procedures : list of str
+        Procedure names.
+    """
+
+    _COLUMNS = ["record", "alpha_deg", "size_s", "ratio", "approx_theta_rad", "exact_fragile"]
+
+    def __init__(self, procedures):
+        self._unsafe = {}  # record → unsafe blocks, in the suite's order
+        self._worst = {(name, verdict): pd.DataFrame(columns=self._COLUMNS)
+                       for name in procedures for verdict, *_ in WORST_CLASSES}
+
+    def add(self, results: pd.DataFrame, metas: list[dict]) -> None:
+        """Fold one record's ``results.csv`` rows and the time histories drawn for it."""
+        for record, n in results.loc[results["verdict"].isin(UNSAFE_VERDICTS),
+                                     "record"].value_counts(sort=False).items():
+            self._unsafe[record] = self._unsafe.get(record, 0) + int(n)
+        drawn = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
+        keys = [block_key(*key) for key in zip(results["record"], results["alpha_deg"],
+                                                results["size_s"])]
+        results = results.loc[pd.Series([key in drawn for key in keys], index=results.index,
+                                        dtype=bool)]
+        for verdict, column, largest, _ in WORST_CLASSES:
+            hits = results[results["verdict"] == verdict]
+            for name in hits["procedure"].unique():
+                kept = (name, verdict)
+                if kept in self._worst:
+                    both = pd.concat([self._worst[kept],
+                                      hits.loc[hits["procedure"] == name, self._COLUMNS]],
+                                     ignore_index=True)
+                    self._worst[kept] = rank_worst(both, column, largest).head(WORST_ROWS)
+
+    def worst_records(self) -> list[str]:
+        """The :data:`WORST_RECORDS` records with the most unsafe blocks (suite order on ties)."""
+        ranked = sorted(self._unsafe.items(), key=lambda item: -item[1])
+        return [record for record, n in ranked[:WORST_RECORDS] if n]
+
+    def table_records(self) -> set[str]:
+        """The records of the worst-cases table."""
+        return {record for frame in self._worst.values() for record in frame["record"]}
+
+
+__all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst",
+           "worst_case", "block_key", "ShownRecords"]

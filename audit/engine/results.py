@@ -52,7 +52,7 @@ def json_ready(value):
     return value
 
 
-def _with_booleans(frame):
+def with_booleans(frame):
     """True/False in the boolean columns, empty only where undefined (NaN)."""
     frame = frame.copy()
     for column in BOOLEAN_COLUMNS:
@@ -61,84 +61,132 @@ def _with_booleans(frame):
     return frame
 
 
-def run_files(run: AuditRun) -> dict[str, bytes]:
-    """The data files of a run, as bytes (``columns.json`` describes every column)."""
+#: The tables of a run with a row per record × something: file → (:class:`AuditRun` attribute,
+#: float format, booleans written as True/False). They are written record by record
+#: (:mod:`audit.engine.run_writer`) and read back whole or for chosen records.
+RECORD_TABLES = {
+    RESULTS_CSV: ("results", "%.10g", True),
+    ESTIMATES_ONLY_CSV: ("estimates_only", "%.10g", True),
+    SPECTRA_CSV: ("spectra", "%.8g", False),
+    HISTORIES_CSV: ("histories", "%.7g", False),
+    ROCKING_CSV: ("rocking", "%.10g", False),
+    CHECKS_CSV: ("checks", "%.10g", False),
+    DESIGN_SPECTRA_CSV: ("design_spectra", "%.8g", False),
+}
+
+
+def table_bytes(frame: pd.DataFrame, name: str, header: bool = True) -> bytes:
+    """CSV bytes of the rows of one of :data:`RECORD_TABLES`."""
+    _, float_format, booleans = RECORD_TABLES[name]
+    return csv_bytes(with_booleans(frame) if booleans else frame, float_format, header)
+
+
+def suite_files(run: AuditRun) -> dict[str, bytes]:
+    """The files of a run that hold the suite as a whole, as bytes."""
     return {
-        RESULTS_CSV: csv_bytes(_with_booleans(run.results), "%.10g"),
-        ESTIMATES_ONLY_CSV: csv_bytes(_with_booleans(run.estimates_only), "%.10g"),
         SUMMARY_JSON: json.dumps(json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
-        SPECTRA_CSV: csv_bytes(run.spectra, "%.8g"),
-        HISTORIES_CSV: csv_bytes(run.histories, "%.7g"),
-        ROCKING_CSV: csv_bytes(run.rocking, "%.10g"),
-        CHECKS_CSV: csv_bytes(run.checks, "%.10g"),
         SUITE_CSV: csv_bytes(run.suite, "%.6g"),
         CLAIMS_CSV: run.claims.to_csv(index=False).encode(),
-        DESIGN_SPECTRA_CSV: csv_bytes(run.design_spectra, "%.8g"),
         MECHANICS_CSV: csv_bytes(run.mechanics, "%.7g"),
         COLUMNS_JSON: json.dumps(column_guide(), indent=1, ensure_ascii=False).encode(),
     }
 
 
+def run_files(run: AuditRun) -> dict[str, bytes]:
+    """The data files of a run, as bytes (``columns.json`` describes every column)."""
+    return {**{name: table_bytes(getattr(run, attribute), name)
+               for name, (attribute, *_) in RECORD_TABLES.items()}, **suite_files(run)}
+
+
 DATA_FILES = (RESULTS_CSV, ESTIMATES_ONLY_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV,
               ROCKING_CSV, CHECKS_CSV, SUITE_CSV, CLAIMS_CSV, DESIGN_SPECTRA_CSV, MECHANICS_CSV)
+#: Rows read at a time when only some records are kept.
+_CHUNK_ROWS = 200_000
 
 
-def load_run(run_dir: str | Path) -> AuditRun:
-    """Read a run directory written by :func:`save_run`."""
+def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
+    """Read a run directory written by ``python -m audit run`` or :func:`save_run`.
+
+    Parameters
+    ----------
+    run_dir : str or Path
+    shown : bool
+        Keep only the rows of the records the report reads (``summary["shown_records"]``),
+        reading the tables in chunks: a report of a suite of thousands of records is drawn in
+        bounded memory.
+    """
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a directory of audit results")
-    files = {}
     for name in DATA_FILES:
         if not (run_dir / name).is_file():
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
-        files[name] = (run_dir / name).read_bytes()
-    return parse_run(files, str(run_dir))
+    return parse_run({name: run_dir / name for name in DATA_FILES}, str(run_dir), shown)
 
 
-def _read_results(content: bytes, name: str, where: str) -> pd.DataFrame:
-    keep_text = ("verdict", "approx_outcome", "approx_detail", "approx_fixed_points",
+def _read(source, records, **options) -> pd.DataFrame:
+    """One CSV table (a path or bytes), all of it or only the rows of ``records``."""
+    def opened():
+        return io.BytesIO(source) if isinstance(source, bytes) else source
+    if records is None:
+        return pd.read_csv(opened(), **options)
+    chunks = [chunk[chunk["record"].isin(records)]
+              for chunk in pd.read_csv(opened(), chunksize=_CHUNK_ROWS, **options)]
+    return pd.concat(chunks, ignore_index=True) if chunks else pd.read_csv(opened(), **options)
+
+
+def _read_results(source, name: str, where: str, records) -> pd.DataFrame:
+    keep_text = ("record", "verdict", "approx_outcome", "approx_detail", "approx_fixed_points",
                  "approx_cycle")
-    frame = pd.read_csv(io.BytesIO(content), keep_default_na=False,
-                        na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
+    frame = _read(source, records, keep_default_na=False, dtype={"record": str},
+                  na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
     missing = [c for c in RESULT_COLUMNS if c not in frame.columns]
     if missing:
         raise InputError(f"{where}/{name}: columns missing: {', '.join(missing)}")
-    for column in BOOLEAN_COLUMNS:
-        frame[column] = frame[column].map({True: True, False: False, "True": True,
-                                           "False": False}).astype(object)
+    for column in BOOLEAN_COLUMNS:  # bool where every row has one, else object with NaN
+        values = frame[column].map({True: True, False: False, "True": True, "False": False})
+        frame[column] = values.astype(bool if values.notna().all() else object)
     frame["procedure"] = frame["procedure"].astype(str)
     return frame
 
 
-def parse_run(files: dict[str, bytes], where: str = "results") -> AuditRun:
-    """An :class:`AuditRun` from the bytes of its data files (the inverse of :func:`run_files`)."""
+def parse_run(files: dict, where: str = "results", shown: bool = False) -> AuditRun:
+    """An :class:`AuditRun` from its data files, each as bytes or a path (the inverse of
+    :func:`run_files`); ``shown`` as for :func:`load_run`."""
+    summary_source = files[SUMMARY_JSON]
     try:
-        summary = json.loads(files[SUMMARY_JSON].decode("utf-8"))
+        summary = json.loads(summary_source if isinstance(summary_source, bytes)
+                             else Path(summary_source).read_bytes())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
+    records = None
+    if shown:
+        if "shown_records" not in summary:
+            raise InputError(f"{where}/{SUMMARY_JSON}: no shown_records; written by an older "
+                             "version: run the audit again")
+        records = set(summary["shown_records"])
+    text = {"record": str}
     try:
-        results = _read_results(files[RESULTS_CSV], RESULTS_CSV, where)
-        estimates_only = _read_results(files[ESTIMATES_ONLY_CSV], ESTIMATES_ONLY_CSV, where)
-        spectra = pd.read_csv(io.BytesIO(files[SPECTRA_CSV]), keep_default_na=False,
-                              na_values={c: [""] for c in ("alpha_deg", "damping_pct", "period_s",
-                                                           "sd_m", "sv_m_s", "sa_g")})
-        histories = pd.read_csv(io.BytesIO(files[HISTORIES_CSV]))
-        rocking = pd.read_csv(io.BytesIO(files[ROCKING_CSV]))
-        checks = pd.read_csv(io.BytesIO(files[CHECKS_CSV]), keep_default_na=False,
-                             na_values={c: [""] for c in ("alpha_deg", "size_s", "demand_m",
-                                                          "capacity_m")})
-        suite = pd.read_csv(io.BytesIO(files[SUITE_CSV]))
-        claims = pd.read_csv(io.BytesIO(files[CLAIMS_CSV]), keep_default_na=False, dtype=str)
-        design = pd.read_csv(io.BytesIO(files[DESIGN_SPECTRA_CSV]), keep_default_na=False,
-                             na_values={c: [""] for c in ("damping_pct", "period_s", "sa_g",
-                                                          "sd_m")})
-        mechanics = pd.read_csv(io.BytesIO(files[MECHANICS_CSV]),
-                                dtype={"figure": str, "series": str})
+        results = _read_results(files[RESULTS_CSV], RESULTS_CSV, where, records)
+        estimates_only = _read_results(files[ESTIMATES_ONLY_CSV], ESTIMATES_ONLY_CSV, where,
+                                       records)
+        spectra = _read(files[SPECTRA_CSV], records, keep_default_na=False, dtype=text,
+                        na_values={c: [""] for c in ("alpha_deg", "damping_pct", "period_s",
+                                                     "sd_m", "sv_m_s", "sa_g")})
+        histories = _read(files[HISTORIES_CSV], records, dtype=text)
+        rocking = _read(files[ROCKING_CSV], records, dtype=text)
+        checks = _read(files[CHECKS_CSV], records, keep_default_na=False, dtype=text,
+                       na_values={c: [""] for c in ("alpha_deg", "size_s", "demand_m",
+                                                    "capacity_m")})
+        suite = _read(files[SUITE_CSV], None)
+        claims = _read(files[CLAIMS_CSV], None, keep_default_na=False, dtype=str)
+        design = _read(files[DESIGN_SPECTRA_CSV], None if records is None else records | {""},
+                       keep_default_na=False, dtype=text,
+                       na_values={c: [""] for c in ("damping_pct", "period_s", "sa_g", "sd_m")})
+        mechanics = _read(files[MECHANICS_CSV], None, dtype={"figure": str, "series": str})
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}: cannot read the results: {exc}") from None
     spectra["procedure"] = spectra["procedure"].astype(str)
-    design["record"] = design["record"].astype(str)
     return AuditRun(results, spectra, histories, rocking, estimates_only, summary, checks, suite,
                     claims, design, mechanics)
 

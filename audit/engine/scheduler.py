@@ -204,7 +204,7 @@ def open_scheduler(spec: str, jobs: int):
 
 
 def computed_parts(task, entries, procedures, settings, scheduler: str, store=None,
-                   resume: bool = False, progress=None):
+                   resume: bool = False, progress=None, keep: bool = True):
     """``task(entry, procedures, settings)`` of every entry, where ``scheduler`` says, each part
     stored as it completes and reused from ``store`` when resuming.
 
@@ -224,10 +224,13 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
         Reuse the matching parts already in ``store``.
     progress : callable, optional
         ``progress(done, total, record_id, how)`` after each record.
+    keep : bool
+        Return the parts; if false, each part is dropped once in ``store`` (a suite of
+        thousands of records is never held whole) and ``parts`` is None.
 
     Returns
     -------
-    parts : list
+    parts : list or None
         One per entry, in order.
     resumed : list of str
         Ids of the records whose parts came from ``store``.
@@ -235,7 +238,10 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
         Where the parts were computed.
     """
     progress = progress or (lambda done, total, record_id, how: None)
-    parts = [store.load(entry) if store and resume else None for entry in entries]
+    parts = [None] * len(entries)
+    for i, entry in enumerate(entries):
+        if store and resume and (part := store.load(entry)) is not None:
+            parts[i] = part if keep else True
     resumed = [entry.id for entry, part in zip(entries, parts) if part is not None]
     for count, record_id in enumerate(resumed, start=1):
         progress(count, len(entries), record_id, "reused from an interrupted run")
@@ -247,11 +253,11 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
         for count, (k, part, seconds) in enumerate(
                 executor.map(task, [entries[i] for i in todo], list(procedures), task_settings),
                 start=len(resumed) + 1):
-            parts[todo[k]] = part
+            parts[todo[k]] = part if keep else True
             if store:
                 store.save(entries[todo[k]], part)
             progress(count, len(entries), entries[todo[k]].id, f"computed in {seconds:.1f} s")
-    return parts, resumed, executor.description
+    return (parts if keep else None), resumed, executor.description
 
 
 __all__ = ["computed_parts", "open_scheduler", "check_scheduler", "LocalScheduler", "DaskScheduler",

@@ -22,6 +22,52 @@ RATIO_PERCENTILES = (16, 50, 84)
 _KEYS = ["procedure", "alpha_deg", "size_s"]
 
 
+class SuiteStatistics:
+    """:func:`suite_statistics` folded over the records one part at a time, so that a suite of
+    thousands of records is never held whole: per row it keeps a group number, a verdict code
+    and the ratio (13 bytes), the rest of each part is dropped."""
+
+    def __init__(self):
+        self._groups = {}  # (procedure, α, size) → number, in order of first appearance
+        self._group, self._verdict, self._ratio = [], [], []
+
+    def add(self, results: pd.DataFrame) -> "SuiteStatistics":
+        """Fold ``results.csv`` rows (columns ``procedure, alpha_deg, size_s, verdict, ratio``)."""
+        unknown = set(results["verdict"]) - set(VERDICTS)
+        if unknown:
+            raise ValueError(f"suite statistics: unknown verdicts {sorted(unknown)}")
+        keys = zip(results["procedure"], results["alpha_deg"].astype(float),
+                   results["size_s"].astype(float))
+        self._group.append(np.fromiter((self._groups.setdefault(key, len(self._groups))
+                                        for key in keys), dtype=np.int32, count=len(results)))
+        self._verdict.append(results["verdict"].map(_VERDICT_CODE).to_numpy(dtype=np.int8))
+        self._ratio.append(results["ratio"].to_numpy(dtype=float))
+        return self
+
+    def frame(self) -> pd.DataFrame:
+        """The table of :func:`suite_statistics` over every row folded so far."""
+        if not self._groups:
+            return pd.DataFrame(columns=SUITE_COLUMNS)
+        group = np.concatenate(self._group)
+        verdict = np.concatenate(self._verdict)
+        ratio = np.concatenate(self._ratio)
+        ratio[~np.isfinite(ratio)] = np.nan
+        records = np.bincount(group, minlength=len(self._groups))
+        table = pd.DataFrame(list(self._groups), columns=_KEYS)
+        table["records"] = records
+        for code, v in enumerate(VERDICTS):
+            table[verdict_column(v)] = (np.bincount(group[verdict == code],
+                                                    minlength=len(self._groups)) / records)
+        table["frac_unsafe"] = table[[verdict_column(v) for v in UNSAFE_VERDICTS]].sum(axis=1)
+        grouped = pd.Series(ratio).groupby(group)
+        for q in RATIO_PERCENTILES:
+            table[f"ratio_p{q}"] = grouped.quantile(q / 100.0).reindex(table.index)
+        return table[SUITE_COLUMNS]
+
+
+_VERDICT_CODE = {v: code for code, v in enumerate(VERDICTS)}
+
+
 def suite_statistics(results: pd.DataFrame) -> pd.DataFrame:
     """Verdict fractions and approx/exact percentiles per procedure × α × size.
 
@@ -40,22 +86,7 @@ def suite_statistics(results: pd.DataFrame) -> pd.DataFrame:
         the records where both survive (linear interpolation between order statistics; NaN
         where there is none). Groups keep the order of first appearance.
     """
-    if results.empty:
-        return pd.DataFrame(columns=SUITE_COLUMNS)
-    unknown = set(results["verdict"]) - set(VERDICTS)
-    if unknown:
-        raise ValueError(f"suite statistics: unknown verdicts {sorted(unknown)}")
-    indicators = pd.DataFrame({verdict_column(v): (results["verdict"] == v).astype(float)
-                               for v in VERDICTS})
-    indicators[_KEYS] = results[_KEYS]
-    indicators["ratio"] = results["ratio"].astype(float).replace([np.inf, -np.inf], np.nan)
-    grouped = indicators.groupby(_KEYS, sort=False)
-    table = grouped[[verdict_column(v) for v in VERDICTS]].mean()
-    table.insert(0, "records", grouped.size())
-    table["frac_unsafe"] = table[[verdict_column(v) for v in UNSAFE_VERDICTS]].sum(axis=1)
-    for q in RATIO_PERCENTILES:
-        table[f"ratio_p{q}"] = grouped["ratio"].quantile(q / 100.0)
-    return table.reset_index()[SUITE_COLUMNS]
+    return SuiteStatistics().add(results).frame()
 
 
 def suite_summary(suite: pd.DataFrame, titles: dict | None = None) -> list[dict]:
@@ -99,6 +130,79 @@ def suite_summary(suite: pd.DataFrame, titles: dict | None = None) -> list[dict]
     return summary
 
 
+#: Where pure rocking stops being valid: results column → name in the bottom line (None there
+#: when the flag was not checked: the column is empty).
+_FLAGS = {"exact_slides": "slides", "exact_model_sensitive": "model_sensitive"}
+
+
+class BottomLine:
+    """:func:`bottom_line` folded over the records one part at a time: per procedure the verdict
+    and flag counts, the finite ratios (for the median), the records seen, the check counts
+    per limit state and each part's worst block (the worst of the worst is the suite's: the
+    ranking is a stable sort, and the parts come in the suite's order)."""
+
+    def __init__(self, procedures):
+        self._lines = {p.name: {"count": dict.fromkeys(VERDICTS, 0), "ratios": [],
+                                "records": set(), "worst": [], "checks": {}, "jumps": 0,
+                                "flags": {flag: [0, 0, False] for flag in _FLAGS.values()}}
+                       for p in procedures}
+
+    def add(self, results: pd.DataFrame, checks: pd.DataFrame) -> "BottomLine":
+        """Fold ``results.csv`` and ``checks.csv`` rows."""
+        for name, line in self._lines.items():
+            rows = results[results["procedure"] == name]
+            mine = checks[checks["procedure"] == name]
+            for verdict, n in rows["verdict"].value_counts().items():
+                line["count"][verdict] += int(n)
+            ratios = rows["ratio"].to_numpy(dtype=float)
+            line["ratios"].append(ratios[np.isfinite(ratios)])
+            line["records"].update(rows["record"])
+            line["records"].update(mine["record"])
+            worst = worst_case(rows)
+            if worst is not None:
+                line["worst"].append(worst)
+            for state, group in mine.groupby("limit_state", sort=False):
+                tally = line["checks"].setdefault(state, dict.fromkeys(names(CHECK_VERDICTS), 0))
+                for verdict, n in group["verdict"].value_counts().items():
+                    tally[verdict] += int(n)
+            line["jumps"] += int(rows["exact_jumps"].eq(True).sum())
+            unsafe = rows["verdict"].isin(UNSAFE_VERDICTS)
+            for column, flag in _FLAGS.items():
+                flagged = rows[column].eq(True)
+                tally = line["flags"][flag]
+                tally[0] += int(flagged.sum())
+                tally[1] += int((flagged & unsafe).sum())
+                tally[2] |= bool(rows[column].isin((True, False)).any())
+        return self
+
+    def lines(self) -> list[dict]:
+        """The bottom line of every row folded so far (see :func:`bottom_line`)."""
+        out = []
+        for name, line in self._lines.items():
+            count = line["count"]
+            total = sum(count.values())
+            unsafe = sum(count[v] for v in UNSAFE_VERDICTS)
+            uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
+            ratios = np.concatenate(line["ratios"]) if line["ratios"] else np.empty(0)
+            worst = worst_case(pd.DataFrame(line["worst"])) if line["worst"] else None
+            flags = {}
+            for flag, (flagged, flagged_unsafe, checked) in line["flags"].items():
+                flags[flag] = flagged if checked else None
+                flags[f"{flag}_unsafe"] = flagged_unsafe if checked else None
+            out.append({
+                "name": name, "blocks": total, "records": len(line["records"]),
+                "count": count, "pct": {v: 100.0 * n / total if total else 0.0
+                                        for v, n in count.items()},
+                "unsafe": unsafe, "uneconomic": uneconomic,
+                "unsafe_pct": 100.0 * unsafe / total if total else 0.0,
+                "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
+                "median_ratio": float(np.median(ratios)) if len(ratios) else None,
+                "worst": None if worst is None else worst.to_dict(),
+                "checks": [_check_line(state, tally) for state, tally in line["checks"].items()],
+                "jumps": line["jumps"], **flags})
+        return out
+
+
 def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list[dict]:
     """Per procedure: how many blocks it gets wrong on each side, and its worst case.
 
@@ -123,55 +227,15 @@ def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list
         ``--friction``), ``model_sensitive`` and ``model_sensitive_unsafe`` (verdicts that change
         under an alternative ground-truth model; None without ``--sensitivity``).
     """
-    lines = []
-    for procedure in procedures:
-        rows = results[results["procedure"] == procedure.name]
-        mine = checks[checks["procedure"] == procedure.name]
-        total = len(rows)
-        counts = rows["verdict"].value_counts()
-        count = {v: int(counts.get(v, 0)) for v in VERDICTS}
-        unsafe = sum(count[v] for v in UNSAFE_VERDICTS)
-        uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
-        ratios = rows["ratio"].astype(float).replace([np.inf, -np.inf], np.nan).dropna()
-        worst = worst_case(rows)
-        unsafe_rows = rows["verdict"].isin(UNSAFE_VERDICTS)
-        lines.append({
-            "name": procedure.name, "blocks": total,
-            "records": len(set(rows["record"]) | set(mine["record"])),
-            "count": count, "pct": {v: 100.0 * n / total if total else 0.0
-                                    for v, n in count.items()},
-            "unsafe": unsafe, "uneconomic": uneconomic,
-            "unsafe_pct": 100.0 * unsafe / total if total else 0.0,
-            "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
-            "median_ratio": float(ratios.median()) if len(ratios) else None,
-            "worst": None if worst is None else worst.to_dict(),
-            "checks": _check_lines(mine),
-            "jumps": int(rows["exact_jumps"].eq(True).sum()),
-            **_flagged(rows, "exact_slides", "slides", unsafe_rows),
-            **_flagged(rows, "exact_model_sensitive", "model_sensitive", unsafe_rows)})
-    return lines
+    return BottomLine(procedures).add(results, checks).lines()
 
 
-def _flagged(rows: pd.DataFrame, column: str, name: str, unsafe: pd.Series) -> dict:
-    """Blocks flagged in ``column`` and the unsafe verdicts among them; None where the flag was
-    not checked (the column is empty)."""
-    flagged = rows[column].eq(True)
-    checked = bool(rows[column].isin((True, False)).any())
-    return {name: int(flagged.sum()) if checked else None,
-            f"{name}_unsafe": int((flagged & unsafe).sum()) if checked else None}
+def _check_line(state: str, count: dict) -> dict:
+    blocks = sum(count.values())
+    return {"limit_state": state, "blocks": blocks, "count": count,
+            "unsafe_pct": 100.0 * sum(count[v] for v in UNSAFE_CHECK_VERDICTS) / blocks,
+            "uneconomic_pct": 100.0 * sum(count[v] for v in UNECONOMIC_CHECK_VERDICTS) / blocks}
 
 
-def _check_lines(checks: pd.DataFrame) -> list[dict]:
-    lines = []
-    for state, rows in checks.groupby("limit_state", sort=False):
-        counts = rows["verdict"].value_counts()
-        count = {v: int(counts.get(v, 0)) for v in names(CHECK_VERDICTS)}
-        lines.append({"limit_state": state, "blocks": len(rows), "count": count,
-                      "unsafe_pct": 100.0 * sum(count[v] for v in UNSAFE_CHECK_VERDICTS)
-                      / len(rows),
-                      "uneconomic_pct": 100.0 * sum(count[v] for v in UNECONOMIC_CHECK_VERDICTS)
-                      / len(rows)})
-    return lines
-
-
-__all__ = ["suite_statistics", "suite_summary", "bottom_line", "RATIO_PERCENTILES"]
+__all__ = ["suite_statistics", "suite_summary", "bottom_line", "SuiteStatistics",
+           "BottomLine", "RATIO_PERCENTILES"]

@@ -1,119 +1,66 @@
 """An audit over a suite of records: every record's part, the suite statistics, the bottom line,
 the reproduction checklist and the figure data — everything the report is drawn from.
 
-:func:`run_audit` is the pipeline the command line and the Python API (:mod:`audit.api`) both
-run; it returns an :class:`AuditRun`, which :mod:`audit.engine.results` saves and reads back.
+:func:`compute_suite` then :func:`write_suite` is the pipeline the command line and the Python
+API (:mod:`audit.api`) both run: each record's part is stored on disk as it completes, then the
+run's data files are written record by record (:mod:`audit.engine.run_writer`), in memory
+that does not grow with the suite beyond a small term per record. :func:`run_audit` writes
+them into a scratch folder and reads the whole run back as an :class:`AuditRun`.
 """
 
 from __future__ import annotations
 
+import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from audit import G, __version__
-from audit.engine.claims import evaluate_claims
+from audit import G
+from audit.engine.claims import claimed_records, evaluate_claims
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER, DEFAULT_SIZES)
-from audit.engine.figure_data import design_spectra, mechanics, sensitivity_facts
 from audit.engine.grid import size_grid
 from audit.engine.partial import PartialStore
-from audit.engine.record_audit import RecordAudit, audit_record, concat
+from audit.engine.record_audit import audit_record
+from audit.engine.results import load_run
+from audit.engine.run_writer import RunWriter
 from audit.engine.scheduler import computed_parts
 from audit.engine.audit_run import AuditRun
-from audit.engine.schemas import (CHECK_COLUMNS, HISTORY_COLUMNS, RESULT_COLUMNS, ROCKING_COLUMNS,
-                                  SPECTRA_COLUMNS)
+from audit.engine.schemas import CLAIM_COLUMNS
 from audit.engine.ground_truth import parse_sensitivity
 from audit.engine.settings import AuditSettings
 from audit.physics.block import Restitution
-from audit.engine.suite import bottom_line, suite_statistics, suite_summary
-from audit.engine.verdicts import VERDICTS
 from audit.errors import InputError
 
 
-def record_summary(entry) -> dict:
-    """Provenance of one record for ``summary.json``: facts, site, file, PGA/PGV recomputed."""
-    motion, facts = entry.motion, entry.facts
-    item = {"id": entry.id, "name": entry.name, "component": entry.component,
-            "missing": entry.missing, "missing_reason": entry.missing_reason, "site": entry.site,
-            "metadata": entry.metadata}
-    if facts is not None:
-        item["table_5_1"] = {"pga_g": facts.pga_g, "pgv_m_s": facts.pgv_ms,
-                             "pulse_period_s": facts.pulse_period_s}
-    if motion is not None:
-        # absolute, so a moved summary.json or report still names the file
-        source = Path(motion.source) if motion.source else None
-        item.update(source=str(source.absolute()) if source and source.is_file()
-                    else motion.source, sha256=motion.sha256, dt_s=motion.dt,
-                    duration_s=motion.duration, pga_g=motion.pga_g, pgv_m_s=motion.pgv,
-                    npts=int(motion.acceleration.size),
-                    vertical_component=motion.vertical is not None)
-    return item
+@dataclass
+class ComputedSuite:
+    """Every record's part of an audit, kept on disk in ``store`` (not in memory) until
+    :func:`write_suite` writes the run's files from them."""
+
+    procedures: list
+    suite: object
+    settings: AuditSettings
+    store: PartialStore
+    resumed: list
+    where: str
+    detail: list
+    claims: bool
+    #: The store is this run's scratch (no ``partial_dir``): removed once written.
+    scratch: bool
 
 
-def statistics(frame: pd.DataFrame) -> list[dict]:
-    """Counts and approx/exact ratios per procedure, record and α."""
-    stats = []
-    for (procedure, record, alpha), group in frame.groupby(["procedure", "record", "alpha_deg"],
-                                                          sort=False):
-        counts = group["verdict"].value_counts()
-        ratio = group["ratio"].replace([np.inf, -np.inf], np.nan).dropna()
-        stats.append({
-            "procedure": procedure, "record": record, "alpha_deg": float(alpha),
-            "blocks": int(len(group)),
-            "counts": {v: int(counts.get(v, 0)) for v in VERDICTS},
-            "fragile": int(group["exact_fragile"].eq(True).sum()),
-            "median_ratio": float(ratio.median()) if len(ratio) else None,
-            "min_ratio": float(ratio.min()) if len(ratio) else None,
-            "max_ratio": float(ratio.max()) if len(ratio) else None,
-        })
-    return stats
-
-
-def combine(parts: list[RecordAudit], procedures, suite, settings: AuditSettings) -> AuditRun:
-    """One :class:`AuditRun` from the per-record parts, in the suite's order, with the suite
-    statistics, the bottom line and the figure data (the claims are added by
-    :func:`run_audit`)."""
-    def cat(name, columns):
-        return concat([getattr(part, name) for part in parts if len(getattr(part, name))],
-                      columns)
-
-    results, checks = cat("results", RESULT_COLUMNS), cat("checks", CHECK_COLUMNS)
-    suite_frame = suite_statistics(results)
-    summary = {
-        "version": __version__,
-        "procedures": [{"name": proc.name, "title": proc.title, "reference": proc.reference,
-                        "damping_law": proc.damping_law, "spectrum_source": proc.spectrum_source,
-                        "figure_series": proc.figure_series} for proc in procedures],
-        "records_source": suite.description,
-        "pulse_idealised": suite.is_pulse_idealised,
-        "records": [record_summary(entry) for entry in suite],
-        "rejected_records": list(getattr(suite, "rejected", ())),
-        "design_site": suite.design_site,
-        "scaling": suite.scaling,
-        "unauditable": [item for part in parts for item in part.unauditable],
-        "grid": {"alpha_deg": list(settings.alpha_deg), "size_s": list(settings.size_s)},
-        "settings": settings.described(),
-        "statistics": statistics(results),
-        "suite": suite_summary(suite_frame, {proc.name: proc.title for proc in procedures}),
-        "bottom_line": bottom_line(results, checks, procedures),
-        "histories": [item for part in parts for item in part.histories_meta],
-        "mechanics": sensitivity_facts(),
-    }
-    return AuditRun(results, cat("spectra", SPECTRA_COLUMNS), cat("histories", HISTORY_COLUMNS),
-                    cat("rocking", ROCKING_COLUMNS), cat("estimates_only", RESULT_COLUMNS),
-                    summary, checks=checks, suite=suite_frame,
-                    design_spectra=design_spectra(suite), mechanics=mechanics())
-
-
-def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: int = 1,
-              free_motion_s: float = DEFAULT_FREE_MOTION_S, progress=None, g: float = G,
-              agree_band: float = DEFAULT_AGREE_BAND, robustness: float = DEFAULT_ROBUSTNESS,
-              scheduler: str = DEFAULT_SCHEDULER, partial_dir=None, resume: bool = False,
-              detail=(), claims: bool = True, restitution="housner", vertical: bool = False,
-              friction: float | None = None, sensitivity=()) -> AuditRun:
-    """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid.
+def compute_suite(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: int = 1,
+                  free_motion_s: float = DEFAULT_FREE_MOTION_S, progress=None, g: float = G,
+                  agree_band: float = DEFAULT_AGREE_BAND,
+                  robustness: float = DEFAULT_ROBUSTNESS, scheduler: str = DEFAULT_SCHEDULER,
+                  partial_dir=None, resume: bool = False, detail=(), claims: bool = True,
+                  restitution="housner", vertical: bool = False,
+                  friction: float | None = None, sensitivity=()) -> ComputedSuite:
+    """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid, each record's
+    part stored on disk as it completes (:func:`write_suite` then writes the run's files).
 
     Parameters
     ----------
@@ -138,7 +85,8 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
     scheduler : str
         ``local``, ``dask`` or ``tcp://HOST:PORT`` (:mod:`audit.engine.scheduler`).
     partial_dir : str or Path, optional
-        Folder for per-record results as they complete (:mod:`audit.engine.partial`).
+        Folder for per-record results as they complete (:mod:`audit.engine.partial`), kept
+        for a resumed run; default a scratch folder removed by :func:`write_suite`.
     resume : bool
         Reuse the matching per-record results already in ``partial_dir``.
     detail : sequence of str
@@ -153,8 +101,7 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
 
     Returns
     -------
-    AuditRun
-        ``summary["resumed"]`` lists the records taken from ``partial_dir``.
+    ComputedSuite
     """
     sizes = size_grid(*DEFAULT_SIZES) if sizes is None else np.asarray(sizes, dtype=float)
     settings = AuditSettings(tuple(float(a) for a in alpha_deg), tuple(float(s) for s in sizes),
@@ -168,14 +115,63 @@ def run_audit(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jobs: 
     if unknown:
         raise InputError(f"--detail: unknown record(s) {', '.join(unknown)} in "
                          f"{suite.description}")
-    store = PartialStore(partial_dir, procedures, settings, resume) if partial_dir else None
-    parts, resumed, where = computed_parts(audit_record, entries, procedures, settings, scheduler,
-                                           store, resume, progress)
-    run = combine(parts, procedures, suite, settings)
-    run.summary.update(scheduler=where, resumed=resumed, detail=list(detail))
-    if claims:
-        run.claims = evaluate_claims(run, suite)
-    return run
+    scratch = partial_dir is None
+    store = PartialStore(tempfile.mkdtemp(prefix="rocking-audit-parts-") if scratch
+                         else partial_dir, procedures, settings, resume)
+    try:
+        _, resumed, where = computed_parts(audit_record, entries, procedures, settings,
+                                           scheduler, store, resume, progress, keep=False)
+    except BaseException:
+        if scratch:
+            store.remove()
+        raise
+    return ComputedSuite(list(procedures), suite, settings, store, resumed, where, list(detail),
+                         claims, scratch)
+
+
+def write_suite(computed: ComputedSuite, folder, progress=None) -> dict:
+    """Write the data files of a computed audit into ``folder``, record by record, in memory
+    that does not grow with the suite beyond a small term per record.
+
+    Parameters
+    ----------
+    computed : ComputedSuite
+    folder : str or Path
+        An existing folder (a staging folder, moved into place by the caller).
+    progress : audit.engine.progress.Progress, optional
+        Told that the files are being written.
+
+    Returns
+    -------
+    dict
+        ``summary.json``; ``summary["resumed"]`` lists the records taken from ``partial_dir``.
+    """
+    entries = list(computed.suite)
+    if progress is not None:
+        progress.stage(f"writing the results of {len(entries)} records")
+    writer = RunWriter(Path(folder), computed.procedures,
+                       claimed_records() if computed.claims else ())
+    try:
+        for entry in entries:
+            writer.add(entry, computed.store.load(entry))
+    finally:
+        writer.close()
+    if computed.scratch:
+        computed.store.remove()
+    summary = writer.summary(computed.suite, computed.settings, computed.detail)
+    summary.update(scheduler=computed.where, resumed=computed.resumed)
+    writer.finish(summary, evaluate_claims(writer.kept_run(summary), computed.suite)
+                  if computed.claims else pd.DataFrame(columns=CLAIM_COLUMNS))
+    return summary
+
+
+def run_audit(procedures, suite, *args, **kwargs) -> AuditRun:
+    """The whole run of :func:`compute_suite` (same arguments), written and read back from its
+    files into memory: for a test or a script, not for a suite of thousands of records."""
+    computed = compute_suite(procedures, suite, *args, **kwargs)
+    with tempfile.TemporaryDirectory(prefix="rocking-audit-") as folder:
+        write_suite(computed, folder)
+        return load_run(folder)
 
 
 def compiles_first() -> bool:
@@ -186,4 +182,4 @@ def compiles_first() -> bool:
     return not (machine_code_cached(rocking._spectrum) and machine_code_cached(oscillator._peaks))
 
 
-__all__ = ["run_audit", "combine", "AuditRun", "record_summary", "statistics", "compiles_first"]
+__all__ = ["compute_suite", "write_suite", "ComputedSuite", "run_audit", "AuditRun", "compiles_first"]
