@@ -120,14 +120,10 @@ def test_every_module_imports_alone_in_a_fresh_interpreter():
 def test_audit_report_imports_no_solver(tmp_path):
     # `audit report DIR` reads a run back and renders it: no numba, no rocking solver, no
     # oscillator kernels
-    from audit.engine.results import save_run
-    from audit.engine.suite_run import run_audit
-    from procedures import get_procedures
+    import audit.api
     from records import pulse_suite
-    from reports import render_report
-    run = run_audit(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(15.0,),
-                    sizes=[2.0], robustness=0.0, claims=False)
-    save_run(run, tmp_path / "run", render_report)
+    audit.api.run("priestley1978", pulse_suite(), alpha_deg=(15.0,), sizes_s=[2.0],
+                  robustness=0.0, out_dir=tmp_path / "run")
     probe = ("import sys; from audit.cli import main; "
              f"status = main(['report', {str(tmp_path / 'run')!r}]); "
              "print(status, sorted(m for m in sys.modules if m.startswith(('numba', "

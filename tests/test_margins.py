@@ -189,7 +189,7 @@ def test_margins_page_from_the_files(tmp_path):
                            free_motion_s=8.0)
     page = (result.write(tmp_path / "m") / "margins.html").read_text()
     share = result.required_alpha.set_index("procedure").loc["fema356", "exact_overturning_share"]
-    assert (f"Blocks sized by FEMA 356 (2000) for S_XS = 1.5 g, S_X1 = 0.9 g" in page
+    assert ("Blocks sized by FEMA 356 (2000) for S_XS = 1.5 g, S_X1 = 0.9 g" in page
             and f"overturn in a median {share:.0%}" in page)
     assert "0.8x4 m (α = " in page and 'id="scan0"' in page and 'id="required"' in page
     assert result.summary["blocks"][0]["alpha_deg"] == NamedBlock(0.8, 4.0).alpha_deg

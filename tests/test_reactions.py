@@ -73,7 +73,7 @@ def test_reactions_are_newtons_law_on_the_centroid_path():
     block = RigidBlock.from_size(2.0, alpha)
     motion = _rocking_record()
     response = simulate(block, motion, free_motion_s=0.0)
-    t, theta, omega = response.time, response.theta, response.omega
+    theta, omega = response.theta, response.omega
     radius, dt = block.radius, motion.dt
     side = np.sign(theta)
     x = -side * radius * np.sin(alpha - np.abs(theta))

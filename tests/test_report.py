@@ -18,7 +18,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from audit.engine.results import load_run, save_run
+import audit.api
+from audit.engine.results import load_run
 from audit.engine.suite import suite_summary
 from audit.engine.schemas import CHECK_COLUMNS, CLAIM_COLUMNS, SUITE_COLUMNS
 from audit.engine.suite_run import run_audit
@@ -77,9 +78,8 @@ def _own_markup(html: str) -> str:
 @pytest.fixture(scope="module")
 def seed_report(seed_suite, tmp_path_factory):
     """The report of ``run all`` on the real seed suite, written as the CLI writes it."""
-    run = run_audit(get_procedures("all"), seed_suite, jobs=2)
-    out = tmp_path_factory.mktemp("report")
-    save_run(run, out, render_report)
+    out = tmp_path_factory.mktemp("report") / "run"
+    audit.api.run("all", seed_suite, jobs=2, out_dir=out)
     return out
 
 
@@ -442,10 +442,9 @@ def test_record_drawn_but_audited_by_no_procedure():
 def test_mechanics_figures_are_drawn_from_the_saved_files():
     # Figures 7.1 and 4.1/7.2 come from mechanics.csv: 16 free-rocking curves (θ₀/α 0.1…0.7 ×
     # n 2…8) and the two laws; three pulse amplitudes for the block and for the oscillator
-    from audit.engine.results import parse_run, run_files
     run = run_audit(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(15.0,),
-                    sizes=np.array([2.0]), robustness=0.0, claims=False)
-    specs = _parse(render_report(parse_run(run_files(run)))).specs
+                    sizes=np.array([2.0]), robustness=0.0, claims=False)  # read from its files
+    specs = _parse(render_report(run)).specs
     names = [trace["name"] for trace in specs["fig-7-1"]["data"]]
     assert len(names) == 18 and names[-2:] == ["Eq. 7.10: β = −0.34 ln r",
                                                "Eq. 9.1: β = 0.4 (1 − √r)"]

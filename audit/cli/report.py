@@ -18,7 +18,8 @@ def add_parser(sub):
 
 def run(args) -> int:
     from audit.engine.progress import Progress
-    from audit.engine.results import REPORT_HTML, load_run, write_files_atomically
+    from audit.engine.results import REPORT_HTML, load_run
+    from audit.files import write_files_atomically
     from reports import render_report
     # bad input fails here, before anything is said; only the rows of the records the report
     # shows are read

@@ -195,4 +195,5 @@ def evaluate_claims(run, suite=None, claims: list[dict] | None = None) -> pd.Dat
     return pd.DataFrame(rows, columns=CLAIM_COLUMNS)
 
 
-__all__ = ["evaluate_claims", "claimed_records", "load_claims", "grade", "STATUSES", "EVALUATORS"]
+__all__ = ["evaluate_claims", "claimed_records", "load_claims", "grade", "STATUSES",
+           "EVALUATORS"]

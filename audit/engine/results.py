@@ -1,14 +1,15 @@
-"""Saving and loading an audit run: ``results.csv``, ``summary.json`` and the figure data.
+"""The files of an audit run (``results.csv``, ``summary.json`` and the figure data): their
+names and formats, and reading them back.
 
 A run directory holds everything the report is drawn from, so ``python -m audit report DIR``
-re-renders it without recomputing. Files are written to a temporary directory beside the
-target and moved into place only when all of them are complete: a failed run leaves no partial
-output.
+re-renders it without recomputing. The files are written record by record by
+:mod:`audit.engine.run_writer` into a staging folder beside the target and moved into place
+only when all of them are complete (:func:`audit.files.staged_folder`): a failed run leaves no
+partial output.
 """
 
 from __future__ import annotations
 
-import io
 import json
 import math
 from pathlib import Path
@@ -17,7 +18,6 @@ import numpy as np
 import pandas as pd
 
 from audit.errors import InputError
-from audit.files import write_files_atomically
 from audit.engine.csv_text import csv_bytes
 from audit.engine.schemas import BOOLEAN_COLUMNS, RESULT_COLUMNS, column_guide
 from audit.engine.audit_run import AuditRun
@@ -52,7 +52,7 @@ def json_ready(value):
     return value
 
 
-def with_booleans(frame):
+def _with_booleans(frame):
     """True/False in the boolean columns, empty only where undefined (NaN)."""
     frame = frame.copy()
     for column in BOOLEAN_COLUMNS:
@@ -78,7 +78,7 @@ RECORD_TABLES = {
 def table_bytes(frame: pd.DataFrame, name: str, header: bool = True) -> bytes:
     """CSV bytes of the rows of one of :data:`RECORD_TABLES`."""
     _, float_format, booleans = RECORD_TABLES[name]
-    return csv_bytes(with_booleans(frame) if booleans else frame, float_format, header)
+    return csv_bytes(_with_booleans(frame) if booleans else frame, float_format, header)
 
 
 def suite_files(run: AuditRun) -> dict[str, bytes]:
@@ -92,12 +92,6 @@ def suite_files(run: AuditRun) -> dict[str, bytes]:
     }
 
 
-def run_files(run: AuditRun) -> dict[str, bytes]:
-    """The data files of a run, as bytes (``columns.json`` describes every column)."""
-    return {**{name: table_bytes(getattr(run, attribute), name)
-               for name, (attribute, *_) in RECORD_TABLES.items()}, **suite_files(run)}
-
-
 DATA_FILES = (RESULTS_CSV, ESTIMATES_ONLY_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV,
               ROCKING_CSV, CHECKS_CSV, SUITE_CSV, CLAIMS_CSV, DESIGN_SPECTRA_CSV, MECHANICS_CSV)
 #: Rows read at a time when only some records are kept.
@@ -105,7 +99,7 @@ _CHUNK_ROWS = 200_000
 
 
 def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
-    """Read a run directory written by ``python -m audit run`` or :func:`save_run`.
+    """Read a run directory written by ``python -m audit run`` (or ``audit.api.run``).
 
     Parameters
     ----------
@@ -121,42 +115,10 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     for name in DATA_FILES:
         if not (run_dir / name).is_file():
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
-    return parse_run({name: run_dir / name for name in DATA_FILES}, str(run_dir), shown)
-
-
-def _read(source, records, **options) -> pd.DataFrame:
-    """One CSV table (a path or bytes), all of it or only the rows of ``records``."""
-    def opened():
-        return io.BytesIO(source) if isinstance(source, bytes) else source
-    if records is None:
-        return pd.read_csv(opened(), **options)
-    chunks = [chunk[chunk["record"].isin(records)]
-              for chunk in pd.read_csv(opened(), chunksize=_CHUNK_ROWS, **options)]
-    return pd.concat(chunks, ignore_index=True) if chunks else pd.read_csv(opened(), **options)
-
-
-def _read_results(source, name: str, where: str, records) -> pd.DataFrame:
-    keep_text = ("record", "verdict", "approx_outcome", "approx_detail", "approx_fixed_points",
-                 "approx_cycle")
-    frame = _read(source, records, keep_default_na=False, dtype={"record": str},
-                  na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
-    missing = [c for c in RESULT_COLUMNS if c not in frame.columns]
-    if missing:
-        raise InputError(f"{where}/{name}: columns missing: {', '.join(missing)}")
-    for column in BOOLEAN_COLUMNS:  # bool where every row has one, else object with NaN
-        values = frame[column].map({True: True, False: False, "True": True, "False": False})
-        frame[column] = values.astype(bool if values.notna().all() else object)
-    frame["procedure"] = frame["procedure"].astype(str)
-    return frame
-
-
-def parse_run(files: dict, where: str = "results", shown: bool = False) -> AuditRun:
-    """An :class:`AuditRun` from its data files, each as bytes or a path (the inverse of
-    :func:`run_files`); ``shown`` as for :func:`load_run`."""
-    summary_source = files[SUMMARY_JSON]
+    files = {name: run_dir / name for name in DATA_FILES}
+    where = str(run_dir)
     try:
-        summary = json.loads(summary_source if isinstance(summary_source, bytes)
-                             else Path(summary_source).read_bytes())
+        summary = json.loads(files[SUMMARY_JSON].read_bytes())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
     records = None
@@ -191,23 +153,25 @@ def parse_run(files: dict, where: str = "results", shown: bool = False) -> Audit
                     claims, design, mechanics)
 
 
-def save_run(run: AuditRun, out_dir: str | Path, render) -> AuditRun:
-    """Write a run's data files and its report, rendered from exactly what is saved.
+def _read(path: Path, records, **options) -> pd.DataFrame:
+    """One CSV table, all of it or only the rows of ``records`` (read in chunks)."""
+    if records is None:
+        return pd.read_csv(path, **options)
+    chunks = [chunk[chunk["record"].isin(records)]
+              for chunk in pd.read_csv(path, chunksize=_CHUNK_ROWS, **options)]
+    return pd.concat(chunks, ignore_index=True) if chunks else pd.read_csv(path, **options)
 
-    Parameters
-    ----------
-    run : AuditRun
-    out_dir : str or Path
-    render : callable
-        ``render(run) -> str``, the HTML report.
 
-    Returns
-    -------
-    AuditRun
-        The run as saved (and as ``python -m audit report`` will read it back).
-    """
-    files = run_files(run)
-    saved = parse_run(files, str(out_dir))
-    files[REPORT_HTML] = render(saved).encode("utf-8")
-    write_files_atomically(out_dir, files)
-    return saved
+def _read_results(source, name: str, where: str, records) -> pd.DataFrame:
+    keep_text = ("record", "verdict", "approx_outcome", "approx_detail", "approx_fixed_points",
+                 "approx_cycle")
+    frame = _read(source, records, keep_default_na=False, dtype={"record": str},
+                  na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
+    missing = [c for c in RESULT_COLUMNS if c not in frame.columns]
+    if missing:
+        raise InputError(f"{where}/{name}: columns missing: {', '.join(missing)}")
+    for column in BOOLEAN_COLUMNS:  # bool where every row has one, else object with NaN
+        values = frame[column].map({True: True, False: False, "True": True, "False": False})
+        frame[column] = values.astype(bool if values.notna().all() else object)
+    frame["procedure"] = frame["procedure"].astype(str)
+    return frame

@@ -182,4 +182,5 @@ def compiles_first() -> bool:
     return not (machine_code_cached(rocking._spectrum) and machine_code_cached(oscillator._peaks))
 
 
-__all__ = ["compute_suite", "write_suite", "ComputedSuite", "run_audit", "AuditRun", "compiles_first"]
+__all__ = ["compute_suite", "write_suite", "ComputedSuite", "run_audit", "AuditRun",
+           "compiles_first"]
