@@ -312,15 +312,6 @@ def _claims_section(run) -> dict | None:
             "tally": {s: int(counts.get(s, 0)) for s in CLAIM_STATUS_NAMES}}
 
 
-def _detail_records(run, records) -> list[dict]:
-    """Records with a per-record section: all of a small suite; of a large one, those asked for
-    (``summary["detail"]``) or the worst ones (most unsafe blocks, ``summary["worst_records"]``)."""
-    if len(records) <= LARGE_SUITE:
-        return records
-    asked = run.summary["detail"] or run.summary["worst_records"]
-    return [r for r in records if r["id"] in asked]
-
-
 def render_report(run, generated: datetime | None = None) -> str:
     """The HTML report of an audit run, as one self-contained string.
 
@@ -337,7 +328,9 @@ def render_report(run, generated: datetime | None = None) -> str:
     procedures = summary["procedures"]
     names = {r["id"]: r["name"] for r in summary["records"]}
     records = [dict(r, number=n) for n, r in enumerate(summary["records"], start=1)]
-    detail = _detail_records(run, records)
+    # all of a small suite; of a large one, those asked for or the worst ones (most unsafe blocks)
+    detailed = set(summary["detail_records"])
+    detail = [r for r in records if r["id"] in detailed]
     large = len(records) > LARGE_SUITE
     detail_ids = {r["id"] for r in detail}
     band = summary.get("settings", {}).get("agree_band", 0.10)

@@ -364,7 +364,7 @@ def test_large_suite_puts_statistics_first_and_details_only_where_asked():
     run.summary["records"] = run.summary["records"] + copies
     run.results = pd.concat([run.results, run.results.assign(record=run.results["record"] + "_b")],
                             ignore_index=True)
-    run.summary["detail"] = ["rinaldi_1994_b"]
+    run.summary["detail_records"] = ["rinaldi_1994_b"]  # chosen by the engine, test below
     html = render_report(run)
     parsed = _parse(html)
     assert len(run.summary["records"]) > 10
@@ -372,6 +372,42 @@ def test_large_suite_puts_statistics_first_and_details_only_where_asked():
     sections = {i for i in parsed.ids if i.startswith("record-") and i != "record-source"}
     assert sections == {"record-rinaldi_1994_b"}
     assert f"{len(run.summary['records']) - 1} records of the suite have no detail section" in html
+
+
+def test_a_large_suite_details_the_records_asked_for_or_the_worst_and_reads_only_those(
+        seed_suite, tmp_path):
+    from dataclasses import replace
+
+    from audit.engine.ranking import WORST_RECORDS
+    from audit.engine.verdicts import UNSAFE_VERDICTS
+    from records import RecordSuite
+    doubled = RecordSuite(tuple(seed_suite) + tuple(replace(e, id=f"{e.id}_b")
+                                                    for e in seed_suite), "seed twice")
+    ids = [entry.id for entry in doubled]
+    grid = dict(alpha_deg=(10.0, 15.0, 20.0), robustness=0.0)
+    asked = audit.api.run("priestley1978", doubled, detail=["rinaldi_1994_b"], **grid)
+    assert asked.summary["detail_records"] == ["rinaldi_1994_b"]
+
+    result = audit.api.run("priestley1978", doubled, out_dir=tmp_path / "run", **grid)
+    results = result.results
+    # the records with the most unsafe blocks, counted here from results.csv (suite order on
+    # ties), are the sections
+    unsafe = results[results["verdict"].isin(UNSAFE_VERDICTS)]["record"].value_counts()
+    ranked = sorted(unsafe.index, key=lambda record: (-unsafe[record], ids.index(record)))
+    assert len(doubled) > 10 and len(ranked) >= WORST_RECORDS
+    assert result.summary["worst_records"] == ranked[:WORST_RECORDS]
+    assert set(result.summary["detail_records"]) == set(ranked[:WORST_RECORDS])
+    # the report, read back with only the rows it shows, ranks the same worst blocks as with all
+    from audit.engine.results import load_run
+    from reports.render import _worst_cases
+    whole, shown = load_run(tmp_path / "run"), load_run(tmp_path / "run", shown=True)
+    assert set(shown.results["record"]) == set(result.summary["shown_records"]) < set(ids)
+    metas, procedures = whole.summary["histories"], whole.summary["procedures"]
+    names = {r["id"]: r["name"] for r in whole.summary["records"]}
+    def table(run):  # NaN ratios (missed overturning) compare equal as text
+        return json.dumps(_worst_cases(run, procedures, names, metas), default=str)
+    assert table(shown) == table(whole)
+    assert any(table["rows"] for table in _worst_cases(whole, procedures, names, metas))
 
 
 def test_procedure_figure_draws_cycles_and_repelling_fixed_points():

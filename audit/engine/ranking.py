@@ -49,10 +49,10 @@ def block_key(record, alpha_deg, size_s) -> tuple:
 
 
 class ShownRecords:
-    """The records whose rows the report reads, folded over the records one part at a time: the
-    records with the most unsafe blocks, and those holding the worst drawn blocks of each
-    procedure and class (the worst-cases table). The report then ranks those records' rows
-    again and finds the same blocks, with no need for the others.
+    """What the report shows of a large suite, folded over the records one part at a time: the
+    records with the most unsafe blocks, and the worst drawn blocks of each procedure and class
+    (the worst-cases table). The report then ranks the rows of those blocks' records again and
+    finds the same blocks, with no need for the other records.
 
     Parameters
     ----------
@@ -92,9 +92,12 @@ class ShownRecords:
         ranked = sorted(self._unsafe.items(), key=lambda item: -item[1])
         return [record for record, n in ranked[:WORST_RECORDS] if n]
 
-    def table_records(self) -> set[str]:
-        """The records of the worst-cases table."""
-        return {record for frame in self._worst.values() for record in frame["record"]}
+    def table_blocks(self) -> list[list]:
+        """``[record, α, size]`` of the blocks of the worst-cases table (each once)."""
+        blocks = {block_key(*key): list(key) for frame in self._worst.values()
+                  for key in zip(frame["record"], frame["alpha_deg"].astype(float),
+                                 frame["size_s"].astype(float))}
+        return list(blocks.values())
 
 
 __all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst",

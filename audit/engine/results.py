@@ -15,12 +15,14 @@ import math
 from pathlib import Path
 
 import numpy as np
+import orjson
 import pandas as pd
 
 from audit.errors import InputError
 from audit.engine.csv_text import csv_bytes
 from audit.engine.schemas import BOOLEAN_COLUMNS, RESULT_COLUMNS, column_guide
 from audit.engine.audit_run import AuditRun
+from audit.engine.ranking import block_key
 
 RESULTS_CSV = "results.csv"
 SUMMARY_JSON = "summary.json"
@@ -50,6 +52,15 @@ def json_ready(value):
     if isinstance(value, (float, np.floating)):
         return float(value) if math.isfinite(value) else None
     return value
+
+
+def summary_bytes(summary: dict) -> bytes:
+    """``summary.json``: UTF-8, indented, NaN and inf as null, numpy scalars as numbers (as
+    :func:`json_ready`), encoded by orjson in one pass without a copy of the summary: the
+    summary of a suite of thousands of records holds every record's provenance, statistics and
+    drawn histories."""
+    return orjson.dumps(summary, option=orjson.OPT_INDENT_2 | orjson.OPT_SERIALIZE_NUMPY
+                        | orjson.OPT_NON_STR_KEYS) + b"\n"
 
 
 def _with_booleans(frame):
@@ -84,7 +95,7 @@ def table_bytes(frame: pd.DataFrame, name: str, header: bool = True) -> bytes:
 def suite_files(run: AuditRun) -> dict[str, bytes]:
     """The files of a run that hold the suite as a whole, as bytes."""
     return {
-        SUMMARY_JSON: json.dumps(json_ready(run.summary), indent=1, ensure_ascii=False).encode(),
+        SUMMARY_JSON: summary_bytes(run.summary),
         SUITE_CSV: csv_bytes(run.suite, "%.6g"),
         CLAIMS_CSV: run.claims.to_csv(index=False).encode(),
         MECHANICS_CSV: csv_bytes(run.mechanics, "%.7g"),
@@ -95,7 +106,7 @@ def suite_files(run: AuditRun) -> dict[str, bytes]:
 DATA_FILES = (RESULTS_CSV, ESTIMATES_ONLY_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTORIES_CSV,
               ROCKING_CSV, CHECKS_CSV, SUITE_CSV, CLAIMS_CSV, DESIGN_SPECTRA_CSV, MECHANICS_CSV)
 #: Rows read at a time when only some records are kept.
-_CHUNK_ROWS = 200_000
+_CHUNK_ROWS = 20_000
 
 
 def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
@@ -105,9 +116,10 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     ----------
     run_dir : str or Path
     shown : bool
-        Keep only the rows of the records the report reads (``summary["shown_records"]``),
-        reading the tables in chunks: a report of a suite of thousands of records is drawn in
-        bounded memory.
+        Keep only the rows the report reads, reading the tables in chunks: results and time
+        histories of ``summary["shown_records"]``, spectra, rocking spectra and checks of
+        ``summary["detail_records"]`` (the records with a section). A report of a suite of
+        thousands of records is drawn in bounded memory.
     """
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
@@ -121,28 +133,35 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
         summary = json.loads(files[SUMMARY_JSON].read_bytes())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise InputError(f"{where}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
-    records = None
+    records = detailed = histories_kept = None
     if shown:
         if "shown_records" not in summary:
             raise InputError(f"{where}/{SUMMARY_JSON}: no shown_records; written by an older "
                              "version: run the audit again")
-        records = set(summary["shown_records"])
+        records, detailed = set(summary["shown_records"]), set(summary["detail_records"])
+        worst_blocks = {block_key(*block) for block in summary["worst_blocks"]}
+
+        def histories_kept(chunk):
+            return chunk["record"].isin(detailed) | pd.Series(
+                [block_key(*key) in worst_blocks for key in
+                 zip(chunk["record"], chunk["alpha_deg"], chunk["size_s"])],
+                index=chunk.index, dtype=bool)
     text = {"record": str}
     try:
         results = _read_results(files[RESULTS_CSV], RESULTS_CSV, where, records)
         estimates_only = _read_results(files[ESTIMATES_ONLY_CSV], ESTIMATES_ONLY_CSV, where,
                                        records)
-        spectra = _read(files[SPECTRA_CSV], records, keep_default_na=False, dtype=text,
+        spectra = _read(files[SPECTRA_CSV], detailed, keep_default_na=False, dtype=text,
                         na_values={c: [""] for c in ("alpha_deg", "damping_pct", "period_s",
                                                      "sd_m", "sv_m_s", "sa_g")})
-        histories = _read(files[HISTORIES_CSV], records, dtype=text)
-        rocking = _read(files[ROCKING_CSV], records, dtype=text)
-        checks = _read(files[CHECKS_CSV], records, keep_default_na=False, dtype=text,
+        histories = _read(files[HISTORIES_CSV], histories_kept, dtype=text)
+        rocking = _read(files[ROCKING_CSV], detailed, dtype=text)
+        checks = _read(files[CHECKS_CSV], detailed, keep_default_na=False, dtype=text,
                        na_values={c: [""] for c in ("alpha_deg", "size_s", "demand_m",
                                                     "capacity_m")})
         suite = _read(files[SUITE_CSV], None)
         claims = _read(files[CLAIMS_CSV], None, keep_default_na=False, dtype=str)
-        design = _read(files[DESIGN_SPECTRA_CSV], None if records is None else records | {""},
+        design = _read(files[DESIGN_SPECTRA_CSV], None if detailed is None else detailed | {""},
                        keep_default_na=False, dtype=text,
                        na_values={c: [""] for c in ("damping_pct", "period_s", "sa_g", "sd_m")})
         mechanics = _read(files[MECHANICS_CSV], None, dtype={"figure": str, "series": str})
@@ -153,11 +172,15 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
                     claims, design, mechanics)
 
 
-def _read(path: Path, records, **options) -> pd.DataFrame:
-    """One CSV table, all of it or only the rows of ``records`` (read in chunks)."""
-    if records is None:
+def _read(path: Path, kept, **options) -> pd.DataFrame:
+    """One CSV table: all of it (``kept`` None), or the rows of the records in the set ``kept``
+    or those where ``kept(chunk)`` is true, read in chunks."""
+    if kept is None:
         return pd.read_csv(path, **options)
-    chunks = [chunk[chunk["record"].isin(records)]
+    if not callable(kept):
+        records = kept
+        kept = lambda chunk: chunk["record"].isin(records)  # noqa: E731
+    chunks = [chunk[kept(chunk)]
               for chunk in pd.read_csv(path, chunksize=_CHUNK_ROWS, **options)]
     return pd.concat(chunks, ignore_index=True) if chunks else pd.read_csv(path, **options)
 

@@ -2,12 +2,13 @@
 as the records pass: the driver never holds a suite of thousands of records at once.
 
 Each record's part (:class:`~audit.engine.record_audit.RecordAudit`) arrives in the suite's
-order; its rows are appended to the CSV files (the bytes of the whole table written at once,
-:func:`~audit.engine.results.table_bytes`) and dropped. What stays grows by a small term per
-record: the suite statistics' group number, verdict and ratio per block
+order; its rows are appended to the CSV files (the same bytes as the whole table written at
+once, :func:`~audit.engine.results.table_bytes`) and dropped. What stays grows by a small term
+per record: the suite statistics' group number, verdict and ratio per block
 (:class:`~audit.engine.suite.SuiteStatistics`), the bottom line's counts and finite ratios
-(:class:`~audit.engine.suite.BottomLine`), each record's summary and per-α statistics, and
-the parts of the few records the reference report's claims name (those claims read them).
+(:class:`~audit.engine.suite.BottomLine`), each record's summary and per-α statistics, the
+report's worst candidates (:class:`~audit.engine.ranking.ShownRecords`), and the parts of the
+few records the reference report's claims name (those claims read them).
 """
 
 from __future__ import annotations
@@ -123,10 +124,9 @@ class RunWriter:
         the report shows)."""
         ids = [entry.id for entry in suite]
         worst = self.shown.worst_records()
-        if len(ids) <= LARGE_SUITE:
-            shown = set(ids)
-        else:
-            shown = set(detail or worst) | self.shown.table_records()
+        detailed = set(ids) if len(ids) <= LARGE_SUITE else set(detail or worst)
+        blocks = self.shown.table_blocks()
+        shown = detailed | {record for record, *_ in blocks}
         return {
             "version": __version__,
             "procedures": [{"name": p.name, "title": p.title, "reference": p.reference,
@@ -149,6 +149,11 @@ class RunWriter:
             "mechanics": sensitivity_facts(),
             "detail": list(detail),
             "worst_records": worst,
+            # the report's sections: every record of a small suite, else those asked for or
+            # the worst ones; the blocks of its worst-cases table; the records whose rows it
+            # reads (both)
+            "detail_records": [record for record in ids if record in detailed],
+            "worst_blocks": blocks,
             "shown_records": [record for record in ids if record in shown],
         }
 
