@@ -19,6 +19,10 @@ from audit.errors import InputError
 
 #: Start of this run: staging folders older than it, of processes no longer alive, are stale.
 _RUN_STARTED = time.time()
+#: The process's file-creation mask (read by setting it, then put back), for files made by
+#: mkstemp to get the permissions any other new file gets.
+_UMASK = os.umask(0o022)
+os.umask(_UMASK)
 
 
 def _staging_prefix(out_dir: Path) -> str:
@@ -143,6 +147,7 @@ def write_atomically(files: dict[Path, bytes]) -> None:
             handle, temp = tempfile.mkstemp(prefix=f".{path.name}-staging-{os.getpid()}-",
                                             dir=path.parent)
             staged.append(temp)
+            os.chmod(temp, 0o666 & ~_UMASK)  # mkstemp's 0600 would keep a report private
             with os.fdopen(handle, "wb") as stream:
                 stream.write(content)
         for temp, path in zip(staged, files):

@@ -547,6 +547,15 @@ def test_non_empty_out_previous_files_replaced_others_kept(workdir):
     assert (out / "summary.json").read_text() == "{}"
 
 
+def test_atomic_files_get_the_permissions_of_any_new_file(workdir):
+    # mkstemp makes its files 0600: a report written through it could not be shared
+    from audit.files import write_file_atomically
+    write_file_atomically(workdir / "atomic.html", b"x")
+    with open(workdir / "plain.html", "wb") as file:
+        file.write(b"x")
+    assert (workdir / "atomic.html").stat().st_mode == (workdir / "plain.html").stat().st_mode
+
+
 def test_stale_staging_folders_of_killed_runs_are_cleaned(workdir):
     dead_pid = 2 ** 22 + 12345  # above the kernel's pid_max: never alive
     stale = workdir / f".out-staging-{dead_pid}-abc123"

@@ -135,8 +135,10 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
         raise InputError(f"{where}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
     records = detailed = histories_kept = None
     if shown:
-        if "shown_records" not in summary:
-            raise InputError(f"{where}/{SUMMARY_JSON}: no shown_records; written by an older "
+        absent = [key for key in ("detail_records", "worst_blocks", "shown_records")
+                  if key not in summary]
+        if absent:
+            raise InputError(f"{where}/{SUMMARY_JSON}: no {absent[0]}; written by an older "
                              "version: run the audit again")
         records, detailed = set(summary["shown_records"]), set(summary["detail_records"])
         worst_blocks = {block_key(*block) for block in summary["worst_blocks"]}
