@@ -141,13 +141,7 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
             raise InputError(f"{where}/{SUMMARY_JSON}: no {absent[0]}; written by an older "
                              "version: run the audit again")
         records, detailed = set(summary["shown_records"]), set(summary["detail_records"])
-        worst_blocks = {block_key(*block) for block in summary["worst_blocks"]}
-
-        def histories_kept(chunk):
-            return chunk["record"].isin(detailed) | pd.Series(
-                [block_key(*key) in worst_blocks for key in
-                 zip(chunk["record"], chunk["alpha_deg"], chunk["size_s"])],
-                index=chunk.index, dtype=bool)
+        histories_kept = _histories_shown(detailed, summary["worst_blocks"])
     text = {"record": str}
     try:
         results = _read_results(files[RESULTS_CSV], RESULTS_CSV, where, records)
@@ -185,6 +179,19 @@ def _read(path: Path, kept, **options) -> pd.DataFrame:
     chunks = [chunk[kept(chunk)]
               for chunk in pd.read_csv(path, chunksize=_CHUNK_ROWS, **options)]
     return pd.concat(chunks, ignore_index=True) if chunks else pd.read_csv(path, **options)
+
+
+def _histories_shown(detailed: set, worst_blocks: list):
+    """Which history rows the report draws: all of the records with a section, and those of
+    the worst-cases table's blocks."""
+    worst = {block_key(*block) for block in worst_blocks}
+
+    def kept(chunk: pd.DataFrame) -> pd.Series:
+        return chunk["record"].isin(detailed) | pd.Series(
+            [block_key(*key) in worst for key in
+             zip(chunk["record"], chunk["alpha_deg"], chunk["size_s"])],
+            index=chunk.index, dtype=bool)
+    return kept
 
 
 def _read_results(source, name: str, where: str, records) -> pd.DataFrame:
