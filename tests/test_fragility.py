@@ -5,6 +5,7 @@ and the exact stripes of the one-cosine pulse of Figure 4.1 (an island of surviv
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -45,6 +46,18 @@ def test_covariance_is_the_inverse_fisher_information():
     assert low == pytest.approx(fit.median * math.exp(-k * spread), rel=1e-12)
     assert high == pytest.approx(fit.median * math.exp(k * spread), rel=1e-12)
     assert fit.median == pytest.approx(median, rel=1e-5)
+
+
+def test_counts_that_do_not_fix_beta_claim_no_band_and_warn_nothing():
+    # one of two records overturns at the top stripe, none below: P = 1/2 there fixes the median
+    # at that stripe, while any small β fits the zeros below equally well
+    levels = np.geomspace(0.05, 2.0, 5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fit = fit_lognormal(levels, [2] * 5, [0, 0, 0, 0, 1])
+    assert fit.median == pytest.approx(2.0, rel=1e-3)
+    # no bounded band on β is claimed: NaN (information not positive definite) or (≈0, ≫1)
+    assert not (0.05 <= fit.beta_band[0] and fit.beta_band[1] <= 10.0)
 
 
 def test_fit_of_sampled_counts_brackets_the_truth():

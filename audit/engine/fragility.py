@@ -41,7 +41,8 @@ class LognormalFit:
     beta : float
         Logarithmic standard deviation β [-].
     median_band, beta_band : (float, float)
-        Confidence bounds at :attr:`confidence` (from the observed information).
+        Confidence bounds at :attr:`confidence` (from the observed information); NaN where
+        the information is not positive definite (counts that fix β only as → 0).
     covariance : numpy.ndarray
         Covariance of (ln θ, ln β), 2 × 2.
     confidence : float
@@ -111,16 +112,23 @@ def fit_lognormal(levels, trials, successes, confidence: float = 0.90) -> Lognor
     best = minimize(_negative_log_likelihood, [start, np.log(0.4)], args=args,
                     method="Nelder-Mead",
                     options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
-    covariance = np.linalg.inv(_hessian(lambda q: _negative_log_likelihood(q, *args), best.x))
+    information = _hessian(lambda q: _negative_log_likelihood(q, *args), best.x)
+    # counts that a step fits best (β → 0, e.g. one stripe with overturning) leave the
+    # likelihood flat or curved the wrong way there: no band, rather than a negative variance
+    if np.all(np.linalg.eigvalsh(information) > 0.0):
+        covariance = np.linalg.inv(information)
+    else:
+        covariance = np.full((2, 2), np.nan)
     log_median, log_beta = best.x
     k = norm.ppf(0.5 + confidence / 2.0)
     se_median, se_beta = np.sqrt(np.diag(covariance))
-    return LognormalFit(float(np.exp(log_median)), float(np.exp(log_beta)),
-                        (float(np.exp(log_median - k * se_median)),
-                         float(np.exp(log_median + k * se_median))),
-                        (float(np.exp(log_beta - k * se_beta)),
-                         float(np.exp(log_beta + k * se_beta))),
-                        covariance, confidence)
+    with np.errstate(over="ignore"):  # a band wider than floats hold is unbounded: inf
+        return LognormalFit(float(np.exp(log_median)), float(np.exp(log_beta)),
+                            (float(np.exp(log_median - k * se_median)),
+                             float(np.exp(log_median + k * se_median))),
+                            (float(np.exp(log_beta - k * se_beta)),
+                             float(np.exp(log_beta + k * se_beta))),
+                            covariance, confidence)
 
 
 def _hessian(function, x, step: float = 1e-4) -> np.ndarray:

@@ -182,8 +182,8 @@ GUIDE["fragility.csv"] = {
     "beta": ("-", "lognormal fragility β"),
     "median_low": ("g or m/s", "lower 90 % bound of the median"),
     "median_high": ("g or m/s", "upper 90 % bound of the median"),
-    "beta_low": ("-", "lower 90 % bound of β"),
-    "beta_high": ("-", "upper 90 % bound of β"),
+    "beta_low": ("-", "lower 90 % bound of β (empty or inf where the counts do not bound β)"),
+    "beta_high": ("-", "upper 90 % bound of β (empty or inf where the counts do not bound β)"),
     "cmr": ("-", "collapse margin ratio: median / the site's design intensity"),
     "records_with_islands": ("-", "records under which the block survives a stripe above its "
                                   "first overturning one (depends on the stripe spacing)"),
