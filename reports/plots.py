@@ -53,6 +53,21 @@ def rounded(values) -> np.ndarray:
     return values
 
 
+def _rounded_scalar(value: float):
+    """One float as :func:`rounded` and :func:`_json_numbers` give it inside an array (the same
+    rint(x·10^k)/10^k in IEEE doubles), without numpy's per-call cost: figures carry thousands
+    of lone floats in their hover data."""
+    magnitude = abs(value)
+    if not 1e-18 <= magnitude < 1e24:
+        return _json_numbers(rounded([value]))[0]
+    k = SIGNIFICANT_DIGITS - 1 - math.floor(math.log10(magnitude))
+    n = float(round(value * 10.0 ** k))
+    x = n / 10.0 ** k if k >= 0 else n * 10.0 ** -k
+    if x != x or x in (math.inf, -math.inf):
+        return None
+    return int(x) if x.is_integer() and abs(x) < 1e15 else x
+
+
 def _json_numbers(values: np.ndarray):
     """Rounded floats as JSON-ready nested lists: an int where integral (a lighter page), None
     for NaN."""
@@ -84,7 +99,7 @@ def to_json(spec) -> str:
                 return _json_numbers(rounded(value))
             return value if value.dtype.kind in "biu" else clean(value.tolist())
         if isinstance(value, (float, np.floating)):
-            return _json_numbers(rounded([value]))[0]
+            return _rounded_scalar(float(value))
         return value
     text = orjson.dumps(clean(spec), option=orjson.OPT_SERIALIZE_NUMPY).decode()
     return text.replace("</", "<\\/")

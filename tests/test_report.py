@@ -446,8 +446,11 @@ def test_embedded_numbers_keep_four_significant_digits(values):
     as an int when integral, and as null when it is (or rounds to) NaN or ±inf: JSON has no
     NaN, and a value next to the largest double rounds to inf."""
     from reports.plots import to_json
-    embedded = json.loads(to_json({"y": np.array(values), "z": np.array([values, values])}))
+    embedded = json.loads(to_json({"y": np.array(values), "z": np.array([values, values]),
+                                   "alone": [[v, "text"] for v in values]}))
     assert embedded["z"] == [embedded["y"], embedded["y"]]
+    # a float alone (hover data beside text) takes the scalar path: the same digits
+    assert [alone for alone, _ in embedded["alone"]] == embedded["y"]
     for value, got in zip(values, embedded["y"]):
         if not math.isfinite(value) or abs(value) > 1.7976e308:  # 1.798e308 overflows
             assert got is None

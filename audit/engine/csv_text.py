@@ -9,7 +9,9 @@ pandas on every kind of cell the tables hold.
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
+from pandas.api.types import infer_dtype
 
 _QUOTE_IF = (",", '"', "\n", "\r")
 
@@ -36,6 +38,12 @@ def _column(values, float_format: str) -> list[str]:
         return list(map(str, values.tolist()))
     if kind == "b":
         return ["True" if x else "False" for x in values.tolist()]
+    if infer_dtype(values, skipna=True) == "string":
+        # text columns repeat a few values (record ids, verdicts): each distinct one is
+        # formatted once; code -1 (None, NaN) takes the empty text appended last
+        codes, distinct = pd.factorize(values)
+        texts = [_cell(x, float_format) for x in distinct] + [""]
+        return np.asarray(texts, dtype=object)[codes].tolist()
     return [_cell(x, float_format) for x in values.tolist()]
 
 

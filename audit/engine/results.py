@@ -185,12 +185,19 @@ def _histories_shown(detailed: set, worst_blocks: list):
     """Which history rows the report draws: all of the records with a section, and those of
     the worst-cases table's blocks."""
     worst = {block_key(*block) for block in worst_blocks}
+    worst_records = {record for record, _, _ in worst}
 
     def kept(chunk: pd.DataFrame) -> pd.Series:
-        return chunk["record"].isin(detailed) | pd.Series(
-            [block_key(*key) in worst for key in
-             zip(chunk["record"], chunk["alpha_deg"], chunk["size_s"])],
-            index=chunk.index, dtype=bool)
+        shown = chunk["record"].isin(detailed)
+        others = ~shown & chunk["record"].isin(worst_records)
+        if others.any():  # each block of those records named once, not once per sample
+            blocks = chunk.loc[others, ["record", "alpha_deg", "size_s"]]
+            distinct = blocks.drop_duplicates()
+            chosen = distinct[[block_key(*block) in worst
+                               for block in distinct.itertuples(index=False)]]
+            shown[others] = pd.MultiIndex.from_frame(blocks).isin(
+                pd.MultiIndex.from_frame(chosen))
+        return shown
     return kept
 
 
