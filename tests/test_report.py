@@ -11,6 +11,7 @@ import subprocess
 import sys
 from html.parser import HTMLParser
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -525,3 +526,26 @@ def test_grid_pivot_is_pandas_pivot_table():
     assert np.array_equal(alphas, pivot.index.to_numpy(dtype=float))
     assert np.array_equal(sizes, pivot.columns.to_numpy(dtype=float))
     assert np.array_equal(z, pivot.to_numpy(dtype=float), equal_nan=True)
+
+
+def test_suite_statistics_and_bottom_line_folded_record_by_record_equal_the_whole(seed_report):
+    """The run folds each record's rows as it passes; over the same rows, any split into parts
+    gives what the whole table gives (verdict counts, percentiles, the bottom line's worst
+    block, which a stable ranking makes the first of equals)."""
+    from audit.engine.results import load_run
+    from audit.engine.suite import BottomLine, SuiteStatistics
+    run = load_run(seed_report)
+    procedures = [SimpleNamespace(name=p["name"]) for p in run.summary["procedures"]]
+    whole_stats = SuiteStatistics().add(run.results).frame()
+    whole_line = BottomLine(procedures).add(run.results, run.checks).lines()
+    stats, line = SuiteStatistics(), BottomLine(procedures)
+    records = list(dict.fromkeys(run.results["record"]))
+    assert len(records) > 3
+    for record in records:
+        stats.add(run.results[run.results["record"] == record])
+        line.add(run.results[run.results["record"] == record],
+                 run.checks[run.checks["record"] == record])
+    pd.testing.assert_frame_equal(stats.frame(), whole_stats, check_exact=True)
+    assert json.dumps(line.lines(), sort_keys=True, default=str) == json.dumps(
+        whole_line, sort_keys=True, default=str)
+    assert any(entry["worst"] for entry in whole_line)

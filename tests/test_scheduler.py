@@ -1,7 +1,7 @@
 """Schedulers: the same values whatever computes the records; records by reference or by value."""
 
 import sys
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -111,6 +111,36 @@ def test_scaled_or_unreadable_records_are_not_resolved_and_pulses_go_by_value(se
     assert resolve(moved) is None
     pulse = replace(entry, motion=one_pulse("cosine", 0.5, 1.0, record_id="p"))
     assert by_reference(pulse) is pulse
+
+
+@dataclass(frozen=True)
+class _Item:
+    """A stand-in record: no motion, so it travels by value."""
+    id: str
+    value: int
+    motion: None = None
+
+
+def _tripled(item, factor):
+    return item.value * factor
+
+
+def test_dask_submits_records_as_others_complete():
+    # the scheduler holds a record sent by value only while it is queued or running: at most
+    # TASKS_PER_THREAD per worker thread in flight, whatever the suite's length
+    from distributed import Client
+    from audit.engine.scheduler import TASKS_PER_THREAD, DaskScheduler
+    items = [_Item(f"r{i}", i) for i in range(12)]
+    with Client(processes=False, n_workers=1, threads_per_worker=1,
+                dashboard_address=None) as client:
+        scheduler = DaskScheduler(client, "one thread")
+        done, most = {}, 0
+        for index, value, _ in scheduler.map(_tripled, items, 3):
+            done[index] = value
+            most = max(most, len(client.futures) - 1)  # less the scattered factor
+    assert done == {i: 3 * i for i in range(12)}
+    assert 1 <= most <= TASKS_PER_THREAD
+    assert scheduler.by_value == [item.id for item in items]
 
 
 def test_scheduler_option_is_checked():

@@ -115,6 +115,11 @@ class LocalScheduler:
         return self.map(audit_record, entries, procedures, settings)
 
 
+#: Records queued or running per worker thread of a Dask cluster: enough that a worker never
+#: waits for the driver, few enough that the records sent by value stay a small, fixed term.
+TASKS_PER_THREAD = 2
+
+
 class DaskScheduler:
     """Records as tasks of a Dask cluster, yielded as they complete.
 
@@ -135,30 +140,47 @@ class DaskScheduler:
     def map(self, task, entries, *args):
         """Yield ``(index, task(entry, *args), seconds)`` in order of completion.
 
-        ``args`` (procedures, settings) are scattered once to every worker. A record sent by
-        reference that a worker cannot read back is sent again by value. A worker lost mid-run
-        needs nothing here: the Dask scheduler gives its tasks to the other workers (up to
-        ``distributed.scheduler.allowed-failures`` deaths per task); ``retries=`` would only
-        re-run a task that raised, which for a deterministic record raises again
-        (tests/test_dask_cluster.py).
+        ``args`` (procedures, settings) are scattered once to every worker. Records are
+        submitted as earlier ones complete, :data:`TASKS_PER_THREAD` per worker thread of the
+        cluster as it is then (so a cluster that grows gets more): a record sent by value is
+        held by the scheduler only while queued or running, and the driver's memory does not
+        grow with the suite. A record sent by reference that a worker cannot read back is sent
+        again by value. A worker lost mid-run needs nothing here: the Dask scheduler gives its
+        tasks to the other workers (up to ``distributed.scheduler.allowed-failures`` deaths per
+        task); ``retries=`` would only re-run a task that raised, which for a deterministic
+        record raises again (tests/test_dask_cluster.py).
         """
         from distributed import as_completed
         args = [self.client.scatter(arg, broadcast=True) for arg in args]
-        items = [by_reference(entry) for entry in entries]
-        self.by_value += [entry.id for entry, item in zip(entries, items) if item is entry]
-        futures = [self.client.submit(timed, task, item, *args, pure=False) for item in items]
-        index_of = {future.key: index for index, future in enumerate(futures)}
-        pending = as_completed(futures)
+        waiting = iter(enumerate(entries))
+        index_of = {}
+        pending = as_completed()
+
+        def submit(index, item):
+            future = self.client.submit(timed, task, item, *args, pure=False)
+            index_of[future.key] = index
+            pending.add(future)
+
+        def fill():
+            threads = max(1, sum(self.client.nthreads().values()))
+            for index, entry in waiting:
+                item = by_reference(entry)
+                if item is entry:
+                    self.by_value.append(entry.id)
+                submit(index, item)
+                if pending.count() >= TASKS_PER_THREAD * threads:
+                    return
+
+        fill()
         for future in pending:
-            index, outcome = index_of[future.key], future.result()
+            index, outcome = index_of.pop(future.key), future.result()
             future.release()
             if outcome is None:
                 self.by_value.append(entries[index].id)
-                retry = self.client.submit(timed, task, entries[index], *args, pure=False)
-                index_of[retry.key] = index
-                pending.add(retry)
-                continue
-            yield (index, *outcome)
+                submit(index, entries[index])
+            else:
+                yield (index, *outcome)
+            fill()
 
     def audit(self, entries, procedures, settings):
         """Yield ``(index, RecordAudit, seconds)`` in order of completion."""

@@ -24,12 +24,14 @@ _KEYS = ["procedure", "alpha_deg", "size_s"]
 
 class SuiteStatistics:
     """:func:`suite_statistics` folded over the records one part at a time, so that a suite of
-    thousands of records is never held whole: per row it keeps a group number, a verdict code
-    and the ratio (13 bytes), the rest of each part is dropped."""
+    thousands of records is never held whole: the verdict counts per group are summed as they
+    come, and only the finite approx/exact ratios (for the percentiles) are kept, with their
+    group number (12 bytes each); the rest of each part is dropped."""
 
     def __init__(self):
         self._groups = {}  # (procedure, α, size) → number, in order of first appearance
-        self._group, self._verdict, self._ratio = [], [], []
+        self._counts = np.zeros((0, len(VERDICTS)), dtype=np.int64)  # group × verdict
+        self._group, self._ratio = [], []
 
     def add(self, results: pd.DataFrame) -> "SuiteStatistics":
         """Fold ``results.csv`` rows (columns ``procedure, alpha_deg, size_s, verdict, ratio``)."""
@@ -38,28 +40,30 @@ class SuiteStatistics:
             raise ValueError(f"suite statistics: unknown verdicts {sorted(unknown)}")
         keys = zip(results["procedure"], results["alpha_deg"].astype(float),
                    results["size_s"].astype(float))
-        self._group.append(np.fromiter((self._groups.setdefault(key, len(self._groups))
-                                        for key in keys), dtype=np.int32, count=len(results)))
-        self._verdict.append(results["verdict"].map(_VERDICT_CODE).to_numpy(dtype=np.int8))
-        self._ratio.append(results["ratio"].to_numpy(dtype=float))
+        group = np.fromiter((self._groups.setdefault(key, len(self._groups)) for key in keys),
+                            dtype=np.int32, count=len(results))
+        verdict = results["verdict"].map(_VERDICT_CODE).to_numpy(dtype=np.int64)
+        if len(self._groups) > len(self._counts):
+            self._counts = np.vstack([self._counts, np.zeros(
+                (len(self._groups) - len(self._counts), len(VERDICTS)), dtype=np.int64)])
+        np.add.at(self._counts, (group, verdict), 1)
+        ratio = results["ratio"].to_numpy(dtype=float)
+        finite = np.isfinite(ratio)
+        self._group.append(group[finite])
+        self._ratio.append(ratio[finite])
         return self
 
     def frame(self) -> pd.DataFrame:
         """The table of :func:`suite_statistics` over every row folded so far."""
         if not self._groups:
             return pd.DataFrame(columns=SUITE_COLUMNS)
-        group = np.concatenate(self._group)
-        verdict = np.concatenate(self._verdict)
-        ratio = np.concatenate(self._ratio)
-        ratio[~np.isfinite(ratio)] = np.nan
-        records = np.bincount(group, minlength=len(self._groups))
+        records = self._counts.sum(axis=1)
         table = pd.DataFrame(list(self._groups), columns=_KEYS)
         table["records"] = records
         for code, v in enumerate(VERDICTS):
-            table[verdict_column(v)] = (np.bincount(group[verdict == code],
-                                                    minlength=len(self._groups)) / records)
+            table[verdict_column(v)] = self._counts[:, code] / records
         table["frac_unsafe"] = table[[verdict_column(v) for v in UNSAFE_VERDICTS]].sum(axis=1)
-        grouped = pd.Series(ratio).groupby(group)
+        grouped = pd.Series(np.concatenate(self._ratio)).groupby(np.concatenate(self._group))
         for q in RATIO_PERCENTILES:
             table[f"ratio_p{q}"] = grouped.quantile(q / 100.0).reindex(table.index)
         return table[SUITE_COLUMNS]
@@ -138,7 +142,7 @@ _FLAGS = {"exact_slides": "slides", "exact_model_sensitive": "model_sensitive"}
 class BottomLine:
     """:func:`bottom_line` folded over the records one part at a time: per procedure the verdict
     and flag counts, the finite ratios (for the median), the records seen, the check counts
-    per limit state and each part's worst block (the worst of the worst is the suite's: the
+    per limit state and the worst block so far (the worst of the worst is the suite's: the
     ranking is a stable sort, and the parts come in the suite's order)."""
 
     def __init__(self, procedures):
@@ -159,8 +163,9 @@ class BottomLine:
             line["records"].update(rows["record"])
             line["records"].update(mine["record"])
             worst = worst_case(rows)
-            if worst is not None:
-                line["worst"].append(worst)
+            if worst is not None:  # the worst of (the worst so far, this part's): the same
+                # block as ranking them all, since the ranking is a stable sort, and one row kept
+                line["worst"] = [worst_case(pd.DataFrame(line["worst"] + [worst]))]
             for state, group in mine.groupby("limit_state", sort=False):
                 tally = line["checks"].setdefault(state, dict.fromkeys(names(CHECK_VERDICTS), 0))
                 for verdict, n in group["verdict"].value_counts().items():
