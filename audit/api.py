@@ -250,7 +250,8 @@ class AuditResult:
     @functools.cached_property
     def summary(self) -> dict:
         """Everything of ``summary.json``, as saved."""
-        return json.loads((self.folder / "summary.json").read_bytes())
+        from audit.engine.results import SUMMARY_JSON
+        return json.loads((self.folder / SUMMARY_JSON).read_bytes())
 
     @functools.cached_property
     def run(self) -> AuditRun:

@@ -4,8 +4,8 @@ as the records pass: the driver never holds a suite of thousands of records at o
 Each record's part (:class:`~audit.engine.record_audit.RecordAudit`) arrives in the suite's
 order; its rows are appended to the CSV files (the same bytes as the whole table written at
 once, :func:`~audit.engine.results.table_bytes`) and dropped. What stays grows by a small term
-per record: the suite statistics' group number, verdict and ratio per block
-(:class:`~audit.engine.suite.SuiteStatistics`), the bottom line's counts and finite ratios
+per record: the suite statistics' finite ratios with their block
+(:class:`~audit.engine.suite.SuiteStatistics`), the bottom line's finite ratios
 (:class:`~audit.engine.suite.BottomLine`), each record's summary and per-α statistics, the
 report's worst candidates (:class:`~audit.engine.ranking.ShownRecords`), and the parts of the
 few records the reference report's claims name (those claims read them).

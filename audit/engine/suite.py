@@ -147,7 +147,7 @@ class BottomLine:
 
     def __init__(self, procedures):
         self._lines = {p.name: {"count": dict.fromkeys(VERDICTS, 0), "ratios": [],
-                                "records": set(), "worst": [], "checks": {}, "jumps": 0,
+                                "records": set(), "worst": None, "checks": {}, "jumps": 0,
                                 "flags": {flag: [0, 0, False] for flag in _FLAGS.values()}}
                        for p in procedures}
 
@@ -164,8 +164,9 @@ class BottomLine:
             line["records"].update(mine["record"])
             worst = worst_case(rows)
             if worst is not None:  # the worst of (the worst so far, this part's): the same
-                # block as ranking them all, since the ranking is a stable sort, and one row kept
-                line["worst"] = [worst_case(pd.DataFrame(line["worst"] + [worst]))]
+                # block as ranking them all, since the ranking is a stable sort
+                line["worst"] = worst if line["worst"] is None else worst_case(
+                    pd.DataFrame([line["worst"], worst]))
             for state, group in mine.groupby("limit_state", sort=False):
                 tally = line["checks"].setdefault(state, dict.fromkeys(names(CHECK_VERDICTS), 0))
                 for verdict, n in group["verdict"].value_counts().items():
@@ -189,7 +190,7 @@ class BottomLine:
             unsafe = sum(count[v] for v in UNSAFE_VERDICTS)
             uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
             ratios = np.concatenate(line["ratios"]) if line["ratios"] else np.empty(0)
-            worst = worst_case(pd.DataFrame(line["worst"])) if line["worst"] else None
+            worst = line["worst"]
             flags = {}
             for flag, (flagged, flagged_unsafe, checked) in line["flags"].items():
                 flags[flag] = flagged if checked else None
