@@ -1,14 +1,22 @@
-"""Suite-scale audit: the local scheduler against a Dask LocalCluster, on one suite of records.
+"""Suite-scale audit: the local scheduler against a Dask cluster, on one suite of records.
 
 Every registered procedure on every record of the suite over the default grid (α = 10, 15, 20°;
 2π/p = 0.5 … 8 s step 0.05), computed and written (the data files and the report, as
-``python -m audit run`` writes them) (a) in one process with the solver on ``--workers``
-threads and (b) on a Dask LocalCluster of ``--workers`` single-threaded worker processes. Each
-mode runs in a fresh child process, after a warm-up that loads the compiled solver, so its peak
-memory is its own: ``resource.getrusage`` maxrss of the child, and of each Dask worker (asked on
-the worker before the cluster closes). Reports wall time, time per record and per block, the
-size of a record's results and of the run's files, and a projection for the ~21,000 NGA-West2 components.
-Both modes run with one BLAS thread (``--blas-threads``), as Dask's nanny starts its workers, so
+``python -m audit run`` writes them) by one of three modes:
+
+- ``local``: in one process, the solver on ``--workers`` threads (``--scheduler local``);
+- ``dask``: on a Dask cluster as an operator runs one, the scheduler and ``--workers``
+  single-threaded workers each a process of its own (``distributed``'s SubprocessCluster),
+  reached at its ``tcp://`` address (``--scheduler tcp://HOST:PORT``);
+- ``localcluster``: ``--scheduler dask``, the run's own LocalCluster, whose scheduler lives in
+  the driver's process (its start-up is in the wall time; its workers' memory is not asked).
+
+Each mode runs in a fresh child process, after a warm-up that loads the compiled solver, so its
+peak memory is its own: ``resource.getrusage`` maxrss of the child (the driver), and of each
+Dask worker and the scheduler (asked before the cluster closes). Reports wall time, time per
+record and per block, the size of a record's results and of the run's files, and a projection
+for the ~21,000 NGA-West2 components.
+Every mode runs with one BLAS thread (``--blas-threads``), as Dask's nanny starts its workers, so
 that a difference of BLAS settings is never measured as a Dask speed-up (the oscillator's
 coefficients are closed-form now; no BLAS call remains on the hot path).
 
@@ -46,6 +54,7 @@ FALLBACK = [str(SHARED / "seed-suite.toml"), str(SHARED / "extras.toml")]
 NGA_WEST2_COMPONENTS = 21_000
 #: Dask's nanny starts workers with these at 1; the local mode gets the same (--blas-threads).
 BLAS_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+MODES = ("local", "dask", "localcluster")
 
 
 def load_suite(sources, site):
@@ -90,14 +99,21 @@ def enlarged(suite, size: int):
                        f"records ({per_polarity} scale factors × 2 polarities)")
 
 
+def max_rss_kb() -> int:
+    """Peak resident memory of this process [kB] (Linux ``ru_maxrss``)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+
+
 def measure(mode, sources, site, workers, size, procedure_names):
     """One timed audit in this process (run as a child): a JSON line on stdout."""
     import tempfile
 
     from audit.api import run as run_api
+    from audit.engine.heap import return_freed_memory_promptly
     from audit.engine.record_audit import audit_record
     from audit.engine.settings import AuditSettings
     from procedures import get_procedures
+    return_freed_memory_promptly()  # as a run does, before this benchmark's cluster threads start
     suite = load_suite(sources, site)
     if size:
         suite = enlarged(suite, size)
@@ -113,27 +129,27 @@ def measure(mode, sources, site, workers, size, procedure_names):
 
     out_dir = Path(tempfile.mkdtemp(prefix="suite-benchmark-")) / "out"
     start = time.perf_counter()
-    if mode == "local":
-        summary = run_api(procedures, suite, jobs=workers, progress=progress,
-                          out_dir=out_dir).summary
-        cluster_start = 0.0
+    cluster_start, scheduler_rss = 0.0, None
+    if mode in ("local", "localcluster"):
+        summary = run_api(procedures, suite, jobs=workers, progress=progress, out_dir=out_dir,
+                          scheduler="local" if mode == "local" else "dask").summary
+        wall = time.perf_counter() - start
     else:
         import logging
 
-        from distributed import Client, LocalCluster
-        with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                          dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
-                Client(cluster) as client:
+        from distributed import Client
+        from distributed.deploy.subprocess import SubprocessCluster
+        with SubprocessCluster(n_workers=workers, threads_per_worker=1, dashboard_address=None,
+                               silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+            client.wait_for_workers(workers)
             client.run(audit_record, suite.entries[0], procedures, warm)
             cluster_start = time.perf_counter() - start
             start = time.perf_counter()
             summary = run_api(procedures, suite, jobs=workers, progress=progress,
                               scheduler=cluster.scheduler_address, out_dir=out_dir).summary
             wall = time.perf_counter() - start
-            worker_rss = list(client.run(
-                lambda: resource.getrusage(resource.RUSAGE_SELF).ru_maxrss).values())
-    if mode == "local":
-        wall = time.perf_counter() - start
+            worker_rss = list(client.run(max_rss_kb).values())
+            scheduler_rss = client.run_on_scheduler(max_rss_kb)
     part = audit_record(suite.entries[0], procedures, AuditSettings())
     blocks = (sum(not item["missing"] for item in summary["records"])
               * len(summary["grid"]["alpha_deg"]) * len(summary["grid"]["size_s"]))
@@ -143,8 +159,9 @@ def measure(mode, sources, site, workers, size, procedure_names):
         "mode": mode, "suite": suite.description, "records": len(suite), "blocks": blocks,
         "procedures": [p.name for p in procedures],
         "wall_s": wall, "cluster_start_s": cluster_start, "record_s": seconds,
-        "self_maxrss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "self_maxrss_mb": max_rss_kb() / 1024,
         "worker_maxrss_mb": [rss / 1024 for rss in worker_rss],
+        "scheduler_maxrss_mb": scheduler_rss and scheduler_rss / 1024,
         "record_result_mb": len(pickle.dumps(part)) / 2**20, "files_mb": files_mb,
         "duration_s": statistics.mean(e.motion.duration for e in suite),
     }), flush=True)
@@ -177,8 +194,9 @@ def main():
                              "reversed (0: the suite as it is)")
     parser.add_argument("--procedures", default="all", help="procedures audited ('all' or "
                                                              "names, comma-separated)")
-    parser.add_argument("--modes", default="local,dask", help="local, dask or both")
-    parser.add_argument("--child", choices=("local", "dask"), help=argparse.SUPPRESS)
+    parser.add_argument("--modes", default="local,dask",
+                        help="comma-separated, of local, dask, localcluster (default local,dask)")
+    parser.add_argument("--child", choices=MODES, help=argparse.SUPPRESS)
     args = parser.parse_args()
     args.records = args.records or ["p695-far-field"]
     site = [float(v) for v in args.site.split(",")] if args.site else None
@@ -196,17 +214,19 @@ def main():
           f"{first['blocks']} exact blocks, {', '.join(first['procedures'])}, "
           f"{args.workers} workers/threads, {args.repeat} run(s) each, medians, "
           f"BLAS threads {args.blas_threads or 'unset'}")
-    print(f"{'mode':<6} {'wall s':>8} {'s/record':>9} {'ms/block':>9} {'core-s/rec':>11} "
-          f"{'maxrss MB':>10} {'workers MB':>14}")
+    print(f"{'mode':<12} {'wall s':>8} {'s/record':>9} {'ms/block':>9} {'core-s/rec':>11} "
+          f"{'driver MB':>10} {'workers MB':>14} {'scheduler MB':>13}")
     per_record_cost = {}
     for mode, items in runs.items():
         wall = statistics.median(item["wall_s"] for item in items)
         cost = statistics.median(s for item in items for s in item["record_s"].values())
         per_record_cost[mode] = cost
         workers = ", ".join(f"{rss:.0f}" for rss in items[-1]["worker_maxrss_mb"]) or "-"
-        print(f"{mode:<6} {wall:8.1f} {wall / first['records']:9.2f} "
+        scheduler = items[-1]["scheduler_maxrss_mb"]
+        scheduler = f"{scheduler:.0f}" if scheduler else "in driver" if mode != "local" else "-"
+        print(f"{mode:<12} {wall:8.1f} {wall / first['records']:9.2f} "
               f"{1000 * wall / first['blocks']:9.2f} {cost:11.2f} "
-              f"{max(i['self_maxrss_mb'] for i in items):10.0f} {workers:>14}")
+              f"{max(i['self_maxrss_mb'] for i in items):10.0f} {workers:>14} {scheduler:>13}")
     if runs.get("dask"):
         print(f"dask cluster start-up "
               f"{statistics.median(i['cluster_start_s'] for i in runs['dask']):.1f} s (not in the "

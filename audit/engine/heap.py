@@ -8,6 +8,15 @@ process no longer uses. A fixed 64 kB threshold returns it as it is freed — th
 gives its own workers (``distributed.nanny.pre-spawn-environ``, ``MALLOC_TRIM_THRESHOLD_``).
 Measured on 440 records of the enlarged far-field suite: peak growth over 44 records 103 kB a
 record instead of 134 kB.
+
+The same thresholds hold in one heap only: glibc gives each new thread an arena of its own
+(up to 8 per core), and a Dask client deserialises every record's part on its event-loop
+thread, whose arena fragments apart from the main one. One arena for the whole process keeps
+the Dask driver's growth to the local scheduler's: measured on 264 records of the enlarged
+far-field suite, Dask driver growth over 44 records 114 kB a record instead of 168 kB (local
+115 kB), and no change of the local scheduler's wall time (44 records, 3 runs each).
+A thread that allocated before the call keeps its own arena, so it is made before a
+scheduler starts.
 """
 
 from __future__ import annotations
@@ -16,18 +25,24 @@ import ctypes
 
 #: glibc's mallopt parameter number of M_TRIM_THRESHOLD (malloc.h).
 _M_TRIM_THRESHOLD = -1
+#: glibc's mallopt parameter number of M_ARENA_MAX (malloc.h).
+_M_ARENA_MAX = -8
 #: Free memory at the top of the heap above which it is returned to the system [bytes].
 TRIM_THRESHOLD_BYTES = 64 * 1024
+#: Heaps (arenas) the process's threads share.
+ARENAS = 1
 
 
 def return_freed_memory_promptly() -> bool:
-    """Set glibc's trim threshold to :data:`TRIM_THRESHOLD_BYTES` for this process; False (and
-    nothing done) where the C library is not glibc."""
+    """Set glibc's trim threshold to :data:`TRIM_THRESHOLD_BYTES` and its arenas to
+    :data:`ARENAS` for this process; False (and nothing done) where the C library is not glibc."""
     try:  # the symbols the process already has: glibc's on Linux
         mallopt = ctypes.CDLL(None).mallopt
     except (OSError, AttributeError):
         return False
-    return bool(mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD_BYTES))
+    trimmed = mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD_BYTES)
+    shared = mallopt(_M_ARENA_MAX, ARENAS)
+    return bool(trimmed and shared)
 
 
-__all__ = ["return_freed_memory_promptly", "TRIM_THRESHOLD_BYTES"]
+__all__ = ["return_freed_memory_promptly", "TRIM_THRESHOLD_BYTES", "ARENAS"]

@@ -75,8 +75,10 @@ def simulate_histories(entry, results: pd.DataFrame, exact, alpha_deg, settings:
             "omega_rad_s": response.omega[::stride]}))
         impacts = response.impact_times
         meta.append({
-            "record": entry.id, **pick, "cycle_starts_s": response.cycle_starts.tolist(),
-            "cycle_durations_s": response.cycle_durations.tolist(),
+            # arrays (8 bytes a value, not a float object): the driver keeps every record's
+            # drawn histories until summary.json is written
+            "record": entry.id, **pick, "cycle_starts_s": response.cycle_starts,
+            "cycle_durations_s": response.cycle_durations,
             "first_impact_s": float(impacts[0]) if response.n_impacts else None,
             "last_impact_s": float(impacts[-1]) if response.n_impacts else None,
             "peak_rotation_ratio": response.peak_rotation_ratio,

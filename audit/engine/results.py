@@ -118,8 +118,9 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     shown : bool
         Keep only the rows the report reads, reading the tables in chunks: results and time
         histories of ``summary["shown_records"]``, spectra, rocking spectra and checks of
-        ``summary["detail_records"]`` (the records with a section). A report of a suite of
-        thousands of records is drawn in bounded memory.
+        ``summary["detail_records"]`` (the records with a section), and of the summary's
+        per-record ``statistics`` and ``histories``, those of these records. A report of a
+        suite of thousands of records is drawn in bounded memory.
     """
     run_dir = Path(run_dir)
     if not run_dir.is_dir():
@@ -142,6 +143,9 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
                              "version: run the audit again")
         records, detailed = set(summary["shown_records"]), set(summary["detail_records"])
         histories_kept = _histories_shown(detailed, summary["worst_blocks"])
+        # dropped before the tables are read: a few kB a record of the suite
+        summary["statistics"] = [s for s in summary["statistics"] if s["record"] in detailed]
+        summary["histories"] = [h for h in summary["histories"] if h["record"] in records]
     text = {"record": str}
     try:
         results = _read_results(files[RESULTS_CSV], RESULTS_CSV, where, records)
