@@ -234,7 +234,8 @@ def main():
     print(f"a record's results pickled: {first['record_result_mb']:.2f} MB; the run's files "
           f"(CSV, JSON, report): {first['files_mb']:.0f} MB")
     # one record on one single-threaded worker (or one core of the local run)
-    cost = per_record_cost.get("dask", per_record_cost.get("local"))
+    cost = next(per_record_cost[mode] for mode in ("dask", "localcluster", "local")
+                if mode in per_record_cost)
     print(f"\nprojection, {NGA_WEST2_COMPONENTS} NGA-West2 components at the default grid, "
           f"{cost:.1f} core-s per record (records of ~{first['duration_s']:.0f} s):")
     for workers in (2, 16, 64, 256, 1024):
