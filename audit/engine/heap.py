@@ -9,14 +9,14 @@ gives its own workers (``distributed.nanny.pre-spawn-environ``, ``MALLOC_TRIM_TH
 Measured on 440 records of the enlarged far-field suite: peak growth over 44 records 103 kB a
 record instead of 134 kB.
 
-The same thresholds hold in one heap only: glibc gives each new thread an arena of its own
-(up to 8 per core), and a Dask client deserialises every record's part on its event-loop
-thread, whose arena fragments apart from the main one. One arena for the whole process keeps
-the Dask driver's growth to the local scheduler's: measured on 264 records of the enlarged
-far-field suite, Dask driver growth over 44 records 114 kB a record instead of 168 kB (local
-115 kB), and no change of the local scheduler's wall time (44 records, 3 runs each).
-A thread that allocated before the call keeps its own arena, so it is made before a
-scheduler starts.
+glibc also gives each new thread an arena of its own (up to 8 per core). With ``--scheduler
+dask`` the driver's Dask threads (the client's event loop, which receives every record's part,
+and the LocalCluster's scheduler) allocate in arenas of their own, and the driver's peak grew
+faster with the suite than the local scheduler's. One arena for the whole process: measured with
+``--scheduler dask`` on the enlarged far-field suite, peak growth from 44 to 264 records 114 kB
+a record instead of 164 kB (local: 114 kB), and no change of the local scheduler's wall time
+(44 records, 3 runs each). A thread that allocated before the call keeps its own arena, so it
+is made before a scheduler starts.
 """
 
 from __future__ import annotations
