@@ -14,7 +14,6 @@ command line prints.
 from __future__ import annotations
 
 import functools
-import json
 import math
 import tempfile
 from dataclasses import dataclass
@@ -250,8 +249,8 @@ class AuditResult:
     @functools.cached_property
     def summary(self) -> dict:
         """Everything of ``summary.json``, as saved."""
-        from audit.engine.results import SUMMARY_JSON
-        return json.loads((self.folder / SUMMARY_JSON).read_bytes())
+        from audit.engine.results import read_summary
+        return read_summary(self.folder)
 
     @functools.cached_property
     def run(self) -> AuditRun:

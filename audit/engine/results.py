@@ -109,6 +109,14 @@ DATA_FILES = (RESULTS_CSV, ESTIMATES_ONLY_CSV, SUMMARY_JSON, SPECTRA_CSV, HISTOR
 _CHUNK_ROWS = 20_000
 
 
+def read_summary(run_dir: str | Path) -> dict:
+    """``summary.json`` of a run directory; InputError if it is not valid JSON."""
+    try:
+        return json.loads((Path(run_dir) / SUMMARY_JSON).read_bytes())
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise InputError(f"{run_dir}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
+
+
 def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     """Read a run directory written by ``python -m audit run`` (or ``audit.api.run``).
 
@@ -130,10 +138,7 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
     files = {name: run_dir / name for name in DATA_FILES}
     where = str(run_dir)
-    try:
-        summary = json.loads(files[SUMMARY_JSON].read_bytes())
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise InputError(f"{where}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
+    summary = read_summary(run_dir)
     records = detailed = histories_kept = None
     if shown:
         absent = [key for key in ("detail_records", "worst_blocks", "shown_records")
