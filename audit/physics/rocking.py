@@ -15,8 +15,9 @@ stepped across:
   switches;
 - peaks of |θ|, where θ' vanishes, located the same way;
 - overturning, when |θ| reaches α;
-- return to rest, after an impact whose rebound would lift the block by less than
-  ``rest_tolerance``·α in free rocking while the ground cannot lift it.
+- return to rest, after an impact whose chatter (the Zeno sequence of ever smaller rebounds,
+  summed in closed form by :func:`chatter_time_bound`) converges, with rebounds below
+  ``rest_tolerance``·α, before the ground could lift the block on either corner.
 
 The step is h ≤ 1/(``steps_per_radian``·p) and no longer than the record's sampling step, so a
 run is accurate to ~1e-7 relative away from the overturning boundary (see the convergence test).
@@ -42,6 +43,9 @@ IMPACT_CAPACITY = 100_000
 #: Most samples of θ(t) and θ'(t) kept by :func:`simulate` (longer histories are decimated, so
 #: one block's history stays within ~10 MB; peaks and impacts are located exactly regardless).
 HISTORY_CAPACITY = 400_000
+#: Smallest rest tolerance: smaller rebounds fly for less than the 1e-15 s to which impacts
+#: are located, so their velocities would be noise and a chatter might never end.
+MIN_REST_TOLERANCE = 1e-20
 #: Time of one Runge–Kutta step of the kernel run interpreted (see audit.physics.tiers) [s].
 INTERPRETED_STEP_S = 5e-6
 
@@ -75,6 +79,48 @@ def _theta_acc(theta, ug, uv, side, p2, alpha, g):
 def _lifts(ug, uv, g, tan_alpha):
     """Whether the ground lifts a block at rest: |üg| > (g + üv) tan α."""
     return abs(ug) > (g + uv) * tan_alpha
+
+
+@numba.njit(cache=True, nogil=True)
+def _largest_ground(t_a, t_b, kind, a0, slope, t0, amp, omega_p):
+    """max |üg| over [t_a, t_b] inside one smooth interval: the ends where üg is linear (a
+    record), |amp| too where a crest of the pulse's cosine or sine lies between them."""
+    largest = max(abs(_ground(t_a, kind, a0, slope, t0, amp, omega_p)),
+                  abs(_ground(t_b, kind, a0, slope, t0, amp, omega_p)))
+    if kind != _SAMPLED:
+        shift = 0.0 if kind == _COSINE else 0.5 * math.pi  # crests at ω_p t = shift + kπ
+        crests_a = math.floor((omega_p * t_a - shift) / math.pi)
+        if crests_a != math.floor((omega_p * t_b - shift) / math.pi):
+            largest = abs(amp)
+    return largest
+
+
+@numba.njit(cache=True, nogil=True)
+def chatter_time_bound(omega, restoring, velocity_ratio):
+    """Upper bound of the time a block rebounding at θ' = ``omega`` chatters until it is at rest
+    (a Zeno sequence of impacts, summed in closed form) [s].
+
+    For small θ the flight on either corner is one of constant deceleration d ≥ ``restoring``
+    (θ'' = −p²[(1 + üv/g) sin α ± (üg/g) cos α] at θ = 0), so it lasts 2|θ'|/d and comes back at
+    |θ'|, which the impact multiplies by √r. The flights form a geometric series:
+
+        Σ 2|θ'| (√r)ⁿ / d  =  2|θ'| / ((1 − √r) d)
+
+    infinitely many impacts in finite time. Infinite where the series does not converge
+    (r ≥ 1, or no restoring deceleration: the ground can lift the block).
+
+    Parameters
+    ----------
+    omega : float
+        Rebound angular velocity after an impact [rad/s].
+    restoring : float
+        Lower bound of the restoring deceleration on both corners [rad/s²].
+    velocity_ratio : float
+        √r [-].
+    """
+    if restoring <= 0.0 or velocity_ratio >= 1.0:
+        return math.inf
+    return 2.0 * abs(omega) / ((1.0 - velocity_ratio) * restoring)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -176,6 +222,22 @@ def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
 
 
 @numba.njit(cache=True, nogil=True)
+def _chatter_ends(omega, t_imp, t1, kind, a0, slope, t0, amp, omega_p, v0, vslope, p2, alpha, g,
+                  velocity_ratio, rest_tolerance):
+    """Whether a rebound at θ' = ``omega`` at ``t_imp`` ends in rest within the smooth interval
+    that ends at ``t1``: the ground cannot lift the block on either corner anywhere until the
+    chatter has converged (:func:`chatter_time_bound`), and the rebounds stay below
+    ``rest_tolerance``·α, so the linearised flights hold. Otherwise the block rocks on: a small
+    rebound while the ground is near g tan α is not rest (it can grow into real rocking)."""
+    largest = _largest_ground(t_imp, t1, kind, a0, slope, t0, amp, omega_p)
+    weight = g + min(v0 + vslope * (t_imp - t0), v0 + vslope * (t1 - t0))
+    restoring = p2 * math.cos(alpha) * (weight * math.tan(alpha) - largest) / g
+    if restoring <= 0.0 or omega * omega >= 2.0 * restoring * rest_tolerance * alpha:
+        return False
+    return t_imp + chatter_time_bound(omega, restoring, velocity_ratio) <= t1
+
+
+@numba.njit(cache=True, nogil=True)
 def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out,
               turns_out, stride=1, reactions=False):
@@ -203,7 +265,6 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     has_vertical = vertical.size > 0
     p2 = p * p
     tan_alpha = math.tan(alpha)
-    rest_omega2 = 2.0 * rest_tolerance * p2 * alpha * alpha
     n_sub = max(1, int(math.ceil(dt * p * steps_per_radian)))
     h_sub = dt / n_sub
     last_exceed = -1
@@ -341,8 +402,9 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                 theta = 0.0
                 side = 1.0 if omega > 0.0 else -1.0
                 t = t_imp
-                if omega == 0.0 or (omega * omega < rest_omega2 and
-                                    not _lifts(u_imp, w_imp, g, tan_alpha)):
+                if omega == 0.0 or _chatter_ends(omega, t_imp, t1, seg_kind, a0, slope, t0, amp,
+                                                 omega_p, v0, vslope, p2, alpha, g,
+                                                 velocity_ratio, rest_tolerance):
                     resting = True
                     omega = 0.0
                 elif reactions:
@@ -574,7 +636,7 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
     steps_per_radian : float
         Accuracy setting: Runge–Kutta step h ≤ 1/(steps_per_radian·p) [-].
     rest_tolerance : float
-        Rebound amplitude, as a fraction of α, below which an impact ends in rest [-].
+        Largest rebound, as a fraction of α, of a chatter that may end in rest [-].
     initial_rotation, initial_velocity : float
         θ(0) [rad] and θ'(0) [rad/s]; the block starts at rest when both are zero.
     vertical : bool
@@ -584,6 +646,9 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
     -------
     RockingResponse
     """
+    if not MIN_REST_TOLERANCE <= rest_tolerance < 1.0:
+        raise InputError(f"rest tolerance: must be at least {MIN_REST_TOLERANCE:g} and below 1, "
+                         f"got {rest_tolerance:g}")
     if abs(initial_rotation) >= block.alpha:
         raise InputError(f"initial rotation: |θ0| must be below α = {block.alpha:g} rad, "
                          f"got {initial_rotation:g}")
