@@ -477,7 +477,7 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
             restitution="housner", jobs: int = DEFAULT_JOBS,
             free_motion_s: float = DEFAULT_FREE_MOTION_S, scheduler: str = DEFAULT_SCHEDULER,
             progress=False, partial_dir=None, resume: bool = False,
-            required: bool = True) -> MarginsResult:
+            required: bool = True, site_level: str = "mce") -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
     procedure draws its line against it (see :mod:`audit.engine.margins`).
 
@@ -512,6 +512,9 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
         A progress bar on standard error, or ``progress(done, total, record_id, how)``.
     required : bool
         Also search the required slenderness of each size (``required_alpha``).
+    site_level : {"mce", "design"}
+        The hazard level of ``site``: the collapse margin ratio is over the MCE intensity,
+        ``site``'s own or 1.5 × it for ``"design"``.
     """
     import numpy as np
 
@@ -541,7 +544,8 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
                           f"of {intensity.name}")
             run = run_margins(chosen, suite, intensity, stripes, alpha_deg, sizes_s, named,
                               impact, free_motion_s=free_motion_s, jobs=jobs, progress=report,
-                              scheduler=executor, partial_dir=partial_dir, resume=resume)
+                              scheduler=executor, partial_dir=partial_dir, resume=resume,
+                              site_level=site_level)
             if required:
                 if bar:
                     bar.stage("required slenderness of each size: α from 2° to 40°, 2° apart, "

@@ -58,7 +58,8 @@ def _site_words(summary) -> str:
     if not site.get("sxs_g"):
         return "the records as audited"
     scaled = " scaled to the site (FEMA P695)" if summary.get("scaling") else ""
-    return f"S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g{scaled}"
+    level = "design-level" if summary.get("site_level") == "design" else "MCE-level"
+    return f"S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g ({level}){scaled}"
 
 
 def _sentences(required: pd.DataFrame, summary, titles) -> list[str]:
@@ -108,12 +109,18 @@ def _required_figure(required: pd.DataFrame, names: list, titles) -> dict:
 def _cmr_figure(fragility: pd.DataFrame) -> dict:
     grid = fragility[fragility["block_m"].fillna("") == ""]
     pivot = grid.pivot_table(index="alpha_deg", columns="size_s", values="cmr", aggfunc="first")
+    bounds = grid.assign(bound=grid["cmr_bound"].map(
+        {"": "", "at least": " (at least: median above the stripes)",
+         "at most": " (at most: median below the stripes)"})).pivot(
+        index="alpha_deg", columns="size_s", values="bound")
     alphas = pivot.index.to_numpy(dtype=float)
     data = [{"type": "heatmap", "x": pivot.columns.to_numpy(dtype=float), "y": alphas,
              "z": pivot.to_numpy(dtype=float), "zmin": 0, "zmid": 1, "zmax": 4,
              "colorscale": [[0, "#b2182b"], [0.25, "#f7f7f7"], [1, "#2166ac"]], "ygap": 2,
              "colorbar": {"title": {"text": "CMR"}, "thickness": 12},
-             "hovertemplate": "α = %{y:g}°, 2π/p = %{x:g} s<br>CMR = %{z:.3g}<extra></extra>"}]
+             "customdata": bounds.to_numpy(dtype=object).tolist(),
+             "hovertemplate": "α = %{y:g}°, 2π/p = %{x:g} s<br>CMR = %{z:.3g}%{customdata}"
+                              "<extra></extra>"}]
     layout = _layout(120 + 50 * max(len(alphas), 1))
     layout["xaxis"] = _axis("block size 2π/p [s]")
     layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
@@ -221,13 +228,15 @@ def _margins_table(fragility, capacity, required, titles) -> pd.DataFrame:
 
 
 def _read(path: Path) -> pd.DataFrame | None:
-    """A saved table, ``block_m`` as text: empty for a grid block (pandas 3 reads an empty
-    field as NaN even through a ``str`` converter)."""
+    """A saved table, ``block_m`` and ``cmr_bound`` as text: empty for a grid block, resp. a
+    CMR that is the fit's (pandas 3 reads an empty field as NaN even through a ``str``
+    converter)."""
     if not path.exists():
         return None
     frame = pd.read_csv(path)
-    if "block_m" in frame:
-        frame["block_m"] = frame["block_m"].astype(object).fillna("").astype(str)
+    for column in ("block_m", "cmr_bound"):
+        if column in frame:
+            frame[column] = frame[column].astype(object).fillna("").astype(str)
     return frame
 
 
@@ -272,9 +281,17 @@ def render_margins_page(folder) -> str:
         f"<li><b>{html.escape(p['title'])}</b>: {html.escape(p['reads'])}</li>"
         for p in summary["procedures"]) + "</ul>")
     if summary.get("design_im") and (fragility["block_m"] == "").any():
+        extrapolated = int(fragility["median_extrapolated"].sum())
         parts.append("<h2>Collapse margin ratio over the grid</h2><p>CMR = median of the exact "
-                     "fragility / the site's design intensity (FEMA P695). Red: below 1, the "
-                     "block is more likely than not to overturn at the design intensity.</p>")
+                     f"fragility / the site's MCE intensity ({summary['mce_im']:.3g} "
+                     f"{summary['im_unit']}; FEMA P695 takes the MCE, S_MT: the site's values "
+                     + ("are design-level, so the MCE is 1.5 × them" if summary.get("site_level")
+                        == "design" else "are taken as MCE-level; were they design-level, "
+                        "every CMR here would be 1.5 × too high (--level design)")
+                     + "). Red: below 1, the block is more likely than not to overturn at the "
+                     f"MCE. {extrapolated} of {len(fragility)} medians lie beyond the stripes: "
+                     "the fit extrapolates there, and the CMR shown is only a bound (the "
+                     "outermost stripe / the MCE intensity, flagged in fragility.csv).</p>")
         parts.append(_plot("cmr", _cmr_figure(fragility)))
     parts.append("<h2>Fragility curves</h2><p>Dots: the share of records that overturn the "
                  "block at each stripe (not monotonic: islands); line: the lognormal of "

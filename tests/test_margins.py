@@ -10,9 +10,10 @@ import pytest
 from scipy.stats import norm
 
 from audit.cli import main
+from audit.engine.blocks import BlockList, NamedBlock
 from audit.engine.fragility import fit_lognormal
-from audit.engine.margins import IntensityMeasure, run_margins
-from audit.engine.sites import with_design_site
+from audit.engine.margins import IntensityMeasure, _fragility_rows, run_margins
+from audit.engine.sites import scale_to_site, with_design_site
 from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution
 from audit.physics.rocking import simulate
@@ -81,6 +82,59 @@ def test_site_based_procedure_reads_the_design_spectrum_scaled_to_each_level():
     assert np.all(np.diff(over[0].astype(int)) >= 0)  # one step up
 
 
+def test_a_site_based_step_is_placed_at_its_level_not_between_stripes():
+    """FEMA 356 sees the 0.8 m × 2.0 m block (tan α = 0.4) overturn once its design spectrum,
+    scaled by level / S_X1, has 0.4·S_XS·level/S_X1 ≥ tan α: with S_XS = 1.5 g, S_X1 = 0.9 g,
+    at Sa(1 s) = 0.4 × 0.9 / 0.6 = 0.600 g, whatever the stripes around it."""
+    levels = np.geomspace(0.2, 1.6, 8)  # 0.566 and 0.749 g around the step
+    run = run_margins(get_procedures("fema356"), _suite(), IntensityMeasure.parse("sa:1.0"),
+                      levels, (), (), [NamedBlock(0.8, 2.0)], free_motion_s=8.0)
+    step = 0.4 * 0.9 / (0.4 * 1.5)
+    capacity = run.capacity.iloc[0]
+    assert capacity["guideline_im"] == pytest.approx(step, rel=1e-6)
+    fragility = run.fragility.iloc[0]
+    assert capacity["achieved_p_fit"] == pytest.approx(
+        norm.cdf(math.log(step / fragility["median"]) / fragility["beta"]), rel=1e-6)
+
+
+def test_the_cmr_is_over_the_mce_and_a_bound_beyond_the_stripes():
+    """P695's CMR is over the MCE intensity: the --site values as given (mce), or 1.5 × them
+    (design). Stripes that stop below the median leave the CMR only bounded below."""
+    suite, pga = _suite(), IntensityMeasure.parse("pga")
+    mce = run_margins([], suite, pga, LEVELS_G, (ALPHA_DEG,), [SIZE_S], free_motion_s=8.0)
+    design = run_margins([], suite, pga, LEVELS_G, (ALPHA_DEG,), [SIZE_S], free_motion_s=8.0,
+                         site_level="design")
+    median = mce.fragility["median"].iloc[0]
+    assert mce.fragility["cmr"].iloc[0] == pytest.approx(median / 0.6, rel=1e-12)
+    assert design.fragility["cmr"].iloc[0] == pytest.approx(median / (1.5 * 0.6), rel=1e-12)
+    assert design.summary["mce_im"] == pytest.approx(0.9)
+    assert not mce.fragility["median_extrapolated"].iloc[0]
+    # ten records, the top stripe overturning two: the median lies above the stripes
+    levels = np.array([0.1, 0.2, 0.3])
+    over = np.zeros((10, 3, 1), dtype=bool)
+    over[0, 1:, 0] = over[1, 2, 0] = True
+    rows, _ = _fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
+                              IntensityMeasure.parse("pga"), over, 0.6)
+    row = rows.iloc[0]
+    assert row["median"] > 0.3 and row["median_extrapolated"]
+    assert row["cmr_bound"] == "at least" and row["cmr"] == pytest.approx(0.3 / 0.6)
+    with pytest.raises(InputError, match="site_level"):
+        run_margins([], suite, pga, LEVELS_G, (ALPHA_DEG,), [SIZE_S], site_level="maximum")
+
+
+def test_stripe_scale_factors_are_on_the_record_as_read():
+    """With the suite scaled to the site, a stripe's factor on the record as read is the site
+    factor × the factor from the site-scaled record to the level."""
+    suite = scale_to_site(_suite(), 1.5, 0.9)
+    run = run_margins([], suite, IntensityMeasure.parse("pga"), LEVELS_G, (ALPHA_DEG,),
+                      [SIZE_S], free_motion_s=8.0)
+    site = {k: v["scale_factor"] for k, v in suite.scaling["records"].items()}
+    stripes = run.stripes
+    expected = stripes["record"].map(site) * stripes["im_level"] / (0.5 * stripes["record"].map(site))
+    np.testing.assert_allclose(stripes["scale_factor"], expected, rtol=1e-12)  # PGA 0.5 g raw
+    np.testing.assert_allclose(stripes["site_factor"], stripes["record"].map(site))
+
+
 def test_intensity_measures_and_bad_input(tmp_path, capsys):
     assert IntensityMeasure.parse("SA:0.5") == IntensityMeasure("sa", 0.5)
     assert IntensityMeasure.parse("pgv").unit == "m/s"
@@ -118,7 +172,7 @@ def test_block_by_its_dimensions():
 
 
 def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
-    from audit.engine.blocks import NamedBlock
+    from audit.engine.blocks import BlockList, NamedBlock
     block = NamedBlock(0.8, 4.0)
     procedures = get_procedures("priestley1978")
     named = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
@@ -183,7 +237,7 @@ def test_resumed_and_dask_margins_are_identical(tmp_path):
 
 def test_margins_page_from_the_files(tmp_path):
     import audit
-    from audit.engine.blocks import NamedBlock
+    from audit.engine.blocks import BlockList, NamedBlock
     result = audit.margins(["priestley1978", "fema356"], _suite(), im="pga", stripes=LEVELS_G,
                            alpha_deg=[15], sizes_s=[SIZE_S], blocks=["0.8x4"],
                            free_motion_s=8.0)

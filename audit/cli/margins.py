@@ -43,7 +43,11 @@ def add_parser(sub):
                    help="block sizes 2π/p [s]")
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 design site S_XS,S_X1 [g] of every record (the records' own "
-                        "sites are replaced): the design intensity of the CMR")
+                        "sites are replaced); its intensity is the CMR's denominator, taken as "
+                        "the MCE's (FEMA P695) unless --level design")
+    p.add_argument("--level", choices=("mce", "design"), default="mce",
+                   help="hazard level of the --site values: mce (the CMR is over them) or "
+                        "design (the CMR is over 1.5 × them, the MCE of ASCE 7)")
     options.add_scaling_options(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
@@ -104,7 +108,8 @@ def run(args) -> int:
         result = margins(procedures, suite, im.name, levels, alphas, sizes, blocks,
                          restitution=restitution, jobs=args.jobs, free_motion_s=args.free_motion,
                          scheduler=scheduler, progress=progress,
-                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume)
+                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume,
+                         site_level=args.level)
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)
     finally:
@@ -125,8 +130,9 @@ def _print_summary(result, suite, im, procedures, sizes, seconds) -> None:
           + (f"; reused {len(summary['resumed'])} records of an interrupted run"
              if summary["resumed"] else ""))
     if summary["design_im"]:
-        print(f"  median CMR {fragility['cmr'].median():.2f} (design {im.name} = "
-              f"{summary['design_im']:.3g} {im.unit})")
+        print(f"  median CMR {fragility['cmr'].median():.2f} (over the MCE {im.name} = "
+              f"{summary['mce_im']:.3g} {im.unit}; {fragility['median_extrapolated'].sum()} "
+              "medians beyond the stripes give bounds)")
     print(f"  blocks with islands of survival above overturning: "
           f"{(fragility['records_with_islands'] > 0).mean():.0%}")
     for name, rows in result.capacity.groupby("procedure", sort=False):

@@ -14,7 +14,9 @@ only the site). Per procedure and block:
 * its ratio to the exact fragility's median;
 * the achieved probability of overturning there, from the exact fit and from the nearest
   stripe's count;
-* the FEMA P695 collapse margin ratio CMR = exact median / the site's design intensity.
+* the FEMA P695 collapse margin ratio CMR = exact median / the site's MCE intensity (the
+  site's values are taken as MCE-level, or as design-level and × 1.5: :data:`SITE_LEVELS`); a
+  median beyond the stripes is an extrapolation and its CMR a bound.
 
 A procedure predicts overturning for a block when its estimate is ``overturn`` or one of its
 checks of limit state ``overturning`` fails.
@@ -200,6 +202,44 @@ class RecordStripes:
     evaluated: dict
 
 
+def _at_level(entry, base: RecordContext, level: float, intensity: float,
+              settings: MarginsSettings):
+    """The record scaled to ``level`` and its context; its design spectrum scaled to the level
+    too, where the site's design intensity is known."""
+    factor = level / intensity
+    site_factor = level / settings.design_im if settings.design_im else 1.0
+    scaled = replace(entry, motion=entry.motion.scaled(factor),
+                     site=scaled_site(entry.site, site_factor))
+    return scaled, base.scaled(scaled, factor)
+
+
+#: Relative width in level to which the step of a site-based procedure is located.
+STEP_TOLERANCE = 1e-7
+
+
+def step_level(procedure, entry, settings: MarginsSettings, block: int, low: float,
+               high: float) -> float:
+    """The level at which a procedure that reads only the site's design spectrum turns from
+    not predicting overturning (at ``low``) to predicting it (at ``high``) for one block:
+    its answer is a step in intensity, located by bisection in ln(level) to
+    :data:`STEP_TOLERANCE`, not at a point between the stripes."""
+    blocks = settings.blocks
+    p = np.array([2.0 * math.pi / blocks.size_s[block]])
+    alpha = math.radians(float(blocks.alpha_deg[block]))
+    r = float(settings.restitution.r(alpha))
+    intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
+    base = RecordContext(entry, settings.free_motion_s, settings.jobs)
+    while high / low > 1.0 + STEP_TOLERANCE:
+        middle = math.sqrt(low * high)
+        scaled, context = _at_level(entry, base, middle, intensity, settings)
+        evaluation = procedure.evaluate(scaled, p, alpha, r, context, settings.g)
+        if predicts_overturning(evaluation)[0]:
+            high = middle
+        else:
+            low = middle
+    return math.sqrt(low * high)
+
+
 def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripes:
     """The exact response and every procedure's prediction for one record scaled to each stripe
     (the unit of work of the design-level audit)."""
@@ -218,13 +258,8 @@ def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripe
     predicted = {proc.name: np.zeros(shape, dtype=bool) for proc in procedures}
     evaluated = dict.fromkeys(predicted, False)
     base = RecordContext(entry, settings.free_motion_s, settings.jobs)
-    for j, factor in enumerate(factors):
-        # the record to the level; its design spectrum to the level too, where the site's
-        # design intensity is known
-        site_factor = levels[j] / settings.design_im if settings.design_im else 1.0
-        scaled = replace(entry, motion=entry.motion.scaled(float(factor)),
-                         site=scaled_site(entry.site, float(site_factor)))
-        context = base.scaled(scaled, float(factor))
+    for j, level in enumerate(levels):
+        scaled, context = _at_level(entry, base, float(level), intensity, settings)
         for proc in procedures:
             if proc.unmet_requirements(scaled) is not None:
                 continue
@@ -237,10 +272,16 @@ def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripe
     return RecordStripes(entry.id, intensity, exact_over, exact_theta, predicted, evaluated)
 
 
+#: Hazard levels the site's spectral values may be given at: FEMA P695's collapse margin is
+#: over the MCE intensity, 1.5 × the design one (ASCE 7: S_MS = 1.5 S_DS, S_M1 = 1.5 S_D1).
+SITE_LEVELS = {"mce": 1.0, "design": 1.5}
+
+
 def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=(10.0, 15.0, 20.0),
                 size_s=None, named_blocks=(), restitution: Restitution | None = None,
                 g: float = G, free_motion_s: float = 10.0, jobs: int = 1, progress=None,
-                scheduler: str = "local", partial_dir=None, resume: bool = False) -> MarginsRun:
+                scheduler: str = "local", partial_dir=None, resume: bool = False,
+                site_level: str = "mce") -> MarginsRun:
     """Multiple-stripe exact fragility of every block and each procedure's line against it.
 
     Parameters
@@ -268,7 +309,12 @@ def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=
     scheduler, partial_dir, resume :
         Where records are computed, the folder of parts kept as they complete, and whether to
         reuse them (as for :func:`audit.engine.suite_run.run_audit`).
+    site_level : {"mce", "design"}
+        The hazard level of the site's spectral values: the CMR is over the MCE intensity
+        (:data:`SITE_LEVELS`).
     """
+    if site_level not in SITE_LEVELS:
+        raise InputError(f"site_level: 'mce' or 'design', got {site_level!r}")
     entries = [entry for entry in suite if entry.motion is not None]
     if not entries:
         raise InputError(f"--records: no record of {suite.description} has a file")
@@ -294,12 +340,17 @@ def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=
                  for proc in procedures}
     evaluated = {proc.name: np.array([part.evaluated[proc.name] for part in parts])
                  for proc in procedures}
-    stripes = _stripe_rows(entries, levels, intensities, blocks, im, exact_over, exact_theta,
-                           predicted)
-    fragility, fits = _fragility_rows(levels, blocks, im, exact_over, design)
-    capacity = _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits)
+    site_factors = np.array([site_factor(suite, e.id) for e in entries])
+    stripes = _stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_over,
+                           exact_theta, predicted)
+    mce = design * SITE_LEVELS[site_level] if design else None
+    fragility, fits = _fragility_rows(levels, blocks, im, exact_over, mce)
+    steps = _step_levels(procedures, entries, settings, predicted, evaluated)
+    capacity = _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits,
+                              steps)
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
-               "design_im": design, "records": [e.id for e in entries],
+               "design_im": design, "site_level": site_level, "mce_im": mce,
+               "records": [e.id for e in entries],
                "records_source": suite.description, "design_site": suite.design_site,
                "scaling": suite.scaling, "restitution": str(settings.restitution),
                "scheduler": where, "resumed": resumed,
@@ -335,20 +386,40 @@ def _block_columns(blocks: BlockList, index) -> dict:
             "block_m": blocks.label[index]}
 
 
-def _stripe_rows(entries, levels, intensities, blocks, im, exact_over, exact_theta,
-                 predicted) -> pd.DataFrame:
+def site_factor(suite, record_id: str) -> float:
+    """The factor by which the suite's scaling to a site (FEMA P695) scaled a record, 1 where
+    it was not scaled."""
+    scaled = (suite.scaling or {}).get("records", {}).get(record_id)
+    return float(scaled["scale_factor"]) if scaled else 1.0
+
+
+def _stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_over,
+                 exact_theta, predicted) -> pd.DataFrame:
     record, level, block = np.indices(exact_over.shape).reshape(3, -1)
     frame = pd.DataFrame({
         "record": np.array([e.id for e in entries])[record], **_block_columns(blocks, block),
         "im": im.name, "im_level": levels[level],
-        "scale_factor": levels[level] / intensities[record],
+        "scale_factor": levels[level] / intensities[record] * site_factors[record],
+        "site_factor": site_factors[record],
         "exact_overturned": exact_over.reshape(-1), "exact_theta_rad": exact_theta.reshape(-1)})
     for name, over in predicted.items():
         frame[f"{name}_overturns"] = over.reshape(-1)
     return frame
 
 
-def _fragility_rows(levels, blocks, im, exact_over, design):
+def _cmr(fit, levels, mce) -> tuple[float, str]:
+    """The collapse margin ratio and how far it is known: a median beyond the stripes is an
+    extrapolation of the fit, so the CMR is only bounded by the outermost stripe there."""
+    if fit is None or not mce:
+        return math.nan, ""
+    if fit.median > levels[-1]:
+        return levels[-1] / mce, "at least"
+    if fit.median < levels[0]:
+        return levels[0] / mce, "at most"
+    return fit.median / mce, ""
+
+
+def _fragility_rows(levels, blocks, im, exact_over, mce):
     rows, fits = [], []
     n_records = exact_over.shape[0]
     nan = math.nan
@@ -360,6 +431,7 @@ def _fragility_rows(levels, blocks, im, exact_over, design):
         except ValueError:
             fit = None
         fits.append(fit)
+        cmr, bound = _cmr(fit, levels, mce)
         rows.append({
             **_block_columns(blocks, b), "im": im.name, "records": n_records,
             "stripes": levels.size, "median": fit.median if fit else nan,
@@ -368,13 +440,33 @@ def _fragility_rows(levels, blocks, im, exact_over, design):
             "median_high": fit.median_band[1] if fit else nan,
             "beta_low": fit.beta_band[0] if fit else nan,
             "beta_high": fit.beta_band[1] if fit else nan,
-            "cmr": fit.median / design if fit and design else nan,
+            "median_extrapolated": fit is not None and not levels[0] <= fit.median <= levels[-1],
+            "cmr": cmr, "cmr_bound": bound,
             "records_with_islands": int(pattern.islands.sum()),
             "island_share": float(pattern.islands.mean())})
     return pd.DataFrame(rows), fits
 
 
-def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits):
+def _step_levels(procedures, entries, settings: MarginsSettings, predicted, evaluated) -> dict:
+    """Per (procedure name, block), the exact step of a procedure that reads only the site's
+    design spectrum, where it turns to predicting overturning between two stripes."""
+    levels = np.asarray(settings.levels)
+    steps = {}
+    for proc in procedures:
+        mine = [e for e, used in zip(entries, evaluated[proc.name]) if used]
+        if not mine or any(proc.reads_record(e) for e in mine):
+            continue
+        answer = predicted[proc.name][np.asarray(evaluated[proc.name])][0]  # (stripe, block)
+        for b in range(answer.shape[1]):
+            switch = np.flatnonzero(answer[1:, b] & ~answer[:-1, b])
+            if switch.size:
+                j = int(switch[0])
+                steps[proc.name, b] = step_level(proc, mine[0], settings, b, levels[j],
+                                                 levels[j + 1])
+    return steps
+
+
+def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits, steps):
     rows = []
     exact_fraction = exact_over.mean(axis=0)  # (stripe, block)
     for proc in procedures:
@@ -383,7 +475,7 @@ def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated,
         fraction = (predicted[proc.name][mine].mean(axis=0) if mine.any()
                     else np.full(exact_fraction.shape, np.nan))
         for b in range(len(blocks)):
-            line = _half_crossing(levels, fraction[:, b])
+            line = steps.get((proc.name, b), _half_crossing(levels, fraction[:, b]))
             fit = fits[b]
             known = fit is not None and math.isfinite(line)
             nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
@@ -437,8 +529,10 @@ def amplitude_scans(run: MarginsRun, suite, restitution: Restitution | None = No
         first = np.where(pattern.first_stripe < 0, levels.size, pattern.first_stripe)
         k = int(np.argmax(pattern.islands)) if pattern.islands.any() else int(np.argmin(first))
         record = over.index[k]
-        factor_per_im = float(rows.loc[rows["record"] == record, "scale_factor"].iloc[0]
-                              / rows.loc[rows["record"] == record, "im_level"].iloc[0])
+        first_row = rows.loc[rows["record"] == record].iloc[0]
+        # per unit of intensity, on the motion as audited (scaled to the site, where it was)
+        factor_per_im = float(first_row["scale_factor"] / first_row["site_factor"]
+                              / first_row["im_level"])
         low = levels[max(first[k] - 1, 0)]
         high = levels[min(first[k] + 2, levels.size - 1)]
         im_levels = low * SCAN_STEP ** np.arange(int(np.log(high / low) / np.log(SCAN_STEP)) + 1)
@@ -448,7 +542,8 @@ def amplitude_scans(run: MarginsRun, suite, restitution: Restitution | None = No
                                          jobs=jobs)[0] for level in im_levels])
         frames.append(pd.DataFrame({
             "record": record, "alpha_deg": block.alpha_deg, "size_s": block.size_s,
-            "block_m": block.block_m, "scale_factor": im_levels * factor_per_im,
+            "block_m": block.block_m,
+            "scale_factor": im_levels * factor_per_im * float(first_row["site_factor"]),
             "im_level": im_levels, "exact_overturned": peaks[:, 3] > 0,
             "exact_theta_rad": peaks[:, 0]}))
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=SCAN_COLUMNS)

@@ -164,7 +164,10 @@ GUIDE["stripes.csv"] = {
                      "empty for a block of the α × size grid"),
     "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped true Sa [g])"),
     "im_level": ("g or m/s", "the stripe's intensity, in the unit of im"),
-    "scale_factor": ("-", "factor the record is scaled by to reach the stripe"),
+    "scale_factor": ("-", "factor the record as read (before any scaling to the site) is "
+                          "scaled by to reach the stripe"),
+    "site_factor": ("-", "the part of scale_factor that scales the record to the site "
+                         "(--scale-to-site, FEMA P695); 1 where it is not scaled"),
     "exact_overturned": ("bool", "the exact response overturns"),
     "exact_theta_rad": ("rad", "exact peak |θ| (α where the block overturns)"),
     "PROCEDURE_overturns": ("bool", "one column per procedure: it predicts overturning (its "
@@ -184,7 +187,12 @@ GUIDE["fragility.csv"] = {
     "median_high": ("g or m/s", "upper 90 % bound of the median"),
     "beta_low": ("-", "lower 90 % bound of β (empty or inf where the counts do not bound β)"),
     "beta_high": ("-", "upper 90 % bound of β (empty or inf where the counts do not bound β)"),
-    "cmr": ("-", "collapse margin ratio: median / the site's design intensity"),
+    "median_extrapolated": ("bool", "the median lies beyond the stripes: the fit extrapolates"),
+    "cmr": ("-", "collapse margin ratio: median / the site's MCE intensity (summary mce_im: "
+                 "the --site values, × 1.5 with --level design); where the median is "
+                 "extrapolated, the outermost stripe / the MCE intensity, a bound"),
+    "cmr_bound": ("text", "empty where cmr is the fit's; 'at least' or 'at most' where the "
+                          "median lies above the top stripe or below the lowest"),
     "records_with_islands": ("-", "records under which the block survives a stripe above its "
                                   "first overturning one (depends on the stripe spacing)"),
     "island_share": ("-", "records_with_islands / records"),
@@ -222,7 +230,8 @@ GUIDE["scan.csv"] = {
     "size_s": ("s", "block size 2π/p"),
     "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
                      "empty for a block of the α × size grid"),
-    "scale_factor": ("-", "factor the record is scaled by (0.2 % apart)"),
+    "scale_factor": ("-", "factor the record as read is scaled by (0.2 % apart; site scaling "
+                          "included, as in stripes.csv)"),
     "im_level": ("g or m/s", "the scaled record's intensity, in the unit of the run's im"),
     "exact_overturned": ("bool", "the exact response overturns"),
     "exact_theta_rad": ("rad", "exact peak |θ| (α where the block overturns)"),
