@@ -40,3 +40,22 @@ def records_dir(seed_manifest) -> Path:
 def seed_suite(seed_manifest):
     """The seed suite loaded from the real files."""
     return load_records(seed_manifest)
+
+
+#: The folder of real hazard-curve files (OpenQuake's demo run and a USGS response).
+HAZARD_VARIABLE = "ROCKING_AUDIT_HAZARD"
+
+
+@pytest.fixture(scope="session")
+def hazard_dir() -> Path:
+    """The real hazard files' folder (``openquake-demo/``, ``usgs-example.json``), from
+    ``ROCKING_AUDIT_HAZARD``: skipped when unset, failed when unset under CI."""
+    value = os.environ.get(HAZARD_VARIABLE)
+    if not value:
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(f"{HAZARD_VARIABLE} is not set under CI: the hazard-file tests cannot run")
+        pytest.skip(f"{HAZARD_VARIABLE} is not set: hazard-file tests need the shared hazard files")
+    path = Path(value)
+    if not (path / "usgs-example.json").is_file():
+        pytest.fail(f"{HAZARD_VARIABLE}={value}: no usgs-example.json there")
+    return path
