@@ -19,8 +19,8 @@ import numpy as np
 import pandas as pd
 
 from audit.engine.required_alpha import interpolated_alpha
-from audit.engine.risk import (YEARS, LognormalFragility, StripeFragility, annual_rate_for,
-                               check_same_im, risk_integral)
+from audit.engine.risk import (YEARS, annual_rate_for, block_fragilities, check_same_im,
+                               risk_integral)
 from audit.errors import InputWarning
 
 #: The exact risk-targeted curve's name in ``risk_alpha.csv``.
@@ -59,18 +59,6 @@ RISK_GUIDE = {
         "annual_rate": ("1/yr", "mean annual rate of exceeding it (as read from the hazard file)"),
     },
 }
-
-
-def block_fragilities(fragility_row, stripes: pd.DataFrame):
-    """The fitted (None where the fit failed) and counted fragility of one block, from its row
-    of ``fragility.csv`` and its rows of ``stripes.csv``."""
-    shares = stripes.groupby("im_level")["exact_overturned"].mean()
-    im = fragility_row["im"]
-    counted = StripeFragility(shares.index.to_numpy(dtype=float), shares.to_numpy(dtype=float),
-                              im)
-    median, beta = float(fragility_row["median"]), float(fragility_row["beta"])
-    fitted = LognormalFragility(median, beta, im) if math.isfinite(median) else None
-    return fitted, counted
 
 
 def _keys(frame: pd.DataFrame) -> pd.Series:
@@ -166,5 +154,5 @@ def hazard_table(curve) -> pd.DataFrame:
     return pd.DataFrame({"im_g": curve.im_g, "annual_rate": curve.annual_rate})
 
 
-__all__ = ["margins_risk", "block_fragilities", "hazard_summary", "hazard_table", "RISK_GUIDE",
+__all__ = ["margins_risk", "hazard_summary", "hazard_table", "RISK_GUIDE",
            "EXACT_RISK"]

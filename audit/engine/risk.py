@@ -242,6 +242,16 @@ def risk_integral(fragility, curve, years: float = YEARS) -> OverturningRisk:
         np.exp(x).reshape(-1), density.reshape(-1))
 
 
+def block_fragilities(fragility_row, stripes: pd.DataFrame):
+    """The fitted (None where the fit failed) and counted fragility of one block of a
+    design-level audit, from its row of ``fragility.csv`` and its rows of ``stripes.csv``
+    (their intensity measure checked by the caller, once)."""
+    shares = stripes.groupby("im_level")["exact_overturned"].mean()
+    counted = StripeFragility(shares.index.to_numpy(dtype=float), shares.to_numpy(dtype=float))
+    median, beta = float(fragility_row["median"]), float(fragility_row["beta"])
+    return (LognormalFragility(median, beta) if math.isfinite(median) else None), counted
+
+
 def _central_range(x, density, tail, top, total) -> tuple:
     """The intensities [g] at which the cumulative λ_ov along im reaches (1 ∓ RANGE_SHARE)/2
     of the total, interpolated in ln im; above the curve (in its tail), ``top``."""
@@ -259,5 +269,6 @@ def _central_range(x, density, tail, top, total) -> tuple:
 
 
 __all__ = ["risk_integral", "OverturningRisk", "LognormalFragility", "StripeFragility",
+           "block_fragilities",
            "annual_rate_for", "hazard_im", "check_same_im", "POINTS_PER_INTERVAL",
            "RANGE_SHARE", "YEARS"]
