@@ -423,9 +423,9 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
 
 class MarginsResult:
     """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity``,
-    ``.required_alpha``, ``.scan``, and at a site ``.risk``, ``.risk_alpha`` (DataFrames, the columns of the CSV files of the same
-    names), ``.summary``, ``.write(folder)`` (the files and ``margins.html``) and
-    ``.report(path)``."""
+    ``.required_alpha``, ``.scan``, and at a site ``.risk``, ``.risk_alpha`` (DataFrames,
+    the columns of the CSV files of the same names), ``.summary``, ``.write(folder)`` (the
+    files and ``margins.html``) and ``.report(path)``."""
 
     def __init__(self, margins):
         self.margins = margins

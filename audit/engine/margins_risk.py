@@ -28,7 +28,8 @@ EXACT_RISK = "exact@risk"
 #: Smallest P in 50 years kept in logarithms (a block that never overturns at any stripe).
 FLOOR_P = 1e-12
 
-#: Columns of ``risk.csv``, ``risk_alpha.csv`` and ``hazard.csv``, their unit and meaning (``columns.json``).
+#: Columns of ``risk.csv``, ``risk_alpha.csv`` and ``hazard.csv``: unit and meaning
+#: (``columns.json``).
 RISK_GUIDE = {
     "risk.csv": {
         "alpha_deg": ("deg", "slenderness α"),
