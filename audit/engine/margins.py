@@ -476,7 +476,7 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
         files["scan.csv"] = csv_bytes(run.scan, "%.8g")
     guides = column_guide()
     if run.risk is not None:
-        from audit.engine.margins_risk import RISK_GUIDE
+        from audit.engine.risk_schema import RISK_GUIDE
         files.update({"risk.csv": csv_bytes(run.risk, "%.6g"),
                       "risk_alpha.csv": csv_bytes(run.risk_alpha, "%.6g"),
                       "hazard.csv": csv_bytes(run.hazard, "%.8g")})
