@@ -140,3 +140,44 @@ def test_intensity_measures_must_agree(tmp_path):
 def test_risk_target_rate():
     # 1 % in 50 years: λ = −ln(0.99)/50 = 2.0101e-4 per year
     assert annual_rate_for(0.01) == pytest.approx(2.0101e-4, rel=1e-4)
+
+
+def test_real_demo_curve_against_a_slow_path(hazard_dir):
+    # the OpenQuake demo's SA(1.0) at (0.0, −0.3) through the API, against quad on the
+    # log-log interpolant differentiated numerically, plus its tail at P(3 g)
+    import audit
+    path = hazard_dir / "openquake-demo/hazard_curve-mean-SA(1.0)_2.csv"
+    risk = audit.risk((0.9, 0.35), path, site=(0.0, -0.3))
+    curve = audit.read_hazard(path, site=(0.0, -0.3))
+    ln_s, ln_rate = np.log(curve.im_g), np.log(curve.annual_rate)
+
+    def rate(x):
+        return math.exp(np.interp(x, ln_s, ln_rate))
+
+    def density(x, h=1e-6):
+        return stats.norm.cdf(math.log(math.exp(x) / 0.9) / 0.35) * (
+            rate(x - h) - rate(x + h)) / (2 * h)
+
+    slow = sum(integrate.quad(density, a + 1e-9, b - 1e-9, epsabs=0, epsrel=1e-10)[0]
+               for a, b in zip(ln_s[:-1], ln_s[1:]))
+    slow += curve.annual_rate[-1] * stats.norm.cdf(math.log(3.0 / 0.9) / 0.35)
+    assert risk.annual_rate == pytest.approx(slow, rel=1e-4)
+    assert risk.im == "SA(1.0)" and "hazard_curve-mean-SA(1.0)_2.csv" in risk.hazard_source
+
+
+def test_the_figure_of_one_object(tmp_path):
+    from reports.risk_figure import risk_figure
+    levels = np.geomspace(0.01, 20.0, 30)
+    curve = read_openquake_curve(_power_law_export(tmp_path / "oq.csv", 1e-5, 3.0, levels))
+    fragility = LognormalFragility(0.5, 0.4)
+    risk = risk_integral(fragility, curve)
+    spec = risk_figure(curve, fragility, risk)
+    hazard, fitted, deaggregation = spec["data"]
+    assert np.allclose(hazard["y"], curve.annual_rate)
+    assert (hazard["yaxis"], fitted["yaxis"], deaggregation["yaxis"]) == ("y", "y2", "y3")
+    # the drawn shares per unit ln im integrate to the share below the curve's top
+    x = np.log(deaggregation["x"])
+    drawn = np.sum(0.5 * (deaggregation["y"][1:] + deaggregation["y"][:-1]) * np.diff(x))
+    assert drawn == pytest.approx(1 - risk.deaggregation["share"].iloc[-1], rel=1e-6)
+    band = spec["layout"]["shapes"][0]
+    assert (band["x0"], band["x1"]) == pytest.approx(risk.im_range_90_g)
