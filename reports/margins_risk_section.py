@@ -106,6 +106,12 @@ def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -
              "hazard curve's is the one its ground-motion models predict (often RotD50 "
              "pseudo-acceleration).</p>"]
     named = risk[risk["block_m"] != ""]
+    if len(named):
+        parts.append("<p>Per named block: the site's hazard curve (top), the block's exact "
+                     "fragility (middle: the fit, and the share of records overturning at each "
+                     "stripe), and their product, the share of λ_ov per unit ln im (bottom; "
+                     "its kinks are the hazard curve's levels, between which it is a power "
+                     "law). Shaded: the intensities of the central 90 % of λ_ov.</p>")
     stripe_keys = keys(stripes)
     for i, row in enumerate(named.to_dict("records")):
         parts.append(f'<p class="quote">{html.escape(_quote(row, target))}</p>')
@@ -127,6 +133,8 @@ def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -
                      "guideline's α lies outside the grid's.</p>")
         parts.append(plot_div("riskalpha", _alpha_figure(risk_alpha, titles, colour_of,
                                                          target)))
+        parts.append(html_table(risk_alpha.assign(procedure=risk_alpha["procedure"].map(
+            lambda name: titles.get(name, name)))))
     if len(grid):
         parts.append("<h3>Annual rate of overturning over the grid</h3><p>λ_ov of the "
                      "lognormal fit of each grid block; red: above the risk target, blue: "
