@@ -261,11 +261,11 @@ def render_margins_page(folder) -> str:
                      "achieved probability is the exact P(overturn) there. Medians over the "
                      "blocks.</p>")
         parts.append(_table(_margins_table(fragility, capacity, required, titles)))
-    parts += risk_section(folder, summary, fragility, stripes, _keys, titles,
-                          lambda name: _procedure_colour(names, name))
     parts.append("<h3>How each procedure meets the stripes</h3><ul>" + "".join(
         f"<li><b>{html.escape(p['title'])}</b>: {html.escape(p['reads'])}</li>"
         for p in summary["procedures"]) + "</ul>")
+    parts += risk_section(folder, summary, fragility, stripes, _keys, titles,
+                          lambda name: _procedure_colour(names, name))
     if summary.get("design_im") and (fragility["block_m"] == "").any():
         parts.append("<h2>Collapse margin ratio over the grid</h2><p>CMR = median of the exact "
                      "fragility / the site's design intensity (FEMA P695). Red: below 1, the "

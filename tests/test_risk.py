@@ -181,3 +181,17 @@ def test_the_figure_of_one_object(tmp_path):
     assert drawn == pytest.approx(1 - risk.deaggregation["share"].iloc[-1], rel=1e-6)
     band = spec["layout"]["shapes"][0]
     assert (band["x0"], band["x1"]) == pytest.approx(risk.im_range_90_g)
+
+
+def test_the_api_names_a_bad_fragility(tmp_path):
+    import audit
+    levels = np.geomspace(0.05, 3.0, 10)
+    path = _power_law_export(tmp_path / "oq.csv", 1e-4, 2.0, levels)
+    for bad in ("x", (0.5,), (0.5, -0.1), (float("nan"), 0.3)):
+        with pytest.raises(InputError, match="fragility"):
+            audit.risk(bad, path)
+    row = {"median": 0.5, "beta": 0.4, "im": "pga"}  # a fragility.csv row of another IM
+    with pytest.raises(InputError, match="imt"):
+        audit.risk(row, path)
+    assert audit.risk((0.5, 0.4), path).annual_rate == pytest.approx(
+        _cornell(1e-4, 2.0, 0.5, 0.4), rel=1e-3)
