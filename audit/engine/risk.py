@@ -188,7 +188,7 @@ def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
                          f"{theirs.name} for both")
 
 
-def risk_integral(fragility, curve, years: float = YEARS) -> OverturningRisk:
+def risk_integral(fragility, curve) -> OverturningRisk:
     """λ_ov = ∫ P(overturn | im) |dλ/d im| d im of a fragility and a hazard curve (see the
     module for the interpolation and what the curve's ends count).
 
@@ -197,8 +197,6 @@ def risk_integral(fragility, curve, years: float = YEARS) -> OverturningRisk:
     fragility : LognormalFragility or StripeFragility
         Its ``im``, when given, must be the curve's (:func:`check_same_im`).
     curve : records.hazard.HazardCurve
-    years : float
-        The period of :attr:`OverturningRisk.p50` [yr].
 
     Returns
     -------
@@ -236,7 +234,7 @@ def risk_integral(fragility, curve, years: float = YEARS) -> OverturningRisk:
     deaggregation["share"] = deaggregation["annual_rate"] / annual_rate if annual_rate > 0 \
         else np.nan
     return OverturningRisk(
-        annual_rate, upper, float(-np.expm1(-years * annual_rate)), curve.im_name,
+        annual_rate, upper, float(-np.expm1(-YEARS * annual_rate)), curve.im_name,
         curve.source, fragility.describe(), _central_range(x, density, tail, top, annual_rate),
         bool(truncated), float(fragility.probability(levels[0])), deaggregation,
         np.exp(x).reshape(-1), density.reshape(-1))
