@@ -28,7 +28,9 @@ def add_parser(sub):
                     "where each guideline draws its line: its overturning intensity, the exact "
                     "probability of overturning there, and the FEMA P695 collapse margin ratio. "
                     "Writes margins.html, stripes.csv, fragility.csv, capacity.csv, "
-                    "required_alpha.csv, scan.csv and summary.json.")
+                    "required_alpha.csv, scan.csv and summary.json; with --hazard, each block's "
+                    "annual rate of overturning at the site and the α each size needs for "
+                    "the risk target (risk.csv, risk_alpha.csv, hazard.csv).")
     p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
     p.add_argument("--im", metavar="pga|pgv|sa:T",
