@@ -423,15 +423,16 @@ def run(procedures="all", records=None, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=Non
 
 class MarginsResult:
     """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity``,
-    ``.required_alpha``, ``.scan`` (DataFrames, the columns of the CSV files of the same
-    names), ``.summary``, ``.write(folder)`` (the files and ``margins.html``) and
-    ``.report(path)``."""
+    ``.required_alpha``, ``.scan``, and at a site ``.risk``, ``.risk_alpha`` (DataFrames,
+    the columns of the CSV files of the same names), ``.summary``, ``.write(folder)`` (the
+    files and ``margins.html``) and ``.report(path)``."""
 
     def __init__(self, margins):
         self.margins = margins
         self.stripes, self.fragility = margins.stripes, margins.fragility
         self.capacity, self.summary = margins.capacity, margins.summary
         self.required_alpha, self.scan = margins.required_alpha, margins.scan
+        self.risk, self.risk_alpha = margins.risk, margins.risk_alpha
 
     def files(self) -> dict[str, bytes]:
         """Every file of the audit, the page drawn from the CSV files as saved."""
@@ -471,13 +472,14 @@ def with_page(files: dict, page_name: str, render) -> dict:
         return {**files, page_name: render(saved).encode()}
 
 
-def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
+def margins(procedures="all", records=None, im: str | None = None, stripes=None,
             alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, blocks=(), site=None,
             scale_to_site: bool = False, anchor_period_s=None, ntc_site=None,
             restitution="housner", jobs: int = DEFAULT_JOBS,
             free_motion_s: float = DEFAULT_FREE_MOTION_S, scheduler: str = DEFAULT_SCHEDULER,
             progress=False, partial_dir=None, resume: bool = False,
-            required: bool = True, site_level: str = "mce") -> MarginsResult:
+            required: bool = True, site_level: str = "mce", hazard=None, site_location=None,
+            risk_target: float = 0.01) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
     procedure draws its line against it (see :mod:`audit.engine.margins`).
 
@@ -485,8 +487,9 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
     ----------
     procedures, records :
         As for :func:`run`.
-    im : str
-        ``pga`` [g], ``pgv`` [m/s] or ``sa:T`` (true 5 %-damped Sa at T [s], in g).
+    im : str, optional
+        ``pga`` [g], ``pgv`` [m/s] or ``sa:T`` (true 5 %-damped Sa at T [s], in g); default
+        ``sa:1.0``, or the IMT of ``hazard`` (InputError when ``im`` is another).
     stripes : sequence of float, optional
         Intensity levels (unit of ``im``); default 24 levels, 0.2–5 × the design intensity
         (or the suite's median).
@@ -515,6 +518,14 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
     site_level : {"mce", "design"}
         The hazard level of ``site``: the collapse margin ratio is over the MCE intensity,
         ``site``'s own or 1.5 × it for ``"design"``.
+    hazard : records.hazard.HazardCurve or path, optional
+        The site's hazard curve: every block's annual rate of overturning (``.risk``) and the
+        slenderness each size needs for ``risk_target`` (``.risk_alpha``), see
+        :mod:`audit.engine.margins_risk`.
+    site_location : (float, float), optional
+        Longitude, latitude [degrees] of the site in a hazard file of several sites.
+    risk_target : float
+        The risk target: probability of overturning in 50 years [-].
     """
     import numpy as np
 
@@ -533,7 +544,15 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
     named += parse_blocks([b for b in blocks if isinstance(b, str)])
     impact = restitution if isinstance(restitution, Restitution) else Restitution.parse(restitution)
     chosen = _procedures(procedures)
-    intensity = IntensityMeasure.parse(im)
+    curve = None
+    if hazard is not None:  # read and checked before any work
+        from audit.engine.margins_risk import hazard_summary, hazard_table, margins_risk
+        from audit.engine.risk import annual_rate_for, check_same_im, hazard_im
+        curve = read_hazard(hazard, site_location)
+        check_same_im(curve, im, "--im")
+        annual_rate_for(risk_target)
+        im = hazard_im(curve).name
+    intensity = IntensityMeasure.parse(im or "sa:1.0")
     bar = Progress(len(suite), "record") if progress is True else None
     report = bar or progress or None
     try:
@@ -557,8 +576,68 @@ def margins(procedures="all", records=None, im: str = "sa:1.0", stripes=None,
         if bar is not None:
             bar.done()
     run.scan = amplitude_scans(run, suite, impact, free_motion_s=free_motion_s, jobs=jobs)
+    if curve is not None:
+        run.risk, run.risk_alpha = margins_risk(run, curve, risk_target)
+        run.hazard = hazard_table(curve)
+        run.summary["hazard"] = hazard_summary(curve, risk_target)
     return MarginsResult(run)
 
 
+def read_hazard(hazard, site=None, imt: str | None = None):
+    """A :class:`records.hazard.HazardCurve` as given, or read from a file: an OpenQuake
+    hazard-curve export, a USGS hazard service response (``.json``) or a plain CSV
+    ``im_g,annual_rate`` with a ``# imt=...`` line (see :func:`records.hazard.read_hazard`).
+
+    Parameters
+    ----------
+    hazard : HazardCurve, str or pathlib.Path
+    site : (float, float), optional
+        Longitude, latitude [degrees] of the site, matched within 0.001°.
+    imt : str, optional
+        ``PGA`` or ``SA(T)``: which curve of a USGS response.
+    """
+    from records.hazard import HazardCurve
+    from records.hazard import read_hazard as read_file
+    if isinstance(hazard, HazardCurve):
+        return hazard
+    return read_file(hazard, site, imt)
+
+
+def risk(fragility, hazard, site=None, imt: str | None = None):
+    """The mean annual rate of overturning of one block at a site, its probability in 50
+    years, and where it comes from (see :mod:`audit.engine.risk`).
+
+    Parameters
+    ----------
+    fragility :
+        ``(median_g, beta)``; a row of :attr:`MarginsResult.fragility` (its lognormal fit, of
+        its ``im``); or :class:`audit.engine.risk.LognormalFragility` /
+        :class:`~audit.engine.risk.StripeFragility`.
+    hazard : records.hazard.HazardCurve, str or pathlib.Path
+        The curve, or its file (:func:`read_hazard`).
+    site, imt :
+        As for :func:`read_hazard`.
+
+    Returns
+    -------
+    audit.engine.risk.OverturningRisk
+        ``.annual_rate`` [1/yr], ``.p50``, ``.im_range_90_g``, ``.deaggregation``, ...
+    """
+    from audit.engine.risk import LognormalFragility, StripeFragility, risk_integral
+    curve = read_hazard(hazard, site, imt)
+    if not isinstance(fragility, (LognormalFragility, StripeFragility)):
+        if hasattr(fragility, "get") and "median" in fragility:  # a fragility.csv row
+            fragility = LognormalFragility(float(fragility["median"]), float(fragility["beta"]),
+                                           fragility.get("im"))
+        else:
+            try:
+                median_g, beta = (float(v) for v in fragility)
+            except (TypeError, ValueError):
+                raise InputError("fragility: expected (median_g, beta), a row of "
+                                 "MarginsResult.fragility or a LognormalFragility") from None
+            fragility = LognormalFragility(median_g, beta)
+    return risk_integral(fragility, curve)
+
+
 __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite", "margins",
-           "MarginsResult"]
+           "MarginsResult", "risk", "read_hazard"]

@@ -18,8 +18,11 @@ import numpy as np
 import pandas as pd
 from scipy.special import ndtr
 
+from reports.html_parts import html_table as _table
+from reports.html_parts import plot_div as _plot
+from reports.margins_risk_section import risk_section
 from reports.palette import _EXTRA_COLOURS
-from reports.plots import _axis, _layout, to_json
+from reports.plots import _axis, _layout
 
 MARGINS_HTML = "margins.html"
 #: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].
@@ -200,16 +203,6 @@ def _scan_figure(scan: pd.DataFrame, summary) -> dict:
     return {"data": data, "layout": layout}
 
 
-def _plot(figure_id: str, spec: dict) -> str:
-    return (f'<div id="{figure_id}"></div><script>(s => Plotly.newPlot("{figure_id}", s.data, '
-            f's.layout, {{displaylogo: false}}))({to_json(spec)});</script>')
-
-
-def _table(frame: pd.DataFrame) -> str:
-    return frame.to_html(index=False, na_rep="—", border=0,
-                         float_format=lambda v: f"{v:.3g}")
-
-
 def _margins_table(fragility, capacity, required, titles) -> pd.DataFrame:
     exact10 = required[required["procedure"] == "exact@0.10"].set_index("size_s")
     rows = []
@@ -280,6 +273,8 @@ def render_margins_page(folder) -> str:
     parts.append("<h3>How each procedure meets the stripes</h3><ul>" + "".join(
         f"<li><b>{html.escape(p['title'])}</b>: {html.escape(p['reads'])}</li>"
         for p in summary["procedures"]) + "</ul>")
+    parts += risk_section(folder, summary, fragility, stripes, _keys, titles,
+                          lambda name: _procedure_colour(names, name))
     if summary.get("design_im") and (fragility["block_m"] == "").any():
         extrapolated = int(fragility["median_extrapolated"].sum())
         parts.append("<h2>Collapse margin ratio over the grid</h2><p>CMR = median of the exact "

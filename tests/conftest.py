@@ -69,3 +69,22 @@ def browse(tmp_path):
         return subprocess.run([executable, *flags, *action, Path(page).as_uri()],
                               capture_output=True, text=True, timeout=300)
     return run
+
+
+#: The folder of real hazard-curve files (OpenQuake's demo run and a USGS response).
+HAZARD_VARIABLE = "ROCKING_AUDIT_HAZARD"
+
+
+@pytest.fixture(scope="session")
+def hazard_dir() -> Path:
+    """The real hazard files' folder (``openquake-demo/``, ``usgs-example.json``), from
+    ``ROCKING_AUDIT_HAZARD``: skipped when unset, failed when unset under CI."""
+    value = os.environ.get(HAZARD_VARIABLE)
+    if not value:
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(f"{HAZARD_VARIABLE} is not set under CI: the hazard-file tests cannot run")
+        pytest.skip(f"{HAZARD_VARIABLE} is not set: hazard-file tests need the shared hazard files")
+    path = Path(value)
+    if not (path / "usgs-example.json").is_file():
+        pytest.fail(f"{HAZARD_VARIABLE}={value}: no usgs-example.json there")
+    return path

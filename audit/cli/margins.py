@@ -28,12 +28,15 @@ def add_parser(sub):
                     "where each guideline draws its line: its overturning intensity, the exact "
                     "probability of overturning there, and the FEMA P695 collapse margin ratio. "
                     "Writes margins.html, stripes.csv, fragility.csv, capacity.csv, "
-                    "required_alpha.csv, scan.csv and summary.json.")
+                    "required_alpha.csv, scan.csv and summary.json; with --hazard, each block's "
+                    "annual rate of overturning at the site and the α each size needs for "
+                    "the risk target (risk.csv, risk_alpha.csv, hazard.csv).")
     p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
-    p.add_argument("--im", default=DEFAULT_IM, metavar="pga|pgv|sa:T",
-                   help="intensity measure: PGA [g], PGV [m/s] or the true 5 %%-damped "
-                        "spectral acceleration at T [g]")
+    p.add_argument("--im", metavar="pga|pgv|sa:T",
+                   help=f"intensity measure: PGA [g], PGV [m/s] or the true 5 %%-damped "
+                        f"spectral acceleration at T [g]; default {DEFAULT_IM}, or the "
+                        "--hazard file's IMT")
     p.add_argument("--stripes", metavar="IM,...",
                    help="intensity levels (unit of --im); default 24 levels, geometric, "
                         "0.2–5 × the site's design intensity (or the suite's median)")
@@ -52,6 +55,7 @@ def add_parser(sub):
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
     options.add_block_option(p)
+    options.add_hazard_options(p)
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -79,7 +83,16 @@ def run(args) -> int:
     out_dir = check_output_dir(Path(args.out))
     out_dir_existed = out_dir.exists()
     scheduler = check_scheduler(args.scheduler)
-    im = IntensityMeasure.parse(args.im)
+    site_location = options.site_location(args.site_location)
+    if site_location and not args.hazard:
+        raise InputError("--site-location: a site of the --hazard file; no --hazard given")
+    hazard = None
+    if args.hazard:  # read before any work: its IMT sets the intensity measure
+        from audit.api import read_hazard
+        from audit.engine.risk import check_same_im, hazard_im
+        hazard = read_hazard(args.hazard, site_location)
+        check_same_im(hazard, args.im, "--im")
+    im = hazard_im(hazard) if hazard else IntensityMeasure.parse(args.im or DEFAULT_IM)
     levels = options.float_list(args.stripes, "--stripes") if args.stripes else None
     if levels is not None and not all(level > 0 for level in levels):
         raise InputError(f"--stripes: intensity levels must be positive, got '{args.stripes}'")
@@ -109,7 +122,7 @@ def run(args) -> int:
                          restitution=restitution, jobs=args.jobs, free_motion_s=args.free_motion,
                          scheduler=scheduler, progress=progress,
                          partial_dir=out_dir / PARTIAL_DIR, resume=args.resume,
-                         site_level=args.level)
+                         site_level=args.level, hazard=hazard, risk_target=args.risk_target)
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)
     finally:
@@ -119,8 +132,18 @@ def run(args) -> int:
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     _print_summary(result, suite, im, procedures, sizes, time.perf_counter() - start)
     print(f"Wrote {out_dir / MARGINS_HTML} and stripes.csv, fragility.csv, capacity.csv, "
-          "required_alpha.csv, scan.csv, summary.json")
+          "required_alpha.csv, scan.csv, summary.json"
+          + (", risk.csv, risk_alpha.csv, hazard.csv" if hazard else ""))
     return 0
+
+
+def _print_risk(result) -> None:
+    hazard = result.summary["hazard"]
+    print(f"  at the site ({hazard['source']}), target P {hazard['target_p50']:g} in 50 years:")
+    for row in result.risk[result.risk["block_m"] != ""].itertuples():
+        print(f"  block {row.block_m} m: λ_ov {row.annual_rate_fit:.3g}/yr, P in 50 years "
+              f"{row.p50_fit:.3g} (stripe shares: {row.annual_rate_stripes:.3g}/yr); 90 % of "
+              f"it from {row.im_low_90_g:.3g}–{row.im_high_90_g:.3g} g")
 
 
 def _print_summary(result, suite, im, procedures, sizes, seconds) -> None:
@@ -150,3 +173,5 @@ def _print_summary(result, suite, im, procedures, sizes, seconds) -> None:
         print(f"  {name} accepts blocks more slender than the exact 10 % curve for "
               + (f"2π/p = {min(below):g}–{max(below):g} s ({len(below)} of {sizes.size} sizes)"
                  if below else "no size"))
+    if result.risk is not None:
+        _print_risk(result)

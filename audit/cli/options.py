@@ -362,3 +362,29 @@ def write_csv(table, path: Path | None, extra: dict[Path, bytes] | None = None) 
         sys.stdout.write(text)
     else:
         print(f"Wrote {rows} rows to {path}", file=sys.stderr)
+
+
+#: ``type`` of ``--risk-target``: a probability in 50 years, strictly between 0 and 1.
+PROBABILITY = number("must lie strictly between 0 and 1", 0.0, 1.0, low_open=True,
+                     high_open=True)
+
+
+def add_hazard_options(parser):
+    parser.add_argument("--hazard", metavar="FILE",
+                        help="the site's hazard curve: an OpenQuake hazard-curve CSV export, a "
+                             "USGS hazard service response (.json) or a CSV im_g,annual_rate "
+                             "with a line '# imt=SA(1.0)'; its IMT sets --im")
+    parser.add_argument("--site-location", metavar="LON,LAT",
+                        help="the site in a hazard file of several sites [degrees]")
+    parser.add_argument("--risk-target", type=PROBABILITY, default=0.01, metavar="P",
+                        help="risk target: probability of overturning in 50 years")
+
+
+def site_location(text: str | None) -> tuple[float, float] | None:
+    """``--site-location LON,LAT`` as (lon, lat) [degrees], or None."""
+    if text is None:
+        return None
+    values = float_list(text, "--site-location")
+    if len(values) != 2 or not (-180 <= values[0] <= 360 and -90 <= values[1] <= 90):
+        raise InputError(f"--site-location: expected LON,LAT in degrees, got '{text}'")
+    return values[0], values[1]

@@ -139,6 +139,11 @@ class MarginsRun:
     required_alpha: pd.DataFrame | None = None
     #: ``scan.csv`` (:func:`amplitude_scans`), None when not computed.
     scan: pd.DataFrame | None = None
+    #: ``risk.csv``, ``risk_alpha.csv`` and ``hazard.csv`` at a site
+    #: (:func:`~audit.engine.margins_risk.margins_risk`), None without a hazard curve.
+    risk: pd.DataFrame | None = None
+    risk_alpha: pd.DataFrame | None = None
+    hazard: pd.DataFrame | None = None
 
 
 @dataclass(frozen=True)
@@ -564,7 +569,16 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
         files["required_alpha.csv"] = csv_bytes(run.required_alpha, "%.4g")
     if run.scan is not None:
         files["scan.csv"] = csv_bytes(run.scan, "%.8g")
-    guide = {name: columns for name, columns in column_guide().items() if name in files}
+    guides = column_guide()
+    if run.risk is not None:
+        from audit.engine.risk_schema import RISK_GUIDE
+        files.update({"risk.csv": csv_bytes(run.risk, "%.6g"),
+                      "risk_alpha.csv": csv_bytes(run.risk_alpha, "%.6g"),
+                      "hazard.csv": csv_bytes(run.hazard, "%.8g")})
+        guides.update({name: {column: {"unit": unit, "meaning": meaning}
+                              for column, (unit, meaning) in columns.items()}
+                       for name, columns in RISK_GUIDE.items()})
+    guide = {name: columns for name, columns in guides.items() if name in files}
     return {**files,
             "summary.json": json.dumps(json_ready(run.summary), indent=1,
                                        ensure_ascii=False).encode(),
