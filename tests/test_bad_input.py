@@ -19,6 +19,7 @@ import pytest
 
 from audit.cli import EXIT_INTERRUPTED, main
 from audit.engine import guards
+from audit.engine.schemas import GUIDE
 from audit.files import write_files_atomically
 from audit.errors import InputError
 from records import ENV_VARIABLE, load_records
@@ -228,6 +229,14 @@ CASES = [
                                 "estimates-only.csv", "checks.csv", "suite.csv", "claims.csv",
                                 "design-spectra.csv", "mechanics.csv")}},
      ["report", "results"], ["summary.json"]),
+    # a results.csv of another program (or edited): its file named, not a KeyError
+    ("report-results-wrong-columns", {
+        "results/summary.json": "{}",
+        "results/results.csv": "rec,proc,alpha\nx,fema356,10\n",
+        **{f"results/{name}": ",".join(GUIDE[name]) + "\n" for name in (
+            "spectra.csv", "histories.csv", "rocking.csv", "estimates-only.csv", "checks.csv",
+            "suite.csv", "claims.csv", "design-spectra.csv", "mechanics.csv")}},
+     ["report", "results"], ["results/results.csv", "columns missing: record, procedure"]),
     # ---------------------------------------------------------------- --records paths
     ("records-absent", {}, ["list", "--records", "nothing.toml"], ["nothing.toml"]),
     ("records-empty-folder", {"empty/.keep": ""}, ["list", "--records", "empty"], ["empty"]),
