@@ -602,6 +602,41 @@ def test_entry_point_one_line_exit_2(tmp_path, argv, word):
     assert list(tmp_path.iterdir()) == []
 
 
+#: Runs the CLI with a Ctrl-C sent from inside numba's object-cache hook, a ctypes callback
+#: that llvmlite calls while numba compiles the solver or loads it from its cache: the window
+#: in which a Ctrl-C was once lost ("Exception ignored …", then exit 0).
+CTRL_C_IN_NUMBA_CALLBACK = """
+import os, signal, sys
+from numba.core import codegen
+hook = codegen.CPUCodeLibrary._object_getbuffer_hook.__func__
+def interrupting(cls, ll_module):
+    if not os.environ.get("INTERRUPTED"):
+        os.environ["INTERRUPTED"] = "1"
+        print("sending SIGINT inside the callback", file=sys.stderr)
+        os.kill(os.getpid(), signal.SIGINT)
+    return hook(cls, ll_module)
+codegen.CPUCodeLibrary._object_getbuffer_hook = classmethod(interrupting)
+from audit.cli import main
+code = main(sys.argv[1:])
+sys.stderr.flush()
+os._exit(code)
+"""
+
+
+def test_ctrl_c_inside_a_numba_callback_stops_the_command(tmp_path):
+    environment = {k: v for k, v in os.environ.items() if k not in (ENV_VARIABLE, "INTERRUPTED")}
+    environment["PYTHONPATH"] = str(ROOT)
+    process = subprocess.run(
+        [sys.executable, "-c", CTRL_C_IN_NUMBA_CALLBACK, "margins", "fema356", "--records",
+         "pulses", "--sizes", "1:2:0.5", "--alpha", "10", "--out", "out"],
+        cwd=tmp_path, env=environment, capture_output=True, text=True, timeout=600)
+    lines = [line for line in process.stderr.splitlines() if not line.startswith("[")]
+    assert lines == ["sending SIGINT inside the callback", "interrupted; nothing written"], \
+        process.stderr
+    assert process.returncode == EXIT_INTERRUPTED
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_ctrl_c_stops_with_one_line_exit_130_and_nothing_written(tmp_path):
     # the pulse suite over a fine grid: long enough to be interrupted while computing
     process = _cli("run", "all", "--sizes", "0.2:8:0.002", "--alpha", "5,10,15,20,25",
