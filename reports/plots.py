@@ -15,6 +15,7 @@ import numpy as np
 import orjson
 import pandas as pd
 
+from audit.engine.verdicts import ROCKING_FLOOR
 from reports.palette import VERDICT_COLOURS, alpha_colour, damping_colour
 
 #: Significant digits of the numbers embedded in the page.
@@ -160,7 +161,10 @@ def describe_exact(row) -> str:
         return "overturns" + (" (fragile)" if row["exact_fragile"] is True else "")
     if not np.isfinite(row["exact_theta_rad"]):
         return "no record file"
-    return f"θ/α = {row['exact_theta_rad'] / math.radians(row['alpha_deg']):.4g}"
+    theta_ratio = row["exact_theta_rad"] / math.radians(row["alpha_deg"])
+    if theta_ratio < ROCKING_FLOOR:
+        return f"no rocking (θ/α = {theta_ratio:.2g})"
+    return f"θ/α = {theta_ratio:.4g}"
 
 
 def describe_guideline(row) -> str:

@@ -1,7 +1,9 @@
 """Shared fixtures: the real records of ``../shared/records`` via ``ROCKING_AUDIT_RECORDS``.
 
-Tests that need real records skip with a reason when the variable is unset outside CI; under
-CI (``CI=true``) they fail instead, so a missing record directory cannot pass silently.
+Tests that need the real records (or a browser) skip with a reason where they are not there,
+as on a user's machine or a GitHub runner (which sets ``CI=true``). The project's own CI,
+``.ci/run``, provides them and says so with the variables below: there such a test fails
+instead, so a missing record directory cannot pass silently.
 """
 
 import os
@@ -13,13 +15,24 @@ import pytest
 
 from records import ENV_VARIABLE, load_records
 
+#: Set to 1 by ``.ci/run``: the real-record tests must run.
+REQUIRE_RECORDS = "ROCKING_AUDIT_REQUIRE_RECORDS"
+#: Set to 1 by ``.ci/run``, which installs chromium: the browser tests must run.
+REQUIRE_CHROMIUM = "ROCKING_AUDIT_REQUIRE_CHROMIUM"
+
+
+def unavailable(required_by: str, reason: str):
+    """Skip the test for ``reason``, or fail it where the variable ``required_by`` is 1."""
+    if os.environ.get(required_by) == "1":
+        pytest.fail(f"{reason}, and {required_by}=1 requires it")
+    pytest.skip(reason)
+
 
 def _seed_manifest() -> Path:
     value = os.environ.get(ENV_VARIABLE)
     if not value:
-        if os.environ.get("CI", "").lower() == "true":
-            pytest.fail(f"{ENV_VARIABLE} is not set under CI: the real-record tests cannot run")
-        pytest.skip(f"{ENV_VARIABLE} is not set: real-record tests need ../shared/records")
+        unavailable(REQUIRE_RECORDS, f"{ENV_VARIABLE} is not set: real-record tests need "
+                                     "../shared/records")
     path = Path(value)
     if not path.is_file():
         pytest.fail(f"{ENV_VARIABLE}={value}: no such manifest")
@@ -49,16 +62,14 @@ def _chromium() -> str:
         path = shutil.which(name)
         if path:
             return path
-    if os.environ.get("CI", "").lower() == "true":
-        pytest.fail("chromium is not installed: .ci/run installs it with apt-get")
-    pytest.skip("chromium is not installed (apt-get install chromium)")
+    unavailable(REQUIRE_CHROMIUM, "chromium is not installed (apt-get install chromium)")
 
 
 @pytest.fixture
 def browse(tmp_path):
     """``browse(page, *flags)``: open the file ``page`` in headless Chromium with a fresh
     profile, no network services, console messages on stderr (CompletedProcess). Skips when
-    Chromium is missing, except under CI."""
+    Chromium is missing, except where ``.ci/run`` requires it."""
     executable = _chromium()
 
     def run(page: Path, *action):

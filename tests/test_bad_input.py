@@ -19,6 +19,7 @@ import pytest
 
 from audit.cli import EXIT_INTERRUPTED, main
 from audit.engine import guards
+from audit.engine.schemas import GUIDE
 from audit.files import write_files_atomically
 from audit.errors import InputError
 from records import ENV_VARIABLE, load_records
@@ -228,6 +229,14 @@ CASES = [
                                 "estimates-only.csv", "checks.csv", "suite.csv", "claims.csv",
                                 "design-spectra.csv", "mechanics.csv")}},
      ["report", "results"], ["summary.json"]),
+    # a results.csv of another program (or edited): its file named, not a KeyError
+    ("report-results-wrong-columns", {
+        "results/summary.json": "{}",
+        "results/results.csv": "rec,proc,alpha\nx,fema356,10\n",
+        **{f"results/{name}": ",".join(GUIDE[name]) + "\n" for name in (
+            "spectra.csv", "histories.csv", "rocking.csv", "estimates-only.csv", "checks.csv",
+            "suite.csv", "claims.csv", "design-spectra.csv", "mechanics.csv")}},
+     ["report", "results"], ["results/results.csv", "columns missing: record, procedure"]),
     # ---------------------------------------------------------------- --records paths
     ("records-absent", {}, ["list", "--records", "nothing.toml"], ["nothing.toml"]),
     ("records-empty-folder", {"empty/.keep": ""}, ["list", "--records", "empty"], ["empty"]),
@@ -237,6 +246,32 @@ CASES = [
      ["b.AT2", "1 other"]),
     ("run-suite-first-bad", {"recs/a.AT2": "", "recs/b.AT2": GOOD_AT2},
      [*RUN, "--records", "recs"], ["a.AT2"]),
+    # ---------------------------------------------------------------- text records: time, dt, units
+    ("records-time-column-uneven",
+     {"t.txt": "".join(f"{0.01 * i + (0.003 if i == 7 else 0):.3f} {v:.5f}\n"
+                       for i, v in enumerate(VALUES))},
+     ["list", "--records", "t.txt", "--units", "g"], ["t.txt", "line 8", "time"]),
+    ("records-time-column-backwards",
+     {"t.txt": "".join(f"{0.01 * (i - 2 * (i == 7)):.2f} {v:.5f}\n"
+                       for i, v in enumerate(VALUES))},
+     ["list", "--records", "t.txt", "--units", "g"], ["t.txt", "line 8", "time"]),
+    ("records-time-column-and-other-dt",
+     {"t.txt": "".join(f"{0.01 * i:.2f} {v:.5f}\n" for i, v in enumerate(VALUES))},
+     ["list", "--records", "t.txt", "--units", "g", "--dt", "0.02"], ["t.txt", "dt"]),
+    ("records-one-column-no-dt", {"one.txt": "0.1\n0.2\n"}, ["list", "--records", "one.txt"],
+     ["one.txt", "dt"]),
+    ("records-one-column-no-units", {"one.txt": "0.1\n0.2\n"},
+     ["list", "--records", "one.txt", "--dt", "0.01"], ["one.txt", "units"]),
+    ("records-dt-negative", {"one.txt": "0.1\n0.2\n"},
+     ["list", "--records", "one.txt", "--dt", "-0.01"], ["--dt"]),
+    ("records-units-unknown", {"one.txt": "0.1\n0.2\n"},
+     ["list", "--records", "one.txt", "--units", "gal"], ["--units"]),
+    ("records-dt-for-a-suite", {}, ["list", "--records", "pulses", "--dt", "0.01"],
+     ["dt", "pulses"]),
+    ("records-dt-for-an-at2", {"a.AT2": GOOD_AT2}, ["list", "--records", "a.AT2", "--dt", "0.01"],
+     ["dt", "a.AT2"]),
+    ("records-suite-misspelt", {}, ["list", "--records", "p695-farfield"],
+     ["p695-farfield", "did you mean 'p695-far-field'"]),
     # ---------------------------------------------------------------- manifests: file level
     ("manifest-empty", {"suite.toml": ""}, LIST, ["suite.toml", "[[record]]"]),
     ("manifest-not-toml", {"suite.toml": "[[record]\nid = 1"}, LIST, ["suite.toml", "TOML"]),
@@ -590,6 +625,41 @@ def test_entry_point_one_line_exit_2(tmp_path, argv, word):
     process = _cli(*argv, cwd=tmp_path)
     out, err = process.communicate(timeout=60)
     assert process.returncode == 2 and len(err.splitlines()) == 1 and word in err
+    assert list(tmp_path.iterdir()) == []
+
+
+#: Runs the CLI with a Ctrl-C sent from inside numba's object-cache hook, a ctypes callback
+#: that llvmlite calls while numba compiles the solver or loads it from its cache: the window
+#: in which a Ctrl-C was once lost ("Exception ignored …", then exit 0).
+CTRL_C_IN_NUMBA_CALLBACK = """
+import os, signal, sys
+from numba.core import codegen
+hook = codegen.CPUCodeLibrary._object_getbuffer_hook.__func__
+def interrupting(cls, ll_module):
+    if not os.environ.get("INTERRUPTED"):
+        os.environ["INTERRUPTED"] = "1"
+        print("sending SIGINT inside the callback", file=sys.stderr)
+        os.kill(os.getpid(), signal.SIGINT)
+    return hook(cls, ll_module)
+codegen.CPUCodeLibrary._object_getbuffer_hook = classmethod(interrupting)
+from audit.cli import main
+code = main(sys.argv[1:])
+sys.stderr.flush()
+os._exit(code)
+"""
+
+
+def test_ctrl_c_inside_a_numba_callback_stops_the_command(tmp_path):
+    environment = {k: v for k, v in os.environ.items() if k not in (ENV_VARIABLE, "INTERRUPTED")}
+    environment["PYTHONPATH"] = str(ROOT)
+    process = subprocess.run(
+        [sys.executable, "-c", CTRL_C_IN_NUMBA_CALLBACK, "margins", "fema356", "--records",
+         "pulses", "--sizes", "1:2:0.5", "--alpha", "10", "--out", "out"],
+        cwd=tmp_path, env=environment, capture_output=True, text=True, timeout=600)
+    lines = [line for line in process.stderr.splitlines() if not line.startswith("[")]
+    assert lines == ["sending SIGINT inside the callback", "interrupted; nothing written"], \
+        process.stderr
+    assert process.returncode == EXIT_INTERRUPTED
     assert list(tmp_path.iterdir()) == []
 
 

@@ -193,3 +193,79 @@ def test_peer_vertical_files_say_which_way_is_positive():
     assert pointing_down("RSN77_SFERN_PUL-DWN.AT2") and pointing_down("rsn1_x-dwn.at2")
     assert not pointing_down("RSN879_LANDERS_LCN-UP.AT2")
     assert not pointing_down("RSN1063_NORTHR_RRS-V.AT2")
+
+
+# --- a damaged _SearchResults.csv is refused, not read in part ---------------------------------
+
+@pytest.fixture
+def synthetic_download(tmp_path, monkeypatch):
+    """Two records of two components and a vertical each (RSN 879 × 1.5, RSN 77 × 2), the
+    files synthetic; the table's second row starts on line 9 of the CSV."""
+    monkeypatch.delenv("ROCKING_AUDIT_RECORDS", raising=False)
+    names = {879: ("RSN879_LANDERS_LCN260.AT2", "RSN879_LANDERS_LCN345.AT2",
+                   "RSN879_LANDERS_LCN-UP.AT2"),
+             77: ("RSN77_SFERN_PUL164.AT2", "RSN77_SFERN_PUL254.AT2", "RSN77_SFERN_PUL-DWN.AT2")}
+    for files in names.values():
+        for name in files:
+            _at2(tmp_path / name, "Synthetic", 0.01, _pulse(0.2))
+    _search_results(tmp_path, [_row(1, 879, 1.5, "Landers", "Lucerne", names[879]),
+                               _row(2, 77, 2, "San Fernando", "Pacoima Dam", names[77])])
+    return tmp_path
+
+
+def _refusal(folder, capsys, *args):
+    """The one line `audit list` (or the command given) writes for a refused folder."""
+    assert main([*(args or ["list"]), "--records", str(folder)]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and f"{folder / '_SearchResults.csv'}" in err[0]
+    return err[0]
+
+
+def test_synthetic_download_reads_both_records_scaled(synthetic_download):
+    suite = load_records(synthetic_download)
+    assert [entry.id for entry in suite] == ["RSN879_LANDERS_LCN260", "RSN879_LANDERS_LCN345",
+                                             "RSN77_SFERN_PUL164", "RSN77_SFERN_PUL254"]
+    assert suite.get("RSN77_SFERN_PUL164").motion.pga_g == pytest.approx(0.4, rel=1e-6)
+
+
+def test_search_results_cut_inside_a_row_are_refused(synthetic_download, capsys):
+    csv_path = synthetic_download / "_SearchResults.csv"
+    text = csv_path.read_bytes()
+    csv_path.write_bytes(text[:text.index(b"Pacoima Dam") + 20])  # a download cut short
+    message = _refusal(synthetic_download, capsys)
+    assert "line 9" in message and "truncated" in message
+
+
+def test_search_results_cut_between_rows_are_refused(synthetic_download, capsys):
+    csv_path = synthetic_download / "_SearchResults.csv"
+    lines = csv_path.read_text().splitlines()
+    csv_path.write_text("\n".join(lines[:8]) + "\n")  # the header and the first row only
+    message = _refusal(synthetic_download, capsys)
+    assert "line 8" in message and "blank row" in message and "truncated" in message
+
+
+def test_search_results_with_no_rows_are_refused(synthetic_download, capsys):
+    csv_path = synthetic_download / "_SearchResults.csv"
+    lines = csv_path.read_text().splitlines()
+    csv_path.write_text("\n".join([*lines[:7], ",,,,"]) + "\n")
+    message = _refusal(synthetic_download, capsys)
+    assert "line 7" in message and "no records" in message
+
+
+def test_a_short_row_is_refused_naming_its_line_and_the_first_column_it_lacks(
+        synthetic_download, capsys, tmp_path):
+    csv_path = synthetic_download / "_SearchResults.csv"
+    lines = csv_path.read_text().splitlines()
+    lines[8] = ",".join(lines[8].split(",")[:8])  # row 2 stops after Year
+    csv_path.write_text("\n".join(lines) + "\n")
+    out = tmp_path / "out"
+    message = _refusal(synthetic_download, capsys, "run", "fema356", "--out", str(out))
+    assert "line 9: Station Name:" in message and "8 cells" in message
+    assert not out.exists()
+
+
+def test_an_unlisted_vertical_file_is_not_read_as_a_horizontal_record(synthetic_download,
+                                                                      capsys):
+    _at2(synthetic_download / "RSN1120_KOBE_TAK-UP.AT2", "Takatori", 0.01, _pulse(0.1))
+    message = _refusal(synthetic_download, capsys)
+    assert "RSN1120_KOBE_TAK-UP.AT2: a vertical component" in message

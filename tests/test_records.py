@@ -218,3 +218,85 @@ def test_malformed_toml_and_unknown_id(tmp_path):
         record_facts("nope")
     with pytest.raises(InputError, match="unknown 'nope'"):
         pulse_suite().get("nope")
+
+
+# --- records as users have them: a time column, dt and units given, a suite name misspelt -----
+
+def _time_file(path, times, values, header="# time [s]  acceleration [g]"):
+    path.write_text(header + "\n" + "\n".join(f"{t}\t{v:.6e}" for t, v in zip(times, values))
+                    + "\n")
+    return path
+
+
+SINE_G = 0.3 * np.sin(2 * np.pi * np.arange(600) * 0.005)  # 3 s at 200 Hz, PGA 0.3 g
+
+
+def test_a_time_column_gives_the_step_and_is_not_read_as_acceleration(tmp_path):
+    times = [f"{0.005 * i:.3f}" for i in range(SINE_G.size)]
+    motion = read_columns(_time_file(tmp_path / "t.txt", times, SINE_G))
+    assert motion.dt == pytest.approx(0.005, rel=1e-12)
+    np.testing.assert_allclose(motion.acceleration, SINE_G * G, rtol=1e-6)
+    assert motion.metadata["column"] == 2
+    # the same through load_records, a manifest without column, and a dt that agrees
+    assert load_records(tmp_path / "t.txt").get("t").motion.dt == pytest.approx(0.005)
+    (tmp_path / "m.toml").write_text('[[record]]\nid = "t"\nfile = "t.txt"\n'
+                                     'format = "columns"\ndt = 0.005\n')
+    assert load_manifest(tmp_path / "m.toml").get("t").motion.pga_g == pytest.approx(0.3,
+                                                                                    rel=1e-5)
+
+
+def test_times_printed_coarser_than_the_tolerance_are_read_at_their_mean_step(tmp_path):
+    # 300 Hz printed to 3 decimals: each time off by up to 0.5 ms, 15 % of a step
+    times = [f"{i / 300:.3f}" for i in range(SINE_G.size)]
+    motion = read_columns(_time_file(tmp_path / "t.txt", times, SINE_G))
+    assert motion.dt == pytest.approx(float(times[-1]) / (SINE_G.size - 1), rel=1e-12)
+
+
+@pytest.mark.parametrize("change, kwargs, message", [
+    ({300: "1.502"}, {}, r"line 302: time: 1\.502 s is 0\.002 s off the uniform step 0\.005 s"),
+    ({300: "1.495"}, {}, r"line 302: time: 1\.495 s does not come after 1\.495 s"),
+    ({}, {"dt": 0.01}, r"dt: 0\.01 s given, the time column steps 0\.005 s"),
+])
+def test_a_bad_time_column_is_refused_naming_the_line(tmp_path, change, kwargs, message):
+    times = [change.get(i, f"{0.005 * i:.3f}") for i in range(SINE_G.size)]
+    path = _time_file(tmp_path / "t.txt", times, SINE_G)
+    with pytest.raises(InputError, match=message) as info:
+        read_columns(path, **kwargs)
+    assert str(info.value).startswith(f"{path}: ")
+
+
+def test_two_acceleration_columns_are_not_a_time_column(records_dir):
+    # rinaldi.txt: FN and FP accelerations, dt and units in its comments (SOURCES.md)
+    motion = read_columns(records_dir / "raw/rinaldi.txt")
+    assert motion.metadata["column"] == 1 and motion.dt == 0.005
+    assert motion.pga_g * G / 9.80665 == pytest.approx(0.840, rel=0.005)
+
+
+def test_dt_and_units_of_a_single_column_file(tmp_path, monkeypatch):
+    monkeypatch.delenv(ENV_VARIABLE, raising=False)
+    path = tmp_path / "one.txt"
+    path.write_text("\n".join(f"{v * 981:.6e}" for v in SINE_G) + "\n")  # cm/s², no header
+    with pytest.raises(InputError, match="one.txt: dt: not stated in the file"):
+        load_records(path)
+    with pytest.raises(InputError, match="one.txt: units: not stated in the file"):
+        load_records(path, dt=0.005)
+    motion = load_records(path, dt=0.005, units="cm/s2").get("one").motion
+    assert motion.dt == 0.005 and motion.pga_g == pytest.approx(0.3 * 9.81 / G, rel=1e-5)
+    for source in ("pulses", None):  # they state their own
+        with pytest.raises(InputError, match="^dt: given for the suite"):
+            load_records(source, dt=0.005)
+    with pytest.raises(InputError, match="^units: given for the suite pulses"):
+        load_records("pulses", units="g")
+
+
+@pytest.mark.parametrize("name, suggestion", [
+    ("p695-farfield", "p695-far-field"), ("p695-near-field-nopulse", "p695-near-field-no-pulse"),
+    ("pulse", "pulses"),
+])
+def test_a_misspelt_suite_name_suggests_the_nearest(tmp_path, monkeypatch, name, suggestion):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(InputError, match=f"^{name}: no such file or built-in suite; did you mean "
+                                         f"'{suggestion}'\\?$"):
+        load_records(name)
+    with pytest.raises(InputError, match="^far-away.toml: file not found$"):
+        load_records("far-away.toml")

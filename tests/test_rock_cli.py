@@ -141,3 +141,22 @@ def test_rock_a_block_given_by_its_dimensions(capsys):
         assert main(["rock", "--block", "0.4x2", *extra, "--pulse", "cosine", "--amplitude",
                      "0.3", "--pulse-period", "2"]) == 2
         assert "--block" in capsys.readouterr().err
+
+
+def test_rock_reads_a_text_record_with_dt_and_units_given_or_a_time_column(tmp_path, capsys):
+    """One text record three ways — one column with --dt/--units, a time column, the values in
+    g with a 'units' comment — all the exact response of the motion built here directly."""
+    dt = 0.005
+    t = np.arange(int(8.0 / dt)) * dt
+    pulse_g = np.where(t < 2.0, 0.310 * np.cos(2 * np.pi * t / 2.0), 0.0)
+    expected = simulate(RigidBlock(2.0, ALPHA_15),
+                        GroundMotion("x", pulse_g * 9.81, dt), 8.0).peak_rotation
+    (tmp_path / "one.txt").write_text("\n".join(f"{a * 981:.9e}" for a in pulse_g) + "\n")
+    (tmp_path / "timed.txt").write_text("% time [s], acceleration (g)\n" + "\n".join(
+        f"{time:.3f} {a:.9e}" for time, a in zip(t, pulse_g)) + "\n")
+    block = ["rock", "--p", "2", "--alpha", "15", "--duration", "8", "--json"]
+    for record in (["--record", str(tmp_path / "one.txt"), "--dt", "0.005", "--units", "cm/s2"],
+                   ["--record", str(tmp_path / "timed.txt")]):
+        assert main(block + record) == 0
+        assert json.loads(capsys.readouterr().out)["peak_rotation"] == pytest.approx(
+            expected, rel=1e-6)

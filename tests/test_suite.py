@@ -93,3 +93,45 @@ def test_unknown_verdict_is_refused(synthetic):
 def test_empty_results_give_an_empty_table_with_the_columns():
     suite = suite_statistics(_results([]))
     assert suite.empty and list(suite.columns) == SUITE_COLUMNS
+
+
+def test_ratio_takes_each_rotation_as_at_least_the_rocking_floor():
+    from audit.engine.verdicts import ROCKING_FLOOR, classify, reported_ratio, rotation_ratio
+    alpha = 0.2
+    floor = ROCKING_FLOOR * alpha  # 2e-4 rad
+    approx = np.array([0.05, 1e-14, 1e-14, 0.01, np.nan, 0.05])
+    exact = np.array([1e-14, 0.05, 2e-14, 0.02, 0.01, np.nan])
+    np.testing.assert_allclose(rotation_ratio(approx, exact, alpha),
+                               [0.05 / floor, floor / 0.05, 1.0, 0.5, np.nan, np.nan],
+                               rtol=1e-12)
+    outcome = np.array(["converged"] * 6, dtype=object)
+    verdicts = classify(exact, np.zeros(6, bool), np.ones(6, bool), approx, outcome, alpha, 0.1)
+    # 2e-14 against 1e-14 is no rocking against no rocking: agrees, not "conservative"
+    assert list(verdicts[:4]) == ["conservative", "unconservative", "agrees", "unconservative"]
+    # results.csv gives a ratio only where the exact block rocks
+    np.testing.assert_allclose(reported_ratio(verdicts, approx, exact, alpha),
+                               [np.nan, floor / 0.05, np.nan, 0.5, np.nan, np.nan], rtol=1e-12)
+
+
+def test_an_exact_rotation_of_1e_14_rad_gives_no_ratio_of_1e12():
+    """A one-cosine pulse whose amplitude exceeds g tan α by 1e-6: the exact block rocks by
+    ~5e-14 rad (θ grows with the excess), Priestley's iteration to ~0.04 rad: the ratio was
+    ~8e11."""
+    import math
+    from audit.engine.suite_run import run_audit
+    from audit.engine.verdicts import ROCKING_FLOOR
+    from procedures import get_procedures
+    from records import RecordEntry, RecordSuite, one_pulse
+    from reports.plots import describe_exact
+    alpha = math.radians(10.0)
+    edge = one_pulse("cosine", math.tan(alpha) * (1 + 1e-6), 1.0, record_id="edge")
+    run = run_audit(get_procedures("priestley1978"),
+                    RecordSuite((RecordEntry("edge", edge, None, "edge"),), "edge"),
+                    alpha_deg=(10.0,), sizes=np.array([4.0]), robustness=0.0)
+    row = run.results.iloc[0]
+    assert row["exact_uplifted"] and row["exact_theta_rad"] < 1e-12 < row["approx_theta_rad"]
+    assert row["exact_theta_rad"] < ROCKING_FLOOR * alpha
+    # the guideline rocks, the block does not: conservative, and no ratio in any band
+    assert row["verdict"] == "conservative" and np.isnan(row["ratio"])
+    assert np.isnan(run.suite.iloc[0]["ratio_p50"])
+    assert describe_exact(row).startswith("no rocking (θ/α = ")

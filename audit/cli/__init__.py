@@ -10,18 +10,16 @@ from __future__ import annotations
 
 import argparse
 import os
-import signal
 import sys
 import warnings
 
 from audit import __version__
 from audit.cli import (design_spectrum, fragility, listing, margins, options, report, rock, run,
                        spectrum)
+from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible
 from audit.errors import InputError, InputWarning
 
 COMMANDS = (listing, rock, spectrum, design_spectrum, run, margins, fragility, report)
-#: Exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it.
-EXIT_INTERRUPTED = 130
 
 
 class _Parser(argparse.ArgumentParser):
@@ -50,29 +48,21 @@ def main(argv=None) -> int:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:  # usage error (one line printed), --help or --version
         return exc.code if isinstance(exc.code, int) else 2
-    main_pid = os.getpid()
-
-    def on_interrupt(signum, frame):
-        if os.getpid() != main_pid:
-            os._exit(EXIT_INTERRUPTED)  # a worker process: the main process reports it, once
-        raise KeyboardInterrupt
-
-    previous = signal.signal(signal.SIGINT, on_interrupt)
-    with warnings.catch_warnings():
+    with interruptible(), warnings.catch_warnings():
         # a user sees the tool's own warnings, one line each, never a library's deprecation
         # notices (Python hides those outside __main__ too; a test runner shows them)
         warnings.simplefilter("ignore", DeprecationWarning)
         warnings.simplefilter("ignore", PendingDeprecationWarning)
         warnings.simplefilter("always", InputWarning)
         warnings.showwarning = _one_line_warning
-        return _run(args, previous)
+        return _run(args)
 
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None):
     print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
-def _run(args, previous_handler) -> int:
+def _run(args) -> int:
     try:
         if getattr(args, "jobs", None) is not None:
             args.jobs = options.cap_jobs(args.jobs)
@@ -90,8 +80,6 @@ def _run(args, previous_handler) -> int:
     except KeyboardInterrupt:
         print("interrupted; nothing written", file=sys.stderr)
         return EXIT_INTERRUPTED
-    finally:
-        signal.signal(signal.SIGINT, previous_handler)
 
 
 __all__ = ["main", "build_parser", "EXIT_INTERRUPTED"]

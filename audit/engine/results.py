@@ -20,7 +20,7 @@ import pandas as pd
 
 from audit.errors import InputError
 from audit.engine.csv_text import csv_bytes
-from audit.engine.schemas import BOOLEAN_COLUMNS, RESULT_COLUMNS, column_guide
+from audit.engine.schemas import BOOLEAN_COLUMNS, GUIDE, RESULT_COLUMNS, column_guide
 from audit.engine.audit_run import AuditRun
 from audit.engine.ranking import block_key
 
@@ -139,6 +139,9 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     files = {name: run_dir / name for name in DATA_FILES}
     where = str(run_dir)
     summary = read_summary(run_dir)
+    for name, path in files.items():
+        if name in GUIDE:
+            _check_columns(path, name, run_dir)
     records = detailed = histories_kept = None
     if shown:
         absent = [key for key in ("detail_records", "worst_blocks", "shown_records")
@@ -153,9 +156,8 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
         summary["histories"] = [h for h in summary["histories"] if h["record"] in records]
     text = {"record": str}
     try:
-        results = _read_results(files[RESULTS_CSV], RESULTS_CSV, where, records)
-        estimates_only = _read_results(files[ESTIMATES_ONLY_CSV], ESTIMATES_ONLY_CSV, where,
-                                       records)
+        results = _read_results(files[RESULTS_CSV], records)
+        estimates_only = _read_results(files[ESTIMATES_ONLY_CSV], records)
         spectra = _read(files[SPECTRA_CSV], detailed, keep_default_na=False, dtype=text,
                         na_values={c: [""] for c in ("alpha_deg", "damping_pct", "period_s",
                                                      "sd_m", "sv_m_s", "sa_g")})
@@ -175,6 +177,19 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     spectra["procedure"] = spectra["procedure"].astype(str)
     return AuditRun(results, spectra, histories, rocking, estimates_only, summary, checks, suite,
                     claims, design, mechanics)
+
+
+def _check_columns(path: Path, name: str, run_dir: Path) -> None:
+    """InputError naming the file where its header lacks a column of its schema (a file
+    edited, or of another program), before any table is read."""
+    try:
+        header = pd.read_csv(path, nrows=0).columns
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read: {exc}") from None
+    missing = [column for column in GUIDE[name] if column not in header]
+    if missing:
+        raise InputError(f"{path}: columns missing: {', '.join(missing)}; is {run_dir} the "
+                         f"output of 'audit run'?")
 
 
 def _read(path: Path, kept, **options) -> pd.DataFrame:
@@ -210,14 +225,11 @@ def _histories_shown(detailed: set, worst_blocks: list):
     return kept
 
 
-def _read_results(source, name: str, where: str, records) -> pd.DataFrame:
+def _read_results(source, records) -> pd.DataFrame:
     keep_text = ("record", "verdict", "approx_outcome", "approx_detail", "approx_fixed_points",
                  "approx_cycle")
     frame = _read(source, records, keep_default_na=False, dtype={"record": str},
                   na_values={c: [""] for c in RESULT_COLUMNS if c not in keep_text})
-    missing = [c for c in RESULT_COLUMNS if c not in frame.columns]
-    if missing:
-        raise InputError(f"{where}/{name}: columns missing: {', '.join(missing)}")
     for column in BOOLEAN_COLUMNS:  # bool where every row has one, else object with NaN
         values = frame[column].map({True: True, False: False, "True": True, "False": False})
         frame[column] = values.astype(bool if values.notna().all() else object)

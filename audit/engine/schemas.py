@@ -8,8 +8,8 @@ what it holds; the column lists of the engine are the keys, in order.
 
 from __future__ import annotations
 
-from audit.engine.verdicts import (CHECK_VERDICTS, CLAIM_STATUSES, UNSAFE_VERDICTS, VERDICTS,
-                                   names)
+from audit.engine.verdicts import (CHECK_VERDICTS, CLAIM_STATUSES, ROCKING_FLOOR,
+                                   UNSAFE_VERDICTS, VERDICTS, names)
 
 
 def verdict_column(verdict: str) -> str:
@@ -52,7 +52,9 @@ _RESULTS = {
     "iterations": ("-", "iterations used"),
     "beta_pct": ("%", "equivalent damping β of the procedure"),
     "verdict": ("text", ", ".join(VERDICTS)),
-    "ratio": ("-", "approx_theta_rad / exact_theta_rad where both survive"),
+    "ratio": ("-", f"approx_theta_rad / exact_theta_rad where both survive and the exact "
+                   f"block rocks (exact_theta_rad ≥ {ROCKING_FLOOR:g} α; below, no rocking: "
+                   f"empty), approx_theta_rad taken as at least {ROCKING_FLOOR:g} α"),
 }
 
 GUIDE = {
@@ -113,9 +115,12 @@ GUIDE = {
         "records": ("-", "records counted"),
         **{verdict_column(v): ("-", f"fraction of records with verdict {v}") for v in VERDICTS},
         "frac_unsafe": ("-", "fraction " + " + ".join(UNSAFE_VERDICTS)),
-        "ratio_p16": ("-", "16th percentile of approx/exact where both survive"),
-        "ratio_p50": ("-", "median of approx/exact where both survive"),
-        "ratio_p84": ("-", "84th percentile of approx/exact where both survive"),
+        "ratio_p16": ("-", "16th percentile of approx/exact where both survive (ratio of "
+                             "results.csv)"),
+        "ratio_p50": ("-", "median of approx/exact where both survive (ratio of "
+                             "results.csv)"),
+        "ratio_p84": ("-", "84th percentile of approx/exact where both survive (ratio of "
+                             "results.csv)"),
     },
     "claims.csv": {
         "id": ("text", "claim id"),

@@ -102,8 +102,33 @@ UNSAFE_CHECK_VERDICTS = on_side(CHECK_VERDICTS, UNSAFE)
 UNECONOMIC_CHECK_VERDICTS = on_side(CHECK_VERDICTS, UNECONOMIC)
 
 
+#: A rotation below this share of α is no rocking. Where the PGA barely exceeds g tan α the
+#: exact peak is ~1e-14 rad, and a guideline's 0.05 rad over it is no ratio of 1e12 but "the
+#: guideline rocks, the block does not": the verdicts compare each rotation taken as at least
+#: ``ROCKING_FLOOR`` α, and ``results.csv`` gives no ratio where the exact block does not rock.
+ROCKING_FLOOR = 1e-3
+
+
+def rotation_ratio(approx_theta, exact_theta, alpha_rad):
+    """approx/exact of each block [-], each rotation [rad] floored at :data:`ROCKING_FLOOR` ×
+    ``alpha_rad``; NaN where either rotation is NaN."""
+    floor = ROCKING_FLOOR * np.asarray(alpha_rad, dtype=float)
+    with np.errstate(invalid="ignore"):
+        return np.maximum(approx_theta, floor) / np.maximum(exact_theta, floor)
+
+
+def reported_ratio(verdict, approx_theta, exact_theta, alpha_rad):
+    """The ``ratio`` of ``results.csv`` [-]: :func:`rotation_ratio` where both survive (agrees,
+    conservative, unconservative) and the exact block rocks (θ ≥ :data:`ROCKING_FLOOR` α);
+    NaN elsewhere."""
+    rocks = np.asarray(exact_theta) >= ROCKING_FLOOR * np.asarray(alpha_rad, dtype=float)
+    both_survive = np.isin(verdict, ["agrees", "conservative", "unconservative"])
+    return np.where(both_survive & rocks, rotation_ratio(approx_theta, exact_theta, alpha_rad),
+                    np.nan)
+
+
 def classify(exact_theta, exact_overturned, exact_uplifted, approx_theta, outcome,
-             agree_band: float):
+             alpha_rad, agree_band: float):
     """Rotation verdict of each block (:data:`ROTATION_VERDICTS`); arrays in, array of str out.
 
     Parameters
@@ -115,13 +140,14 @@ def classify(exact_theta, exact_overturned, exact_uplifted, approx_theta, outcom
         The procedure's rotation [rad] (NaN where it predicts overturning or does not settle).
     outcome : array of str
         The procedure's outcome (``converged``, ``overturn``, ``no-uplift``, ``not-converged``).
+    alpha_rad : float or array
+        Slenderness α [rad], for the floor of :func:`rotation_ratio`.
     agree_band : float
         Half-width of the agreement band on approx/exact [-].
     """
     approx_over = outcome == OVERTURN
     exact_over = np.asarray(exact_overturned, dtype=bool)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio = approx_theta / exact_theta
+    ratio = rotation_ratio(approx_theta, exact_theta, alpha_rad)
     return np.select(
         [(outcome == NO_UPLIFT) & ~np.asarray(exact_uplifted, dtype=bool),
          outcome == NOT_CONVERGED, approx_over & exact_over, approx_over, exact_over,
