@@ -18,6 +18,8 @@ from urllib.parse import unquote, urlsplit
 
 import pytest
 
+from conftest import REQUIRE_DOCS, unavailable
+
 REPO = Path(__file__).resolve().parents[1]
 #: The entry points the API reference must list (``docs/api.rst``).
 ENTRY_POINTS = ("audit.rock", "audit.run", "audit.margins", "records.load")
@@ -28,9 +30,7 @@ def _require_docs_extra():
         try:
             importlib.import_module(module)
         except ImportError:
-            if os.environ.get("CI", "").lower() == "true":
-                pytest.fail(f"{module} is not installed: .ci/run installs the docs extra")
-            pytest.skip(f"{module} is not installed (pip install -e '.[docs]')")
+            unavailable(REQUIRE_DOCS, f"{module} is not installed (pip install -e '.[docs]')")
 
 
 @pytest.fixture(scope="module")
