@@ -1,7 +1,7 @@
 """What a procedure may ask of one record: its response spectra, computed once and cached.
 
 Record spectra are tabulated on :data:`procedures.base.SPECTRUM_PERIODS_S`, linear in T in
-between, which is what the root scan of :func:`procedures.base.fixed_points` relies on.
+between, which is what the root scan of :func:`procedures.rotation_map.fixed_points` relies on.
 """
 
 from __future__ import annotations

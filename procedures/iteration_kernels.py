@@ -1,7 +1,7 @@
 """The fixed-point iteration's per-step bookkeeping, compiled (see
-:func:`procedures.base.iterate_rotation`).
+:func:`procedures.iteration.iterate_rotation`).
 
-Apart from :mod:`procedures.base` so that reading a run back and rendering its report (which
+Apart from :mod:`procedures.iteration` so that reading a run back and rendering its report (which
 imports the procedures' declarations) never loads numba.
 """
 
@@ -14,7 +14,7 @@ import numpy as np
 @numba.njit(cache=True, nogil=True)
 def may_repeat(window: np.ndarray, cycle_tolerance: float, max_length: int) -> bool:
     """Whether the iterates ``window`` (newest last) may hold a settled cycle (see
-    :func:`procedures.base._cycle_length`).
+    :func:`procedures.iteration._cycle_length`).
 
     A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
     L before it, for some L ≤ ``max_length``, to ``cycle_tolerance`` of the whole window's
