@@ -9,6 +9,7 @@ from __future__ import annotations
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.oscillator import response_spectra
 from procedures.base import SPECTRUM_PERIODS_S
+from procedures.tabulated import TabulatedDisplacement
 
 
 class RecordContext:
@@ -56,7 +57,7 @@ class RecordContext:
     def true_displacement(self, damping: float):
         """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""
         spectra = self.true_spectra(damping, displacement_only=True)
-        return lambda period_s: spectra.displacement_at(period_s, 0)
+        return TabulatedDisplacement(spectra.period_s, spectra.sd[0])
 
 
 __all__ = ["RecordContext"]

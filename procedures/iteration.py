@@ -20,6 +20,7 @@ import numpy as np
 from audit import G
 from audit.physics.damping import housner_period
 from procedures.rotation_map import fixed_points, map_scale, ratios_text, rotation_map
+from procedures.tabulated import interp_rows
 
 #: Initial guess θ₀/α of the iteration: a small rotation, so the iteration climbs to the
 #: smallest non-trivial fixed point (θ = 0 is always one, and unstable when the block uplifts).
@@ -145,8 +146,47 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         value or cycle within the cap), and the settled cycle's θ/α ascending
         (``0.5753;0.8854``, empty when there is none).
     """
-    from procedures.iteration_kernels import advance  # compiled: numba loads only here
     p = np.asarray(p, dtype=float)
+    return _iterate(lambda ratio, live_p, live_scale, rows:
+                    rotation_map(displacement, ratio, live_p, live_scale),
+                    p, map_scale(p, alpha_rad, g), np.zeros(p.size, dtype=int), initial_ratio,
+                    tolerance, max_iterations)
+
+
+def iterate_tabulated(period_s, sd_m, rows, p, scale, initial_ratio: float = INITIAL_ROTATION_RATIO,
+                      tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
+    """:func:`iterate_rotation` of blocks that each read their own tabulated spectrum, all at
+    once: a record's stripes and slendernesses in one iteration, with the same iterates, bit
+    for bit, as one :func:`iterate_rotation` per spectrum
+    (:func:`procedures.tabulated.interp_rows`).
+
+    Parameters
+    ----------
+    period_s : numpy.ndarray
+        Periods of the tables [s], ascending.
+    sd_m : numpy.ndarray
+        Sd [m], shaped (table, len(period_s)), linear in T in between.
+    rows : numpy.ndarray of int
+        The table each block reads.
+    p, scale : numpy.ndarray
+        Frequency parameter [rad/s] and 1/(R cos α α) [1/m] of each block
+        (:func:`procedures.rotation_map.map_scale` at the block's α).
+
+    Returns
+    -------
+    As :func:`iterate_rotation`.
+    """
+    def rotation_of(ratio, live_p, live_scale, live_rows):
+        return interp_rows(housner_period(ratio, live_p), period_s, sd_m, live_rows) * live_scale
+
+    return _iterate(rotation_of, np.asarray(p, dtype=float), np.asarray(scale, dtype=float),
+                    np.asarray(rows), initial_ratio, tolerance, max_iterations)
+
+
+def _iterate(rotation_of, p, scale, rows, initial_ratio, tolerance, max_iterations):
+    """The iteration of :func:`iterate_rotation`, F(θ)/α = ``rotation_of(θ/α, p, scale, rows)``
+    of the blocks still iterating."""
+    from procedures.iteration_kernels import advance  # compiled: numba loads only here
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
     detail = np.full(p.shape, "", dtype=object)
@@ -154,14 +194,13 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     final = np.empty(p.shape)
     # the blocks still iterating, compacted whenever some settle: each iteration is a handful
     # of array operations on them alone
-    live = np.arange(p.size)
-    live_p, live_scale = p, map_scale(p, alpha_rad, g)
+    live, live_p, live_scale, live_rows = np.arange(p.size), p, scale, rows
     recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
     recent[:, -1] = initial_ratio
     for i in range(1, max_iterations + 1):
         if not live.size:
             break
-        new = rotation_map(displacement, recent[:, -1], live_p, live_scale)
+        new = rotation_of(recent[:, -1], live_p, live_scale, live_rows)
         over, done, maybe = advance(recent, np.ascontiguousarray(new, dtype=float), tolerance,
                                     CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH)
         settled = over | done
@@ -181,7 +220,8 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
             iterations[live[settled]] = i
             final[live[settled]] = recent[settled, -1]
             keep = ~settled
-            live, live_p, live_scale, recent = live[keep], live_p[keep], live_scale[keep], recent[keep]
+            live, live_p, live_scale, live_rows, recent = (
+                live[keep], live_p[keep], live_scale[keep], live_rows[keep], recent[keep])
     final[live] = recent[:, -1]
     for k, j in enumerate(live):
         detail[j] = (f"no settled value or cycle after {max_iterations} iterations "
@@ -231,4 +271,4 @@ def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2
 
 
 __all__ = ["CONVERGED", "NOT_CONVERGED", "NO_UPLIFT", "OVERTURN", "Estimate", "estimate_rotation",
-           "iterate_rotation"]
+           "iterate_rotation", "iterate_tabulated"]
