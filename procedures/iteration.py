@@ -20,7 +20,7 @@ import numpy as np
 from audit import G
 from audit.physics.damping import housner_period
 from procedures.rotation_map import fixed_points, map_scale, ratios_text, rotation_map
-from procedures.tabulated import interp_rows
+from procedures.tabulated import TabulatedDisplacement
 
 #: Initial guess θ₀/α of the iteration: a small rotation, so the iteration climbs to the
 #: smallest non-trivial fixed point (θ = 0 is always one, and unstable when the block uplifts).
@@ -147,45 +147,11 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         (``0.5753;0.8854``, empty when there is none).
     """
     p = np.asarray(p, dtype=float)
-    return _iterate(lambda ratio, live_p, live_scale, rows:
-                    rotation_map(displacement, ratio, live_p, live_scale),
-                    p, map_scale(p, alpha_rad, g), np.zeros(p.size, dtype=int), initial_ratio,
-                    tolerance, max_iterations)
-
-
-def iterate_tabulated(period_s, sd_m, rows, p, scale, initial_ratio: float = INITIAL_ROTATION_RATIO,
-                      tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
-    """:func:`iterate_rotation` of blocks that each read their own tabulated spectrum, all at
-    once: a record's stripes and slendernesses in one iteration, with the same iterates, bit
-    for bit, as one :func:`iterate_rotation` per spectrum
-    (:func:`procedures.tabulated.interp_rows`).
-
-    Parameters
-    ----------
-    period_s : numpy.ndarray
-        Periods of the tables [s], ascending.
-    sd_m : numpy.ndarray
-        Sd [m], shaped (table, len(period_s)), linear in T in between.
-    rows : numpy.ndarray of int
-        The table each block reads.
-    p, scale : numpy.ndarray
-        Frequency parameter [rad/s] and 1/(R cos α α) [1/m] of each block
-        (:func:`procedures.rotation_map.map_scale` at the block's α).
-
-    Returns
-    -------
-    As :func:`iterate_rotation`.
-    """
-    def rotation_of(ratio, live_p, live_scale, live_rows):
-        return interp_rows(housner_period(ratio, live_p), period_s, sd_m, live_rows) * live_scale
-
-    return _iterate(rotation_of, np.asarray(p, dtype=float), np.asarray(scale, dtype=float),
-                    np.asarray(rows), initial_ratio, tolerance, max_iterations)
-
-
-def _iterate(rotation_of, p, scale, rows, initial_ratio, tolerance, max_iterations):
-    """The iteration of :func:`iterate_rotation`, F(θ)/α = ``rotation_of(θ/α, p, scale, rows)``
-    of the blocks still iterating."""
+    if isinstance(displacement, TabulatedDisplacement):
+        return iterate_tabulated(displacement.period_s, displacement.sd_m[None, :],
+                                 np.zeros(p.size, dtype=np.int64), p,
+                                 map_scale(p, alpha_rad, g), initial_ratio, tolerance,
+                                 max_iterations)
     from procedures.iteration_kernels import advance  # compiled: numba loads only here
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
@@ -194,13 +160,14 @@ def _iterate(rotation_of, p, scale, rows, initial_ratio, tolerance, max_iteratio
     final = np.empty(p.shape)
     # the blocks still iterating, compacted whenever some settle: each iteration is a handful
     # of array operations on them alone
-    live, live_p, live_scale, live_rows = np.arange(p.size), p, scale, rows
+    live = np.arange(p.size)
+    live_p, live_scale = p, map_scale(p, alpha_rad, g)
     recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
     recent[:, -1] = initial_ratio
     for i in range(1, max_iterations + 1):
         if not live.size:
             break
-        new = rotation_of(recent[:, -1], live_p, live_scale, live_rows)
+        new = rotation_map(displacement, recent[:, -1], live_p, live_scale)
         over, done, maybe = advance(recent, np.ascontiguousarray(new, dtype=float), tolerance,
                                     CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH)
         settled = over | done
@@ -208,11 +175,8 @@ def _iterate(rotation_of, p, scale, rows, initial_ratio, tolerance, max_iteratio
             length = np.zeros(live.size, dtype=int)
             length[maybe] = _cycle_length(recent[maybe])
             for k in np.flatnonzero(length):
-                values = np.sort(recent[k, -length[k]:])
-                cycle[live[k]] = ratios_text(values)
-                detail[live[k]] = (
-                    f"iterates settle in a {length[k]}-cycle between θ/α = {values[0]:.4f} and "
-                    f"{values[-1]:.4f} (no fixed point reached from θ₀/α = {initial_ratio:g})")
+                cycle[live[k]], detail[live[k]] = _cycle_text(recent[k], length[k],
+                                                              initial_ratio)
             settled |= length > 0
         if settled.any():
             outcome[live[over]] = OVERTURN
@@ -220,13 +184,68 @@ def _iterate(rotation_of, p, scale, rows, initial_ratio, tolerance, max_iteratio
             iterations[live[settled]] = i
             final[live[settled]] = recent[settled, -1]
             keep = ~settled
-            live, live_p, live_scale, live_rows, recent = (
-                live[keep], live_p[keep], live_scale[keep], live_rows[keep], recent[keep])
+            live, live_p, live_scale, recent = live[keep], live_p[keep], live_scale[keep], recent[keep]
     final[live] = recent[:, -1]
     for k, j in enumerate(live):
-        detail[j] = (f"no settled value or cycle after {max_iterations} iterations "
-                     f"(last iterates θ/α = {recent[k, -2]:.4f}, {recent[k, -1]:.4f})")
+        detail[j] = _unsettled_text(recent[k], max_iterations)
     return final, outcome, iterations, detail, cycle
+
+
+def _cycle_text(recent, length: int, initial_ratio: float) -> tuple[str, str]:
+    """The cycle of the last ``length`` iterates of ``recent`` and what the iteration did."""
+    values = np.sort(recent[-length:])
+    return ratios_text(values), (
+        f"iterates settle in a {length}-cycle between θ/α = {values[0]:.4f} and "
+        f"{values[-1]:.4f} (no fixed point reached from θ₀/α = {initial_ratio:g})")
+
+
+def _unsettled_text(recent, max_iterations: int) -> str:
+    return (f"no settled value or cycle after {max_iterations} iterations "
+            f"(last iterates θ/α = {recent[-2]:.4f}, {recent[-1]:.4f})")
+
+
+def iterate_tabulated(period_s, sd_m, rows, p, scale,
+                      initial_ratio: float = INITIAL_ROTATION_RATIO,
+                      tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
+    """:func:`iterate_rotation` of blocks that each read their own tabulated spectrum (linear in
+    T between ``period_s``), compiled (:func:`procedures.iteration_kernels.iterate_tabulated`):
+    a record's stripes and slendernesses in one call, each block with the iterates, bit for
+    bit, of :func:`iterate_rotation` on its own spectrum.
+
+    Parameters
+    ----------
+    period_s : numpy.ndarray
+        Periods of the tables [s], ascending.
+    sd_m : numpy.ndarray
+        Sd [m], shaped (table, len(period_s)).
+    rows : numpy.ndarray of int
+        The table each block reads.
+    p, scale : numpy.ndarray
+        Frequency parameter [rad/s] and 1/(R cos α α) [1/m] of each block
+        (:func:`procedures.rotation_map.map_scale` at the block's α).
+    initial_ratio, tolerance, max_iterations :
+        As for :func:`iterate_rotation`.
+
+    Returns
+    -------
+    As :func:`iterate_rotation`.
+    """
+    from procedures import iteration_kernels as kernels  # compiled: numba loads only here
+    code, iterations, length, recent = kernels.iterate_tabulated(
+        np.ascontiguousarray(period_s, dtype=float), np.ascontiguousarray(sd_m, dtype=float),
+        np.ascontiguousarray(rows, dtype=np.int64), np.ascontiguousarray(p, dtype=float),
+        np.ascontiguousarray(scale, dtype=float), float(initial_ratio), float(tolerance),
+        CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH, int(max_iterations))
+    outcome = np.full(code.shape, NOT_CONVERGED, dtype=object)
+    outcome[code == kernels.CONVERGED] = CONVERGED
+    outcome[code == kernels.OVERTURNED] = OVERTURN
+    detail = np.full(code.shape, "", dtype=object)
+    cycle = np.full(code.shape, "", dtype=object)
+    for k in np.flatnonzero(code == kernels.CYCLING):
+        cycle[k], detail[k] = _cycle_text(recent[k], int(length[k]), initial_ratio)
+    for k in np.flatnonzero(code == kernels.NOT_SETTLED):
+        detail[k] = _unsettled_text(recent[k], max_iterations)
+    return recent[:, -1].copy(), outcome, iterations, detail, cycle
 
 
 def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2: float, p,
