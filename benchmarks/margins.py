@@ -1,7 +1,7 @@
 """Benchmark of the design-level audit: the far-field set at S_XS = 1.5 g, S_X1 = 0.9 g scaled to
 the site, 3 α × 31 sizes (0.5:8:0.25), default stripes, every procedure.
 
-    python benchmarks/margins.py [--records p695-far-field] [--jobs 2]
+    python benchmarks/margins.py [--records p695-far-field] [--jobs 2] [--first N]
 
 Prints the split of the audit as ``python -m audit margins`` runs it: the stripes with every
 procedure evaluated at them, the required-α searches, the fine amplitude scans, and the files
@@ -16,6 +16,7 @@ import argparse
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -34,8 +35,13 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--records", default="p695-far-field")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--first", type=int, help="only the suite's first N records (a quicker "
+                        "side-by-side of the stages on a loaded machine)")
     args = parser.parse_args()
-    suite = design_suite(load_records(args.records), (1.5, 0.9), True, True)
+    records = load_records(args.records)
+    if args.first:
+        records = replace(records, entries=records.entries[:args.first])
+    suite = design_suite(records, (1.5, 0.9), True, True)
     sizes = np.arange(0.5, 8.001, 0.25)
     alphas = (10.0, 15.0, 20.0)
     im = IntensityMeasure.parse("sa:1.0")

@@ -1,7 +1,7 @@
 """What a procedure may ask of one record: its response spectra, computed once and cached.
 
 Record spectra are tabulated on :data:`procedures.base.SPECTRUM_PERIODS_S`, linear in T in
-between, which is what the root scan of :func:`procedures.base.fixed_points` relies on.
+between, which is what the root scan of :func:`procedures.rotation_map.fixed_points` relies on.
 """
 
 from __future__ import annotations
@@ -9,6 +9,7 @@ from __future__ import annotations
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.oscillator import response_spectra
 from procedures.base import SPECTRUM_PERIODS_S
+from procedures.tabulated import TabulatedDisplacement
 
 
 class RecordContext:
@@ -56,7 +57,7 @@ class RecordContext:
     def true_displacement(self, damping: float):
         """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""
         spectra = self.true_spectra(damping, displacement_only=True)
-        return lambda period_s: spectra.displacement_at(period_s, 0)
+        return TabulatedDisplacement(spectra.period_s, spectra.sd[0])
 
 
 __all__ = ["RecordContext"]

@@ -21,7 +21,7 @@ which assumes uniform contents (centre of mass at mid-height and mid-depth).
 from __future__ import annotations
 
 from audit import G
-from procedures.base import FragilityComponent, LognormalFragility, ProbabilisticProcedure
+from procedures.probabilistic import FragilityComponent, LognormalFragility, ProbabilisticProcedure
 
 INCH_M = 0.0254
 

@@ -1,11 +1,13 @@
 """The fixed-point iteration's per-step bookkeeping, compiled (see
-:func:`procedures.base.iterate_rotation`).
+:func:`procedures.iteration.iterate_rotation`).
 
-Apart from :mod:`procedures.base` so that reading a run back and rendering its report (which
+Apart from :mod:`procedures.iteration` so that reading a run back and rendering its report (which
 imports the procedures' declarations) never loads numba.
 """
 
 from __future__ import annotations
+
+import math
 
 import numba
 import numpy as np
@@ -14,7 +16,7 @@ import numpy as np
 @numba.njit(cache=True, nogil=True)
 def may_repeat(window: np.ndarray, cycle_tolerance: float, max_length: int) -> bool:
     """Whether the iterates ``window`` (newest last) may hold a settled cycle (see
-    :func:`procedures.base._cycle_length`).
+    :func:`procedures.iteration._cycle_length`).
 
     A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
     L before it, for some L ≤ ``max_length``, to ``cycle_tolerance`` of the whole window's
@@ -62,4 +64,129 @@ def advance(recent: np.ndarray, new: np.ndarray, tolerance: float, cycle_toleran
     return over, done, maybe
 
 
-__all__ = ["advance", "may_repeat"]
+@numba.njit(cache=True, nogil=True)
+def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
+    """``numpy.interp(x, xp, fp)`` for one x, with its arithmetic: slope·(x − xpⱼ) + fpⱼ
+    between nodes (retried from the right node where that is NaN), the node's value at a node,
+    the end values held beyond both ends."""
+    n = xp.size
+    if x != x:
+        return x
+    if x < xp[0]:
+        return fp[0]
+    if x >= xp[n - 1]:
+        return fp[n - 1]
+    low, high = 0, n - 1  # xp[low] ≤ x < xp[high]
+    while high - low > 1:
+        middle = (low + high) // 2
+        if xp[middle] <= x:
+            low = middle
+        else:
+            high = middle
+    if xp[low] == x:
+        return fp[low]
+    slope = (fp[low + 1] - fp[low]) / (xp[low + 1] - xp[low])
+    value = slope * (x - xp[low]) + fp[low]
+    if value != value:
+        value = slope * (x - xp[low + 1]) + fp[low + 1]
+        if value != value and fp[low] == fp[low + 1]:
+            value = fp[low]
+    return value
+
+
+@numba.njit(cache=True, nogil=True)
+def cycle_length(window: np.ndarray, cycle_tolerance: float, subcycle_tolerance: float,
+                 max_length: int) -> int:
+    """:func:`procedures.iteration._cycle_length` of one window of iterates (newest last)."""
+    width = window.size
+    length = 0
+    for size in range(2, max_length + 1):
+        high, low, finite = -np.inf, np.inf, True
+        for k in range(size):
+            value = window[width - 1 - k]
+            if value != value:
+                finite = False
+                break
+            high, low = max(high, value), min(low, value)
+        spread = high - low
+        if not finite or not spread > 0.0:
+            continue
+        bound = cycle_tolerance * spread
+        repeats = True
+        for k in range(size):
+            if not abs(window[width - 1 - k] - window[width - 1 - k - size]) <= bound:
+                repeats = False
+                break
+        if repeats:
+            length = size
+            break
+    if length == 0:
+        return 0
+    high, low = -np.inf, np.inf
+    for k in range(width - length, width):
+        high, low = max(high, window[k]), min(low, window[k])
+    bound = subcycle_tolerance * (high - low)
+    start = width - length
+    for size in range(2, length + 1):
+        if length % size:
+            continue
+        repeats = True
+        for k in range(length - size):
+            if not abs(window[start + size + k] - window[start + k]) <= bound:
+                repeats = False
+                break
+        if repeats:
+            return size
+    return length
+
+
+#: Outcome codes of :func:`iterate_tabulated`.
+NOT_SETTLED, CONVERGED, OVERTURNED, CYCLING = 0, 1, 2, 3
+
+
+@numba.njit(cache=True, nogil=True)
+def iterate_tabulated(period_s, sd_m, rows, p, scale, initial_ratio, tolerance,
+                      cycle_tolerance, subcycle_tolerance, max_length, max_iterations):
+    """The iteration of :func:`procedures.iteration.iterate_rotation`, compiled, each block
+    reading its own row ``rows[b]`` of tabulated spectra ``sd_m`` on ``period_s``: the same
+    steps, in the same floating-point operations (Eq. 8.1 as
+    :func:`audit.physics.damping.housner_period` writes it, :func:`interp`, the bookkeeping of
+    :func:`advance` and :func:`cycle_length`), block after block.
+
+    Returns
+    -------
+    outcome, iterations, cycle, recent : numpy.ndarray
+        Outcome code (:data:`CONVERGED`, :data:`OVERTURNED`, :data:`CYCLING` or
+        :data:`NOT_SETTLED`), iterations used, the cycle's length (0 unless cycling), and the
+        last 2·``max_length`` iterates θ/α of each block, newest last.
+    """
+    n, width = p.size, 2 * max_length
+    outcome = np.zeros(n, dtype=np.int8)
+    iterations = np.full(n, max_iterations, dtype=np.int64)
+    cycle = np.zeros(n, dtype=np.int64)
+    windows = np.empty((n, width))
+    for b in range(n):
+        recent = np.full(width, np.nan)
+        recent[width - 1] = initial_ratio
+        table = sd_m[rows[b]]
+        for i in range(1, max_iterations + 1):
+            ratio = recent[width - 1]
+            period = 4.0 / p[b] * math.acosh(1.0 / (1.0 - ratio))
+            new = interp(period, period_s, table) * scale[b]
+            over = new >= 1.0
+            done = not over and abs(new - ratio) <= tolerance
+            recent[:width - 1] = recent[1:].copy()
+            recent[width - 1] = 1.0 if over else new
+            if over or done:
+                outcome[b], iterations[b] = (OVERTURNED if over else CONVERGED), i
+                break
+            if may_repeat(recent, cycle_tolerance, max_length):
+                length = cycle_length(recent, cycle_tolerance, subcycle_tolerance, max_length)
+                if length:
+                    outcome[b], iterations[b], cycle[b] = CYCLING, i, length
+                    break
+        windows[b] = recent
+    return outcome, iterations, cycle, windows
+
+
+__all__ = ["advance", "cycle_length", "interp", "iterate_tabulated", "may_repeat"]

@@ -37,12 +37,11 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
-from audit.physics.block import radius_from_p
+from audit.physics.block import radius_from_p, rotation_at_displacement
 from audit.physics.design_spectra import NTC2018Spectrum
 from records.sites import NTC2018_SITE_KEYS as SITE_KEYS
 from procedures.base import (CONVERGED, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, OVERTURN,
-                             STORED_SPECTRUM_PERIODS_S, Check, Estimate, Evaluation, Procedure,
-                             rotation_at_displacement)
+                             STORED_SPECTRUM_PERIODS_S, Check, Estimate, Evaluation, Procedure)
 
 # Demand variants.
 AUTO = "auto"

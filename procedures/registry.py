@@ -13,7 +13,8 @@ from __future__ import annotations
 from importlib.metadata import entry_points
 
 from audit.errors import InputError
-from procedures.base import ProbabilisticProcedure, Procedure
+from procedures.base import Procedure
+from procedures.probabilistic import ProbabilisticProcedure
 from procedures.fema_356 import FEMA356
 from procedures.fema_p58 import FEMAP58
 from procedures.housner_1963 import Housner1963
@@ -46,7 +47,7 @@ def available_procedures(probabilistic: bool = False) -> dict[str, type]:
                              f"loaded: {exc}") from None
         if not (isinstance(cls, type) and issubclass(cls, base)):
             raise InputError(f"procedure plug-in '{point.name}' ({point.value}): is not a "
-                             f"subclass of procedures.base.{base.__name__}")
+                             f"subclass of {base.__module__}.{base.__name__}")
         found[point.name] = cls
     return found
 

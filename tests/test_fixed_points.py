@@ -21,7 +21,7 @@ from procedures.context import RecordContext
 from audit.physics.block import coefficient_of_restitution, radius_from_p
 from audit.physics.damping import housner_rotation_ratio
 from procedures import iterate_rotation
-from procedures.base import fixed_points
+from procedures.rotation_map import fixed_points
 from procedures.priestley_1978 import PriestleyEvisonCarr1978
 
 ALPHA = math.radians(10)
@@ -184,7 +184,7 @@ def test_cycle_precheck_against_array_operations(rows, length):
     """The compiled pre-check of settled cycles against the same test written with array
     operations: newest iterate within CYCLE_TOLERANCE_RATIO × window spread of the one L
     before, NaN left out of the spread."""
-    from procedures.base import CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH
+    from procedures.iteration import CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH
     from procedures.iteration_kernels import may_repeat
     recent = np.array(rows, dtype=float)
     recent[0, -1] = recent[0, -1 - length]  # one row that repeats exactly (if not NaN)

@@ -18,7 +18,7 @@ from audit.engine.calibration import PGV_LEVELS_M_S, brier_score, calibration, l
 from audit.engine.fragility import fit_lognormal, stripe_outcomes
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.block import RigidBlock
-from procedures.base import LognormalFragility
+from procedures.probabilistic import LognormalFragility
 
 #: The files of the audit, written together into the output folder.
 COMPONENTS_CSV = "fragility-components.csv"
@@ -28,7 +28,7 @@ CALIBRATION_CSV = "fragility-calibration.csv"
 
 
 def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -> dict:
-    """The tables of the audit of ``procedure`` (a :class:`procedures.base.ProbabilisticProcedure`)
+    """The tables of the audit of ``procedure`` (a :class:`procedures.probabilistic.ProbabilisticProcedure`)
     on the records: file name → :class:`pandas.DataFrame`."""
     levels = np.asarray(levels_m_s, dtype=float)
     components, stripes, outcomes, bins = [], [], [], []

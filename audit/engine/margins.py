@@ -43,8 +43,8 @@ from audit.physics.block import Restitution
 from audit.physics.design_spectra import FEMA356Spectrum
 from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import rocking_blocks
-from procedures.base import EXACT_OVERTURNING, OVERTURN
 from procedures.context import RecordContext
+from procedures.overturning import overturning_predictions, predicts_overturning
 from records.sites import scaled_site
 
 PGA, PGV, SA = "pga", "pgv", "sa"
@@ -100,16 +100,6 @@ class IntensityMeasure:
             return None
         spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
         return float(spectrum.acceleration(0.0 if self.kind == PGA else self.period_s, 0.05))
-
-
-def predicts_overturning(evaluation) -> np.ndarray:
-    """Per block, whether a procedure's evaluation predicts overturning."""
-    over = (evaluation.estimate.outcome == OVERTURN if evaluation.estimate is not None
-            else np.zeros(len(evaluation.checks[0].passes), dtype=bool))
-    for check in evaluation.checks:
-        if check.exact_event == EXACT_OVERTURNING:
-            over = over | ~np.asarray(check.passes, dtype=bool)
-    return np.asarray(over, dtype=bool)
 
 
 def _half_crossing(levels, fraction) -> float:
@@ -245,6 +235,26 @@ def step_level(procedure, entry, settings: MarginsSettings, block: int, low: flo
     return math.sqrt(low * high)
 
 
+#: Answers of procedures that read only the site (:meth:`~procedures.base.Procedure.reads_record`
+#: false): one answer for every record of a suite, so each process computes it once.
+_SITE_ANSWERS: dict = {}
+
+
+def procedure_predictions(proc, cases, p, groups, g) -> np.ndarray:
+    """:func:`~procedures.overturning.overturning_predictions`, kept across records for a
+    procedure that reads only the (scaled) sites."""
+    if any(proc.reads_record(entry) for entry, _ in cases):
+        return overturning_predictions(proc, cases, p, groups, g)
+    # ``proc`` is kept with its answer, so its id is not reused while the answer is
+    key = (id(proc), tuple(tuple(sorted(entry.site.items())) for entry, _ in cases),
+           p.tobytes(), tuple((alpha, index.tobytes(), r) for alpha, index, r in groups), g)
+    if key not in _SITE_ANSWERS:
+        if len(_SITE_ANSWERS) >= 16:
+            _SITE_ANSWERS.clear()
+        _SITE_ANSWERS[key] = (proc, overturning_predictions(proc, cases, p, groups, g))
+    return _SITE_ANSWERS[key][1].copy()
+
+
 def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripes:
     """The exact response and every procedure's prediction for one record scaled to each stripe
     (the unit of work of the design-level audit)."""
@@ -260,20 +270,19 @@ def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripe
                                       r=settings.restitution)
         exact_over[:, index], exact_theta[:, index] = over[:, 0], theta[:, 0]
     p = 2.0 * np.pi / blocks.size_s
-    predicted = {proc.name: np.zeros(shape, dtype=bool) for proc in procedures}
-    evaluated = dict.fromkeys(predicted, False)
     base = RecordContext(entry, settings.free_motion_s, settings.jobs)
-    for j, level in enumerate(levels):
-        scaled, context = _at_level(entry, base, float(level), intensity, settings)
-        for proc in procedures:
-            if proc.unmet_requirements(scaled) is not None:
-                continue
-            evaluated[proc.name] = True
-            for alpha, index in groups:
-                evaluation = proc.evaluate(scaled, p[index], alpha,
-                                           float(settings.restitution.r(alpha)), context,
-                                           settings.g)
-                predicted[proc.name][j, index] = predicts_overturning(evaluation)
+    cases = [_at_level(entry, base, float(level), intensity, settings) for level in levels]
+    alpha_groups = [(alpha, index, float(settings.restitution.r(alpha)))
+                    for alpha, index in groups]
+    predicted, evaluated = {}, {}
+    for proc in procedures:
+        predicted[proc.name] = np.zeros(shape, dtype=bool)
+        mine = [j for j, (scaled, _) in enumerate(cases)
+                if proc.unmet_requirements(scaled) is None]
+        evaluated[proc.name] = bool(mine)
+        if mine:
+            predicted[proc.name][mine] = procedure_predictions(
+                proc, [cases[j] for j in mine], p, alpha_groups, settings.g)
     return RecordStripes(entry.id, intensity, exact_over, exact_theta, predicted, evaluated)
 
 
@@ -586,5 +595,5 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
 
 
 __all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "MarginsSettings", "RecordStripes",
-           "record_stripes", "predicts_overturning", "amplitude_scans", "margins_files",
+           "record_stripes", "procedure_predictions", "amplitude_scans", "margins_files",
            "SCAN_COLUMNS"]

@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.engine.margins import predicts_overturning
+from audit.engine.margins import procedure_predictions
 from audit.engine.scheduler import computed_parts
 from audit.physics.block import Restitution
 from audit.physics.rocking import rocking_blocks, rocking_spectrum
@@ -65,16 +65,17 @@ def record_grid(entry, procedures, settings: SearchSettings) -> RecordGrid:
                              g=settings.g, free_motion_s=settings.free_motion_s,
                              jobs=settings.jobs, reactions=False).overturned
     context = RecordContext(entry, settings.free_motion_s, settings.jobs)
+    # every slenderness of the grid at once, each with all the sizes: blocks (α, size) flat
+    p = np.tile(2.0 * np.pi / size_s, alpha_rad.size)
+    groups = [(alpha, np.arange(i * size_s.size, (i + 1) * size_s.size),
+               float(settings.restitution.r(alpha))) for i, alpha in enumerate(alpha_rad)]
     predicted, evaluated = {}, {}
     for proc in procedures:
         evaluated[proc.name] = proc.unmet_requirements(entry) is None
         predicted[proc.name] = np.zeros(exact.shape, dtype=bool)
-        if not evaluated[proc.name]:
-            continue
-        for i, alpha in enumerate(alpha_rad):
-            predicted[proc.name][i] = predicts_overturning(proc.evaluate(
-                entry, 2.0 * np.pi / size_s, alpha, float(settings.restitution.r(alpha)),
-                context, settings.g))
+        if evaluated[proc.name]:
+            predicted[proc.name] = procedure_predictions(proc, [(entry, context)], p, groups,
+                                                         settings.g).reshape(exact.shape)
     return RecordGrid(exact, predicted, evaluated)
 
 

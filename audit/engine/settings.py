@@ -10,8 +10,8 @@ from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAUL
 from audit.engine.grid import size_grid
 from audit.engine.ground_truth import GroundTruth
 from audit.physics.defaults import DEFAULT_REST_TOLERANCE, DEFAULT_STEPS_PER_RADIAN
-from procedures.base import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
-                             MAX_ITERATIONS, TOLERANCE_RATIO)
+from procedures.iteration import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
+                                  MAX_ITERATIONS, TOLERANCE_RATIO)
 
 #: Damping ratios of the record response spectra of Figures 5.x [-].
 FIGURE_5_DAMPING = (0.05, 0.10, 0.15)

@@ -34,6 +34,17 @@ def radius_from_p(p, g=G):
     return 3.0 * g / (4.0 * np.asarray(p, dtype=float) ** 2)
 
 
+def rotation_at_displacement(displacement_m, alpha_rad, radius_m):
+    """θ(d) = α − asin(sin α − d/R) [rad]: the rotation at which the centroid has moved
+    d = R [sin α − sin(α − θ)] (rotation about the base corner).
+
+    NaN for d outside [0, R(1 + sin α)]; d ≥ R sin α = b is at or beyond instability (θ ≥ α).
+    """
+    with np.errstate(invalid="ignore"):
+        return alpha_rad - np.arcsin(np.sin(alpha_rad)
+                                     - np.asarray(displacement_m, dtype=float) / radius_m)
+
+
 def coefficient_of_restitution(alpha_rad):
     """Largest coefficient of restitution for pure rocking, r = (1 − 1.5 sin²α)² (Eq. 4.8).
 

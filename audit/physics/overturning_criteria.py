@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from audit import G
@@ -128,6 +127,7 @@ def impulse_minimum_amplitude(frequency_ratio: float, shape: str) -> float:
     It reproduces eq. 27 for the half-sine and eq. 47 for the one-sine pulse, and applies to any
     pulse shape. Computed with p = 1 (only ω_p/p matters).
     """
+    from scipy.integrate import quad  # kept local: scipy.integrate costs start-up to every run
     wave, end = _pulse_shape(shape, float(frequency_ratio))
 
     def weighted_impulse(amplitude):  # in units of αg: uplift where amplitude·wave(t) = 1

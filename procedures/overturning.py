@@ -1,0 +1,103 @@
+"""Whether a procedure predicts overturning, for many scaled records and slendernesses at once
+(the design-level audit asks only this, at every stripe of every record).
+
+A procedure predicts overturning of a block when its estimate is ``overturn`` or one of its
+checks of the exact event ``overturning`` fails (:func:`predicts_overturning`). For a procedure
+that keeps the contract's own :meth:`~procedures.base.Procedure.evaluate` and reads a tabulated
+spectrum (the record's, :class:`procedures.tabulated.TabulatedDisplacement`), every case and
+slenderness is iterated at once (:func:`procedures.iteration.iterate_tabulated`), and neither
+the fixed points nor the stored spectrum, which only a report reads, are computed; its iterates
+are those of one :meth:`~procedures.base.Procedure.evaluate` per case, bit for bit. Any other
+procedure is evaluated case by case.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from procedures.base import EXACT_OVERTURNING, OVERTURN, Procedure
+from procedures.iteration import iterate_rotation, iterate_tabulated
+from procedures.rotation_map import map_scale
+from procedures.tabulated import TabulatedDisplacement
+
+
+def predicts_overturning(evaluation) -> np.ndarray:
+    """Per block, whether a procedure's :class:`~procedures.base.Evaluation` predicts
+    overturning."""
+    over = (evaluation.estimate.outcome == OVERTURN if evaluation.estimate is not None
+            else np.zeros(len(evaluation.checks[0].passes), dtype=bool))
+    for check in evaluation.checks:
+        if check.exact_event == EXACT_OVERTURNING:
+            over = over | ~np.asarray(check.passes, dtype=bool)
+    return np.asarray(over, dtype=bool)
+
+
+def _checks_overturn(checks, size) -> np.ndarray:
+    over = np.zeros(size, dtype=bool)
+    for check in checks:
+        if check.exact_event == EXACT_OVERTURNING:
+            over = over | ~np.asarray(check.passes, dtype=bool)
+    return over
+
+
+def overturning_predictions(procedure, cases, p, groups, g: float) -> np.ndarray:
+    """Whether ``procedure`` predicts overturning of each block under each case.
+
+    Parameters
+    ----------
+    procedure : procedures.base.Procedure
+    cases : sequence of (records.RecordEntry, procedures.context.RecordContext)
+        The records (scaled) it is evaluated under, each with its context.
+    p : numpy.ndarray
+        Frequency parameters of all blocks [rad/s].
+    groups : sequence of (float, numpy.ndarray, float)
+        (α [rad], indices into ``p`` of the blocks of that slenderness, r [-]).
+    g : float
+        Acceleration of gravity [m/s²].
+
+    Returns
+    -------
+    numpy.ndarray of bool, shaped (case, block)
+    """
+    out = np.zeros((len(cases), p.size), dtype=bool)
+    if type(procedure).evaluate is not Procedure.evaluate or not procedure.estimates_rotation:
+        for c, (entry, context) in enumerate(cases):
+            for alpha, index, r in groups:
+                out[c, index] = predicts_overturning(
+                    procedure.evaluate(entry, p[index], alpha, r, context, g))
+        return out
+    # the contract's evaluate: its checks case by case, its iterations all at once where the
+    # spectra are tabulated on the same periods
+    tables, cells, block_p, block_scale, rows = [], [], [], [], []
+    for c, (entry, context) in enumerate(cases):
+        pga = procedure.peak_ground_acceleration(entry, context)
+        for alpha, index, r in groups:
+            out[c, index] = _checks_overturn(
+                procedure.checks(entry, p[index], alpha, r, context, g), index.size)
+            if not pga > g * np.tan(alpha):  # no uplift (step 1 of the iteration)
+                continue
+            spectrum = procedure.displacement_spectrum(entry, float(procedure.damping(r)),
+                                                       context)
+            if not (isinstance(spectrum, TabulatedDisplacement)
+                    and (not tables or spectrum.period_s is tables[0].period_s
+                         or np.array_equal(spectrum.period_s, tables[0].period_s))):
+                outcome = iterate_rotation(spectrum, p[index], alpha, g)[1]
+                out[c, index] |= outcome == OVERTURN
+                continue
+            cells.append((c, index))
+            block_p.append(p[index])
+            block_scale.append(map_scale(p[index], alpha, g))
+            rows.append(np.full(index.size, len(tables)))
+            tables.append(spectrum)
+    if tables:
+        outcome = iterate_tabulated(tables[0].period_s, np.stack([t.sd_m for t in tables]),
+                                    np.concatenate(rows), np.concatenate(block_p),
+                                    np.concatenate(block_scale))[1]
+        start = 0
+        for c, index in cells:
+            out[c, index] |= outcome[start:start + index.size] == OVERTURN
+            start += index.size
+    return out
+
+
+__all__ = ["overturning_predictions", "predicts_overturning"]
