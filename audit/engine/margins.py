@@ -110,7 +110,7 @@ def predicts_overturning(evaluation) -> np.ndarray:
     return np.asarray(over, dtype=bool)
 
 
-def _half_crossing(levels, fraction) -> float:
+def half_crossing(levels, fraction) -> float:
     """Where ``fraction`` first reaches 0.5 along ascending ``levels``, ln-interpolated; NaN if
     never."""
     above = np.flatnonzero(fraction >= 0.5)
@@ -200,9 +200,11 @@ class RecordStripes:
     evaluated: dict
 
 
-def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripes:
+def record_stripes(entry, procedures, settings: MarginsSettings,
+                   context: RecordContext | None = None) -> RecordStripes:
     """The exact response and every procedure's prediction for one record scaled to each stripe
-    (the unit of work of the design-level audit)."""
+    (the unit of work of the design-level audit); ``context``, the record's spectra, when a
+    caller reads them again after."""
     blocks, levels = settings.blocks, np.asarray(settings.levels, dtype=float)
     intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
     factors = levels / intensity
@@ -217,7 +219,7 @@ def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripe
     p = 2.0 * np.pi / blocks.size_s
     predicted = {proc.name: np.zeros(shape, dtype=bool) for proc in procedures}
     evaluated = dict.fromkeys(predicted, False)
-    base = RecordContext(entry, settings.free_motion_s, settings.jobs)
+    base = context or RecordContext(entry, settings.free_motion_s, settings.jobs)
     for j, factor in enumerate(factors):
         # the record to the level; its design spectrum to the level too, where the site's
         # design intensity is known
@@ -383,7 +385,7 @@ def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated,
         fraction = (predicted[proc.name][mine].mean(axis=0) if mine.any()
                     else np.full(exact_fraction.shape, np.nan))
         for b in range(len(blocks)):
-            line = _half_crossing(levels, fraction[:, b])
+            line = half_crossing(levels, fraction[:, b])
             fit = fits[b]
             known = fit is not None and math.isfinite(line)
             nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
@@ -477,5 +479,5 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
 
 
 __all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "MarginsSettings", "RecordStripes",
-           "record_stripes", "predicts_overturning", "amplitude_scans", "margins_files",
+           "record_stripes", "predicts_overturning", "half_crossing", "amplitude_scans", "margins_files",
            "SCAN_COLUMNS"]
