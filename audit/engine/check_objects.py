@@ -45,6 +45,11 @@ class CheckObject:
     g: float = G
 
     @property
+    def label(self) -> str:
+        """The name outputs give the object (as :class:`~audit.engine.blocks.NamedBlock`'s)."""
+        return self.name
+
+    @property
     def rigid(self) -> RigidBlock:
         return RigidBlock.from_dimensions(self.width_m / 2.0, self.height_m / 2.0, g=self.g)
 
