@@ -267,21 +267,26 @@ def _probit_fits(log_levels, trials: int, counts):
     a = np.full(len(counts), -log_median / np.exp(log_beta))
     b = np.full(len(counts), 1.0 / np.exp(log_beta))
     for _ in range(SCORING_STEPS):
-        eta = a[:, None] + b[:, None] * x
-        mu = np.clip(norm.cdf(eta), 1e-12, 1.0 - 1e-12)
-        phi = norm.pdf(eta)
-        weight = trials * phi ** 2 / (mu * (1.0 - mu))
-        residual = (counts - trials * mu) * phi / (mu * (1.0 - mu))
-        u0, u1 = residual.sum(axis=1), (residual * x).sum(axis=1)
-        i00, i01, i11 = weight.sum(axis=1), (weight * x).sum(axis=1), (weight * x * x).sum(axis=1)
-        det = i00 * i11 - i01 ** 2
-        step_a, step_b = (i11 * u0 - i01 * u1) / det, (i00 * u1 - i01 * u0) / det
-        a, b = a + step_a, b + step_b
-        if np.all(np.abs(step_a) + np.abs(step_b) < 1e-10):
+        with np.errstate(all="ignore"):  # a separated row diverges: refitted by the caller
+            a, b, settled = _scoring_step(a, b, x, trials, counts)
+        if settled:
             break
-    return np.exp(-a / b), 1.0 / b
+    with np.errstate(all="ignore"):
+        return np.exp(-a / b), 1.0 / b
 
 
+def _scoring_step(a, b, x, trials, counts):
+    """One Fisher-scoring step of :func:`_probit_fits`, and whether every row has settled."""
+    eta = a[:, None] + b[:, None] * x
+    mu = np.clip(norm.cdf(eta), 1e-12, 1.0 - 1e-12)
+    phi = norm.pdf(eta)
+    weight = trials * phi ** 2 / (mu * (1.0 - mu))
+    residual = (counts - trials * mu) * phi / (mu * (1.0 - mu))
+    u0, u1 = residual.sum(axis=1), (residual * x).sum(axis=1)
+    i00, i01, i11 = weight.sum(axis=1), (weight * x).sum(axis=1), (weight * x * x).sum(axis=1)
+    det = i00 * i11 - i01 ** 2
+    step_a, step_b = (i11 * u0 - i01 * u1) / det, (i00 * u1 - i01 * u0) / det
+    return a + step_a, b + step_b, bool(np.all(np.abs(step_a) + np.abs(step_b) < 1e-10))
 
 
 @dataclass(frozen=True)
