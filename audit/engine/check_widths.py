@@ -34,8 +34,11 @@ SCAN_FRACTIONS = (0.03, 0.95)
 SCAN_WIDTHS = 12
 #: Relative precision of a required width (0.5 %).
 WIDTH_TOLERANCE = 0.005
-#: Step of the guideline's search out from the object's width, as a ratio of widths.
+#: Step of the guideline's search out from the object's width, as a ratio of widths, and the
+#: relative precision of its bisection (2 %): each step of a procedure whose damping depends on
+#: α (Priestley's β(r(α))) reads a new spectrum of the record.
 GUIDELINE_STEP = 1.5
+GUIDELINE_TOLERANCE = 0.02
 
 
 @dataclass(frozen=True)
@@ -150,7 +153,7 @@ def guideline_width(procedure, entry, context, obj, restitution, g: float) -> fl
     """The narrowest width [m] at the object's height that ``procedure`` does not predict
     overturning for under ``entry`` (a record scaled to the site, ``context`` its spectra):
     stepped out from the object's width by :data:`GUIDELINE_STEP`, then bisected in ln w to
-    :data:`WIDTH_TOLERANCE`. +inf when it predicts overturning up to 0.99 × the height, the
+    :data:`GUIDELINE_TOLERANCE`. +inf when it predicts overturning up to 0.99 × the height, the
     narrowest width tried (1 % of the height) when it predicts none down to there."""
     lowest, highest = 0.01 * obj.height_m, 0.99 * obj.height_m
 
@@ -180,7 +183,7 @@ def guideline_width(procedure, entry, context, obj, restitution, g: float) -> fl
             if low <= lowest:
                 return lowest
             high = low
-    while high / low > 1.0 + WIDTH_TOLERANCE:
+    while high / low > 1.0 + GUIDELINE_TOLERANCE:
         middle = math.sqrt(low * high)
         if overturns(middle):
             low = middle

@@ -11,6 +11,7 @@ the spacing of the stripes. :func:`overturning_pattern` says both per record.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -231,7 +232,7 @@ def lognormal_fits(levels, trials: int, counts) -> tuple[np.ndarray, np.ndarray]
     medians, betas : numpy.ndarray
         θ (unit of ``levels``) and β [-] per row; θ = +inf where a row counts no overturning,
         0 where every record overturns at every stripe (the likelihood's limits: P = 0, resp.
-        1, at every level), β NaN there.
+        1, at every level), β NaN there; β = :data:`STEP_BETA` where a step fits the counts best.
     """
     counts = np.atleast_2d(np.asarray(counts, dtype=float))
     total = counts.sum(axis=1)
@@ -241,15 +242,38 @@ def lognormal_fits(levels, trials: int, counts) -> tuple[np.ndarray, np.ndarray]
     betas = np.full(len(counts), np.nan)
     if fitted.any():
         medians[fitted], betas[fitted] = _probit_fits(np.log(levels), trials, counts[fitted])
-    # a row the scoring did not settle (nearly separated counts): the slow fit of its own
+    levels = np.asarray(levels, dtype=float)
     for k in np.flatnonzero(fitted & ~(np.isfinite(medians) & (betas > 0))):
-        _, best = _most_likely(levels, np.full(counts.shape[1], trials), counts[k])
-        medians[k], betas[k] = np.exp(best.x)
+        step = _step_fit(levels, trials, counts[k])
+        if step is None:  # a row the scoring did not settle: the slow fit of its own
+            _, best = _most_likely(levels, np.full(counts.shape[1], trials), counts[k])
+            step = np.exp(best.x)
+        medians[k], betas[k] = step
     return medians, betas
 
 
-#: Fisher-scoring steps of :func:`_probit_fits` (it starts at the pooled fit, a few steps away).
-SCORING_STEPS = 40
+#: β of a fit to counts that a step fits best [-]: the likelihood's supremum is at β → 0.
+STEP_BETA = 1e-6
+
+
+def _step_fit(levels, trials: int, counts):
+    """(θ, β) of counts that no stripe below a level and every one above it overturn, with at
+    most one stripe of both between: the supremum of the likelihood as β → 0, a step there
+    (at the geometric middle of the gap, or through the mixed stripe's share); None for other
+    counts."""
+    mixed = np.flatnonzero((counts > 0) & (counts < trials))
+    if mixed.size > 1:
+        return None
+    cut = mixed[0] if mixed.size else int(np.argmax(counts == trials))
+    if not (np.all(counts[:cut] == 0) and np.all(counts[cut + mixed.size:] == trials)):
+        return None
+    if mixed.size:  # Φ(ln(x/θ)/β) equals the stripe's share at its level
+        return levels[cut] * math.exp(-STEP_BETA * norm.ppf(counts[cut] / trials)), STEP_BETA
+    return math.sqrt(levels[cut - 1] * levels[cut]), STEP_BETA
+
+
+#: Fisher-scoring steps of :func:`_probit_fits` at most (it settles in a few from its start).
+SCORING_STEPS = 60
 
 
 def _probit_fits(log_levels, trials: int, counts):
@@ -257,15 +281,16 @@ def _probit_fits(log_levels, trials: int, counts):
 
     P = Φ(a + b ln x) is a probit regression on ln x, θ = exp(−a/b), β = 1/b: Fisher scoring
     (score Σ (k − nΦ) φ/(Φ(1 − Φ)) (1, ln x), information Σ n φ²/(Φ(1 − Φ)) (1, ln x)⊗(1, ln x))
-    for every row of ``counts`` together, from the fit of their pooled counts. The same maximum
+    for every row of ``counts`` together, from the probit line of their pooled shares. The same maximum
     as :func:`fit_lognormal`'s, reached in milliseconds for hundreds of resamples.
     """
     x = np.asarray(log_levels, dtype=float)[None, :]
-    _, start = _most_likely(np.exp(x[0]), np.full(x.shape[1], trials * len(counts)),
-                            counts.sum(axis=0), xatol=1e-8)
-    log_median, log_beta = start.x
-    a = np.full(len(counts), -log_median / np.exp(log_beta))
-    b = np.full(len(counts), 1.0 / np.exp(log_beta))
+    # start: the probit line through the pooled shares, Φ⁻¹(share) = a + b ln x by least squares
+    share = np.clip(counts.sum(axis=0) / (trials * len(counts)), 0.02, 0.98)
+    slope, intercept = np.polyfit(x[0], norm.ppf(share), 1)
+    if not slope > 0:  # shares that do not rise: a median at the middle stripe, β = 0.4
+        slope, intercept = 2.5, -2.5 * float(np.median(x))
+    a, b = np.full(len(counts), intercept), np.full(len(counts), slope)
     for _ in range(SCORING_STEPS):
         with np.errstate(all="ignore"):  # a separated row diverges: refitted by the caller
             a, b, settled = _scoring_step(a, b, x, trials, counts)
