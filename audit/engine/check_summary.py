@@ -187,15 +187,21 @@ def _compared(proc: dict) -> str:
         "—" if proc["demand"] is None else f"{proc['demand']:.3g}")
     if unit == "deg":
         return f"θ {demand}{'°' if proc['demand'] is not None else ''} vs α {proc['capacity']:.3g}°"
-    return f"{proc['compares']}: {demand} vs {proc['capacity']:.3g} {unit}"
+    return f"demand {demand} vs capacity {proc['capacity']:.3g} {unit}"
+
+
+def _intensity(name: str):
+    from audit.engine.margins import IntensityMeasure
+    return IntensityMeasure.parse(name)
 
 
 def summary_text(document: dict) -> str:
     """The summary on standard output: one paragraph, then per object its sentence and table."""
     site = document["site"]
     lines = [f"Site S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g, at the hazard level "
-             f"these values are for (as given); {len(document['records'])} records, each scaled "
-             f"to {document['im']} = {document['site_im']:.3g} {document['im_unit']} and to "
+             f"these values are for (as given); {len(document['records'])} records of "
+             f"{document['records_source'].split(':')[0]}, each scaled "
+             f"to {im_words(_intensity(document['im']), document['site_im'])} and to "
              f"{len(document['levels'])} stripes {min(document['levels']):.3g}–"
              f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility.", ""]
     for obj in document["objects"]:
@@ -214,7 +220,7 @@ def summary_text(document: dict) -> str:
         sizes = [max(len(row[k]) for row in rows) for k in range(4)]
         lines += ["  " + "  ".join(cell.ljust(size) for cell, size in zip(row, sizes)).rstrip()
                   for row in rows]
-        lines += [f"  (object width {obj['width_m']:.3g} m; exact median {exact['im']} = "
+        lines += [f"  (object width {obj['width_m']:.3g} m; exact fragility: median "
                   + (f"{exact['median_g']:.3g}" if exact["median_g"] else "—")
                   + f" {exact['im_unit']}, β = "
                   + (f"{exact['beta']:.2f}" if exact["beta"] else "—") + ")", ""]
