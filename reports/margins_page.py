@@ -19,7 +19,7 @@ import pandas as pd
 from scipy.special import ndtr
 
 from reports.palette import _EXTRA_COLOURS
-from reports.plots import _axis, _layout, to_json
+from reports.plots import _axis, _layout, describe_block, to_json
 
 MARGINS_HTML = "margins.html"
 #: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].
@@ -50,7 +50,8 @@ def _keys(frame: pd.DataFrame) -> pd.Series:
 def _label(row) -> str:
     if isinstance(row.get("block_m"), str) and row["block_m"]:
         return f"{row['block_m']} m (α = {row['alpha_deg']:.3g}°, 2π/p = {row['size_s']:.3g} s)"
-    return f"α = {row['alpha_deg']:g}°, 2π/p = {row['size_s']:g} s"
+    return (f"α = {row['alpha_deg']:g}°, 2π/p = {row['size_s']:g} s "
+            f"({describe_block(row['alpha_deg'], row['size_s'])})")
 
 
 def _site_words(summary) -> str:
@@ -300,7 +301,10 @@ def render_margins_page(folder) -> str:
     worst = (capacity.dropna(subset=["achieved_p_fit"])
              .sort_values("achieved_p_fit", ascending=False, kind="stable")
              .groupby("procedure", sort=False).head(WORST_ROWS))
-    parts.append(_table(worst.assign(procedure=worst["procedure"].map(lambda n: titles.get(n, n)))))
+    worst = worst.assign(procedure=worst["procedure"].map(lambda n: titles.get(n, n)))
+    worst.insert(3, "object", [describe_block(a, s)[2:] for a, s
+                               in zip(worst["alpha_deg"], worst["size_s"])])
+    parts.append(_table(worst))
     parts.append(f"<h2>Islands</h2><p>{(fragility['records_with_islands'] > 0).mean():.0%} of "
                  f"the blocks have at least one record under which the block survives a stripe "
                  f"above its first overturning one; on average "

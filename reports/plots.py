@@ -15,6 +15,7 @@ import numpy as np
 import orjson
 import pandas as pd
 
+from audit.physics.block import RigidBlock
 from reports.palette import VERDICT_COLOURS, alpha_colour, damping_colour
 
 #: Significant digits of the numbers embedded in the page.
@@ -152,6 +153,13 @@ def _literal(text: str) -> str:
     return str(text).replace("%{", "%\u200b{")
 
 
+
+
+def describe_block(alpha_deg: float, size_s: float) -> str:
+    """The object a grid cell is, in metres: ``a 0.38 m × 1.15 m block`` (full width × full
+    height, 2R sin α × 2R cos α with R = 3g/(4p²), p = 2π/size)."""
+    block = RigidBlock.from_size(float(size_s), math.radians(float(alpha_deg)))
+    return f"a {2 * block.half_width:.2f} m × {2 * block.half_height:.2f} m block"
 
 
 def describe_exact(row) -> str:

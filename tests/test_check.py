@@ -184,3 +184,12 @@ def test_api_names_the_argument():
         audit.check(["3x1"], SITE)
     with pytest.raises(InputError, match="im"):
         audit.check(["0.6x1.8"], SITE, im="pgv")
+
+
+def test_a_grid_cell_is_named_as_the_object_it_is():
+    from reports.plots import describe_block
+    # the 0.6 m × 1.8 m cabinet's (α, 2π/p), worked by hand above
+    assert describe_block(ALPHA_DEG, SIZE_S) == "a 0.60 m × 1.80 m block"
+    # α = 15°, 2π/p = 2 s: p = π rad/s, R = 3g/(4π²) = 0.7455 m; 2R sin 15° = 0.386 m,
+    # 2R cos 15° = 1.440 m
+    assert describe_block(15.0, 2.0) == "a 0.39 m × 1.44 m block"
