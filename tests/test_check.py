@@ -193,3 +193,23 @@ def test_a_grid_cell_is_named_as_the_object_it_is():
     # α = 15°, 2π/p = 2 s: p = π rad/s, R = 3g/(4π²) = 0.7455 m; 2R sin 15° = 0.386 m,
     # 2R cos 15° = 1.440 m
     assert describe_block(15.0, 2.0) == "a 0.39 m × 1.44 m block"
+
+
+def test_an_inventory_row_may_give_alpha_and_size(tmp_path):
+    from argparse import Namespace
+
+    from audit.cli.check import objects_of
+    inventory = tmp_path / "objects.csv"
+    inventory.write_text("name,width_m,height_m,alpha_deg,size_s\n"
+                         f"cabinet,0.6,1.8,,\nsame,,,{ALPHA_DEG!r},{SIZE_S!r}\n")
+    args = Namespace(block=["0.4x1.2"], objects=str(inventory), alpha="15", size="2")
+    objects = objects_of(args)
+    assert [o.name for o in objects] == ["0.4x1.2", "cabinet", "same", "α=15°, 2π/p=2 s"]
+    assert objects[2].width_m == pytest.approx(0.6, rel=1e-12)
+    assert objects[2].height_m == pytest.approx(1.8, rel=1e-12)
+    # α = 15°, 2π/p = 2 s: R = 3g/(4π²)
+    radius = 3 * G / (4 * math.pi ** 2)
+    assert objects[3].width_m == pytest.approx(2 * radius * math.sin(math.radians(15)))
+    args = Namespace(block=["0.4x1.2", "0.4x1.2"], objects=None, alpha=None, size=None)
+    with pytest.raises(InputError, match="given twice"):
+        objects_of(args)
