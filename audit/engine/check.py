@@ -17,7 +17,8 @@ site, not its whole grid. From it, per object:
   compares (its rotation estimate against α, or its overturning check's demand and capacity,
   the median over records), and where it draws its line on the stripes;
 * the width each guideline requires at the object's height, against the exact widths for
-  P(overturn) at the site ≤ 10 % and ≤ 50 % (:mod:`audit.engine.check_widths`).
+  P(overturn) at the site ≤ 10 % and ≤ 50 % (:mod:`audit.engine.check_widths`): each record's
+  bracket found with its judgement, the brackets that matter halved after.
 """
 
 from __future__ import annotations
@@ -29,7 +30,8 @@ import numpy as np
 
 from audit import G
 from audit.engine.blocks import BlockList
-from audit.engine.check_widths import exact_required_widths, guideline_width
+from audit.engine.check_widths import (accepted_width, exact_required_widths,
+                                      guideline_bracket, overturns_at)
 from audit.engine.fragility import bootstrap_lognormal, fit_lognormal
 from audit.engine.margins import (MarginsSettings, RecordStripes, half_crossing,
                                   predicts_overturning, record_stripes)
@@ -92,8 +94,9 @@ class Judgement:
         It predicts overturning.
     demand, capacity : numpy.ndarray
         The numbers it compares (+inf demand where its rotation estimate reaches α).
-    width_m : numpy.ndarray
-        The narrowest width at the object's height it does not predict overturning for [m].
+    width_low, width_high : numpy.ndarray
+        Bracket of the narrowest width at the object's height it does not predict overturning
+        for [m] (:func:`~audit.engine.check_widths.guideline_bracket`).
     quantity, unit : list of str
         What the numbers are, and their unit.
     """
@@ -101,7 +104,8 @@ class Judgement:
     overturns: np.ndarray
     demand: np.ndarray
     capacity: np.ndarray
-    width_m: np.ndarray
+    width_low: np.ndarray
+    width_high: np.ndarray
     quantity: list
     unit: list
 
@@ -129,7 +133,7 @@ def compared_numbers(evaluation, alpha_rad: float) -> tuple[str, str, float, flo
 
 def judge(procedure, entry, context, objects, restitution: Restitution, g: float) -> Judgement:
     """``procedure``'s :class:`Judgement` of every object under ``entry`` (scaled to the site)."""
-    out = Judgement(np.zeros(len(objects), dtype=bool), *np.full((3, len(objects)), np.nan),
+    out = Judgement(np.zeros(len(objects), dtype=bool), *np.full((4, len(objects)), np.nan),
                     [], [])
     for i, obj in enumerate(objects):
         alpha = math.radians(obj.alpha_deg)
@@ -139,7 +143,9 @@ def judge(procedure, entry, context, objects, restitution: Restitution, g: float
         quantity, unit, out.demand[i], out.capacity[i] = compared_numbers(evaluation, alpha)
         out.quantity.append(quantity)
         out.unit.append(unit)
-        out.width_m[i] = guideline_width(procedure, entry, context, obj, restitution, g)
+        out.width_low[i], out.width_high[i] = guideline_bracket(
+            lambda width: overturns_at(procedure, entry, context, obj, width, restitution, g),
+            obj, out.overturns[i])
     return out
 
 
@@ -226,12 +232,20 @@ def run_check(procedures, suite, objects, im, restitution: Restitution | None = 
         widths = exact_required_widths(entries, [o.height_m for o in objects], levels,
                                        intensity, site_im, TARGETS, restitution, g,
                                        free_motion_s, jobs, executor)
+    contexts = {}  # records scaled to the site with their spectra, made as the searches need
+
+    def site_context(i: int):
+        if i not in contexts:
+            contexts[i] = at_site(entries[i], RecordContext(entries[i], free_motion_s, jobs),
+                                  intensity[entries[i].id], site_im)
+        return contexts[i]
+
     # a procedure reading only the site: one answer for every record, judged on the first
-    first, first_context = at_site(entries[0], RecordContext(entries[0], free_motion_s, jobs),
-                                   intensity[entries[0].id], site_im)
-    site_judged = {p.name: judge(p, first, first_context, objects, restitution, g)
+    site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
                    for p in procedures if p.name not in per_record
-                   and p.unmet_requirements(first) is None}
+                   and p.unmet_requirements(site_context(0)[0]) is None}
+    if progress is not None and hasattr(progress, "stage"):
+        progress.stage("the width each guideline requires at each object's height")
     exact_over = np.stack([part.stripes.exact_overturned for part in parts])  # (rec, stripe, obj)
     answers = []
     for b, obj in enumerate(objects):
@@ -244,16 +258,23 @@ def run_check(procedures, suite, objects, im, restitution: Restitution | None = 
                 else bootstrap_lognormal(levels, over, seed=seed))
         judged = []
         for proc in procedures:
-            if proc.name in site_judged:
-                mine = [site_judged[proc.name]]
-            else:
-                mine = [part.judged[proc.name] for part in parts if proc.name in part.judged]
+            records = ([0] if proc.name in site_judged else
+                       [i for i, part in enumerate(parts) if proc.name in part.judged])
+            mine = ([site_judged[proc.name]] if proc.name in site_judged
+                    else [parts[i].judged[proc.name] for i in records])
             evaluated = np.array([part.stripes.evaluated[proc.name] for part in parts])
             fraction = (np.mean([part.stripes.predicted[proc.name][:, b]
                                  for part, ok in zip(parts, evaluated) if ok], axis=0)
                         if evaluated.any() else None)
             line = half_crossing(levels, fraction) if fraction is not None else math.nan
-            judged.append((proc, mine, line))
+            width = math.nan
+            if mine:
+                def refine(which, widths, proc=proc, records=records, obj=obj):
+                    return [overturns_at(proc, *site_context(records[k]), obj, float(w),
+                                         restitution, g) for k, w in zip(which, widths)]
+                width = accepted_width([j.width_low[b] for j in mine],
+                                       [j.width_high[b] for j in mine], refine)
+            judged.append((proc, mine, line, width))
         answers.append(object_answer(obj, b, levels, site_im, im, fit, boot, over,
                                      [e.id for e in entries], widths[b], judged, entries[0]))
     return CheckRun(answers, run_summary(suite, entries, im, levels, site_im, procedures,

@@ -42,7 +42,7 @@ def im_words(im, site_im: float) -> str:
     return f"PGA = 0.4 S_XS = {site_im:.3g} g"
 
 
-def _procedure_answer(proc, judgements, line, b: int, first_entry) -> dict:
+def _procedure_answer(proc, judgements, line, width, b: int, first_entry) -> dict:
     answer = {"name": proc.name, "title": proc.title, "verdict": None, "compares": None,
               "demand": None, "capacity": None, "unit": None, "share_predicting_overturn": None,
               "records_judged": len(judgements), "required_width_m": None,
@@ -53,7 +53,6 @@ def _procedure_answer(proc, judgements, line, b: int, first_entry) -> dict:
         return answer
     share = float(np.mean([j.overturns[b] for j in judgements]))
     demand = float(np.median([j.demand[b] for j in judgements]))
-    width = float(np.median([j.width_m[b] for j in judgements]))
     reasons = []
     if math.isinf(demand):
         reasons.append("its rotation estimate reaches α (overturning): no rotation to compare")
@@ -97,8 +96,8 @@ def object_answer(obj, b: int, levels, site_im: float, im, fit, boot, overturned
                               "records": int(overturned.shape[0])},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
                                  "high": curve_high.tolist()}},
-        "procedures": [_procedure_answer(proc, mine, line, b, first_entry)
-                       for proc, mine, line in judged],
+        "procedures": [_procedure_answer(proc, mine, line, width, b, first_entry)
+                       for proc, mine, line, width in judged],
         "risk": None}
     answer["sentence"] = sentence(answer, im)
     return answer

@@ -9,11 +9,13 @@ smallest width above which P(w) stays within the target on a scan of widths geom
 solved at each midpoint) to :data:`WIDTH_TOLERANCE`: a root of P(w) = target, not a point of
 an α grid.
 
-Guideline: per record scaled to the site's intensity, the narrowest width the guideline does not
-predict overturning for, bisected from the object's own width (the guideline's answer is taken
-as monotone in width for one record); a guideline accepts a width when it predicts overturning
-for at most half the records it can evaluate, so its required width is the median of the
-records' widths.
+Guideline: per record scaled to the site's intensity, the narrowest width c_r the guideline does
+not predict overturning for (its answer is taken as monotone in width for one record); it accepts
+a width when it predicts overturning for at most half the records it can evaluate, so its
+required width is the ⌈n/2⌉-th smallest c_r. Each c_r is first bracketed by stepping out from
+the object's width (:func:`guideline_bracket`); only the brackets that can hold that order
+statistic are then halved (:func:`accepted_width`): each try of a procedure whose damping
+depends on α (Priestley's β(r(α))) reads a new spectrum of the record.
 """
 
 from __future__ import annotations
@@ -149,49 +151,64 @@ def exact_required_widths(entries, heights_m, levels, intensity: dict, site_im: 
     return required_width(probability, heights_m, targets)
 
 
-def guideline_width(procedure, entry, context, obj, restitution, g: float) -> float:
-    """The narrowest width [m] at the object's height that ``procedure`` does not predict
-    overturning for under ``entry`` (a record scaled to the site, ``context`` its spectra):
-    stepped out from the object's width by :data:`GUIDELINE_STEP`, then bisected in ln w to
-    :data:`GUIDELINE_TOLERANCE`. +inf when it predicts overturning up to 0.99 × the height, the
-    narrowest width tried (1 % of the height) when it predicts none down to there."""
+def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g: float) -> bool:
+    """Whether ``procedure`` predicts overturning for the object made ``width_m`` wide under
+    ``entry`` (a record scaled to the site, ``context`` its spectra)."""
+    block = obj.with_width(width_m)
+    alpha = math.radians(block.alpha_deg)
+    return bool(predicts_overturning(procedure.evaluate(
+        entry, np.array([2.0 * math.pi / block.size_s]), alpha, float(restitution.r(alpha)),
+        context, g))[0])
+
+
+def guideline_bracket(overturns, obj, object_overturns: bool) -> tuple[float, float]:
+    """Widths (low, high) [m] at the object's height with ``overturns(low)`` and not
+    ``overturns(high)``, high/low ≤ :data:`GUIDELINE_STEP`: stepped out from the object's width
+    (whose answer is ``object_overturns``). (0.99 h, +inf) when it predicts overturning up to
+    0.99 × the height; (0, 0.01 h) when it predicts none down to 1 % of the height."""
     lowest, highest = 0.01 * obj.height_m, 0.99 * obj.height_m
-
-    def overturns(width):
-        block = obj.with_width(width)
-        alpha = math.radians(block.alpha_deg)
-        return bool(predicts_overturning(procedure.evaluate(
-            entry, np.array([2.0 * math.pi / block.size_s]), alpha, float(restitution.r(alpha)),
-            context, g))[0])
-
-    width = obj.width_m
-    if overturns(width):
-        low = width
-        while True:
+    if object_overturns:
+        low = obj.width_m
+        while low < highest:
             high = min(low * GUIDELINE_STEP, highest)
             if not overturns(high):
-                break
-            if high >= highest:
-                return math.inf
+                return low, high
             low = high
-    else:
-        high = width
-        while True:
-            low = max(high / GUIDELINE_STEP, lowest)
-            if overturns(low):
-                break
-            if low <= lowest:
-                return lowest
-            high = low
-    while high / low > 1.0 + GUIDELINE_TOLERANCE:
-        middle = math.sqrt(low * high)
-        if overturns(middle):
-            low = middle
-        else:
-            high = middle
-    return high
+        return highest, math.inf
+    high = obj.width_m
+    while high > lowest:
+        low = max(high / GUIDELINE_STEP, lowest)
+        if overturns(low):
+            return low, high
+        high = low
+    return 0.0, lowest
 
 
-__all__ = ["required_width", "exact_required_widths", "guideline_width", "probability_at_site",
+def accepted_width(low, high, refine, tolerance: float = GUIDELINE_TOLERANCE) -> float:
+    """The narrowest width a guideline accepts over records: the ⌈n/2⌉-th smallest of the
+    records' narrowest widths c_r (it accepts w when at most half the records have c_r > w),
+    each known within its bracket (low_r, high_r]. Only the brackets that straddle the
+    order statistic's own bracket are halved (``refine(records, widths)`` → whether each record
+    predicts overturning at its width), until it is known to ``tolerance``; +inf when that
+    record predicts overturning at every width."""
+    low, high = np.array(low, dtype=float), np.array(high, dtype=float)
+    k = math.ceil(low.size / 2) - 1
+    while True:
+        bound_low, bound_high = np.sort(low)[k], np.sort(high)[k]
+        if not math.isfinite(bound_high) or bound_high <= bound_low * (1.0 + tolerance):
+            return float(bound_high)
+        straddle = np.flatnonzero((high > bound_low) & (low < bound_high)
+                                  & (high > low * (1.0 + tolerance)) & (low > 0.0)
+                                  & np.isfinite(high))
+        if not straddle.size:
+            return float(bound_high)
+        middle = np.sqrt(low[straddle] * high[straddle])
+        over = np.asarray(refine(straddle, middle), dtype=bool)
+        low[straddle[over]] = middle[over]
+        high[straddle[~over]] = middle[~over]
+
+
+__all__ = ["required_width", "exact_required_widths", "overturns_at", "guideline_bracket",
+           "accepted_width", "probability_at_site",
            "record_family", "FamilySettings", "SCAN_FRACTIONS", "SCAN_WIDTHS",
            "WIDTH_TOLERANCE"]
