@@ -281,8 +281,8 @@ def _probit_fits(log_levels, trials: int, counts):
 
     P = Φ(a + b ln x) is a probit regression on ln x, θ = exp(−a/b), β = 1/b: Fisher scoring
     (score Σ (k − nΦ) φ/(Φ(1 − Φ)) (1, ln x), information Σ n φ²/(Φ(1 − Φ)) (1, ln x)⊗(1, ln x))
-    for every row of ``counts`` together, from the probit line of their pooled shares. The same maximum
-    as :func:`fit_lognormal`'s, reached in milliseconds for hundreds of resamples.
+    for every row of ``counts`` together, from the probit line of their pooled shares. The same
+    maximum as :func:`fit_lognormal`'s, reached in milliseconds for hundreds of resamples.
     """
     x = np.asarray(log_levels, dtype=float)[None, :]
     # start: the probit line through the pooled shares, Φ⁻¹(share) = a + b ln x by least squares
@@ -372,5 +372,6 @@ def stripe_outcomes(motion, factors, size_s, alpha_rad, g: float, free_motion_s:
 
 
 __all__ = ["stripe_levels", "fit_lognormal", "LognormalFit", "bootstrap_lognormal",
-           "BootstrapFits", "lognormal_fits", "BOOTSTRAP_RESAMPLES", "BOOTSTRAP_SEED", "overturning_pattern",
-           "OverturningPattern", "stripe_outcomes", "DEFAULT_STRIPES", "DEFAULT_SPAN"]
+           "BootstrapFits", "lognormal_fits", "BOOTSTRAP_RESAMPLES", "BOOTSTRAP_SEED",
+           "STEP_BETA", "overturning_pattern", "OverturningPattern", "stripe_outcomes",
+           "DEFAULT_STRIPES", "DEFAULT_SPAN"]
