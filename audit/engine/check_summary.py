@@ -52,10 +52,17 @@ def _procedure_answer(proc, judgements, line, width, b: int, first_entry) -> dic
                             or "it can evaluate no record of the suite")
         return answer
     share = float(np.mean([j.overturns[b] for j in judgements]))
-    demand = float(np.median([j.demand[b] for j in judgements]))
+    # over the records where it gives a number (a rotation iteration may settle on none)
+    demands = np.array([j.demand[b] for j in judgements])
+    demand = float(np.median(demands[~np.isnan(demands)])) if (~np.isnan(demands)).any() \
+        else math.nan
     reasons = []
     if math.isinf(demand):
-        reasons.append("its rotation estimate reaches α (overturning): no rotation to compare")
+        reasons.append("its rotation estimate reaches α (overturning)"
+                       + (" for most records" if len(judgements) > 1 else "")
+                       + ": no rotation to compare")
+    elif math.isnan(demand):
+        reasons.append("its iteration settles on no rotation for any record")
     if math.isinf(width):
         reasons.append("no width up to 0.99 × the height passes it (restrain the object)")
     answer.update(verdict="passes" if share <= 0.5 else "fails",
