@@ -95,7 +95,11 @@ def _required_figure(required: pd.DataFrame, names: list, titles) -> dict:
                               "dash": "solid" if name == "exact@0.10" else
                               "dot" if exact else "dash"},
                      "marker": {"size": 4},
-                     "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}°<br>"
+                     # the object each point is: the most slender block accepted at that size
+                     "text": [describe_block(a, s) if math.isfinite(a) else ""
+                              for a, s in zip(rows["required_alpha_deg"], rows["size_s"])],
+                     "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}° "
+                                      "(%{text})<br>"
                                       "exact share overturning there: %{customdata:.0%}"
                                       "<extra></extra>"})
     layout = _layout(440)
