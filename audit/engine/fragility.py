@@ -79,7 +79,7 @@ def _negative_log_likelihood(params, log_levels, trials, successes):
     return -np.sum(successes * np.log(p) + (trials - successes) * np.log1p(-p))
 
 
-def _most_likely(levels, trials, successes, xatol: float = 1e-10):
+def _most_likely(levels, trials, successes):
     """The likelihood's arguments and its maximum over (ln θ, ln β) (scipy's result)."""
     log_levels = np.log(np.asarray(levels, dtype=float))
     trials = np.asarray(trials, dtype=float)
@@ -90,7 +90,7 @@ def _most_likely(levels, trials, successes, xatol: float = 1e-10):
     args = (log_levels, trials, successes)
     return args, minimize(_negative_log_likelihood, [start, np.log(0.4)], args=args,
                           method="Nelder-Mead",
-                          options={"xatol": xatol, "fatol": xatol * 1e-2, "maxiter": 4000})
+                          options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000})
 
 
 def fit_lognormal(levels, trials, successes, confidence: float = 0.90) -> LognormalFit:
