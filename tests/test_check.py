@@ -246,3 +246,13 @@ def test_a_guideline_that_rejects_every_width_requires_none():
     low, high = guideline_bracket(lambda w: False, obj, False)
     assert (low, high) == (0.0, pytest.approx(0.018))
     assert accepted_width([low], [high], None) == pytest.approx(0.018)
+
+
+def test_the_metres_axis_labels_each_size_with_its_blocks_height():
+    from reports.plots import describe_block, metres_axis
+    axis = metres_axis(20.0, [0.5, 8.0], "x2", "y2")
+    assert axis["overlaying"] == "x2" and axis["side"] == "top" and len(axis["tickvals"]) >= 3
+    for size, text in zip(axis["tickvals"], axis["ticktext"]):
+        height = float(text.removesuffix(" m"))
+        # the block of that size at α = 20° is that tall (h = 2R cos α, R = 3g/(4p²))
+        assert describe_block(20.0, size).endswith(f"× {height:.2f} m block")
