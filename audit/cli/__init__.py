@@ -1,4 +1,5 @@
-"""Command-line interface: ``python -m audit {list,check,rock,spectrum,design-spectrum,run,margins,fragility,report}``.
+"""Command-line interface: ``python -m audit COMMAND``, COMMAND one of list, check, rock,
+spectrum, design-spectrum, run, margins, fragility, report.
 
 One module per command, each with ``add_parser(subparsers)`` and ``run(args)``; a command's
 scientific imports happen inside its ``run``, so start-up and ``--help`` stay light. Angles are

@@ -479,5 +479,5 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
 
 
 __all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "MarginsSettings", "RecordStripes",
-           "record_stripes", "predicts_overturning", "half_crossing", "amplitude_scans", "margins_files",
-           "SCAN_COLUMNS"]
+           "record_stripes", "predicts_overturning", "half_crossing", "amplitude_scans",
+           "margins_files", "SCAN_COLUMNS"]
