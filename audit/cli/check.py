@@ -23,8 +23,8 @@ def add_parser(sub):
                     "guideline's verdict with the numbers it compares, the exact probability of "
                     "overturning at the site's intensity (multiple-stripe fragility, bootstrap "
                     "band over records), and the base width each guideline requires at the "
-                    "object's height against the exact width for P(overturn) ≤ 10 %% and "
-                    "≤ 50 %%. The site's S_XS, S_X1 are those of the hazard level you assess "
+                    "object's height against the exact width for P(overturn) ≤ 10 % and "
+                    "≤ 50 %. The site's S_XS, S_X1 are those of the hazard level you assess "
                     "(e.g. BSE-1E or BSE-2E): every number is at that level. With --out, writes "
                     "check.json, check.csv and check.html.")
     p.add_argument("--block", action="append", metavar="WIDTHxHEIGHT",
