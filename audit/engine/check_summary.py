@@ -16,17 +16,14 @@ import numpy as np
 import pandas as pd
 
 from audit.engine.csv_text import csv_bytes
+from audit.engine.schemas import GUIDE
 
 #: What the site's numbers stand for, said in every output.
 HAZARD_LEVEL = ("the hazard level of the S_XS, S_X1 given (e.g. ASCE 41's BSE-1E or BSE-2E): "
                 "every verdict and probability is at the site's intensity at that level")
 CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
-#: Columns of ``check.csv``.
-CSV_COLUMNS = ["object", "width_m", "height_m", "alpha_deg", "size_s", "procedure", "verdict",
-               "compares", "demand", "capacity", "unit", "share_predicting_overturn",
-               "required_width_m", "guideline_im", "reason", "im", "site_im",
-               "p_overturn_at_site", "p_band_low", "p_band_high", "exact_median", "exact_beta",
-               "exact_required_width_m_10pct", "exact_required_width_m_50pct"]
+#: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.schemas`).
+CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 
 
 def _number(value) -> float | None:
