@@ -12,10 +12,15 @@ G = 9.81
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
 _API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "rock", "run", "margins",
         "risk", "read_hazard")
+#: ``audit check``'s API (:mod:`audit.check_api`), loaded the same way.
+_CHECK_API = ("check", "CheckResult")
 
 
 def __getattr__(name):
     if name in _API:
         from audit import api
         return getattr(api, name)
+    if name in _CHECK_API:
+        from audit import check_api
+        return getattr(check_api, name)
     raise AttributeError(f"module 'audit' has no attribute {name!r}")

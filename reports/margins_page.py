@@ -22,7 +22,7 @@ from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
 from reports.margins_risk_section import risk_section
 from reports.palette import _EXTRA_COLOURS
-from reports.plots import _axis, _layout
+from reports.plots import _axis, _layout, describe_block
 
 MARGINS_HTML = "margins.html"
 #: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].
@@ -53,7 +53,8 @@ def _keys(frame: pd.DataFrame) -> pd.Series:
 def _label(row) -> str:
     if isinstance(row.get("block_m"), str) and row["block_m"]:
         return f"{row['block_m']} m (α = {row['alpha_deg']:.3g}°, 2π/p = {row['size_s']:.3g} s)"
-    return f"α = {row['alpha_deg']:g}°, 2π/p = {row['size_s']:g} s"
+    return (f"α = {row['alpha_deg']:g}°, 2π/p = {row['size_s']:g} s "
+            f"({describe_block(row['alpha_deg'], row['size_s'])})")
 
 
 def _site_words(summary) -> str:
@@ -98,7 +99,11 @@ def _required_figure(required: pd.DataFrame, names: list, titles) -> dict:
                               "dash": "solid" if name == "exact@0.10" else
                               "dot" if exact else "dash"},
                      "marker": {"size": 4},
-                     "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}°<br>"
+                     # the object each point is: the most slender block accepted at that size
+                     "text": [describe_block(a, s) if math.isfinite(a) else ""
+                              for a, s in zip(rows["required_alpha_deg"], rows["size_s"])],
+                     "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}° "
+                                      "(%{text})<br>"
                                       "exact share overturning there: %{customdata:.0%}"
                                       "<extra></extra>"})
     layout = _layout(440)
@@ -312,7 +317,10 @@ def render_margins_page(folder) -> str:
     worst = (capacity.dropna(subset=["achieved_p_fit"])
              .sort_values("achieved_p_fit", ascending=False, kind="stable")
              .groupby("procedure", sort=False).head(WORST_ROWS))
-    parts.append(_table(worst.assign(procedure=worst["procedure"].map(lambda n: titles.get(n, n)))))
+    worst = worst.assign(procedure=worst["procedure"].map(lambda n: titles.get(n, n)))
+    worst.insert(3, "object", [describe_block(a, s)[2:] for a, s
+                               in zip(worst["alpha_deg"], worst["size_s"])])
+    parts.append(_table(worst))
     parts.append(f"<h2>Islands</h2><p>{(fragility['records_with_islands'] > 0).mean():.0%} of "
                  f"the blocks have at least one record under which the block survives a stripe "
                  f"above its first overturning one; on average "

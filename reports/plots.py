@@ -15,7 +15,9 @@ import numpy as np
 import orjson
 import pandas as pd
 
+from audit import G
 from audit.engine.verdicts import ROCKING_FLOOR
+from audit.physics.block import RigidBlock
 from reports.palette import VERDICT_COLOURS, alpha_colour, damping_colour
 
 #: Significant digits of the numbers embedded in the page.
@@ -153,6 +155,13 @@ def _literal(text: str) -> str:
     return str(text).replace("%{", "%\u200b{")
 
 
+
+
+def describe_block(alpha_deg: float, size_s: float) -> str:
+    """The object a grid cell is, in metres: ``a 0.38 m × 1.15 m block`` (full width × full
+    height, 2R sin α × 2R cos α with R = 3g/(4p²), p = 2π/size)."""
+    block = RigidBlock.from_size(float(size_s), math.radians(float(alpha_deg)))
+    return f"a {2 * block.half_width:.2f} m × {2 * block.half_height:.2f} m block"
 
 
 def describe_exact(row) -> str:
@@ -469,10 +478,37 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
                                           **({} if np.isfinite(period).any() else
                                              {"showticklabels": False, "showgrid": False,
                                               "range": [0, 1]}))
+        for k, n in enumerate((b, c)):  # the height of the block of each size at α, on top
+            m = 3 * len(alphas) + 2 * r + k + 1
+            layout[f"xaxis{m}"] = metres_axis(alpha, span, f"x{_ref(n)}", f"y{_ref(n)}")
+            data.append({"type": "scatter", "x": span, "y": [None, None], "xaxis": f"x{m}",
+                         "yaxis": f"y{_ref(n)}", "showlegend": False, "hoverinfo": "skip"})
     layout["annotations"] = annotations
     layout["legend"] = {"orientation": "h", "x": 0, "y": -60 / layout["height"] - 0.02,
                         "yanchor": "top", "font": {"size": 11}}
     return {"data": data, "layout": layout}
+
+
+#: Heights of the ticks of a metres axis [m].
+METRE_TICKS = (0.1, 0.2, 0.3, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0, 30.0, 50.0)
+
+
+def metres_axis(alpha_deg: float, span, overlaying: str, anchor: str) -> dict:
+    """A secondary x axis, on top of a 2π/p axis spanning ``span`` [s], labelled with the
+    height [m] of the block of each size at slenderness α: h = 2R cos α, R = 3g/(4p²),
+    p = 2π/size, so size = 2π √(2R/(3g)) with R = h/(2 cos α)."""
+    radius = np.array(METRE_TICKS) / (2.0 * math.cos(math.radians(alpha_deg)))
+    sizes = 2.0 * np.pi * np.sqrt(4.0 * radius / (3.0 * G))
+    kept, last = [], -math.inf
+    for height, size in zip(METRE_TICKS, sizes):  # a tick an eighth of the span from the last
+        if span[0] <= size <= span[1] and size - last >= (span[1] - span[0]) / 8.0:
+            kept.append((height, size))
+            last = size
+    return {"overlaying": overlaying, "anchor": anchor, "side": "top", "range": list(span),
+            "tickvals": [size for _, size in kept],
+            "ticktext": [f"{height:g} m" for height, _ in kept], "tickangle": 0,
+            "tickfont": {"size": 9, "color": "#666"}, "showgrid": False, "ticks": "outside",
+            "zeroline": False}
 
 
 def history_figure(history: pd.DataFrame, meta: dict, estimates: list) -> dict:

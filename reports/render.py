@@ -58,7 +58,8 @@ def _history_id(record, alpha, size) -> str:
 
 def _where(row, names) -> str:
     return (f"{names.get(row['record'], row['record'])}, α = {row['alpha_deg']:g}°, "
-            f"2π/p = {row['size_s']:.2f} s")
+            f"2π/p = {row['size_s']:.2f} s "
+            f"({plots.describe_block(row['alpha_deg'], row['size_s'])})")
 
 
 def _bottom_line(procedure: dict, line: dict, names: dict, band: float) -> dict:

@@ -172,7 +172,6 @@ def test_block_by_its_dimensions():
 
 
 def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
-    from audit.engine.blocks import BlockList, NamedBlock
     block = NamedBlock(0.8, 4.0)
     procedures = get_procedures("priestley1978")
     named = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
@@ -237,7 +236,6 @@ def test_resumed_and_dask_margins_are_identical(tmp_path):
 
 def test_margins_page_from_the_files(tmp_path):
     import audit
-    from audit.engine.blocks import BlockList, NamedBlock
     result = audit.margins(["priestley1978", "fema356"], _suite(), im="pga", stripes=LEVELS_G,
                            alpha_deg=[15], sizes_s=[SIZE_S], blocks=["0.8x4"],
                            free_motion_s=8.0)

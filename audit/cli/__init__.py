@@ -1,4 +1,5 @@
-"""Command-line interface: ``python -m audit {list,rock,spectrum,design-spectrum,run,report,fragility}``.
+"""Command-line interface: ``python -m audit COMMAND``, COMMAND one of list, check, rock,
+spectrum, design-spectrum, run, margins, fragility, report.
 
 One module per command, each with ``add_parser(subparsers)`` and ``run(args)``; a command's
 scientific imports happen inside its ``run``, so start-up and ``--help`` stay light. Angles are
@@ -14,12 +15,12 @@ import sys
 import warnings
 
 from audit import __version__
-from audit.cli import (design_spectrum, fragility, listing, margins, options, report, rock, run,
-                       spectrum)
+from audit.cli import (check, design_spectrum, fragility, listing, margins, options, report, rock,
+                       run, spectrum)
 from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible
 from audit.errors import InputError, InputWarning
 
-COMMANDS = (listing, rock, spectrum, design_spectrum, run, margins, fragility, report)
+COMMANDS = (listing, check, rock, spectrum, design_spectrum, run, margins, fragility, report)
 
 
 class _Parser(argparse.ArgumentParser):

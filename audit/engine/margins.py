@@ -102,7 +102,7 @@ class IntensityMeasure:
         return float(spectrum.acceleration(0.0 if self.kind == PGA else self.period_s, 0.05))
 
 
-def _half_crossing(levels, fraction) -> float:
+def half_crossing(levels, fraction) -> float:
     """Where ``fraction`` first reaches 0.5 along ascending ``levels``, ln-interpolated; NaN if
     never."""
     above = np.flatnonzero(fraction >= 0.5)
@@ -255,9 +255,11 @@ def procedure_predictions(proc, cases, p, groups, g) -> np.ndarray:
     return _SITE_ANSWERS[key][1].copy()
 
 
-def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripes:
+def record_stripes(entry, procedures, settings: MarginsSettings,
+                   context: RecordContext | None = None) -> RecordStripes:
     """The exact response and every procedure's prediction for one record scaled to each stripe
-    (the unit of work of the design-level audit)."""
+    (the unit of work of the design-level audit); ``context``, the record's spectra, when a
+    caller reads them again after."""
     blocks, levels = settings.blocks, np.asarray(settings.levels, dtype=float)
     intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
     factors = levels / intensity
@@ -270,7 +272,7 @@ def record_stripes(entry, procedures, settings: MarginsSettings) -> RecordStripe
                                       r=settings.restitution)
         exact_over[:, index], exact_theta[:, index] = over[:, 0], theta[:, 0]
     p = 2.0 * np.pi / blocks.size_s
-    base = RecordContext(entry, settings.free_motion_s, settings.jobs)
+    base = context or RecordContext(entry, settings.free_motion_s, settings.jobs)
     cases = [_at_level(entry, base, float(level), intensity, settings) for level in levels]
     alpha_groups = [(alpha, index, float(settings.restitution.r(alpha)))
                     for alpha, index in groups]
@@ -489,7 +491,7 @@ def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated,
         fraction = (predicted[proc.name][mine].mean(axis=0) if mine.any()
                     else np.full(exact_fraction.shape, np.nan))
         for b in range(len(blocks)):
-            line = steps.get((proc.name, b), _half_crossing(levels, fraction[:, b]))
+            line = steps.get((proc.name, b), half_crossing(levels, fraction[:, b]))
             fit = fits[b]
             known = fit is not None and math.isfinite(line)
             nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
@@ -595,5 +597,5 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
 
 
 __all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "MarginsSettings", "RecordStripes",
-           "record_stripes", "procedure_predictions", "amplitude_scans", "margins_files",
-           "SCAN_COLUMNS"]
+           "record_stripes", "procedure_predictions", "half_crossing", "amplitude_scans",
+           "margins_files", "SCAN_COLUMNS"]

@@ -216,6 +216,44 @@ GUIDE["capacity.csv"] = {
                                "guideline_im"),
 }
 
+# one object, one site (``python -m audit check``): one row per object × procedure
+GUIDE["check.csv"] = {
+    "object": ("text", "the object's name (--block as typed, or the inventory's name)"),
+    "width_m": ("m", "full base width of the object"),
+    "height_m": ("m", "full height of the object"),
+    "alpha_deg": ("deg", "slenderness α = atan(width/height)"),
+    "size_s": ("s", "size 2π/p"),
+    "procedure": ("text", "guideline procedure"),
+    "verdict": ("text", "passes (it predicts overturning for at most half the records it can "
+                        "evaluate at the site's intensity), fails, or empty where it cannot "
+                        "judge the object (see reason)"),
+    "compares": ("text", "what demand and capacity are: its peak rotation θ against α, or its "
+                         "overturning check"),
+    "demand": ("unit", "the median over the records of what it compares (empty where its "
+                       "rotation estimate reaches α)"),
+    "capacity": ("unit", "what the demand is compared with (α for a rotation)"),
+    "unit": ("text", "unit of demand and capacity: deg, g, m/s or m"),
+    "share_predicting_overturn": ("-", "share of the records it can evaluate for which it "
+                                       "predicts overturning at the site's intensity"),
+    "required_width_m": ("m", "narrowest width at the object's height it passes (empty where "
+                              "none up to 0.99 × the height)"),
+    "guideline_im": ("g", "intensity from which it predicts overturning for half the records "
+                          "(its line on the fragility curve)"),
+    "reason": ("text", "why the verdict or a number is empty"),
+    "im": ("text", "intensity measure: sa:T (5 %-damped true Sa [g]) or pga [g]"),
+    "site_im": ("g", "the site's intensity at the hazard level of the S_XS, S_X1 given"),
+    "p_overturn_at_site": ("-", "exact P(overturn) at site_im, from the lognormal fitted to the "
+                                "stripes"),
+    "p_band_low": ("-", "lower end of the 90 % bootstrap band over records"),
+    "p_band_high": ("-", "upper end of the 90 % bootstrap band over records"),
+    "exact_median": ("g", "the exact fragility's median"),
+    "exact_beta": ("-", "the exact fragility's β"),
+    "exact_required_width_m_10pct": ("m", "narrowest width at the object's height above which "
+                                          "the exact P(overturn) at the site stays ≤ 10 % "
+                                          "(empty where none up to 0.95 × the height)"),
+    "exact_required_width_m_50pct": ("m", "the same for P(overturn) ≤ 50 %"),
+}
+
 GUIDE["required_alpha.csv"] = {
     "procedure": ("text", "guideline procedure (the α it accepts: it predicts overturning for at "
                           "most half the records), or exact@0.10 / exact@0.50 (the exact share "

@@ -1,0 +1,128 @@
+"""``python -m audit check``: one or many objects at one site, the answer an engineer acts on."""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+from audit.cli import options
+from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
+from audit.errors import InputError
+
+DEFAULT_RECORDS = "p695-far-field"
+DEFAULT_IM = "sa:1.0"
+
+
+def add_parser(sub):
+    p = sub.add_parser(
+        "check", help="does an object pass each guideline at a site; its exact P(overturn) and "
+                      "the width it needs",
+        formatter_class=options.HelpWithDefaults,
+        description="For each object (a block in metres) at one FEMA 356 / ASCE 41 site: each "
+                    "guideline's verdict with the numbers it compares, the exact probability of "
+                    "overturning at the site's intensity (multiple-stripe fragility, bootstrap "
+                    "band over records), and the base width each guideline requires at the "
+                    "object's height against the exact width for P(overturn) ≤ 10 % and "
+                    "≤ 50 %. The site's S_XS, S_X1 are those of the hazard level you assess "
+                    "(e.g. BSE-1E or BSE-2E): every number is at that level. With --out, writes "
+                    "check.json, check.csv and check.html.")
+    p.add_argument("--block", action="append", metavar="WIDTHxHEIGHT",
+                   help="an object by its full base width × full height [m] (of the box of its "
+                        "centre of mass), e.g. 0.6x1.8; repeat it for several")
+    p.add_argument("--objects", metavar="FILE.csv",
+                   help="an inventory: columns name,width_m,height_m (or name,alpha_deg,size_s "
+                        "for objects described that way), one object a row")
+    p.add_argument("--alpha", metavar="DEG,...",
+                   help="with --size: objects by slenderness [degrees], every --size each")
+    p.add_argument("--size", metavar="S,...", help="with --alpha: sizes 2π/p [s]")
+    p.add_argument("--site", metavar="SXS,SX1",
+                   help="FEMA 356 / ASCE 41 design spectral accelerations S_XS,S_X1 [g] at the "
+                        "hazard level assessed (required): the site's intensity")
+    p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
+                   help="NTC 2018 site as for 'run' (NTC 2018 then reads its code spectrum)")
+    p.add_argument("procedure", nargs="?", default="all",
+                   help="registered procedure name ({registered}), or 'all'")
+    p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_RECORDS,
+                   help="record suite (see 'list'), manifest, file or folder; each record is "
+                        "scaled to the site's intensity and to stripes around it")
+    p.add_argument("--im", default=DEFAULT_IM, metavar="pga|sa:T",
+                   help="intensity measure: the true 5 %%-damped spectral acceleration at T "
+                        "[g] (the site's intensity: its design spectrum at T; S_X1 at 1 s) or "
+                        "PGA (0.4 S_XS)")
+    options.add_restitution_option(p)
+    p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
+                   help="solver threads, or worker processes with --scheduler dask")
+    p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
+                   metavar="S", help="free motion after each record [s]")
+    p.add_argument("--out", metavar="DIR", help="write check.json, check.csv, check.html here")
+    p.add_argument("--scheduler", default="local", metavar="local|dask|tcp://HOST:PORT",
+                   help="where records are computed")
+    p.set_defaults(func=run)
+
+
+def objects_of(args, g: float | None = None) -> list:
+    """Every object of ``--block``, ``--objects`` and ``--alpha``/``--size``, checked."""
+    from audit.engine.check_objects import object_by_slenderness, parse_block_text, read_objects
+    objects = []
+    for text in args.block or ():
+        objects += parse_block_text(text)
+    if args.objects:
+        objects += read_objects(args.objects)
+    if bool(args.alpha) != bool(args.size):
+        raise InputError("--alpha and --size go together: objects by slenderness and size")
+    if args.alpha:
+        for alpha in options.float_list(args.alpha, "--alpha"):
+            for size in options.float_list(args.size, "--size"):
+                name = f"α={alpha:g}°, 2π/p={size:g} s"
+                objects.append(object_by_slenderness(name, alpha, size, f"--alpha/--size {name}"))
+    if not objects:
+        raise InputError("check: give the objects: --block WIDTHxHEIGHT, --objects FILE.csv or "
+                         "--alpha DEG --size S")
+    names = [o.name for o in objects]
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise InputError(f"check: object '{repeated[0]}' is given twice")
+    return objects
+
+
+def run(args) -> int:
+    from audit.check_api import check
+    from audit.engine.check_summary import summary_text
+    from audit.engine.progress import Progress
+    from audit.engine.scheduler import check_scheduler
+    from audit.files import check_output_dir
+    if not args.site:
+        raise InputError("--site: required, S_XS,S_X1 [g] of the hazard level assessed "
+                         "(e.g. --site 1.5,0.9)")
+    site = options.float_list(args.site, "--site")
+    if len(site) != 2:
+        raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
+    ntc_site = None
+    if args.ntc_site:
+        fields = args.ntc_site.split(",")
+        if len(fields) != 5:
+            raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
+        ntc_site = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+    out_dir = check_output_dir(Path(args.out)) if args.out else None
+    scheduler = check_scheduler(args.scheduler)
+    objects = objects_of(args)
+    start = time.perf_counter()
+    progress = Progress(1, "record")
+    progress.stage(f"checking {len(objects)} object{'s' if len(objects) > 1 else ''} at "
+                   f"S_XS = {site[0]:g} g, S_X1 = {site[1]:g} g")
+    try:
+        result = check(objects, site, procedures=args.procedure, records=args.records,
+                       im=args.im, ntc_site=ntc_site, restitution=args.restitution,
+                       jobs=args.jobs, free_motion_s=args.free_motion, scheduler=scheduler,
+                       progress=progress)
+    finally:
+        progress.done()
+    if out_dir is not None:
+        progress.stage(f"writing check.json, check.csv and check.html to {out_dir}")
+        result.write(out_dir)
+    progress.stage(f"done in {time.perf_counter() - start:.1f} s")
+    sys.stdout.write(summary_text(result.document))
+    if out_dir is not None:
+        print(f"Wrote {out_dir / 'check.html'}, check.json and check.csv")
+    return 0

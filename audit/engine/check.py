@@ -1,0 +1,284 @@
+"""``audit check``: does this object, at this site, pass each guideline; how likely is it really
+to overturn; how wide must it be.
+
+For every object (:mod:`audit.engine.check_objects`) and a FEMA 356 site (S_XS, S_X1 at the
+hazard level the user assesses), the suite's records are each scaled to the site's intensity
+(S_X1 for the default S_a(1 s); the design spectrum at the intensity measure otherwise) and to
+:data:`SITE_STRIPES` stripes either side, a factor :data:`STRIPE_STEP` apart: the design-level
+audit's unit of work (:func:`audit.engine.margins.record_stripes`) on a stripe set around the
+site, not its whole grid. From it, per object:
+
+* the exact multiple-stripe fragility (:func:`~audit.engine.fragility.fit_lognormal`) and its
+  P(overturn) at the site's intensity, with a band from a bootstrap over records
+  (:func:`~audit.engine.fragility.bootstrap_lognormal`);
+* per procedure, its verdict at the site (it accepts the object when it predicts overturning for
+  at most half the records it can evaluate, as the required-slenderness search reads it; a
+  procedure reading only the site's design spectrum gives one answer for all), the numbers it
+  compares (its rotation estimate against α, or its overturning check's demand and capacity,
+  the median over records), and where it draws its line on the stripes;
+* the width each guideline requires at the object's height, against the exact widths for
+  P(overturn) at the site ≤ 10 % and ≤ 50 % (:mod:`audit.engine.check_widths`): each record's
+  bracket found with its judgement, the brackets that matter halved after.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from audit import G
+from audit.engine.blocks import BlockList
+from audit.engine.check_widths import (accepted_width, exact_required_widths,
+                                      guideline_bracket, overturns_at)
+from audit.engine.fragility import bootstrap_lognormal, fit_lognormal
+from audit.engine.margins import MarginsSettings, RecordStripes, half_crossing, record_stripes
+from audit.engine.scheduler import computed_parts, open_scheduler
+from audit.errors import InputError
+from audit.physics.block import Restitution
+from procedures.base import EXACT_OVERTURNING, OVERTURN
+from procedures.context import RecordContext
+from procedures.overturning import predicts_overturning
+
+#: Stripes either side of the site's intensity, and the ratio between neighbours: 0.25–4 ×.
+SITE_STRIPES = 4
+STRIPE_STEP = math.sqrt(2.0)
+#: Exact P(overturn) at the site that the exact required widths target.
+TARGETS = (0.10, 0.50)
+#: Intensities at which the bootstrap band is drawn, as multiples of the site's.
+BAND_SPAN = (0.2, 5.0)
+BAND_POINTS = 61
+
+
+def check_levels(site_im: float) -> np.ndarray:
+    """The stripes of a check: the site's intensity × STRIPE_STEP^k, |k| ≤ SITE_STRIPES (the
+    site's own level exactly at the middle)."""
+    return site_im * STRIPE_STEP ** np.arange(-SITE_STRIPES, SITE_STRIPES + 1)
+
+
+@dataclass(frozen=True)
+class CheckSettings:
+    """What every record's part of a check depends on.
+
+    Attributes
+    ----------
+    stripes : audit.engine.margins.MarginsSettings
+        The stripes (the site's intensity its ``design_im``) and the objects as blocks.
+    objects : tuple of audit.engine.check_objects.CheckObject
+    per_record : tuple of str
+        Procedures judged on every record (those reading the record); the others read only the
+        site and are judged once.
+    """
+
+    stripes: MarginsSettings
+    objects: tuple
+    per_record: tuple
+
+    @property
+    def jobs(self) -> int:
+        return self.stripes.jobs
+
+    def as_dict(self) -> dict:
+        return {**self.stripes.as_dict(), "kind": "check", "per_record": list(self.per_record)}
+
+
+@dataclass
+class Judgement:
+    """A procedure's answer for every object under one record at the site, arrays over objects.
+
+    Attributes
+    ----------
+    overturns : numpy.ndarray of bool
+        It predicts overturning.
+    demand, capacity : numpy.ndarray
+        The numbers it compares (+inf demand where its rotation estimate reaches α).
+    width_low, width_high : numpy.ndarray
+        Bracket of the narrowest width at the object's height it does not predict overturning
+        for [m] (:func:`~audit.engine.check_widths.guideline_bracket`).
+    quantity, unit : list of str
+        What the numbers are, and their unit.
+    """
+
+    overturns: np.ndarray
+    demand: np.ndarray
+    capacity: np.ndarray
+    width_low: np.ndarray
+    width_high: np.ndarray
+    quantity: list
+    unit: list
+
+
+def compared_numbers(evaluation, alpha_rad: float) -> tuple[str, str, float, float]:
+    """(quantity, unit, demand, capacity) a procedure compares for one block: its rotation
+    estimate against α [degrees], else its overturning check's demand and capacity."""
+    if evaluation.estimate is not None:
+        estimate = evaluation.estimate
+        demand = (math.inf if estimate.outcome[0] == OVERTURN
+                  else math.degrees(float(estimate.theta[0])))
+        return "peak rotation θ against α", "deg", demand, math.degrees(alpha_rad)
+    for check in evaluation.checks:
+        if check.exact_event != EXACT_OVERTURNING:
+            continue
+        for demand, capacity, unit, scale in ((check.demand_m_s, check.capacity_m_s, "m/s", 1.0),
+                                              (check.demand_m_s2, check.capacity_m_s2, "g", 1 / G),
+                                              (check.demand_m, check.capacity_m, "m", 1.0)):
+            first = float(np.ravel(demand)[0])
+            if math.isfinite(first):
+                return (f"{check.limit_state} check", unit, first * scale,
+                        float(np.ravel(capacity)[0]) * scale)
+    return "", "", math.nan, math.nan
+
+
+def judge(procedure, entry, context, objects, restitution: Restitution, g: float) -> Judgement:
+    """``procedure``'s :class:`Judgement` of every object under ``entry`` (scaled to the site)."""
+    out = Judgement(np.zeros(len(objects), dtype=bool), *np.full((4, len(objects)), np.nan),
+                    [], [])
+    for i, obj in enumerate(objects):
+        alpha = math.radians(obj.alpha_deg)
+        evaluation = procedure.evaluate(entry, np.array([2.0 * math.pi / obj.size_s]), alpha,
+                                        float(restitution.r(alpha)), context, g)
+        out.overturns[i] = predicts_overturning(evaluation)[0]
+        quantity, unit, out.demand[i], out.capacity[i] = compared_numbers(evaluation, alpha)
+        out.quantity.append(quantity)
+        out.unit.append(unit)
+        out.width_low[i], out.width_high[i] = guideline_bracket(
+            lambda width: overturns_at(procedure, entry, context, obj, width, restitution, g),
+            obj, out.overturns[i])
+    return out
+
+
+@dataclass
+class CheckRecord:
+    """One record's part of a check: its stripes and the judgements of the procedures that read
+    it (None where a procedure cannot evaluate the record)."""
+
+    stripes: RecordStripes
+    judged: dict
+
+
+def at_site(entry, context, intensity: float, site_im: float):
+    """The record scaled to the site's intensity, and its context (the cached spectra scaled)."""
+    factor = site_im / intensity
+    scaled = replace(entry, motion=entry.motion.scaled(float(factor)))
+    return scaled, context.scaled(scaled, float(factor))
+
+
+def check_record(entry, procedures, settings: CheckSettings) -> CheckRecord:
+    """The unit of work of a check: one record's stripes, then each record-reading procedure's
+    judgement at the site, on the same cached spectra."""
+    margins = settings.stripes
+    context = RecordContext(entry, margins.free_motion_s, margins.jobs)
+    stripes = record_stripes(entry, procedures, margins, context)
+    scaled, scaled_context = at_site(entry, context, stripes.intensity, margins.design_im)
+    judged = {}
+    for proc in procedures:
+        if proc.name in settings.per_record and proc.unmet_requirements(scaled) is None:
+            judged[proc.name] = judge(proc, scaled, scaled_context, settings.objects,
+                                      margins.restitution, margins.g)
+    return CheckRecord(stripes, judged)
+
+
+@dataclass
+class CheckRun:
+    """What a check produced: per object, the exact answer and each procedure's (the fields of
+    ``check.json``), and the run's description."""
+
+    objects: list
+    summary: dict
+
+
+def run_check(procedures, suite, objects, im, restitution: Restitution | None = None,
+              g: float = G, free_motion_s: float = 10.0, jobs: int = 1,
+              scheduler: str = "local", progress=None, seed: int | None = None) -> CheckRun:
+    """Check every object at the suite's design site (see the module).
+
+    Parameters
+    ----------
+    procedures : list of procedures.Procedure
+    suite : records.RecordSuite
+        Its ``design_site`` (S_XS, S_X1 [g]) is the site.
+    objects : sequence of audit.engine.check_objects.CheckObject
+    im : audit.engine.margins.IntensityMeasure
+    restitution, g, free_motion_s, jobs, scheduler, progress :
+        As for :func:`audit.engine.margins.run_margins`.
+    seed : int, optional
+        Seed of the bootstrap (its default when not given).
+    """
+    from audit.engine.check_summary import object_answer, run_summary
+    entries = [entry for entry in suite if entry.motion is not None]
+    if not entries:
+        raise InputError(f"--records: no record of {suite.description} has a file")
+    site_im = im.of_design_site(suite.design_site)
+    if not site_im:
+        raise InputError("--site: the check needs the site's S_XS,S_X1 [g]" if im.unit == "g"
+                         else f"--im {im.name}: a design spectrum gives no {im.name}; "
+                              "choose pga or sa:T")
+    levels = check_levels(site_im)
+    restitution = restitution or Restitution()
+    objects = tuple(objects)
+    per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
+    settings = CheckSettings(MarginsSettings(im, tuple(levels.tolist()), site_im,
+                                             BlockList.of(named=objects), restitution, float(g),
+                                             float(free_motion_s), int(jobs)),
+                             objects, per_record)
+    with open_scheduler(scheduler, jobs) as executor:
+        parts, _, where = computed_parts(check_record, entries, procedures, settings, executor,
+                                         progress=progress)
+        if progress is not None and hasattr(progress, "stage"):
+            progress.stage("the exact width for P(overturn) ≤ 10 % and ≤ 50 % at each height")
+        intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
+        widths = exact_required_widths(entries, [o.height_m for o in objects], levels,
+                                       intensity, site_im, TARGETS, restitution, g,
+                                       free_motion_s, jobs, executor)
+    contexts = {}  # records scaled to the site with their spectra, made as the searches need
+
+    def site_context(i: int):
+        if i not in contexts:
+            contexts[i] = at_site(entries[i], RecordContext(entries[i], free_motion_s, jobs),
+                                  intensity[entries[i].id], site_im)
+        return contexts[i]
+
+    # a procedure reading only the site: one answer for every record, judged on the first
+    site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
+                   for p in procedures if p.name not in per_record
+                   and p.unmet_requirements(site_context(0)[0]) is None}
+    if progress is not None and hasattr(progress, "stage"):
+        progress.stage("the width each guideline requires at each object's height")
+    exact_over = np.stack([part.stripes.exact_overturned for part in parts])  # (rec, stripe, obj)
+    answers = []
+    for b, obj in enumerate(objects):
+        over = exact_over[:, :, b]
+        try:
+            fit = fit_lognormal(levels, np.full(levels.size, len(entries)), over.sum(axis=0))
+        except ValueError:
+            fit = None
+        boot = (bootstrap_lognormal(levels, over) if seed is None
+                else bootstrap_lognormal(levels, over, seed=seed))
+        judged = []
+        for proc in procedures:
+            records = ([0] if proc.name in site_judged else
+                       [i for i, part in enumerate(parts) if proc.name in part.judged])
+            mine = ([site_judged[proc.name]] if proc.name in site_judged
+                    else [parts[i].judged[proc.name] for i in records])
+            evaluated = np.array([part.stripes.evaluated[proc.name] for part in parts])
+            fraction = (np.mean([part.stripes.predicted[proc.name][:, b]
+                                 for part, ok in zip(parts, evaluated) if ok], axis=0)
+                        if evaluated.any() else None)
+            line = half_crossing(levels, fraction) if fraction is not None else math.nan
+            width = math.nan
+            if mine:
+                def refine(which, widths, proc=proc, records=records, obj=obj):
+                    return [overturns_at(proc, *site_context(records[k]), obj, float(w),
+                                         restitution, g) for k, w in zip(which, widths)]
+                width = accepted_width([j.width_low[b] for j in mine],
+                                       [j.width_high[b] for j in mine], refine)
+            judged.append((proc, mine, line, width))
+        answers.append(object_answer(obj, b, levels, site_im, im, fit, boot, over,
+                                     [e.id for e in entries], widths[b], judged, entries[0]))
+    return CheckRun(answers, run_summary(suite, entries, im, levels, site_im, procedures,
+                                         restitution, where))
+
+
+__all__ = ["run_check", "CheckRun", "CheckSettings", "check_record", "check_levels",
+           "compared_numbers", "judge", "SITE_STRIPES", "STRIPE_STEP", "TARGETS"]

@@ -1,0 +1,151 @@
+"""The page of ``audit check`` (``check.html``), rendered from its saved ``check.json`` only.
+
+Per object: the sentence for a calculation note; each guideline's verdict and the numbers it
+compares; the object drawn to scale beside outlines of the width each guideline requires at its
+height and the exact widths for P(overturn) ≤ 10 % and ≤ 50 % at the site; its exact fragility
+(stripe shares, the lognormal fit, the bootstrap band over records) with the site's intensity
+and each guideline's line; the records that overturn it at the site's level.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+from jinja2 import Environment, PackageLoader, select_autoescape
+from scipy.special import ndtr
+
+from reports.margins_page import LOG_TICKS
+from reports.palette import _EXTRA_COLOURS
+from reports.plots import _axis, _layout, to_json
+
+CHECK_JSON = "check.json"
+#: Colours of the procedures, in the order of the run (the exact answer is black).
+PROCEDURE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd", *_EXTRA_COLOURS)
+SITE_COLOUR = "#b58900"
+
+
+def _colours(document) -> dict:
+    return {p["name"]: PROCEDURE_COLOURS[i % len(PROCEDURE_COLOURS)]
+            for i, p in enumerate(document["procedures"])}
+
+
+def _outline(x0, width, height, colour, dash, fill=None) -> dict:
+    return {"type": "rect", "x0": x0, "x1": x0 + width, "y0": 0, "y1": height,
+            "line": {"color": colour, "dash": dash, "width": 2},
+            "fillcolor": fill or "rgba(0,0,0,0)"}
+
+
+def _drawing(obj, colours) -> dict:
+    """The object to scale (grey), then outlines of the required widths at its height."""
+    height = obj["height_m"]
+    exact = obj["exact"]
+    columns = [("this object", obj["width_m"], "#444", "solid", "#bbbbbb")]
+    for target, dash in (("10", "solid"), ("50", "dot")):
+        width = exact[f"required_width_m_{target}pct"]
+        if width is not None:
+            columns.append((f"exact, P ≤ {target} %", width, "#000", dash, None))
+    for proc in obj["procedures"]:
+        if proc["required_width_m"] is not None:
+            columns.append((proc["title"], proc["required_width_m"], colours[proc["name"]],
+                            "dash", None))
+    gap = 0.35 * height
+    shapes, notes, x = [], [], 0.0
+    for label, width, colour, dash, fill in columns:
+        shapes.append(_outline(x, width, height, colour, dash, fill))
+        notes.append({"x": x + width / 2, "y": -0.04 * height, "yanchor": "top",
+                      "showarrow": False, "textangle": -30 if len(columns) > 4 else 0,
+                      "text": f"{label}<br>{width:.2f} m", "font": {"size": 11, "color": colour}})
+        x += width + gap
+    layout = _layout(460, shapes=shapes, annotations=notes)
+    layout["xaxis"] = _axis("width [m]", range=[-0.1 * height, x], zeroline=False)
+    layout["yaxis"] = _axis("height [m]", range=[-0.45 * height, 1.08 * height],
+                            scaleanchor="x", scaleratio=1)
+    layout["margin"]["b"] = 30
+    # an invisible point so plotly draws the axes
+    return {"data": [{"type": "scatter", "x": [0], "y": [0], "mode": "markers",
+                      "marker": {"opacity": 0}, "hoverinfo": "skip", "showlegend": False}],
+            "layout": layout}
+
+
+def _fragility(obj, document, colours) -> dict:
+    exact = obj["exact"]
+    unit, im = exact["im_unit"], exact["im"]
+    stripes = exact["stripes"]
+    levels = np.asarray(stripes["im"])
+    band = exact["band_curve"]
+    data = [{"type": "scatter", "mode": "lines", "x": band["im"], "y": band["high"],
+             "line": {"width": 0}, "hoverinfo": "skip", "showlegend": False},
+            {"type": "scatter", "mode": "lines", "x": band["im"], "y": band["low"],
+             "fill": "tonexty", "fillcolor": "rgba(0,0,0,0.12)", "line": {"width": 0},
+             "name": "exact, bootstrap band over records (90 %)", "hoverinfo": "skip"},
+            {"type": "scatter", "mode": "markers", "x": levels.tolist(),
+             "y": (np.asarray(stripes["overturned"]) / stripes["records"]).tolist(),
+             "name": "exact, share of records at each stripe", "marker": {"color": "#000"},
+             "hovertemplate": f"{im} = %{{x:.3g}} {unit}: %{{y:.0%}} overturn<extra></extra>"}]
+    if exact["median_g"]:
+        x = np.asarray(band["im"])
+        data.append({"type": "scatter", "mode": "lines", "x": x.tolist(),
+                     "y": ndtr(np.log(x / exact["median_g"]) / exact["beta"]).tolist(),
+                     "name": f"exact, lognormal fit (median {exact['median_g']:.3g} {unit}, "
+                             f"β {exact['beta']:.2f})", "line": {"color": "#000", "width": 2}})
+    site = exact["site_im_g"]
+    data.append({"type": "scatter", "mode": "markers", "x": [site],
+                 "y": [exact["p_overturn_at_site"]], "marker": {"color": SITE_COLOUR, "size": 12,
+                                                                "symbol": "star"},
+                 "name": f"at the site, {im} = {site:.3g} {unit}: P = "
+                         f"{exact['p_overturn_at_site']:.0%} "
+                         f"[{exact['p_band'][0]:.0%}–{exact['p_band'][1]:.0%}]"})
+    shapes = [_vertical(site, SITE_COLOUR, "dot")]
+    for proc in obj["procedures"]:
+        line = proc["guideline_im"]
+        if line is None:
+            continue
+        shapes.append(_vertical(line, colours[proc["name"]], "dash"))
+        data.append({"type": "scatter", "mode": "lines", "x": [line, line], "y": [0, 1],
+                     "line": {"color": colours[proc["name"]], "dash": "dash"},
+                     "name": f"{proc['title']}: predicts overturning for half the records from "
+                             f"{line:.3g} {unit}"})
+    layout = _layout(470, shapes=shapes)
+    # whole labels on the log axis: plotly's minor labels read "9" for 0.9
+    low, high = min(band["im"]), max(band["im"])
+    ticks = [t for t in LOG_TICKS if low <= t <= high]
+    layout["xaxis"] = _axis(f"{im} [{unit}]", type="log", tickvals=ticks,
+                            ticktext=[f"{t:g}" for t in ticks])
+    layout["yaxis"] = _axis("P(overturn)", range=[-0.02, 1.02], tickformat=".0%")
+    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.2, "yanchor": "top",
+                        "font": {"size": 11}}
+    layout["margin"]["b"] = 170
+    layout["height"] = 560
+    return {"data": data, "layout": layout}
+
+
+def _vertical(x, colour, dash) -> dict:
+    return {"type": "line", "xref": "x", "x0": x, "x1": x, "yref": "y domain", "y0": 0, "y1": 1,
+            "line": {"color": colour, "dash": dash, "width": 1.5}}
+
+
+def _number(value, fmt="{:.3g}") -> str:
+    return "—" if value is None or (isinstance(value, float) and math.isnan(value)) \
+        else fmt.format(value)
+
+
+def render_check_page(folder) -> str:
+    """The HTML page of the check saved in ``folder`` (its ``check.json``), plotly.js inlined."""
+    from plotly.offline import get_plotlyjs
+    document = json.loads((Path(folder) / CHECK_JSON).read_text(encoding="utf-8"))
+    colours = _colours(document)
+    env = Environment(loader=PackageLoader("reports", "templates"),
+                      autoescape=select_autoescape(["html", "j2"]), trim_blocks=True,
+                      lstrip_blocks=True)
+    env.filters["num"] = _number
+    objects = [{**obj, "drawing": to_json(_drawing(obj, colours)),
+                "fragility": to_json(_fragility(obj, document, colours))}
+               for obj in document["objects"]]
+    return env.get_template("check.html.j2").render(
+        document=document, objects=objects, plotly=get_plotlyjs())
+
+
+__all__ = ["render_check_page", "CHECK_JSON"]
