@@ -113,13 +113,31 @@ def test_the_cmr_is_over_the_mce_and_a_bound_beyond_the_stripes():
     levels = np.array([0.1, 0.2, 0.3])
     over = np.zeros((10, 3, 1), dtype=bool)
     over[0, 1:, 0] = over[1, 2, 0] = True
-    rows, _ = _fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
+    rows, _, _ = _fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
                               IntensityMeasure.parse("pga"), over, 0.6)
     row = rows.iloc[0]
     assert row["median"] > 0.3 and row["median_extrapolated"]
     assert row["cmr_bound"] == "at least" and row["cmr"] == pytest.approx(0.3 / 0.6)
     with pytest.raises(InputError, match="site_level"):
         run_margins([], suite, pga, LEVELS_G, (ALPHA_DEG,), [SIZE_S], site_level="maximum")
+
+
+def test_bootstrap_bands_see_that_records_are_reused_across_stripes():
+    """Twelve records, each overturning the block from its own stripe on (as a real record
+    does, more or less): the stripes' counts are one suite's, not independent binomials, so the
+    band from resampling whole records is wider than the binomial likelihood's and holds the
+    fit."""
+    levels = np.geomspace(0.1, 1.0, 10)
+    over = np.zeros((12, 10, 1), dtype=bool)
+    for record, first in enumerate([1, 2, 2, 3, 4, 4, 5, 6, 6, 7, 8, 9]):
+        over[record, first:, 0] = True
+    rows, fits, _ = _fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
+                                    IntensityMeasure.parse("pga"), over, 0.3)
+    row = rows.iloc[0]
+    assert row["median_boot_low"] < fits[0].median < row["median_boot_high"]
+    assert (row["median_boot_high"] - row["median_boot_low"]
+            > row["median_high"] - row["median_low"])
+    assert row["cmr_boot_low"] == pytest.approx(row["median_boot_low"] / 0.3)
 
 
 def test_stripe_scale_factors_are_on_the_record_as_read():

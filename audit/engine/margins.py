@@ -34,8 +34,8 @@ import pandas as pd
 from audit import G
 from audit.engine.blocks import BlockList
 from audit.engine.csv_text import csv_bytes
-from audit.engine.fragility import fit_lognormal, overturning_pattern, stripe_levels, \
-    stripe_outcomes
+from audit.engine.fragility import (bootstrap_lognormal, fit_lognormal, overturning_pattern,
+                                    stripe_levels, stripe_outcomes)
 from audit.engine.partial import PartialStore
 from audit.engine.scheduler import computed_parts
 from audit.errors import InputError
@@ -360,10 +360,10 @@ def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=
     stripes = _stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_over,
                            exact_theta, predicted)
     mce = design * SITE_LEVELS[site_level] if design else None
-    fragility, fits = _fragility_rows(levels, blocks, im, exact_over, mce)
+    fragility, fits, boots = _fragility_rows(levels, blocks, im, exact_over, mce)
     steps = _step_levels(procedures, entries, settings, predicted, evaluated)
     capacity = _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits,
-                              steps)
+                              boots, steps)
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
                "design_im": design, "site_level": site_level, "mce_im": mce,
                "records": [e.id for e in entries],
@@ -435,8 +435,18 @@ def _cmr(fit, levels, mce) -> tuple[float, str]:
     return fit.median / mce, ""
 
 
+def _percentile_band(values, confidence: float = 0.90) -> tuple[float, float]:
+    """The two-sided percentile band of resampled values that may be ±inf (a resample with no
+    overturning has θ = inf): read at the order statistics, without interpolating."""
+    tail = 50.0 * (1.0 - confidence)
+    return (float(np.percentile(values, tail, method="lower")),
+            float(np.percentile(values, 100.0 - tail, method="higher")))
+
+
 def _fragility_rows(levels, blocks, im, exact_over, mce):
-    rows, fits = [], []
+    """``fragility.csv`` and, per block, its lognormal fit and its bootstrap over records
+    (records are reused across the stripes, so the binomial band is too narrow)."""
+    rows, fits, boots = [], [], []
     n_records = exact_over.shape[0]
     nan = math.nan
     for b in range(len(blocks)):
@@ -446,8 +456,13 @@ def _fragility_rows(levels, blocks, im, exact_over, mce):
             fit = fit_lognormal(levels, np.full(levels.size, n_records), counts)
         except ValueError:
             fit = None
+        boot = bootstrap_lognormal(levels, exact_over[:, :, b]) if fit else None
         fits.append(fit)
+        boots.append(boot)
         cmr, bound = _cmr(fit, levels, mce)
+        median_band = _percentile_band(boot.medians) if boot else (nan, nan)
+        beta_band = _percentile_band(boot.betas[np.isfinite(boot.betas)]) \
+            if boot and np.isfinite(boot.betas).any() else (nan, nan)
         rows.append({
             **_block_columns(blocks, b), "im": im.name, "records": n_records,
             "stripes": levels.size, "median": fit.median if fit else nan,
@@ -456,11 +471,15 @@ def _fragility_rows(levels, blocks, im, exact_over, mce):
             "median_high": fit.median_band[1] if fit else nan,
             "beta_low": fit.beta_band[0] if fit else nan,
             "beta_high": fit.beta_band[1] if fit else nan,
+            "median_boot_low": median_band[0], "median_boot_high": median_band[1],
+            "beta_boot_low": beta_band[0], "beta_boot_high": beta_band[1],
             "median_extrapolated": fit is not None and not levels[0] <= fit.median <= levels[-1],
             "cmr": cmr, "cmr_bound": bound,
+            "cmr_boot_low": median_band[0] / mce if mce else nan,
+            "cmr_boot_high": median_band[1] / mce if mce else nan,
             "records_with_islands": int(pattern.islands.sum()),
             "island_share": float(pattern.islands.mean())})
-    return pd.DataFrame(rows), fits
+    return pd.DataFrame(rows), fits, boots
 
 
 def _step_levels(procedures, entries, settings: MarginsSettings, predicted, evaluated) -> dict:
@@ -482,7 +501,8 @@ def _step_levels(procedures, entries, settings: MarginsSettings, predicted, eval
     return steps
 
 
-def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits, steps):
+def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits, boots,
+                   steps):
     rows = []
     exact_fraction = exact_over.mean(axis=0)  # (stripe, block)
     for proc in procedures:
@@ -496,10 +516,12 @@ def _capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated,
             known = fit is not None and math.isfinite(line)
             nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
                 else None
+            band = boots[b].probability_band(line) if known else (math.nan, math.nan)
             rows.append({
                 "procedure": proc.name, **_block_columns(blocks, b), "guideline_im": line,
                 "ratio_to_exact_median": line / fit.median if known else math.nan,
                 "achieved_p_fit": float(fit.probability(line)) if known else math.nan,
+                "achieved_p_boot_low": float(band[0]), "achieved_p_boot_high": float(band[1]),
                 "achieved_p_stripe": float(exact_fraction[nearest, b])
                 if nearest is not None else math.nan})
     return pd.DataFrame(rows)

@@ -192,10 +192,19 @@ GUIDE["fragility.csv"] = {
     "median_high": ("g or m/s", "upper 90 % bound of the median"),
     "beta_low": ("-", "lower 90 % bound of β (empty or inf where the counts do not bound β)"),
     "beta_high": ("-", "upper 90 % bound of β (empty or inf where the counts do not bound β)"),
+    "median_boot_low": ("g or m/s", "lower 90 % bound of the median from a bootstrap over records "
+                                    "(1,000 resuites of whole records, each refitted: records are "
+                                    "reused across stripes, so the binomial band is too narrow); "
+                                    "inf where resuites overturn the block at no stripe"),
+    "median_boot_high": ("g or m/s", "upper 90 % bound of the median, same bootstrap"),
+    "beta_boot_low": ("-", "lower 90 % bound of β, same bootstrap"),
+    "beta_boot_high": ("-", "upper 90 % bound of β, same bootstrap"),
     "median_extrapolated": ("bool", "the median lies beyond the stripes: the fit extrapolates"),
     "cmr": ("-", "collapse margin ratio: median / the site's MCE intensity (summary mce_im: "
                  "the --site values, × 1.5 with --level design); where the median is "
                  "extrapolated, the outermost stripe / the MCE intensity, a bound"),
+    "cmr_boot_low": ("-", "median_boot_low / the MCE intensity"),
+    "cmr_boot_high": ("-", "median_boot_high / the MCE intensity"),
     "cmr_bound": ("text", "empty where cmr is the fit's; 'at least' or 'at most' where the "
                           "median lies above the top stripe or below the lowest"),
     "records_with_islands": ("-", "records under which the block survives a stripe above its "
@@ -212,6 +221,9 @@ GUIDE["capacity.csv"] = {
                                  "overturning first reaches one half (ln-interpolated)"),
     "ratio_to_exact_median": ("-", "guideline_im / the exact fragility's median"),
     "achieved_p_fit": ("-", "exact P(overturn) at guideline_im, from the lognormal fit"),
+    "achieved_p_boot_low": ("-", "lower 90 % bound of achieved_p_fit from the bootstrap over "
+                                 "records (fragility.csv)"),
+    "achieved_p_boot_high": ("-", "upper 90 % bound of achieved_p_fit, same bootstrap"),
     "achieved_p_stripe": ("-", "exact share of records that overturn at the stripe nearest "
                                "guideline_im"),
 }
