@@ -17,6 +17,7 @@ import warnings
 from audit import __version__
 from audit.cli import (design_spectrum, fragility, listing, margins, options, report, rock, run,
                        spectrum)
+from audit.cli.flags import with_flags
 from audit.errors import InputError, InputWarning
 
 COMMANDS = (listing, rock, spectrum, design_spectrum, run, margins, fragility, report)
@@ -69,7 +70,9 @@ def main(argv=None) -> int:
 
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
+    text = str(message)
+    field = text.partition(":")[0]
+    print(f"warning: {' '.join(with_flags(text, (field,)).split())}", file=sys.stderr)
 
 
 def _run(args, previous_handler) -> int:
@@ -78,7 +81,8 @@ def _run(args, previous_handler) -> int:
             args.jobs = options.cap_jobs(args.jobs)
         return args.func(args)
     except InputError as exc:
-        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
+        message = with_flags(str(exc), getattr(exc, "fields", ()), args.command)
+        print(f"error: {' '.join(message.split())}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader of standard output (e.g. `| head`) has gone
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit

@@ -183,7 +183,8 @@ def add_scaling_options(parser):
 
 
 def add_restitution_option(parser):
-    parser.add_argument("--restitution", default="housner", metavar="housner|VALUE|xFACTOR",
+    from audit.engine.defaults import DEFAULT_RESTITUTION
+    parser.add_argument("--restitution", default=DEFAULT_RESTITUTION, metavar="housner|VALUE|xFACTOR",
                         help="impact model: Eq. 4.8 (housner, default), a fixed coefficient of "
                              "restitution r, or a multiple of Eq. 4.8 (e.g. x0.9)")
 

@@ -17,6 +17,18 @@ DEFAULT_ROBUSTNESS = 0.03
 DEFAULT_JOBS = 2
 #: Where records are audited: ``local``, ``dask`` or ``tcp://HOST:PORT``.
 DEFAULT_SCHEDULER = "local"
+#: Anchor period of the FEMA P695 scaling to a design spectrum [s].
+DEFAULT_ANCHOR_PERIOD_S = 1.0
+#: The exact solver's impact model: Eq. 4.8 (Housner's).
+DEFAULT_RESTITUTION = "housner"
+#: Intensity measure of the design-level audit (``margins``): true 5 %-damped Sa at 1 s [g].
+DEFAULT_IM = "sa:1.0"
+#: Block sizes 2π/p of the design-level audit's grid: START, STOP (inclusive), STEP [s].
+DEFAULT_MARGINS_SIZES = (0.5, 8.0, 0.25)
+#: Stripes of the design-level audit when none are given: levels, geometric over SPAN × the
+#: design intensity (or the suite's median).
+DEFAULT_STRIPES = 24
+DEFAULT_STRIPE_SPAN = (0.2, 5.0)
 
 
 def alpha_text(alpha_deg=DEFAULT_ALPHA_DEG) -> str:
@@ -30,5 +42,6 @@ def sizes_text(sizes=DEFAULT_SIZES) -> str:
 
 
 __all__ = ["DEFAULT_ALPHA_DEG", "DEFAULT_SIZES", "DEFAULT_AGREE_BAND", "DEFAULT_ROBUSTNESS",
-           "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "alpha_text",
+           "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "DEFAULT_RESTITUTION", "DEFAULT_ANCHOR_PERIOD_S",
+           "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "DEFAULT_STRIPE_SPAN", "alpha_text",
            "sizes_text"]
