@@ -12,6 +12,8 @@ from scipy.stats import norm
 from audit.cli import main
 from audit.engine.fragility import fit_lognormal
 from audit.engine.margins import IntensityMeasure, run_margins
+from audit.engine.margins_settings import MarginsSettings
+from audit.engine.runtime import Runtime
 from audit.engine.sites import with_design_site
 from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution
@@ -25,6 +27,13 @@ LEVELS_G = np.geomspace(0.15, 1.2, 9)
 SIZE_S, ALPHA_DEG = 3.0, 15.0
 
 
+def _settings(**values):
+    """The settings of these tests: PGA stripes LEVELS_G, the block (ALPHA_DEG, SIZE_S), 8 s of
+    free motion; ``values`` replace them."""
+    return MarginsSettings.parse(**{"im": "pga", "stripes": LEVELS_G, "alpha_deg": (ALPHA_DEG,),
+                                    "sizes_s": [SIZE_S], "free_motion_s": 8.0, **values})
+
+
 def _suite():
     entries = tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t, record_id=f"c{t:g}"))
                     for t in PERIODS_S)
@@ -35,8 +44,7 @@ def _suite():
 def test_margins_of_three_pulses_by_hand():
     suite = _suite()
     priestley = get_procedures("priestley1978")[0]
-    run = run_margins([priestley], suite, IntensityMeasure.parse("pga"), LEVELS_G, (ALPHA_DEG,),
-                      [SIZE_S], free_motion_s=8.0)
+    run = run_margins([priestley], suite, _settings(), Runtime())
     block = RigidBlock.from_size(SIZE_S, math.radians(ALPHA_DEG))
     alpha = math.radians(ALPHA_DEG)
     exact = np.zeros((3, LEVELS_G.size), dtype=bool)
@@ -74,8 +82,7 @@ def test_margins_of_three_pulses_by_hand():
 
 def test_site_based_procedure_reads_the_design_spectrum_scaled_to_each_level():
     # FEMA 356 reads only the site: at a stripe, every record gives the same answer (a step)
-    run = run_margins(get_procedures("fema356"), _suite(), IntensityMeasure.parse("pga"),
-                      LEVELS_G, (ALPHA_DEG,), [SIZE_S], free_motion_s=8.0)
+    run = run_margins(get_procedures("fema356"), _suite(), _settings(), Runtime())
     over = run.stripes["fema356_overturns"].to_numpy().reshape(3, LEVELS_G.size)
     assert np.all(over == over[0]) and over[0].any() and not over[0].all()
     assert np.all(np.diff(over[0].astype(int)) >= 0)  # one step up
@@ -87,7 +94,7 @@ def test_intensity_measures_and_bad_input(tmp_path, capsys):
     design = IntensityMeasure.parse("sa:1.0").of_design_site({"sxs_g": 1.5, "sx1_g": 0.9})
     assert design == pytest.approx(0.9)  # S_X1/T at T = 1 s
     for bad in ("sa:", "sa:-1", "pgd"):
-        with pytest.raises(InputError, match="--im"):
+        with pytest.raises(InputError, match="^im: "):
             IntensityMeasure.parse(bad)
     assert main(["margins", "all", "--stripes", "0.2,x", "--out", str(tmp_path / "m")]) == 2
     assert "--stripes" in capsys.readouterr().err
@@ -113,7 +120,7 @@ def test_block_by_its_dimensions():
     assert block.size_s == pytest.approx(2 * math.pi / p, rel=1e-12)
     assert [b.label for b in parse_blocks(["0.4x2,0.8x2.4", "1x3"])] == ["0.4x2", "0.8x2.4", "1x3"]
     for bad in ("0.4", "2x0.4", "0x1", "axb"):
-        with pytest.raises(InputError, match="--block"):
+        with pytest.raises(InputError, match="^blocks: "):
             parse_blocks([bad])
 
 
@@ -121,10 +128,9 @@ def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
     from audit.engine.blocks import NamedBlock
     block = NamedBlock(0.8, 4.0)
     procedures = get_procedures("priestley1978")
-    named = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
-                        (ALPHA_DEG,), [SIZE_S], named_blocks=[block], free_motion_s=8.0)
-    twin = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
-                       (block.alpha_deg,), [block.size_s], free_motion_s=8.0)
+    named = run_margins(procedures, _suite(), _settings(blocks=[block]), Runtime())
+    twin = run_margins(procedures, _suite(),
+                       _settings(alpha_deg=(block.alpha_deg,), sizes_s=[block.size_s]), Runtime())
     rows = named.stripes[named.stripes["block_m"] == "0.8x4"].reset_index(drop=True)
     assert len(rows) == 3 * LEVELS_G.size
     for column in ("exact_overturned", "exact_theta_rad", "priestley1978_overturns"):
@@ -135,8 +141,8 @@ def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
 def test_required_alpha_bisects_the_last_crossing_against_brute_force():
     from audit.engine.required_alpha import required_alpha
     grid = np.arange(6.0, 30.1, 4.0)
-    table = required_alpha(get_procedures("priestley1978"), _suite(), [2.0], grid,
-                           targets=(0.10,), bisections=3, free_motion_s=8.0)
+    table = required_alpha(get_procedures("priestley1978"), _suite(), _settings(sizes_s=[2.0]),
+                           Runtime(), grid, targets=(0.10,), bisections=3)
     table = table.set_index("procedure")
 
     def share(alpha_deg):  # every record solved afresh, one block at a time

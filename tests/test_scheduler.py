@@ -18,7 +18,7 @@ from audit.errors import InputError
 from procedures import get_procedures
 from records import RecordSuite, one_pulse
 
-GRID = dict(alpha_deg=[15.0, 20.0], sizes=np.arange(3.0, 8.01, 1.0))
+GRID = dict(alpha_deg=[15.0, 20.0], sizes_s=np.arange(3.0, 8.01, 1.0))
 FRAMES = ("results", "rocking", "spectra", "histories", "estimates_only", "suite")
 
 

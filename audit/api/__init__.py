@@ -14,24 +14,31 @@ flag in the argument's place). A run's settings are fields of settings objects
 :class:`~audit.engine.margins_settings.MarginsSettings`,
 :class:`~audit.engine.design_site.DesignSite`, :class:`~audit.engine.runtime.Runtime`), given
 as keyword arguments.
+
+Each name is loaded from its module on first use, so that a command that needs one of them
+(``rock``: no pandas) stays light.
 """
 
 from __future__ import annotations
 
-from audit.api.design_level import MarginsResult, margins, with_page
-from audit.api.probabilistic import FRAGILITY_HTML, FragilityResult, fragility
-from audit.api.rocking import Block, RockingResponse, rock
-from audit.api.runs import AuditResult, run, typed
-from audit.engine.partial import PARTIAL_DIR
-from audit.engine.results import REPORT_HTML
+import importlib
+
+#: Name → the module that holds it.
+_WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
+          "rock": "audit.api.rocking", "run": "audit.api.runs", "AuditResult": "audit.api.runs",
+          "typed": "audit.api.runs", "design_suite": "audit.api.runs",
+          "margins": "audit.api.design_level", "MarginsResult": "audit.api.design_level",
+          "with_page": "audit.api.design_level", "fragility": "audit.api.probabilistic",
+          "FragilityResult": "audit.api.probabilistic",
+          "FRAGILITY_HTML": "audit.api.probabilistic",
+          # the folder of a run's parts and its report, for the command line
+          "PARTIAL_DIR": "audit.engine.partial", "REPORT_HTML": "audit.engine.results"}
 
 
-def design_suite(suite, **site):
-    """``suite`` with the design site and scaling of the fields of
-    :class:`~audit.engine.design_site.DesignSite` (``site``, ``site_override``,
-    ``scale_to_site``, ``anchor_period_s``, ``ntc_site``)."""
-    from audit.engine.design_site import DesignSite
-    return DesignSite.parse(**site).apply(suite)
+def __getattr__(name):
+    if name in _WHERE:
+        return getattr(importlib.import_module(_WHERE[name]), name)
+    raise AttributeError(f"module 'audit.api' has no attribute {name!r}")
 
 
 def __dir__():

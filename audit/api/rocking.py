@@ -7,8 +7,6 @@ import math
 import warnings
 from dataclasses import dataclass
 
-import pandas as pd
-
 from audit import G
 from audit.engine import fields as check
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S
@@ -145,7 +143,8 @@ class RockingResponse:
         Everything the solver returned (cycles, turning points, reactions).
     """
 
-    def __init__(self, block: Block, motion, response: _Response, friction=None):
+    def __init__(self, block: Block, motion, response: _Response, friction=None,
+                 restitution: str = ""):
         from audit.engine.ground_truth import slides
         self.block, self.motion, self.solution = block, motion, response
         self.overturned = bool(response.overturned)
@@ -154,17 +153,32 @@ class RockingResponse:
         self.overturn_time_s = float(response.overturn_time) if response.overturned else None
         self.impacts = int(response.n_impacts)
         self.r = float(response.block.r)
+        self.restitution = restitution or f"{self.r:g}"
         self.friction = friction
         self.slides = None if friction is None else bool(slides(response.required_friction,
                                                                 friction))
 
     @property
-    def history(self) -> pd.DataFrame:
-        """The response at every solver output point: ``time_s, theta_rad, theta_dot_rad_s,
-        ground_acc_g``; an impact appears twice at its time (θ' before, then after)."""
+    def history(self):
+        """The response at every solver output point, a pandas DataFrame: ``time_s,
+        theta_rad, theta_dot_rad_s, ground_acc_g``; an impact appears twice at its time (θ'
+        before, then after); nothing after overturning."""
+        import pandas as pd
         time, theta, omega = self.solution.history()
         return pd.DataFrame({"time_s": time, "theta_rad": theta, "theta_dot_rad_s": omega,
                              "ground_acc_g": self.motion.acceleration_at(time) / G})
+
+    def history_csv(self) -> bytes:
+        """:attr:`history` as CSV bytes (numbers ``%.10g``), written without pandas."""
+        import io
+
+        import numpy as np
+        time, theta, omega = self.solution.history()
+        table = np.column_stack((time, theta, omega, self.motion.acceleration_at(time) / G))
+        text = io.StringIO()
+        np.savetxt(text, table, fmt="%.10g", delimiter=",", comments="",
+                   header="time_s,theta_rad,theta_dot_rad_s,ground_acc_g")
+        return text.getvalue().encode()
 
     def as_dict(self) -> dict:
         """The response's numbers, JSON-ready (None where a value does not exist)."""
@@ -173,7 +187,8 @@ class RockingResponse:
         free = response.peak_rotation_free_vibration
         return {
             "record": self.motion.id, "p": rigid.p, "size_s": rigid.size_s,
-            "alpha_deg": self.block.alpha_deg, "r": rigid.r, "R_m": rigid.radius,
+            "alpha_deg": self.block.alpha_deg, "r": rigid.r, "restitution": self.restitution,
+            "R_m": rigid.radius,
             "overturned": response.overturned,
             "overturn_time": None if math.isnan(response.overturn_time)
             else response.overturn_time,
@@ -251,13 +266,14 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
                          "manifest as vertical_file, or a PEER UP/DWN file beside the record)",
                          "vertical")
     rigid = block.rigid
+    label = str(Restitution()) if block.r is None else f"{block.r:g}"
     if restitution is not None:
         model = restitution if isinstance(restitution, Restitution) else Restitution.parse(
             restitution, "restitution")
-        rigid = RigidBlock(rigid.p, rigid.alpha, model, rigid.g)
+        rigid, label = RigidBlock(rigid.p, rigid.alpha, model, rigid.g), str(model)
     guards.check(guards.estimate([motion], free_motion_s, blocks=1), check.flag("force", force))
     return RockingResponse(block, motion, simulate(rigid, motion, free_motion_s, vertical=vertical),
-                           friction)
+                           friction, label)
 
 
 __all__ = ["Block", "RockingResponse", "rock", "REFUSED_DIMENSION_M", "WARNED_DIMENSION_M"]

@@ -219,6 +219,13 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
     return AuditResult(out_dir)
 
 
+def design_suite(suite, **site):
+    """``suite`` with the design site and scaling of the fields of
+    :class:`~audit.engine.design_site.DesignSite` (``site``, ``site_override``,
+    ``scale_to_site``, ``anchor_period_s``, ``ntc_site``)."""
+    return DesignSite.parse(**site).apply(suite)
+
+
 def _warn_without_vertical(suite, settings: AuditSettings) -> None:
     if settings.vertical or "vertical" in settings.sensitivity:
         if not any(e.motion is not None and e.motion.vertical is not None for e in suite):
@@ -227,4 +234,4 @@ def _warn_without_vertical(suite, settings: AuditSettings) -> None:
                           stacklevel=3)
 
 
-__all__ = ["run", "AuditResult", "typed"]
+__all__ = ["run", "AuditResult", "typed", "design_suite"]

@@ -131,13 +131,13 @@ def write_suite(computed: ComputedSuite, folder, progress=None) -> dict:
     return summary
 
 
-def run_audit(procedures, suite, detail=(), **values) -> AuditRun:
+def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> AuditRun:
     """The whole run of :func:`compute_suite`, its settings and runtime given by their fields
     (``alpha_deg=…, sizes_s=…, jobs=…``), written and read back from its files into memory:
     for a test or a script, not for a suite of thousands of records."""
     settings = AuditSettings.parse(**{k: v for k, v in values.items() if k in AUDIT_FIELDS})
     runtime = Runtime.parse(**{k: v for k, v in values.items() if k not in AUDIT_FIELDS})
-    computed = compute_suite(procedures, suite, settings, runtime, detail)
+    computed = compute_suite(procedures, suite, settings, runtime, detail, claims)
     with tempfile.TemporaryDirectory(prefix="rocking-audit-") as folder:
         write_suite(computed, folder)
         return load_run(folder)
