@@ -16,7 +16,7 @@ FLAGS = {
     "scheduler": "--scheduler", "resume": "--resume", "detail": "--detail",
     "records": "--records", "motion": "--record", "force": "--force", "im": "--im",
     "stripes": "--stripes", "blocks": "--block", "block": "--block", "procedure": "--procedure",
-    "width_m": "--block", "height_m": "--block",
+    "width_m": "--block", "height_m": "--block", "skip_bad": "--skip-bad-records",
 }
 #: Where a command's flag for an argument differs from :data:`FLAGS`.
 COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}
