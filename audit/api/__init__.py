@@ -31,8 +31,13 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           "with_page": "audit.api.design_level", "fragility": "audit.api.probabilistic",
           "FragilityResult": "audit.api.probabilistic",
           "FRAGILITY_HTML": "audit.api.probabilistic",
-          # the folder of a run's parts and its report, for the command line
-          "PARTIAL_DIR": "audit.engine.partial", "REPORT_HTML": "audit.engine.results"}
+          "rocking_spectrum": "audit.api.spectra", "response_spectra": "audit.api.spectra",
+          "design_spectrum": "audit.api.spectra", "load_result": "audit.api.runs",
+          # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
+          # and its report, for the command line
+          "available_procedures": "procedures.registry", "size_grid": "audit.engine.grid",
+          "kept_parts": "audit.engine.partial", "PARTIAL_DIR": "audit.engine.partial",
+          "REPORT_HTML": "audit.engine.results"}
 
 
 def __getattr__(name):
@@ -47,4 +52,5 @@ def __dir__():
 
 __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite", "margins",
            "MarginsResult", "fragility", "FragilityResult", "typed", "with_page", "PARTIAL_DIR",
-           "REPORT_HTML", "FRAGILITY_HTML"]
+           "REPORT_HTML", "FRAGILITY_HTML", "rocking_spectrum", "response_spectra",
+           "design_spectrum", "load_result", "available_procedures", "size_grid", "kept_parts"]

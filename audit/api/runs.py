@@ -219,6 +219,15 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
     return AuditResult(out_dir)
 
 
+def load_result(folder) -> AuditResult:
+    """The audit whose files are in ``folder`` (the output of :func:`run`, or of ``python -m
+    audit run``), read on first use."""
+    from audit.engine.results import checked_summary
+    result = AuditResult(folder)
+    result.summary = checked_summary(result.folder)  # a folder without an audit is refused
+    return result
+
+
 def design_suite(suite, **site):
     """``suite`` with the design site and scaling of the fields of
     :class:`~audit.engine.design_site.DesignSite` (``site``, ``site_override``,
@@ -234,4 +243,4 @@ def _warn_without_vertical(suite, settings: AuditSettings) -> None:
                           stacklevel=3)
 
 
-__all__ = ["run", "AuditResult", "typed", "design_suite"]
+__all__ = ["run", "AuditResult", "typed", "design_suite", "load_result"]

@@ -17,6 +17,8 @@ FLAGS = {
     "records": "--records", "motion": "--record", "force": "--force", "im": "--im",
     "stripes": "--stripes", "blocks": "--block", "block": "--block", "procedure": "--procedure",
     "width_m": "--block", "height_m": "--block", "skip_bad": "--skip-bad-records",
+    "periods_s": "--periods", "damping_pct": "--damping", "sxs_g": "--sxs", "sx1_g": "--sx1",
+    "ag_g": "--ag", "f0": "--f0", "tc_star_s": "--tc-star",
 }
 #: Where a command's flag for an argument differs from :data:`FLAGS`.
 COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}

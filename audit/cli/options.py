@@ -58,7 +58,7 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     """START:STOP:STEP (inclusive) or a comma list of times [s] given to ``option``."""
     import numpy as np
 
-    from audit.engine.grid import size_grid
+    from audit.api import size_grid
     parts = text.split(":")
     low = "0 ≤ START" if allow_zero else "0 < START"
     try:
@@ -208,11 +208,6 @@ def add_ground_truth_options(parser):
                              "(exact_model_sensitive)")
 
 
-def restitution(args):
-    from audit.physics.block import Restitution
-    return Restitution.parse(args.restitution, "--restitution")
-
-
 def add_scheduler_options(parser):
     """``--scheduler`` and ``--resume``, for commands whose unit of work is one record."""
     from audit.engine.defaults import DEFAULT_SCHEDULER
@@ -236,7 +231,7 @@ def interrupted(out_dir: Path, out_dir_existed: bool) -> int:
     nothing when there are none; the message on stderr, exit status 130."""
     import shutil
 
-    from audit.engine.partial import PARTIAL_DIR, kept_parts
+    from audit.api import PARTIAL_DIR, kept_parts
     kept = kept_parts(out_dir / PARTIAL_DIR)
     if not kept:  # interrupted before the first record was stored: leave nothing
         shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
@@ -254,34 +249,6 @@ def add_force_option(parser):
                              "(see audit/engine/guards.py)")
 
 
-def check_cost(args, motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0,
-               settings=(), free_motion_option: str = "--free-motion"):
-    """Refuse (unless ``--force``) or announce the estimated work, before it starts.
-
-    ``settings`` are the options ``blocks`` and ``oscillators`` are proportional to, as
-    ``(option, values, values by default)``: a refusal names the one furthest beyond its
-    default, or ``free_motion_option``, the longest record or the number of records where they
-    are further beyond their usual sizes.
-    """
-    from audit.engine import guards
-    guards.check(guards.estimate(motions, free_motion_s, blocks, oscillators,
-                                 getattr(args, "jobs", 1),
-                                 tuple(guards.Setting(*setting) for setting in settings),
-                                 free_motion_option), args.force)
-
-
-def grid_settings(sizes_count: int, alphas_count: int, default_sizes: str | None = None):
-    """The ``--sizes`` and ``--alpha`` settings of :func:`check_cost`: their counts of values
-    against those of their defaults (``default_sizes``: the command's, if not the audit's)."""
-    from audit.engine.defaults import alpha_text, sizes_text
-    return (("--sizes", sizes_count, values_in(default_sizes or sizes_text(), "--sizes")),
-            ("--alpha", alphas_count, values_in(alpha_text(), "--alpha")))
-
-
-def values_in(text: str, option: str) -> int:
-    """Values that ``text``, a START:STOP:STEP grid or comma list of ``option``, gives (e.g. of
-    its default, for :func:`check_cost`)."""
-    return time_grid(text, option, allow_zero=True).size
 
 
 def motion(args):
@@ -296,14 +263,6 @@ def motion(args):
     if not args.record:
         raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine")
     return resolve_motion(suite(args), args.record).motion
-
-
-def vertical_motion(motion, vertical: bool):
-    """``motion``, checked to have the vertical component ``--vertical`` asks for."""
-    if vertical and motion.vertical is None:
-        raise InputError(f"--vertical: {motion.id} has no vertical component (give it in the "
-                         "manifest as vertical_file, or a PEER UP/DWN file beside the record)")
-    return motion
 
 
 def add_records_option(parser):

@@ -19,6 +19,12 @@ DEFAULT_JOBS = 2
 DEFAULT_SCHEDULER = "local"
 #: Anchor period of the FEMA P695 scaling to a design spectrum [s].
 DEFAULT_ANCHOR_PERIOD_S = 1.0
+#: Response spectra: damping ratios [%] and oscillator periods START, STOP, STEP [s].
+DEFAULT_DAMPING_PCT = (5.0, 10.0, 15.0)
+DEFAULT_PERIODS = (0.02, 10.0, 0.02)
+#: Design spectra: damping ratios [%] and periods START, STOP, STEP [s].
+DEFAULT_DESIGN_DAMPING_PCT = (5.0,)
+DEFAULT_DESIGN_PERIODS = (0.0, 8.0, 0.02)
 #: The exact solver's impact model: Eq. 4.8 (Housner's).
 DEFAULT_RESTITUTION = "housner"
 #: Intensity measure of the design-level audit (``margins``): true 5 %-damped Sa at 1 s [g].
@@ -42,6 +48,7 @@ def sizes_text(sizes=DEFAULT_SIZES) -> str:
 
 
 __all__ = ["DEFAULT_ALPHA_DEG", "DEFAULT_SIZES", "DEFAULT_AGREE_BAND", "DEFAULT_ROBUSTNESS",
-           "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "DEFAULT_RESTITUTION", "DEFAULT_ANCHOR_PERIOD_S",
+           "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "DEFAULT_RESTITUTION", "DEFAULT_ANCHOR_PERIOD_S", "DEFAULT_DAMPING_PCT", "DEFAULT_PERIODS",
+           "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS",
            "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "DEFAULT_STRIPE_SPAN", "alpha_text",
            "sizes_text"]
