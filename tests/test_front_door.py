@@ -176,3 +176,89 @@ def test_the_message_grep_sees_flags():
     # the check above would pass on a grep that finds nothing: the CLI's own messages name flags
     assert any(re.search(r"(?<!pip install )--\w", text)
                for _, text in _message_strings(ROOT / "audit" / "cli" / "rock.py"))
+
+
+# --- the design-level audit's inputs on the command line (issue 30, item 4) --------------------
+
+@pytest.fixture
+def workdir(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv(records.ENV_VARIABLE, raising=False)
+    return tmp_path
+
+
+MARGINS = ["margins", "all", "--records", "pulses", "--alpha", "15", "--sizes", "2",
+           "--out", "m"]
+
+
+def _refused(capsys, workdir, argv, *words):
+    from audit.cli import main
+    assert main(argv) == 2
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines[-1:]) == 1 and lines[-1].startswith("error: "), lines
+    for word in words:
+        assert word in lines[-1], (word, lines[-1])
+    assert not (workdir / "m").exists() and not (workdir / "f").exists()
+    return lines[-1]
+
+
+def test_repeated_stripes_refused_before_any_work(workdir, capsys):
+    _refused(capsys, workdir, [*MARGINS, "--stripes", "0.5,0.5,0.5"], "--stripes", "increasing")
+
+
+def test_empty_stripes_refused_not_taken_for_the_default(workdir, capsys):
+    _refused(capsys, workdir, [*MARGINS, "--stripes", ""], "--stripes")
+
+
+def test_decreasing_stripes_refused(workdir, capsys):
+    _refused(capsys, workdir, [*MARGINS, "--stripes", "0.4,0.2"], "--stripes", "increasing")
+
+
+@pytest.mark.parametrize("im", ["pga", "pgv"])
+def test_an_all_zero_record_has_zero_intensity(workdir, capsys, im):
+    (workdir / "zero.txt").write_text("% in g, dt = 0.01\n" + "0.0\n" * 500)
+    argv = [*MARGINS, "--records", "zero.txt", "--im", im, "--stripes", "0.1,0.2"]
+    _refused(capsys, workdir, argv, "--records", "zero", "zero intensity")
+
+
+def test_an_all_zero_record_under_fragility(workdir, capsys):
+    (workdir / "zero.txt").write_text("% in g, dt = 0.01\n" + "0.0\n" * 500)
+    _refused(capsys, workdir, ["fragility", "--records", "zero.txt", "--out", "f"],
+             "--records", "zero intensity")
+
+
+def test_margins_cost_counts_the_spectra_the_procedures_read():
+    # 10 million samples, one stripe, one block: the exact solver's share is ~30 s, but
+    # Priestley et al. read the record's spectra on 801 periods at each of the 21 slendernesses
+    # (the block's and the required-slenderness search's): about 3 h, refused before any work
+    t = np.arange(10_000_000) * 0.01
+    motion = records.GroundMotion("long", 0.5 * np.sin(2 * np.pi * t), 0.01)
+    suite = records.RecordSuite((records.RecordEntry("long", motion),), "one long record")
+    with pytest.raises(InputError, match=r"^work: 29 blocks and 16,821 oscillators") as caught:
+        audit.margins("priestley1978", suite, stripes=[0.5], alpha_deg=15, sizes_s=2.0)
+    assert "h, beyond the limit" in str(caught.value) and "force" in caught.value.fields
+
+
+# --- what the API gives back ---------------------------------------------------------------------
+
+def test_tables_are_typed_from_the_schema():
+    import pandas as pd
+
+    from audit.api import typed
+    raw = pd.DataFrame({"record": ["a", "b"], "demand_g": ["0.5", ""],
+                        "procedure_passes": ["True", "False"], "limit_state": ["SLV", "SLC"]})
+    table = typed(raw, "checks.csv")
+    assert table["demand_g"].iloc[0] == 0.5 and math.isnan(table["demand_g"].iloc[1])
+    assert list(table["procedure_passes"]) == [True, False]
+    assert table["record"].tolist() == ["a", "b"]
+
+
+def test_scalars_where_lists_are_and_the_reprs():
+    result = audit.run("fema356", "pulses", alpha_deg=15, sizes_s=2.0, robustness=0.0, jobs=1)
+    assert set(result.results["alpha_deg"]) == {15.0} and set(result.results["size_s"]) == {2.0}
+    assert result.results["alpha_deg"].dtype.kind in "if"  # numbers, not text
+    assert "block comparisons" in repr(result)
+    margins = audit.margins("fema356", "pulses", im="pga", stripes=[0.2, 0.4], alpha_deg=15,
+                            sizes_s=2.0, required=False, free_motion_s=2.0)
+    assert repr(margins).startswith("MarginsResult(fema356 on ") and "2 stripes of pga" in \
+        repr(margins)

@@ -69,7 +69,7 @@ class DesignSite:
                 raise InputError("anchor_period_s: needs scale_to_site", "anchor_period_s",
                                  "scale_to_site")
         if site is None and (override or scale):
-            raise InputError("site_override and scale_to_site need a site (S_XS, S_X1)",
+            raise InputError("site_override and scale_to_site need site (S_XS, S_X1)",
                              "site_override", "scale_to_site", "site")
         return cls(site, override, scale, anchor, ntc)
 
