@@ -102,7 +102,7 @@ def motion_of(motion, records=None):
 
     import numpy as np
 
-    from records import GroundMotion, RecordEntry, load_records, resolve_motion
+    from records import GroundMotion, RecordEntry, load_path, load_records, resolve_motion
     if isinstance(motion, GroundMotion):
         return motion
     if isinstance(motion, RecordEntry):
@@ -111,8 +111,10 @@ def motion_of(motion, records=None):
                              f"({motion.missing_reason})", "motion")
         return motion.motion
     if isinstance(motion, (str, Path)):
-        return resolve_motion(load_records(records) if not hasattr(records, "entries")
-                              else records, str(motion)).motion
+        if Path(motion).is_file():  # a record file: no suite to look it up in
+            return load_path(motion).entries[0].motion
+        return resolve_motion(records if hasattr(records, "entries") else load_records(records),
+                              str(motion)).motion
     if isinstance(motion, tuple) and len(motion) == 2:
         acceleration, dt = motion
         values = np.asarray(acceleration, dtype=float) if not isinstance(acceleration, str) \

@@ -49,10 +49,7 @@ class Block:
         check.number("alpha_deg", self.alpha_deg, "a slenderness between 0 and 45 degrees", 0,
                      45, low_open=True, high_open=True)
         check.number("size_s", self.size_s, "a positive size 2π/p in s", 0, low_open=True)
-        if self.r is not None:
-            check.number("r", self.r, "a coefficient of restitution in (0, 1]", 0, 1,
-                         low_open=True)
-        check.number("g", self.g, "a positive acceleration in m/s²", 0, low_open=True)
+        _check_r_g(self.r, self.g)
 
     @classmethod
     def from_dimensions(cls, width_m: float, height_m: float, r: float | None = None,
@@ -62,6 +59,7 @@ class Block:
         A dimension above :data:`REFUSED_DIMENSION_M` (100 m) is refused (millimetres typed
         as metres), a height above :data:`WARNED_DIMENSION_M` (10 m) warned about.
         """
+        _check_r_g(r, g)
         for name, value in (("width_m", width_m), ("height_m", height_m)):
             check.number(name, value, "a positive number of metres", 0, low_open=True)
             if value > REFUSED_DIMENSION_M:
@@ -117,6 +115,12 @@ class Block:
     def restitution(self) -> float:
         """The coefficient of restitution r the solver uses [-]."""
         return self.rigid.r
+
+
+def _check_r_g(r, g) -> None:
+    if r is not None:
+        check.number("r", r, "a coefficient of restitution in (0, 1]", 0, 1, low_open=True)
+    check.number("g", g, "a positive acceleration in m/s²", 0, low_open=True)
 
 
 class RockingResponse:

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from audit.engine import fields as check
 from audit.engine.audit_run import AuditRun
 from audit.engine.design_site import SITE_FIELDS, DesignSite
 from audit.engine.runtime import RUNTIME_FIELDS, Runtime
@@ -184,6 +185,7 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
     values, site, how, shown = split(options, AUDIT_FIELDS, SITE_FIELDS, RUNTIME_FIELDS,
                                      ("detail",))
     settings, site = AuditSettings.parse(**values), DesignSite.parse(**site)
+    detail = check.words("detail", shown.get("detail", ()))
     bar = how.get("progress") is True
     runtime = Runtime.parse(**{**how, "progress": None if how.get("progress") in (True, False)
                                else how.get("progress")})
@@ -201,7 +203,7 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
                         "machine (first run only: 5–10 s)")
     stage = stage if hasattr(stage, "stage") else None
     try:
-        computed = compute_suite(chosen, suite, settings, runtime, shown.get("detail", ()))
+        computed = compute_suite(chosen, suite, settings, runtime, detail)
     finally:
         if bar:
             stage.done()

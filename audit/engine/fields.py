@@ -66,7 +66,7 @@ def flag(field: str, value) -> bool:
 def words(field: str, value) -> tuple[str, ...]:
     """``value`` (a string, or a sequence of them) as a tuple of strings."""
     items = (value,) if isinstance(value, str) else value
-    if items is None or not all(isinstance(item, str) for item in items):
+    if not isinstance(items, (list, tuple)) or not all(isinstance(item, str) for item in items):
         raise InputError(f"{field}: expected text or a list of text, got {value!r}", field)
     return tuple(items)
 
