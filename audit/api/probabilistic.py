@@ -5,10 +5,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from audit.engine.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
+
 #: The page of the audit, drawn from its saved CSV files.
 FRAGILITY_HTML = "fragility.html"
-#: The records of the audit when none are given: the FEMA P695 far-field set.
-DEFAULT_FRAGILITY_RECORDS = "p695-far-field"
 
 
 class FragilityResult:
@@ -37,7 +37,7 @@ class FragilityResult:
                 f"{', '.join(f'{name} ({len(t)} rows)' for name, t in self.tables.items())})")
 
 
-def fragility(procedure: str = "femap58", records=DEFAULT_FRAGILITY_RECORDS,
+def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_FRAGILITY_RECORDS,
               progress: bool = False) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
     multiple PGV stripes (:mod:`audit.engine.fragility_audit`).

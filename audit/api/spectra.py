@@ -7,7 +7,7 @@ from __future__ import annotations
 from audit.engine import fields as check
 from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_DESIGN_DAMPING_PCT,
                                    DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, DEFAULT_PERIODS,
-                                   DEFAULT_RESTITUTION)
+                                   DEFAULT_RESPONSE_FREE_MOTION_S, DEFAULT_RESTITUTION)
 from audit.errors import InputError
 
 CODES = ("fema356", "ubc97", "ntc2018")
@@ -51,7 +51,7 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
 
 
 def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
-                     free_motion_s: float = 0.0, force: bool = False):
+                     free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False):
     """True response spectra of ``motion`` at periods [s] and damping ratios [%]: a DataFrame
     (``audit.physics.oscillator.ResponseSpectra.to_frame``)."""
     import numpy as np

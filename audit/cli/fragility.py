@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 from audit.cli import options
+from audit.engine.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
 
 
 def add_parser(sub):
@@ -13,11 +14,12 @@ def add_parser(sub):
                                          "exact overturning fragility by multiple PGV stripes",
                        description="Records default to the FEMA P695 far-field set "
                                    "(--records p695-far-field).")
-    p.add_argument("--procedure", default="femap58", help="probabilistic procedure (see 'list')")
+    p.add_argument("--procedure", default=DEFAULT_PROBABILISTIC_PROCEDURE,
+                   help="probabilistic procedure (see 'list')")
     options.add_records_option(p)
     p.add_argument("--out", required=True, metavar="DIR",
                    help="output folder: fragility-*.csv and fragility.html")
-    p.set_defaults(func=run, records="p695-far-field")
+    p.set_defaults(func=run, records=DEFAULT_FRAGILITY_RECORDS)
     return p
 
 

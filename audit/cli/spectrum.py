@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from audit.cli import options
 from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   DEFAULT_PERIODS, alpha_text, sizes_text)
+                                   DEFAULT_PERIODS, DEFAULT_RESPONSE_FREE_MOTION_S, alpha_text,
+                                   sizes_text)
 
 
 def add_parser(sub):
@@ -37,7 +38,8 @@ def run(args) -> int:
     csv = options.output_file(args.csv, "--csv")
     plot = options.output_file(args.plot, "--plot")
     if args.free_motion is None:
-        args.free_motion = DEFAULT_FREE_MOTION_S if args.kind == "rocking" else 0.0
+        args.free_motion = (DEFAULT_FREE_MOTION_S if args.kind == "rocking"
+                            else DEFAULT_RESPONSE_FREE_MOTION_S)
     if args.kind == "response":
         damping = options.damping_pct(args.damping)
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)

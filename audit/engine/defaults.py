@@ -25,6 +25,11 @@ DEFAULT_PERIODS = (0.02, 10.0, 0.02)
 #: Design spectra: damping ratios [%] and periods START, STOP, STEP [s].
 DEFAULT_DESIGN_DAMPING_PCT = (5.0,)
 DEFAULT_DESIGN_PERIODS = (0.0, 8.0, 0.02)
+#: Free motion after the record of oscillator response spectra [s] (none: the record's own).
+DEFAULT_RESPONSE_FREE_MOTION_S = 0.0
+#: The probabilistic procedure audited by ``fragility``, and its records.
+DEFAULT_PROBABILISTIC_PROCEDURE = "femap58"
+DEFAULT_FRAGILITY_RECORDS = "p695-far-field"
 #: The exact solver's impact model: Eq. 4.8 (Housner's).
 DEFAULT_RESTITUTION = "housner"
 #: Intensity measure of the design-level audit (``margins``): true 5 %-damped Sa at 1 s [g].
@@ -49,6 +54,7 @@ def sizes_text(sizes=DEFAULT_SIZES) -> str:
 
 __all__ = ["DEFAULT_ALPHA_DEG", "DEFAULT_SIZES", "DEFAULT_AGREE_BAND", "DEFAULT_ROBUSTNESS",
            "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "DEFAULT_RESTITUTION", "DEFAULT_ANCHOR_PERIOD_S", "DEFAULT_DAMPING_PCT", "DEFAULT_PERIODS",
-           "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS",
+           "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS", "DEFAULT_RESPONSE_FREE_MOTION_S",
+           "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_FRAGILITY_RECORDS",
            "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "DEFAULT_STRIPE_SPAN", "alpha_text",
            "sizes_text"]
