@@ -146,7 +146,7 @@ def test_dask_submits_records_as_others_complete():
 def test_scheduler_option_is_checked():
     assert check_scheduler("tcp://10.0.0.5:8786") == "tcp://10.0.0.5:8786"
     for bad in ("threads", "tcp://host", "tcp://:8786", "10.0.0.5:8786"):
-        with pytest.raises(InputError, match="^--scheduler: "):
+        with pytest.raises(InputError, match="^scheduler: "):  # the command line: --scheduler
             check_scheduler(bad)
 
 
