@@ -1,21 +1,47 @@
-"""The README's column guide, generated from :mod:`audit.engine.schemas` (a test keeps the two
-in sync): ``python -m reports.guide`` prints it."""
+"""The column guide of the documentation (``docs/columns.md``), generated from
+:mod:`audit.engine.schemas` (a test keeps the two in sync).
+
+``python -m reports.guide`` prints it; ``python -m reports.guide docs/columns.md`` rewrites the
+generated part of that page, between its two markers.
+"""
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 from audit.engine.schemas import GUIDE
+
+#: The lines between which a page holds the generated guide.
+START, END = "<!-- column guide: start -->", "<!-- column guide: end -->"
 
 
 def markdown() -> str:
-    """One Markdown table per output file: column, unit, meaning."""
+    """One section per output file, a Markdown table in each: column, unit, meaning."""
     parts = []
     for name, columns in GUIDE.items():
-        parts.append(f"`{name}`\n\n| column | unit | meaning |\n|---|---|---|")
+        parts.append(f"## `{name}`\n\n| column | unit | meaning |\n|---|---|---|")
         parts.extend("| `{}` | {} | {} |".format(column, unit, meaning.replace("|", r"\|"))
                      for column, (unit, meaning) in columns.items())
         parts.append("")
     return "\n".join(parts).strip() + "\n"
 
 
+def generated_part(page: str) -> str:
+    """The text of ``page`` between the markers, without them."""
+    start, end = page.index(START), page.index(END)
+    return page[start + len(START):end].strip() + "\n"
+
+
+def rewrite(path: Path) -> None:
+    """Replace the generated part of the page at ``path`` by the guide as the schema has it."""
+    page = path.read_text(encoding="utf-8")
+    start, end = page.index(START), page.index(END)
+    path.write_text(f"{page[:start]}{START}\n{markdown()}\n{page[end:]}", encoding="utf-8")
+
+
 if __name__ == "__main__":
-    print(markdown(), end="")
+    if len(sys.argv) > 1:
+        rewrite(Path(sys.argv[1]))
+    else:
+        print(markdown(), end="")

@@ -215,31 +215,12 @@ def test_rerendered_report_matches(seed_report, html):
     assert strip(again) == strip(html)
 
 
-def _chromium():
-    for name in ("chromium", "chromium-browser", "google-chrome"):
-        path = shutil.which(name)
-        if path:
-            return path
-    if os.environ.get("CI", "").lower() == "true":
-        pytest.fail("chromium is not installed: .ci/run installs it with apt-get")
-    pytest.skip("chromium is not installed (apt-get install chromium)")
-
-
-def _browse(page: Path, tmp_path: Path, *action):
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             "--disable-quic", f"--user-data-dir={tmp_path / 'profile'}",
-             "--enable-logging=stderr", "--v=0", "--virtual-time-budget=60000"]
-    return subprocess.run([_chromium(), *flags, *action, page.as_uri()], capture_output=True,
-                          text=True, timeout=300)
-
-
-def test_report_renders_offline_in_headless_chromium(seed_report, parsed, tmp_path):
+def test_report_renders_offline_in_headless_chromium(seed_report, parsed, tmp_path, browse):
     """Every figure is drawn (plotly's SVG in each figure div), with no console error."""
     moved = tmp_path / "elsewhere" / "report.html"  # alone: nothing beside it to load
     moved.parent.mkdir()
     shutil.copy(seed_report / "report.html", moved)
-    done = _browse(moved, tmp_path, "--dump-dom")
+    done = browse(moved, "--dump-dom")
     assert f'data-plotted="{len(parsed.plots)}"' in done.stdout, done.stderr[-2000:]
     assert 'data-plot-error="' not in done.stdout
     drawn = re.findall(r'<div class="plot js-plotly-plot" id="([^"]+)"[^>]*>\s*'
@@ -249,8 +230,7 @@ def test_report_renders_offline_in_headless_chromium(seed_report, parsed, tmp_pa
     console = [line for line in done.stderr.splitlines() if "CONSOLE" in line]
     assert not console, console[:5]
     shot = tmp_path / "report.png"
-    _browse(moved, tmp_path, f"--screenshot={shot}", "--window-size=1280,2400",
-            "--hide-scrollbars")
+    browse(moved, f"--screenshot={shot}", "--window-size=1280,2400", "--hide-scrollbars")
     assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and shot.stat().st_size > 50_000
 
 
@@ -351,12 +331,23 @@ def test_paths_do_not_depend_on_the_working_directory(seed_manifest, tmp_path):
         assert records not in text and "../" + Path(sources[0]).parent.name not in text
 
 
-def test_readme_column_guide_matches_columns_module():
-    from reports.guide import markdown
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    start = readme.index("<!-- column guide: start -->")
-    end = readme.index("<!-- column guide: end -->")
-    assert readme[start:end].split("\n", 1)[1].strip() == markdown().strip()
+def test_docs_column_guide_matches_columns_module():
+    """docs/columns.md holds the guide as the schema has it (``python -m reports.guide
+    docs/columns.md`` rewrites it)."""
+    from reports.guide import generated_part, markdown
+    page = (REPO / "docs" / "columns.md").read_text(encoding="utf-8")
+    assert generated_part(page) == markdown()
+    assert "| `exact_overturned` | bool | the exact response overturns |" in page
+
+
+def test_column_guide_rewrite_replaces_only_the_generated_part(tmp_path):
+    from reports.guide import END, START, generated_part, markdown, rewrite
+    page = tmp_path / "columns.md"
+    page.write_text(f"# Guide\n\nintro\n\n{START}\nstale table\n{END}\n\nafter\n", encoding="utf-8")
+    rewrite(page)
+    text = page.read_text(encoding="utf-8")
+    assert generated_part(text) == markdown() and "stale" not in text
+    assert text.startswith("# Guide\n\nintro\n\n") and text.endswith(f"{END}\n\nafter\n")
 
 
 def test_large_suite_puts_statistics_first_and_details_only_where_asked():

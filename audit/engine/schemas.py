@@ -1,7 +1,7 @@
 """The files an audit writes, column by column: the one schema every layer reads.
 
 One entry per column: its unit (``-`` for dimensionless, ``text``, ``bool``) and its meaning
-(``columns.json``, the README's table). Column names carry their unit (``_rad``, ``_s``,
+(``columns.json``, ``docs/columns.md``). Column names carry their unit (``_rad``, ``_s``,
 ``_deg``, ``_g``, ``_m``, ``_m_s``, ``_rad_s``, ``_pct``), so a CSV read on its own still says
 what it holds; the column lists of the engine are the keys, in order.
 """
