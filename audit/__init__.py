@@ -2,6 +2,10 @@
 
 Equation numbers refer to Makris & Konstantinidis, *The Rocking Spectrum and the
 Shortcomings of Design Guidelines*, PEER 2001/07.
+
+The Python API (:mod:`audit.api`) is here too: ``audit.Block``, ``audit.rock``, ``audit.run``,
+``audit.margins``, ``audit.fragility`` (loaded on first use, so that the command line starts
+light).
 """
 
 __version__ = "0.1.0"
@@ -10,8 +14,8 @@ __version__ = "0.1.0"
 G = 9.81
 
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
-_API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "rock", "run", "margins",
-        "risk", "read_hazard")
+_API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
+        "run", "margins", "fragility", "design_suite", "risk", "read_hazard")
 #: ``audit check``'s API (:mod:`audit.check_api`), loaded the same way.
 _CHECK_API = ("check", "CheckResult")
 
@@ -24,3 +28,8 @@ def __getattr__(name):
         from audit import check_api
         return getattr(check_api, name)
     raise AttributeError(f"module 'audit' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted({*(name for name in globals() if not name.startswith("_")), "__version__",
+                   *_API, *_CHECK_API})

@@ -4,9 +4,22 @@
 class InputError(ValueError):
     """Bad input (file, field, name or value) that the user can fix.
 
-    The message names the file or the option and says what is wrong, in one line;
-    the command-line interface prints it and exits with status 2.
+    The message names the file or the argument and says what is wrong, in one line; the
+    command-line interface prints it and exits with status 2. Below the command line a message
+    names the argument as the Python API spells it (``sizes_s``, ``stripes``), never a
+    command-line flag; ``fields`` lists the arguments it names, so that the command line can
+    put its own flags in their place (``audit.cli.flags``).
+
+    Parameters
+    ----------
+    message : str
+    *fields : str
+        The arguments (settings fields) the message names, as written in it.
     """
+
+    def __init__(self, message: str = "", *fields: str):
+        super().__init__(message)
+        self.fields = fields
 
 
 class InputWarning(UserWarning):

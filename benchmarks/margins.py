@@ -24,7 +24,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from audit.api import MarginsResult, design_suite  # noqa: E402
-from audit.engine.margins import IntensityMeasure, amplitude_scans, run_margins  # noqa: E402
+from audit.engine.margins import amplitude_scans, run_margins  # noqa: E402
+from audit.engine.margins_settings import MarginsSettings  # noqa: E402
+from audit.engine.runtime import Runtime  # noqa: E402
 from audit.engine.required_alpha import required_alpha  # noqa: E402
 from audit.files import write_files_atomically  # noqa: E402
 from procedures import get_procedures  # noqa: E402
@@ -41,10 +43,10 @@ def main() -> None:
     records = load_records(args.records)
     if args.first:
         records = replace(records, entries=records.entries[:args.first])
-    suite = design_suite(records, (1.5, 0.9), True, True)
-    sizes = np.arange(0.5, 8.001, 0.25)
-    alphas = (10.0, 15.0, 20.0)
-    im = IntensityMeasure.parse("sa:1.0")
+    suite = design_suite(records, site=(1.5, 0.9), site_override=True, scale_to_site=True)
+    settings = MarginsSettings.parse(im="sa:1.0", alpha_deg=(10.0, 15.0, 20.0),
+                                     sizes_s=np.arange(0.5, 8.001, 0.25))
+    runtime = Runtime.parse(jobs=args.jobs)
     procedures = get_procedures("all")
     timed = {}
 
@@ -55,19 +57,18 @@ def main() -> None:
         return value
 
     exact_only = timing("exact stripes alone", lambda: run_margins(
-        [], suite, im, None, alphas, sizes, jobs=args.jobs))
-    full = timing("stripes", lambda: run_margins(procedures, suite, im, None, alphas, sizes,
-                                                 jobs=args.jobs))
+        [], suite, settings, runtime))
+    full = timing("stripes", lambda: run_margins(procedures, suite, settings, runtime))
     full.required_alpha = timing("required α", lambda: required_alpha(
-        procedures, suite, sizes, jobs=args.jobs))
-    full.scan = timing("scans", lambda: amplitude_scans(full, suite, jobs=args.jobs))
+        procedures, suite, settings, runtime))
+    full.scan = timing("scans", lambda: amplitude_scans(full, suite, settings, runtime))
     with tempfile.TemporaryDirectory() as folder:
         timing("files and report", lambda: write_files_atomically(
             Path(folder) / "m", MarginsResult(full).files()))
     solves = len(exact_only.stripes)
     audit_s = sum(v for k, v in timed.items() if k != "exact stripes alone")
     print(f"{len(suite)} records × {len(full.summary['levels'])} stripes × "
-          f"{len(alphas) * sizes.size} blocks = {solves} exact solves")
+          f"{len(settings.alpha_deg) * len(settings.size_s)} blocks = {solves} exact solves")
     print(f"exact stripes alone: {timed['exact stripes alone']:.1f} s "
           f"({solves / timed['exact stripes alone']:.0f} solves/s)")
     print(f"stripes with every procedure: {timed['stripes']:.1f} s (guideline evaluation "

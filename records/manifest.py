@@ -177,9 +177,9 @@ def collect(readers, description: str, skip_bad: bool) -> RecordSuite:
             rejected.append({"record": record, "file": file, "reason": reason})
     if errors and (not skip_bad or not entries):
         others = len(errors) - 1
-        more = (f" ({others} other record(s) also bad; --skip-bad-records audits the rest)"
+        more = (f" ({others} other record(s) also bad; skip_bad audits the rest)"
                 if others else "")
-        raise InputError(f"{errors[0]}{more}")
+        raise InputError(f"{errors[0]}{more}", "skip_bad")
     return RecordSuite(tuple(entries), description, rejected=tuple(rejected))
 
 

@@ -168,8 +168,8 @@ def resolve_motion(suite: RecordSuite, record: str) -> RecordEntry:
     if Path(record).is_file():
         return load_path(record).entries[0]
     if record not in {e.id for e in suite} and (Path(record).suffix or os.sep in record):
-        raise InputError(f"--record: {record}: file not found (and no record of that id in "
-                         f"{suite.description})")
+        raise InputError(f"motion: {record}: file not found (and no record of that id in "
+                         f"{suite.description})", "motion")
     entry = suite.get(record)
     if entry.missing:
         raise InputError(f"record '{record}': missing from {suite.description} ({entry.missing_reason})")

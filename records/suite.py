@@ -79,6 +79,17 @@ class RecordSuite:
     def __len__(self):
         return len(self.entries)
 
+    def __getitem__(self, key) -> RecordEntry:
+        """The entry with this id (or at this position)."""
+        if isinstance(key, int):
+            return self.entries[key]
+        return self.get(key)
+
+    @property
+    def ids(self) -> list[str]:
+        """The records' ids, in order."""
+        return [entry.id for entry in self.entries]
+
     def get(self, record_id: str) -> RecordEntry:
         """The entry with this id; InputError naming the ids there are."""
         for entry in self.entries:

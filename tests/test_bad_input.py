@@ -518,9 +518,9 @@ def test_cost_guard_warns_between_the_limits(capsys):
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 1 and err[0].startswith("warning: ") and "3 min" in err[0]
     big = guards.estimate([motion], 0.0, blocks=blocks * 100)
-    with pytest.raises(InputError, match="--force"):
+    with pytest.raises(InputError, match="force=True"):
         guards.check(big, force=False)
-    guards.check(big, force=True)  # --force lifts the refusal, the warning stays
+    guards.check(big, force=True)  # force lifts the refusal, the warning stays
     assert "warning" in capsys.readouterr().err
 
 

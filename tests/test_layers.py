@@ -104,6 +104,22 @@ def test_the_graph_sees_imports():
     assert _layer("audit.cli.run") > _layer("audit.api") > _layer("reports.render")
 
 
+#: What the command line may import: the API, the defaults its help shows, the base modules,
+#: the records (read by the options) and the reports' figures; never the engine's internals,
+#: the physics or the procedures (a command is argparse → one API call → print).
+CLI_MAY_IMPORT = ("audit.api", "audit.cli", "audit.engine.defaults", "records", "reports")
+
+
+def test_the_command_line_goes_through_the_api():
+    around = [f"{name} → {target}" for name, targets in GRAPH.items()
+              if _layer(name) == _layer("audit.cli") for target in targets
+              if target not in BASE and not any(target == prefix or target.startswith(prefix + ".")
+                                                for prefix in CLI_MAY_IMPORT)]
+    assert not around, "the command line around the API: " + "; ".join(sorted(around))
+    # the check sees the command line's imports
+    assert "audit.api" in GRAPH["audit.cli.run"] and "audit.cli.options" in GRAPH["audit.cli.run"]
+
+
 def _import_alone(name: str) -> tuple[str, str]:
     done = subprocess.run([sys.executable, "-c", f"import {name}"], cwd=REPO,
                           capture_output=True, text=True)

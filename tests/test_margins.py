@@ -13,6 +13,8 @@ from audit.cli import main
 from audit.engine.blocks import BlockList, NamedBlock
 from audit.engine.fragility import fit_lognormal
 from audit.engine.margins import IntensityMeasure, _fragility_rows, run_margins
+from audit.engine.margins_settings import MarginsSettings
+from audit.engine.runtime import Runtime
 from audit.engine.sites import scale_to_site, with_design_site
 from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution
@@ -26,6 +28,13 @@ LEVELS_G = np.geomspace(0.15, 1.2, 9)
 SIZE_S, ALPHA_DEG = 3.0, 15.0
 
 
+def _settings(**values):
+    """The settings of these tests: PGA stripes LEVELS_G, the block (ALPHA_DEG, SIZE_S), 8 s of
+    free motion; ``values`` replace them."""
+    return MarginsSettings.parse(**{"im": "pga", "stripes": LEVELS_G, "alpha_deg": (ALPHA_DEG,),
+                                    "sizes_s": [SIZE_S], "free_motion_s": 8.0, **values})
+
+
 def _suite():
     entries = tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t, record_id=f"c{t:g}"))
                     for t in PERIODS_S)
@@ -36,8 +45,7 @@ def _suite():
 def test_margins_of_three_pulses_by_hand():
     suite = _suite()
     priestley = get_procedures("priestley1978")[0]
-    run = run_margins([priestley], suite, IntensityMeasure.parse("pga"), LEVELS_G, (ALPHA_DEG,),
-                      [SIZE_S], free_motion_s=8.0)
+    run = run_margins([priestley], suite, _settings(), Runtime())
     block = RigidBlock.from_size(SIZE_S, math.radians(ALPHA_DEG))
     alpha = math.radians(ALPHA_DEG)
     exact = np.zeros((3, LEVELS_G.size), dtype=bool)
@@ -75,8 +83,7 @@ def test_margins_of_three_pulses_by_hand():
 
 def test_site_based_procedure_reads_the_design_spectrum_scaled_to_each_level():
     # FEMA 356 reads only the site: at a stripe, every record gives the same answer (a step)
-    run = run_margins(get_procedures("fema356"), _suite(), IntensityMeasure.parse("pga"),
-                      LEVELS_G, (ALPHA_DEG,), [SIZE_S], free_motion_s=8.0)
+    run = run_margins(get_procedures("fema356"), _suite(), _settings(), Runtime())
     over = run.stripes["fema356_overturns"].to_numpy().reshape(3, LEVELS_G.size)
     assert np.all(over == over[0]) and over[0].any() and not over[0].all()
     assert np.all(np.diff(over[0].astype(int)) >= 0)  # one step up
@@ -87,8 +94,9 @@ def test_a_site_based_step_is_placed_at_its_level_not_between_stripes():
     scaled by level / S_X1, has 0.4·S_XS·level/S_X1 ≥ tan α: with S_XS = 1.5 g, S_X1 = 0.9 g,
     at Sa(1 s) = 0.4 × 0.9 / 0.6 = 0.600 g, whatever the stripes around it."""
     levels = np.geomspace(0.2, 1.6, 8)  # 0.566 and 0.749 g around the step
-    run = run_margins(get_procedures("fema356"), _suite(), IntensityMeasure.parse("sa:1.0"),
-                      levels, (), (), [NamedBlock(0.8, 2.0)], free_motion_s=8.0)
+    run = run_margins(get_procedures("fema356"), _suite(),
+                      _settings(im="sa:1.0", stripes=levels, alpha_deg=(), sizes_s=(),
+                                blocks=[NamedBlock(0.8, 2.0)]), Runtime())
     step = 0.4 * 0.9 / (0.4 * 1.5)
     capacity = run.capacity.iloc[0]
     assert capacity["guideline_im"] == pytest.approx(step, rel=1e-6)
@@ -100,10 +108,9 @@ def test_a_site_based_step_is_placed_at_its_level_not_between_stripes():
 def test_the_cmr_is_over_the_mce_and_a_bound_beyond_the_stripes():
     """P695's CMR is over the MCE intensity: the --site values as given (mce), or 1.5 × them
     (design). Stripes that stop below the median leave the CMR only bounded below."""
-    suite, pga = _suite(), IntensityMeasure.parse("pga")
-    mce = run_margins([], suite, pga, LEVELS_G, (ALPHA_DEG,), [SIZE_S], free_motion_s=8.0)
-    design = run_margins([], suite, pga, LEVELS_G, (ALPHA_DEG,), [SIZE_S], free_motion_s=8.0,
-                         site_level="design")
+    suite = _suite()
+    mce = run_margins([], suite, _settings(), Runtime())
+    design = run_margins([], suite, _settings(site_level="design"), Runtime())
     median = mce.fragility["median"].iloc[0]
     assert mce.fragility["cmr"].iloc[0] == pytest.approx(median / 0.6, rel=1e-12)
     assert design.fragility["cmr"].iloc[0] == pytest.approx(median / (1.5 * 0.6), rel=1e-12)
@@ -114,12 +121,12 @@ def test_the_cmr_is_over_the_mce_and_a_bound_beyond_the_stripes():
     over = np.zeros((10, 3, 1), dtype=bool)
     over[0, 1:, 0] = over[1, 2, 0] = True
     rows, _, _ = _fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
-                              IntensityMeasure.parse("pga"), over, 0.6)
+                                 IntensityMeasure.parse("pga"), over, 0.6)
     row = rows.iloc[0]
     assert row["median"] > 0.3 and row["median_extrapolated"]
     assert row["cmr_bound"] == "at least" and row["cmr"] == pytest.approx(0.3 / 0.6)
-    with pytest.raises(InputError, match="site_level"):
-        run_margins([], suite, pga, LEVELS_G, (ALPHA_DEG,), [SIZE_S], site_level="maximum")
+    with pytest.raises(InputError, match="^site_level"):
+        _settings(site_level="maximum")
 
 
 def test_bootstrap_bands_see_that_records_are_reused_across_stripes():
@@ -144,12 +151,11 @@ def test_stripe_scale_factors_are_on_the_record_as_read():
     """With the suite scaled to the site, a stripe's factor on the record as read is the site
     factor × the factor from the site-scaled record to the level."""
     suite = scale_to_site(_suite(), 1.5, 0.9)
-    run = run_margins([], suite, IntensityMeasure.parse("pga"), LEVELS_G, (ALPHA_DEG,),
-                      [SIZE_S], free_motion_s=8.0)
+    run = run_margins([], suite, _settings(), Runtime())
     site = {k: v["scale_factor"] for k, v in suite.scaling["records"].items()}
     stripes = run.stripes
-    expected = stripes["record"].map(site) * stripes["im_level"] / (0.5 * stripes["record"].map(site))
-    np.testing.assert_allclose(stripes["scale_factor"], expected, rtol=1e-12)  # PGA 0.5 g raw
+    # the pulses as read have a PGA of 0.5 g: level / 0.5 takes each to its stripe
+    np.testing.assert_allclose(stripes["scale_factor"], stripes["im_level"] / 0.5, rtol=1e-12)
     np.testing.assert_allclose(stripes["site_factor"], stripes["record"].map(site))
 
 
@@ -159,7 +165,7 @@ def test_intensity_measures_and_bad_input(tmp_path, capsys):
     design = IntensityMeasure.parse("sa:1.0").of_design_site({"sxs_g": 1.5, "sx1_g": 0.9})
     assert design == pytest.approx(0.9)  # S_X1/T at T = 1 s
     for bad in ("sa:", "sa:-1", "pgd"):
-        with pytest.raises(InputError, match="--im"):
+        with pytest.raises(InputError, match="^im: "):
             IntensityMeasure.parse(bad)
     assert main(["margins", "all", "--stripes", "0.2,x", "--out", str(tmp_path / "m")]) == 2
     assert "--stripes" in capsys.readouterr().err
@@ -185,17 +191,16 @@ def test_block_by_its_dimensions():
     assert block.size_s == pytest.approx(2 * math.pi / p, rel=1e-12)
     assert [b.label for b in parse_blocks(["0.4x2,0.8x2.4", "1x3"])] == ["0.4x2", "0.8x2.4", "1x3"]
     for bad in ("0.4", "2x0.4", "0x1", "axb"):
-        with pytest.raises(InputError, match="--block"):
+        with pytest.raises(InputError, match="^blocks: "):
             parse_blocks([bad])
 
 
 def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
     block = NamedBlock(0.8, 4.0)
     procedures = get_procedures("priestley1978")
-    named = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
-                        (ALPHA_DEG,), [SIZE_S], named_blocks=[block], free_motion_s=8.0)
-    twin = run_margins(procedures, _suite(), IntensityMeasure.parse("pga"), LEVELS_G,
-                       (block.alpha_deg,), [block.size_s], free_motion_s=8.0)
+    named = run_margins(procedures, _suite(), _settings(blocks=[block]), Runtime())
+    twin = run_margins(procedures, _suite(),
+                       _settings(alpha_deg=(block.alpha_deg,), sizes_s=[block.size_s]), Runtime())
     rows = named.stripes[named.stripes["block_m"] == "0.8x4"].reset_index(drop=True)
     assert len(rows) == 3 * LEVELS_G.size
     for column in ("exact_overturned", "exact_theta_rad", "priestley1978_overturns"):
@@ -206,8 +211,8 @@ def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
 def test_required_alpha_bisects_the_last_crossing_against_brute_force():
     from audit.engine.required_alpha import required_alpha
     grid = np.arange(6.0, 30.1, 4.0)
-    table = required_alpha(get_procedures("priestley1978"), _suite(), [2.0], grid,
-                           targets=(0.10,), bisections=3, free_motion_s=8.0)
+    table = required_alpha(get_procedures("priestley1978"), _suite(), _settings(sizes_s=[2.0]),
+                           Runtime(), grid, targets=(0.10,), bisections=3)
     table = table.set_index("procedure")
 
     def share(alpha_deg):  # every record solved afresh, one block at a time

@@ -27,8 +27,8 @@ def test_factor_and_value():
 
 
 @pytest.mark.parametrize("text", ["", "x", "abc", "0", "-0.5", "1.2", "x1.5", "nan", "inf", "x0"])
-def test_bad_values_name_the_option(text):
-    with pytest.raises(InputError, match="^--restitution: "):
+def test_bad_values_name_the_field(text):
+    with pytest.raises(InputError, match="^restitution: "):  # the command line: --restitution
         Restitution.parse(text)
 
 

@@ -106,7 +106,8 @@ def test_killed_run_resumes_to_identical_results(manifest, tmp_path):
 
     # the same run uninterrupted, in this process
     whole = tmp_path / "whole"
-    audit.api.run("priestley1978", load_records(manifest), [15.0], size_grid(3.0, 8.0, 0.25),
+    audit.api.run("priestley1978", load_records(manifest), alpha_deg=[15.0],
+                  sizes_s=size_grid(3.0, 8.0, 0.25),
                   out_dir=whole)
     for name in ("results.csv", "suite.csv", "rocking.csv"):
         assert (out / name).read_bytes() == (whole / name).read_bytes(), name

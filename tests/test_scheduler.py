@@ -18,7 +18,7 @@ from audit.errors import InputError
 from procedures import get_procedures
 from records import RecordSuite, one_pulse
 
-GRID = dict(alpha_deg=[15.0, 20.0], sizes=np.arange(3.0, 8.01, 1.0))
+GRID = dict(alpha_deg=[15.0, 20.0], sizes_s=np.arange(3.0, 8.01, 1.0))
 FRAMES = ("results", "rocking", "spectra", "histories", "estimates_only", "suite")
 
 
@@ -146,7 +146,7 @@ def test_dask_submits_records_as_others_complete():
 def test_scheduler_option_is_checked():
     assert check_scheduler("tcp://10.0.0.5:8786") == "tcp://10.0.0.5:8786"
     for bad in ("threads", "tcp://host", "tcp://:8786", "10.0.0.5:8786"):
-        with pytest.raises(InputError, match="^--scheduler: "):
+        with pytest.raises(InputError, match="^scheduler: "):  # the command line: --scheduler
             check_scheduler(bad)
 
 

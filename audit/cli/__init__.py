@@ -17,6 +17,7 @@ import warnings
 from audit import __version__
 from audit.cli import (check, design_spectrum, fragility, listing, margins, options, report, rock,
                        run, spectrum)
+from audit.cli.flags import with_flags
 from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible
 from audit.errors import InputError, InputWarning
 
@@ -60,7 +61,9 @@ def main(argv=None) -> int:
 
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"warning: {' '.join(str(message).split())}", file=sys.stderr)
+    text = str(message)
+    field = text.partition(":")[0]
+    print(f"warning: {' '.join(with_flags(text, (field,)).split())}", file=sys.stderr)
 
 
 def _run(args) -> int:
@@ -69,7 +72,8 @@ def _run(args) -> int:
             args.jobs = options.cap_jobs(args.jobs)
         return args.func(args)
     except InputError as exc:
-        print(f"error: {' '.join(str(exc).split())}", file=sys.stderr)
+        message = with_flags(str(exc), getattr(exc, "fields", ()), args.command)
+        print(f"error: {' '.join(message.split())}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader of standard output (e.g. `| head`) has gone
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # no error at exit

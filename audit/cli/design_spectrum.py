@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from audit.cli import options
-from audit.errors import InputError
+from audit.engine.defaults import DEFAULT_DESIGN_DAMPING_PCT, DEFAULT_DESIGN_PERIODS, sizes_text
 
 
 def add_parser(sub):
@@ -25,33 +25,25 @@ def add_parser(sub):
                    help="NTC 2018 soil category (Tab. 3.2.IV)")
     p.add_argument("--topography", default="T1", choices=("T1", "T2", "T3", "T4"),
                    help="NTC 2018 topographic category (Tab. 3.2.V)")
-    p.add_argument("--damping", default="5", metavar="PCT,...", help="damping ratios [%%]")
-    p.add_argument("--periods", default="0:8:0.02", metavar="START:STOP:STEP", help="periods [s]")
+    p.add_argument("--damping", default=",".join(f"{d:g}" for d in DEFAULT_DESIGN_DAMPING_PCT),
+                   metavar="PCT,...", help="damping ratios [%%]")
+    p.add_argument("--periods", default=sizes_text(DEFAULT_DESIGN_PERIODS),
+                   metavar="START:STOP:STEP", help="periods [s]")
     p.add_argument("--csv", metavar="FILE", help="CSV output (default: standard output)")
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
+    from audit.api import design_spectrum
     csv = options.output_file(args.csv, "--csv")
     damping = options.damping_pct(args.damping)
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
-    from audit.physics.design_spectra import FEMA356Spectrum, NTC2018Spectrum, UBC97Spectrum
-    if args.code == "fema356":
-        if args.sxs is None or args.sx1 is None:
-            raise InputError("design-spectrum fema356 needs --sxs G and --sx1 G")
-        spectrum = FEMA356Spectrum(args.sxs, args.sx1)
-    elif args.code == "ntc2018":
-        if args.ag is None or args.f0 is None or args.tc_star is None:
-            raise InputError("design-spectrum ntc2018 needs --ag G, --f0 F0 and --tc-star S")
-        spectrum = NTC2018Spectrum(args.ag, args.f0, args.tc_star, args.soil, args.topography)
-    else:
-        spectrum = UBC97Spectrum(args.na, args.nv)
+    spectrum, columns = design_spectrum(
+        args.code, periods, 100.0 * damping, sxs_g=args.sxs, sx1_g=args.sx1, na=args.na,
+        nv=args.nv, ag_g=args.ag, f0=args.f0, tc_star_s=args.tc_star, soil=args.soil,
+        topography=args.topography)
+    if args.code == "ubc97":
         print(f"UBC 97: seismic zone 4, soil profile S_D, N_a = {args.na:g}, N_v = {args.nv:g} "
               f"(C_a = {spectrum.ca:.3f}, C_v = {spectrum.cv:.3f})", file=sys.stderr)
-    import numpy as np
-    options.write_csv({  # a dict of columns: no pandas for this command
-        "period_s": np.tile(periods, damping.size),
-        "damping_pct": np.repeat(100.0 * damping, periods.size),
-        "sa_g": np.concatenate([spectrum.acceleration(periods, d) for d in damping]),
-        "sd_m": np.concatenate([spectrum.displacement(periods, d) for d in damping])}, csv)
+    options.write_csv(columns, csv)  # a dict of columns: no pandas for this command
     return 0

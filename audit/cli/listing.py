@@ -14,7 +14,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from procedures import available_procedures
+    from audit.api import available_procedures
     print("Procedures:")
     for name, cls in available_procedures().items():
         print(f"  {name:<16} {cls.title} — {cls.damping_law}; {cls.spectrum_source}")

@@ -8,15 +8,13 @@ import time
 from pathlib import Path
 
 from audit.cli import options
-from audit.cli.run import design_site
-from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, alpha_text)
+from audit.cli.run import site_options
+from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
+                                   DEFAULT_MARGINS_SIZES, DEFAULT_SITE_LEVEL, SITE_LEVELS,
+                                   alpha_text, sizes_text)
 from audit.errors import InputError
-from audit.files import write_files_atomically
 
 DEFAULT_OUT = "audit-out/margins"
-DEFAULT_IM = "sa:1.0"
-#: Block sizes 2π/p of the margins grid: START:STOP:STEP [s].
-DEFAULT_MARGINS_SIZES = "0.5:8:0.25"
 
 
 def add_parser(sub):
@@ -29,34 +27,34 @@ def add_parser(sub):
                     "probability of overturning there, and the FEMA P695 collapse margin ratio. "
                     "Writes margins.html, stripes.csv, fragility.csv, capacity.csv, "
                     "required_alpha.csv, scan.csv and summary.json; with --hazard, each block's "
-                    "annual rate of overturning at the site and the α each size needs for "
-                    "the risk target (risk.csv, risk_alpha.csv, hazard.csv).")
+                    "annual rate of overturning at the site and the slenderness each size needs "
+                    "for the risk target (risk.csv, risk_alpha.csv, hazard.csv).")
     p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
     p.add_argument("--im", metavar="pga|pgv|sa:T",
                    help=f"intensity measure: PGA [g], PGV [m/s] or the true 5 %%-damped "
-                        f"spectral acceleration at T [g]; default {DEFAULT_IM}, or the "
-                        "--hazard file's IMT")
+                        f"spectral acceleration at T [g] (default: {DEFAULT_IM}, or the "
+                        "--hazard file's IMT)")
     p.add_argument("--stripes", metavar="IM,...",
                    help="intensity levels (unit of --im); default 24 levels, geometric, "
                         "0.2–5 × the site's design intensity (or the suite's median)")
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
-    p.add_argument("--sizes", default=DEFAULT_MARGINS_SIZES, metavar="START:STOP:STEP",
+    p.add_argument("--sizes", default=sizes_text(DEFAULT_MARGINS_SIZES), metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s]")
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 design site S_XS,S_X1 [g] of every record (the records' own "
                         "sites are replaced); its intensity is the CMR's denominator, taken as "
                         "the MCE's (FEMA P695) unless --level design")
-    p.add_argument("--level", choices=("mce", "design"), default="mce",
+    p.add_argument("--level", choices=tuple(SITE_LEVELS), default=DEFAULT_SITE_LEVEL,
                    help="hazard level of the --site values: mce (the CMR is over them) or "
                         "design (the CMR is over 1.5 × them, the MCE of ASCE 7)")
     options.add_scaling_options(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
     options.add_block_option(p)
-    options.add_hazard_options(p)
     options.add_restitution_option(p)
+    options.add_hazard_options(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
@@ -70,70 +68,38 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.api import margins
-    from audit.engine.blocks import parse_blocks
-    from audit.engine.fragility import DEFAULT_STRIPES
-    from audit.engine.margins import IntensityMeasure
-    from audit.engine.partial import PARTIAL_DIR
-    from audit.engine.progress import Progress
-    from audit.engine.scheduler import check_scheduler
+    from audit.api import PARTIAL_DIR, margins
     from audit.files import check_output_dir
-    from procedures import get_procedures
     from reports.margins_page import MARGINS_HTML
     out_dir = check_output_dir(Path(args.out))
     out_dir_existed = out_dir.exists()
-    scheduler = check_scheduler(args.scheduler)
-    site_location = options.site_location(args.site_location)
-    if site_location and not args.hazard:
+    values = {"alpha_deg": options.alphas_deg(args.alpha),
+              "sizes_s": options.sizes(args.sizes), "blocks": args.block or (),
+              "restitution": args.restitution, "free_motion_s": args.free_motion,
+              "site_level": args.level, "risk_target": args.risk_target}
+    if args.im is not None:  # without it, the default or the hazard file's IMT
+        values["im"] = args.im
+    if args.hazard:
+        values.update(hazard=args.hazard, site_location=options.site_location(args.site_location))
+    elif args.site_location:
         raise InputError("--site-location: a site of the --hazard file; no --hazard given")
-    hazard = None
-    if args.hazard:  # read before any work: its IMT sets the intensity measure
-        from audit.api import read_hazard
-        from audit.engine.risk import check_same_im, hazard_im
-        hazard = read_hazard(args.hazard, site_location)
-        check_same_im(hazard, args.im, "--im")
-    im = hazard_im(hazard) if hazard else IntensityMeasure.parse(args.im or DEFAULT_IM)
-    levels = options.float_list(args.stripes, "--stripes") if args.stripes else None
-    if levels is not None and not all(level > 0 for level in levels):
-        raise InputError(f"--stripes: intensity levels must be positive, got '{args.stripes}'")
-    procedures = get_procedures(args.procedure)
-    sizes = options.sizes(args.sizes)
-    alphas = options.alphas_deg(args.alpha)
-    blocks = parse_blocks(args.block)
-    restitution = options.restitution(args)
-    args.site_override = bool(args.site)  # one design site: the audit is of that site
-    suite = design_site(args, options.suite(args))
-    stripes = len(levels) if levels is not None else DEFAULT_STRIPES
-    grid_blocks = sizes.size * alphas.size + len(blocks)
-    # the stripes, then the required-α grid (20 α per size) and its bisections
-    options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
-                       blocks=stripes * grid_blocks + sizes.size * (20 + 8),
-                       settings=(("--stripes", stripes, DEFAULT_STRIPES),
-                                 *options.grid_settings(sizes.size, alphas.size,
-                                                        DEFAULT_MARGINS_SIZES),
-                                 ("--block", len(blocks), 0)))
+    if args.stripes is not None:  # '' is refused, not taken for the default
+        values["stripes"] = options.float_list(args.stripes, "--stripes")
+    site = site_options(args)
+    del site["site_override"]  # one design site: the audit is of that site
     start = time.perf_counter()
-    progress = Progress(len(suite), "record")
-    progress.stage(f"exact fragility of {grid_blocks} blocks on {len(suite)} records × "
-                   f"{stripes} stripes of {im.name}; {', '.join(p.name for p in procedures)} at "
-                   "the same stripes; then the required slenderness of each size")
     try:
-        result = margins(procedures, suite, im.name, levels, alphas, sizes, blocks,
-                         restitution=restitution, jobs=args.jobs, free_motion_s=args.free_motion,
-                         scheduler=scheduler, progress=progress,
-                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume,
-                         site_level=args.level, hazard=hazard, risk_target=args.risk_target)
+        result = margins(args.procedure, options.suite(args), force=args.force, **values, **site,
+                         jobs=args.jobs, scheduler=args.scheduler,
+                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True)
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)
-    finally:
-        progress.done()
-    progress.stage(f"writing the tables and {MARGINS_HTML} to {out_dir}")
-    write_files_atomically(out_dir, result.files())
+    result.write(out_dir)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
-    _print_summary(result, suite, im, procedures, sizes, time.perf_counter() - start)
+    _print_summary(result, time.perf_counter() - start)
     print(f"Wrote {out_dir / MARGINS_HTML} and stripes.csv, fragility.csv, capacity.csv, "
           "required_alpha.csv, scan.csv, summary.json"
-          + (", risk.csv, risk_alpha.csv, hazard.csv" if hazard else ""))
+          + (", risk.csv, risk_alpha.csv, hazard.csv" if args.hazard else ""))
     return 0
 
 
@@ -146,16 +112,17 @@ def _print_risk(result) -> None:
               f"it from {row.im_low_90_g:.3g}–{row.im_high_90_g:.3g} g")
 
 
-def _print_summary(result, suite, im, procedures, sizes, seconds) -> None:
+def _print_summary(result, seconds) -> None:
     fragility, summary = result.fragility, result.summary
-    print(f"Fragility of {len(fragility)} blocks on {suite.description} in "
+    sizes = summary["grid"]["size_s"]
+    print(f"Fragility of {len(fragility)} blocks on {summary['records_source']} in "
           f"{summary['scheduler']} ({seconds:.1f} s)"
           + (f"; reused {len(summary['resumed'])} records of an interrupted run"
              if summary["resumed"] else ""))
     if summary["design_im"]:
-        print(f"  median CMR {fragility['cmr'].median():.2f} (over the MCE {im.name} = "
-              f"{summary['mce_im']:.3g} {im.unit}; {fragility['median_extrapolated'].sum()} "
-              "medians beyond the stripes give bounds)")
+        print(f"  median CMR {fragility['cmr'].median():.2f} (over the MCE {summary['im']} = "
+              f"{summary['mce_im']:.3g} {summary['im_unit']}; "
+              f"{fragility['median_extrapolated'].sum()} medians beyond the stripes give bounds)")
     print(f"  blocks with islands of survival above overturning: "
           f"{(fragility['records_with_islands'] > 0).mean():.0%}")
     for name, rows in result.capacity.groupby("procedure", sort=False):
@@ -167,7 +134,7 @@ def _print_summary(result, suite, im, procedures, sizes, seconds) -> None:
               f"{rows['ratio_to_exact_median'].median():.2f}")
     exact = result.required_alpha.set_index(["procedure", "size_s"])["required_alpha_deg"]
     drawn = set(result.required_alpha["procedure"])
-    for name in (p.name for p in procedures if p.name in drawn):
+    for name in (p["name"] for p in summary["procedures"] if p["name"] in drawn):
         below = [size for size in sizes
                  if exact.get((name, size), math.nan) < exact.get(("exact@0.10", size), math.nan)]
         print(f"  {name} accepts blocks more slender than the exact 10 % curve for "

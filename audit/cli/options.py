@@ -13,6 +13,7 @@ import sys
 from typing import TYPE_CHECKING
 from pathlib import Path
 
+from audit.engine.defaults import DEFAULT_RISK_TARGET
 from audit.errors import InputError
 
 if TYPE_CHECKING:  # numpy is imported where a grid is parsed, not at start-up
@@ -58,7 +59,7 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     """START:STOP:STEP (inclusive) or a comma list of times [s] given to ``option``."""
     import numpy as np
 
-    from audit.engine.grid import size_grid
+    from audit.api import size_grid
     parts = text.split(":")
     low = "0 ≤ START" if allow_zero else "0 < START"
     try:
@@ -184,7 +185,8 @@ def add_scaling_options(parser):
 
 
 def add_restitution_option(parser):
-    parser.add_argument("--restitution", default="housner", metavar="housner|VALUE|xFACTOR",
+    from audit.engine.defaults import DEFAULT_RESTITUTION
+    parser.add_argument("--restitution", default=DEFAULT_RESTITUTION, metavar="housner|VALUE|xFACTOR",
                         help="impact model: Eq. 4.8 (housner, default), a fixed coefficient of "
                              "restitution r, or a multiple of Eq. 4.8 (e.g. x0.9)")
 
@@ -206,11 +208,6 @@ def add_ground_truth_options(parser):
                         help="rerun the exact response under alternative models, e.g. "
                              "restitution=x0.9,x0.8 or vertical, and flag verdicts that change "
                              "(exact_model_sensitive)")
-
-
-def restitution(args):
-    from audit.physics.block import Restitution
-    return Restitution.parse(args.restitution, "--restitution")
 
 
 def add_scheduler_options(parser):
@@ -236,7 +233,7 @@ def interrupted(out_dir: Path, out_dir_existed: bool) -> int:
     nothing when there are none; the message on stderr, exit status 130."""
     import shutil
 
-    from audit.engine.partial import PARTIAL_DIR, kept_parts
+    from audit.api import PARTIAL_DIR, kept_parts
     kept = kept_parts(out_dir / PARTIAL_DIR)
     if not kept:  # interrupted before the first record was stored: leave nothing
         shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
@@ -254,34 +251,6 @@ def add_force_option(parser):
                              "(see audit/engine/guards.py)")
 
 
-def check_cost(args, motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0,
-               settings=(), free_motion_option: str = "--free-motion"):
-    """Refuse (unless ``--force``) or announce the estimated work, before it starts.
-
-    ``settings`` are the options ``blocks`` and ``oscillators`` are proportional to, as
-    ``(option, values, values by default)``: a refusal names the one furthest beyond its
-    default, or ``free_motion_option``, the longest record or the number of records where they
-    are further beyond their usual sizes.
-    """
-    from audit.engine import guards
-    guards.check(guards.estimate(motions, free_motion_s, blocks, oscillators,
-                                 getattr(args, "jobs", 1),
-                                 tuple(guards.Setting(*setting) for setting in settings),
-                                 free_motion_option), args.force)
-
-
-def grid_settings(sizes_count: int, alphas_count: int, default_sizes: str | None = None):
-    """The ``--sizes`` and ``--alpha`` settings of :func:`check_cost`: their counts of values
-    against those of their defaults (``default_sizes``: the command's, if not the audit's)."""
-    from audit.engine.defaults import alpha_text, sizes_text
-    return (("--sizes", sizes_count, values_in(default_sizes or sizes_text(), "--sizes")),
-            ("--alpha", alphas_count, values_in(alpha_text(), "--alpha")))
-
-
-def values_in(text: str, option: str) -> int:
-    """Values that ``text``, a START:STOP:STEP grid or comma list of ``option``, gives (e.g. of
-    its default, for :func:`check_cost`)."""
-    return time_grid(text, option, allow_zero=True).size
 
 
 def motion(args):
@@ -298,14 +267,6 @@ def motion(args):
     if Path(args.record).is_file():  # a file of its own: --dt and --units are its
         return load_path(args.record, **record_file(args)).entries[0].motion
     return resolve_motion(suite(args), args.record).motion
-
-
-def vertical_motion(motion, vertical: bool):
-    """``motion``, checked to have the vertical component ``--vertical`` asks for."""
-    if vertical and motion.vertical is None:
-        raise InputError(f"--vertical: {motion.id} has no vertical component (give it in the "
-                         "manifest as vertical_file, or a PEER UP/DWN file beside the record)")
-    return motion
 
 
 def add_records_option(parser):
@@ -390,7 +351,7 @@ def add_hazard_options(parser):
                              "with a line '# imt=SA(1.0)'; its IMT sets --im")
     parser.add_argument("--site-location", metavar="LON,LAT",
                         help="the site in a hazard file of several sites [degrees]")
-    parser.add_argument("--risk-target", type=PROBABILITY, default=0.01, metavar="P",
+    parser.add_argument("--risk-target", type=PROBABILITY, default=DEFAULT_RISK_TARGET, metavar="P",
                         help="risk target: probability of overturning in 50 years")
 
 

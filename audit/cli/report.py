@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 
@@ -17,18 +18,10 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.engine.progress import Progress
-    from audit.engine.results import REPORT_HTML, load_run
-    from audit.files import write_files_atomically
-    from reports import render_report
-    # bad input fails here, before anything is said; only the rows of the records the report
-    # shows are read
-    run = load_run(args.results_dir, shown=True)
-    blocks = sum(line["blocks"] for line in run.summary["bottom_line"])
-    progress = Progress(0, "step")
-    progress.stage(f"read the results in {args.results_dir}; rendering the report of "
-                   f"{len(run.summary['records'])} records, {blocks} blocks")
-    html = render_report(run).encode()
-    write_files_atomically(Path(args.results_dir), {REPORT_HTML: html})
-    progress.stage(f"wrote {Path(args.results_dir) / REPORT_HTML} ({len(html) / 1e6:.1f} MB)")
+    from audit.api import REPORT_HTML, load_result
+    result = load_result(args.results_dir)
+    print(f"note: read the results in {args.results_dir}; rendering the report of "
+          f"{len(result.summary['records'])} records, {result.blocks} blocks", file=sys.stderr)
+    path = result.report(Path(args.results_dir) / REPORT_HTML)
+    print(f"note: wrote {path} ({path.stat().st_size / 1e6:.1f} MB)", file=sys.stderr)
     return 0

@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import io
 import json
 import math
 import sys
 
 from audit.cli import options
-from audit.engine.defaults import DEFAULT_FREE_MOTION_S
+from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_RESTITUTION
 from audit.errors import InputError
 
 
@@ -44,25 +43,17 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.physics.block import RigidBlock
-    from audit.physics.rocking import simulate
+    import audit.api as api
     plot = options.output_file(args.plot, "--plot")
     history = options.output_file(args.history, "--history")
-    if args.r is not None and args.restitution != "housner":
+    if args.r is not None and args.restitution != DEFAULT_RESTITUTION:
         raise InputError("give the impact model once: --r or --restitution, not both")
-    r = args.r if args.r is not None else options.restitution(args)
-    named = None
+    restitution = args.r if args.r is not None else args.restitution
     if args.block is not None:
-        from audit.engine.blocks import parse_blocks
         if args.p is not None or args.size is not None or args.alpha is not None:
             raise InputError("--block: give the block once, by its dimensions or by --p/--size "
                              "and --alpha")
-        blocks = parse_blocks([args.block])
-        if len(blocks) != 1:
-            raise InputError(f"--block: rock takes one block, got '{args.block}'")
-        named = blocks[0]
-        block = RigidBlock.from_dimensions(named.width_m / 2, named.height_m / 2, r)
-        args.alpha = math.degrees(block.alpha)
+        block = api.Block.parse(args.block)
     else:
         if (args.p is None) == (args.size is None):
             raise InputError("give the block size: exactly one of --p RAD_PER_S or --size "
@@ -70,47 +61,20 @@ def run(args) -> int:
         if args.alpha is None:
             raise InputError("give the slenderness: --alpha DEG (or the block by --block "
                              "WIDTHxHEIGHT)")
-        alpha = math.radians(args.alpha)
-        block = (RigidBlock(args.p, alpha, r) if args.p is not None
-                 else RigidBlock.from_size(args.size, alpha, r))
-    motion = options.vertical_motion(options.motion(args), args.vertical)
-    options.check_cost(args, [motion], args.duration, blocks=1, free_motion_option="--duration")
-    response = simulate(block, motion, free_motion_s=args.duration, vertical=args.vertical)
-    from audit.engine.ground_truth import slides
-    friction = response.required_friction
-    sliding = None if args.friction is None else bool(slides(friction, args.friction))
-    result = {
-        "record": motion.id, "p": block.p, "size_s": block.size_s, "alpha_deg": args.alpha,
-        "r": block.r, "restitution": f"{r:g}" if args.r is not None else str(r),
-        "R_m": block.radius, "block_m": named.label if named else None,
-        "overturned": response.overturned,
-        "overturn_time": None if math.isnan(response.overturn_time) else response.overturn_time,
-        "peak_rotation": response.peak_rotation,
-        "peak_rotation_ratio": response.peak_rotation_ratio,
-        "peak_rotation_after_excitation": response.peak_rotation_after_excitation,
-        "peak_rotation_free_vibration": None if math.isnan(response.peak_rotation_free_vibration)
-        else response.peak_rotation_free_vibration,
-        "peak_angular_velocity": response.peak_angular_velocity,
-        "impacts": response.n_impacts,
-        "cycle_durations": response.cycle_durations.tolist(),
-        "uplifted": response.uplifted,
-        "required_friction": None if math.isinf(friction) else friction,
-        "jumps": response.jumps, "friction": args.friction, "slides": sliding,
-        "vertical": args.vertical,
-    }
+        block = api.Block(alpha_deg=args.alpha,
+                          size_s=args.size if args.size is not None else 2 * math.pi / args.p)
+    response = api.rock(block, options.motion(args), free_motion_s=args.duration,
+                        restitution=restitution, vertical=args.vertical, friction=args.friction,
+                        force=args.force)
+    result = {**response.as_dict(),
+              "block_m": args.block and f"{block.width_m:g}x{block.height_m:g}",
+              "vertical": args.vertical}
     outputs = {}
     if history:
-        outputs[history] = history_csv(response, motion)
+        outputs[history] = response.history_csv()
     if plot:
-        from reports.figures import draw_time_histories
-        outputs[plot] = options.figure_png(lambda fig: draw_time_histories(fig, [{
-            "time": response.time, "theta_ratio": response.theta / block.alpha,
-            "omega": response.omega,
-            "title": f"{motion.id}: 2π/p = {block.size_s:.3g} s, α = {args.alpha:g}°",
-            "rocking_span": (response.impact_times[0], response.impact_times[-1])
-            if response.n_impacts else None,
-            "cycle_starts": response.cycle_starts, "cycle_durations": response.cycle_durations,
-            "excitation_end": motion.duration}]), height=3.9)
+        from reports.figures import png_bytes
+        outputs[plot] = png_bytes(response.plot(height_in=3.9))
     from audit.files import write_atomically
     write_atomically(outputs)  # all or nothing
     if history:
@@ -118,49 +82,40 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(result))
         return 0
-    state = (f"OVERTURNS at t = {response.overturn_time:.3f} s" if response.overturned
-             else "survives" if response.uplifted else "does not uplift (PGA ≤ g tan α)")
-    source = "" if motion.source in ("", "analytic pulse") else f" — {motion.source}"
-    # after overturning there is no "after the excitation"
-    after = ("n/a" if response.overturned
-             else f"{response.peak_rotation_after_excitation / block.alpha:.4f} α")
-    free = ("n/a" if math.isnan(response.peak_rotation_free_vibration)
-            else f"{response.peak_rotation_free_vibration / block.alpha:.4f} α (largest turning point)")
-    cycles = ", ".join(f"{d:.3f}" for d in response.cycle_durations[:8]) or "—"
-    more = " …" if response.cycle_durations.size > 8 else ""
-    print((f"Block {named.label} m (width × height): " if named else "Block ")
-          + f"p = {block.p:.4g} rad/s (2π/p = {block.size_s:.4g} s, R = {block.radius:.3g} m), "
-          f"α = {args.alpha:g}°, r = {block.r:.4f}\n"
-          f"Excitation: {motion.id}: {motion.component}{source}\n"
-          f"Result: {state}\n"
-          f"  peak |θ|                   {response.peak_rotation:.6g} rad = "
-          f"{response.peak_rotation_ratio:.4f} α\n"
-          f"  peak |θ| after excitation  {after}\n"
-          f"  free-vibration peak |θ|    {free}\n"
-          f"  peak |θ'|                  {response.peak_angular_velocity:.6g} rad/s\n"
-          f"  impacts                    {response.n_impacts}\n"
-          f"  full rocking cycles [s]    {cycles}{more}\n"
-          f"  required friction |H|/V    "
-          f"{'n/a (jumps: V < 0)' if response.jumps else f'{friction:.4f}'} (tan α = {math.tan(block.alpha):.4f})"
-          + ("" if sliding is None else f"\n  {'with μ = ' + format(args.friction, 'g'):<27}"
-             f"{'SLIDES: pure rocking does not apply' if sliding else 'rocks without sliding'}"))
+    print(_text(response, result))
     if args.plot:
         print(f"Plot written to {args.plot}")
     return 0
 
 
-def history_csv(response, motion) -> bytes:
-    """The response at every solver output point as CSV bytes.
-
-    Columns ``time_s, theta_rad, theta_dot_rad_s, ground_acc_g``; an impact appears twice at
-    its time (θ' before, then after); nothing after overturning.
-    """
-    import numpy as np
-
-    from audit import G
-    time, theta, omega = response.history()
-    table = np.column_stack((time, theta, omega, motion.acceleration_at(time) / G))
-    text = io.StringIO()
-    np.savetxt(text, table, fmt="%.10g", delimiter=",", comments="",
-               header="time_s,theta_rad,theta_dot_rad_s,ground_acc_g")
-    return text.getvalue().encode()
+def _text(response, result: dict) -> str:
+    solution, rigid, motion = response.solution, response.solution.block, response.motion
+    state = (f"OVERTURNS at t = {solution.overturn_time:.3f} s" if solution.overturned
+             else "survives" if solution.uplifted else "does not uplift (PGA ≤ g tan α)")
+    source = "" if motion.source in ("", "analytic pulse") else f" — {motion.source}"
+    # after overturning there is no "after the excitation"
+    after = ("n/a" if solution.overturned
+             else f"{solution.peak_rotation_after_excitation / rigid.alpha:.4f} α")
+    free = ("n/a" if math.isnan(solution.peak_rotation_free_vibration)
+            else f"{solution.peak_rotation_free_vibration / rigid.alpha:.4f} α (largest turning point)")
+    cycles = ", ".join(f"{d:.3f}" for d in solution.cycle_durations[:8]) or "—"
+    more = " …" if solution.cycle_durations.size > 8 else ""
+    friction = solution.required_friction
+    return ((f"Block {result['block_m']} m (width × height): " if result["block_m"] else "Block ")
+            + f"p = {rigid.p:.4g} rad/s (2π/p = {rigid.size_s:.4g} s, R = {rigid.radius:.3g} m), "
+            f"α = {result['alpha_deg']:g}°, r = {rigid.r:.4f}\n"
+            f"Excitation: {motion.id}: {motion.component}{source}\n"
+            f"Result: {state}\n"
+            f"  peak |θ|                   {solution.peak_rotation:.6g} rad = "
+            f"{solution.peak_rotation_ratio:.4f} α\n"
+            f"  peak |θ| after excitation  {after}\n"
+            f"  free-vibration peak |θ|    {free}\n"
+            f"  peak |θ'|                  {solution.peak_angular_velocity:.6g} rad/s\n"
+            f"  impacts                    {solution.n_impacts}\n"
+            f"  full rocking cycles [s]    {cycles}{more}\n"
+            f"  required friction |H|/V    "
+            f"{'n/a (jumps: V < 0)' if solution.jumps else f'{friction:.4f}'} "
+            f"(tan α = {math.tan(rigid.alpha):.4f})"
+            + ("" if response.slides is None else
+               f"\n  {'with μ = ' + format(response.friction, 'g'):<27}"
+               f"{'SLIDES: pure rocking does not apply' if response.slides else 'rocks without sliding'}"))

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import shutil
-import sys
 import time
 from pathlib import Path
 
@@ -61,79 +60,50 @@ def add_parser(sub):
     p.set_defaults(func=run)
 
 
-def design_site(args, suite):
-    """``suite`` with the design sites and scaling of ``--ntc-site``, ``--site``,
-    ``--site-override``, ``--scale-to-site`` and ``--anchor-period``."""
-    from audit.api import design_suite
-    ntc_site = site = None
+def site_options(args) -> dict:
+    """The design-site arguments of the API from ``--site``, ``--site-override``,
+    ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``."""
+    site = {"site_override": getattr(args, "site_override", False),
+            "scale_to_site": args.scale_to_site,
+            "anchor_period_s": args.anchor_period}
     if args.ntc_site:
         fields = args.ntc_site.split(",")
         if len(fields) != 5:
             raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        ntc_site = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+        site["ntc_site"] = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
     if args.site:
-        site = options.float_list(args.site, "--site")
-        if len(site) != 2:
+        site["site"] = options.float_list(args.site, "--site")
+        if len(site["site"]) != 2:
             raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
-    return design_suite(suite, site, args.site_override, args.scale_to_site, args.anchor_period,
-                        ntc_site)
+    return site
 
 
 def run(args) -> int:
+    from audit.api import PARTIAL_DIR, REPORT_HTML
     from audit.api import run as run_api
-    from audit.engine.ground_truth import parse_sensitivity
-    from audit.engine.partial import PARTIAL_DIR
-    from audit.engine.progress import Progress
-    from audit.engine.results import REPORT_HTML
-    from audit.engine.scheduler import check_scheduler
-    from audit.engine.suite_run import compiles_first
     from audit.files import check_output_dir
-    from procedures import get_procedures
-    from procedures.base import SPECTRUM_PERIODS_S
     out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
     out_dir_existed = out_dir.exists()
-    scheduler = check_scheduler(args.scheduler)
-    procedures = get_procedures(args.procedure)
-    sizes = options.sizes(args.sizes)
-    alphas = options.alphas_deg(args.alpha)
-    restitution = str(options.restitution(args))
-    sensitivity = parse_sensitivity(args.sensitivity)
-    suite = design_site(args, options.suite(args))
-    if args.vertical or "vertical" in sensitivity:
-        with_vertical = sum(e.motion is not None and e.motion.vertical is not None for e in suite)
-        if not with_vertical:
-            print(f"warning: --vertical: none of the {len(suite)} records has a vertical "
-                  "component; the exact response stays horizontal", file=sys.stderr)
-    # the fragility flag solves every block twice more (record × (1 ± ε)), each alternative
-    # model once more
-    options.check_cost(args, [e.motion for e in suite if not e.missing], args.free_motion,
-                       blocks=sizes.size * alphas.size * ((3 if args.robustness else 1)
-                                                          + len(sensitivity)),
-                       oscillators=SPECTRUM_PERIODS_S.size * (3 + alphas.size * len(procedures)),
-                       settings=options.grid_settings(sizes.size, alphas.size))
+    grid = {"alpha_deg": options.alphas_deg(args.alpha), "sizes_s": options.sizes(args.sizes)}
+    site = site_options(args)
     start = time.perf_counter()
-    detail = [item.strip() for item in (args.detail or "").split(",") if item.strip()]
-    progress = Progress(len(suite), "record")
-    progress.stage(f"auditing {', '.join(p.name for p in procedures)} on {len(suite)} records")
-    if compiles_first():
-        progress.stage("compiling the rocking solver and the oscillator kernels for this machine "
-                       "(first run only: 5–10 s)")
     try:
-        result = run_api(procedures, suite, alphas, sizes, jobs=args.jobs,
-                         free_motion_s=args.free_motion, progress=progress,
-                         agree_band=args.agree_band, robustness=args.robustness,
-                         scheduler=scheduler, partial_dir=out_dir / PARTIAL_DIR,
-                         resume=args.resume, detail=detail, restitution=restitution,
+        result = run_api(args.procedure, options.suite(args), out_dir=out_dir, force=args.force,
+                         **grid, free_motion_s=args.free_motion, agree_band=args.agree_band,
+                         robustness=args.robustness, restitution=args.restitution,
                          vertical=args.vertical, friction=args.friction,
-                         sensitivity=sensitivity, out_dir=out_dir)
+                         sensitivity=args.sensitivity or (), **site,
+                         jobs=args.jobs, scheduler=args.scheduler,
+                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True,
+                         detail=[item.strip() for item in (args.detail or "").split(",")
+                                 if item.strip()])
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)
-    finally:
-        progress.done()
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     total = time.perf_counter() - start
     summary = result.summary
-    print(f"Audited {', '.join(p.name for p in procedures)} on {suite.description} "
+    names = ", ".join(p["name"] for p in summary["procedures"])
+    print(f"Audited {names} on {summary['records_source']} "
           f"in {summary['scheduler']}"
           + (f"; reused {len(summary['resumed'])} records of an interrupted run"
              if summary["resumed"] else ""))

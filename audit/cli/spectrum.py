@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 from audit.cli import options
-from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, alpha_text, sizes_text
-
-#: Defaults of the response spectra: damping ratios [%] and oscillator periods [s].
-DEFAULT_DAMPING_PCT = "5,10,15"
-DEFAULT_PERIODS = "0.02:10:0.02"
+from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+                                   DEFAULT_PERIODS, DEFAULT_RESPONSE_FREE_MOTION_S, alpha_text,
+                                   sizes_text)
 
 
 def add_parser(sub):
@@ -18,9 +16,10 @@ def add_parser(sub):
                    help="slendernesses [degrees]")
     p.add_argument("--sizes", default=sizes_text(), metavar="START:STOP:STEP",
                    help="block sizes 2π/p [s] (rocking)")
-    p.add_argument("--damping", default=DEFAULT_DAMPING_PCT, metavar="PCT,...",
+    p.add_argument("--damping", default=",".join(f"{d:g}" for d in DEFAULT_DAMPING_PCT),
+                   metavar="PCT,...",
                    help="damping ratios [%%] (response)")
-    p.add_argument("--periods", default=DEFAULT_PERIODS, metavar="START:STOP:STEP",
+    p.add_argument("--periods", default=sizes_text(DEFAULT_PERIODS), metavar="START:STOP:STEP",
                    help="oscillator periods [s] (response)")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, metavar="S",
                    help=f"free motion after the record [s] (default: "
@@ -35,36 +34,27 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    import numpy as np
+    import audit.api as api
     csv = options.output_file(args.csv, "--csv")
     plot = options.output_file(args.plot, "--plot")
     if args.free_motion is None:
-        args.free_motion = DEFAULT_FREE_MOTION_S if args.kind == "rocking" else 0.0
+        args.free_motion = (DEFAULT_FREE_MOTION_S if args.kind == "rocking"
+                            else DEFAULT_RESPONSE_FREE_MOTION_S)
     if args.kind == "response":
         damping = options.damping_pct(args.damping)
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)
-        motion = options.motion(args)
-        options.check_cost(args, [motion], args.free_motion,
-                           oscillators=periods.size * damping.size, settings=(
-                               ("--periods", periods.size,
-                                options.values_in(DEFAULT_PERIODS, "--periods")),
-                               ("--damping", damping.size,
-                                options.values_in(DEFAULT_DAMPING_PCT, "--damping"))))
-        from audit.physics.oscillator import response_spectra
-        frame = response_spectra(motion, periods, damping, args.free_motion).to_frame()
+        frame = api.response_spectra(options.motion(args), periods_s=periods,
+                                     damping_pct=100.0 * damping, free_motion_s=args.free_motion,
+                                     force=args.force)
         from reports.figures import draw_response_spectra as draw
     else:
-        alphas = np.radians(options.alphas_deg(args.alpha))
-        restitution = options.restitution(args)
-        sizes = options.sizes(args.sizes)
-        motion = options.vertical_motion(options.motion(args), args.vertical)
-        options.check_cost(args, [motion], args.free_motion, blocks=sizes.size * alphas.size,
-                           settings=options.grid_settings(sizes.size, alphas.size))
-        from audit.physics.rocking import rocking_spectrum
-        frame = rocking_spectrum(motion, sizes, alphas, restitution, free_motion_s=args.free_motion,
-                                 jobs=args.jobs, vertical=args.vertical).to_frame()
+        alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args.sizes)
+        frame = api.rocking_spectrum(options.motion(args), sizes_s=sizes, alpha_deg=alphas,
+                                     restitution=args.restitution, free_motion_s=args.free_motion,
+                                     vertical=args.vertical, jobs=args.jobs, force=args.force)
         from reports.figures import draw_rocking_spectra as draw
-    figure = ({plot: options.figure_png(lambda fig: draw(fig, frame, motion.id))}
+    record_id = frame.attrs.get("record", "")
+    figure = ({plot: options.figure_png(lambda fig: draw(fig, frame, record_id))}
               if plot else {})
     options.write_csv(frame, csv, figure)
     return 0

@@ -27,7 +27,7 @@ class NamedBlock:
 
     @property
     def label(self) -> str:
-        """``WIDTHxHEIGHT`` in metres, as typed after ``--block``."""
+        """``WIDTHxHEIGHT`` in metres, as a block is typed."""
         return f"{self.width_m:g}x{self.height_m:g}"
 
     @property
@@ -45,8 +45,8 @@ class NamedBlock:
         return self.rigid.size_s
 
 
-def parse_blocks(texts, option: str = "--block", g: float = G) -> list[NamedBlock]:
-    """Blocks of ``--block`` values (repeated, each possibly comma-separated), e.g.
+def parse_blocks(texts, option: str = "blocks", g: float = G) -> list[NamedBlock]:
+    """Blocks of ``option`` texts (repeated, each possibly comma-separated), e.g.
     ``0.4x2.0`` [m]; InputError naming the option and the value otherwise."""
     blocks = []
     for text in texts or ():
@@ -59,13 +59,13 @@ def parse_blocks(texts, option: str = "--block", g: float = G) -> list[NamedBloc
                 width, height = (float(part) for part in parts)
             except ValueError:
                 raise InputError(f"{option}: expected WIDTHxHEIGHT in metres (e.g. 0.4x2.0), "
-                                 f"got '{item}'") from None
+                                 f"got '{item}'", option) from None
             if not (math.isfinite(width) and math.isfinite(height) and width > 0 and height > 0):
                 raise InputError(f"{option}: width and height must be positive numbers of "
-                                 f"metres, got '{item}'")
+                                 f"metres, got '{item}'", option)
             if width >= height:
                 raise InputError(f"{option}: a rocking block is taller than it is wide "
-                                 f"(α < 45°), got width {width:g} m ≥ height {height:g} m")
+                                 f"(α < 45°), got width {width:g} m ≥ height {height:g} m", option)
             blocks.append(NamedBlock(width, height, g))
     return blocks
 

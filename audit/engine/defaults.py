@@ -17,6 +17,29 @@ DEFAULT_ROBUSTNESS = 0.03
 DEFAULT_JOBS = 2
 #: Where records are audited: ``local``, ``dask`` or ``tcp://HOST:PORT``.
 DEFAULT_SCHEDULER = "local"
+#: Anchor period of the FEMA P695 scaling to a design spectrum [s].
+DEFAULT_ANCHOR_PERIOD_S = 1.0
+#: Response spectra: damping ratios [%] and oscillator periods START, STOP, STEP [s].
+DEFAULT_DAMPING_PCT = (5.0, 10.0, 15.0)
+DEFAULT_PERIODS = (0.02, 10.0, 0.02)
+#: Design spectra: damping ratios [%] and periods START, STOP, STEP [s].
+DEFAULT_DESIGN_DAMPING_PCT = (5.0,)
+DEFAULT_DESIGN_PERIODS = (0.0, 8.0, 0.02)
+#: Free motion after the record of oscillator response spectra [s] (none: the record's own).
+DEFAULT_RESPONSE_FREE_MOTION_S = 0.0
+#: The probabilistic procedure audited by ``fragility``, and its records.
+DEFAULT_PROBABILISTIC_PROCEDURE = "femap58"
+DEFAULT_FRAGILITY_RECORDS = "p695-far-field"
+#: The exact solver's impact model: Eq. 4.8 (Housner's).
+DEFAULT_RESTITUTION = "housner"
+#: Intensity measure of the design-level audit (``margins``): true 5 %-damped Sa at 1 s [g].
+DEFAULT_IM = "sa:1.0"
+#: Block sizes 2π/p of the design-level audit's grid: START, STOP (inclusive), STEP [s].
+DEFAULT_MARGINS_SIZES = (0.5, 8.0, 0.25)
+#: Stripes of the design-level audit when none are given: levels, geometric over SPAN × the
+#: design intensity (or the suite's median).
+DEFAULT_STRIPES = 24
+DEFAULT_STRIPE_SPAN = (0.2, 5.0)
 
 
 def alpha_text(alpha_deg=DEFAULT_ALPHA_DEG) -> str:
@@ -29,6 +52,20 @@ def sizes_text(sizes=DEFAULT_SIZES) -> str:
     return ":".join(f"{v:g}" for v in sizes)
 
 
+#: Hazard levels the site's spectral values may be given at, and the factor to the MCE: FEMA
+#: P695's collapse margin is over the MCE intensity, 1.5 × the design one (ASCE 7: S_MS =
+#: 1.5 S_DS, S_M1 = 1.5 S_D1).
+SITE_LEVELS = {"mce": 1.0, "design": 1.5}
+#: The hazard level the site's spectral values are taken at.
+DEFAULT_SITE_LEVEL = "mce"
+#: The risk target of the risk-targeted slenderness: probability of overturning in 50 years.
+DEFAULT_RISK_TARGET = 0.01
+
+
 __all__ = ["DEFAULT_ALPHA_DEG", "DEFAULT_SIZES", "DEFAULT_AGREE_BAND", "DEFAULT_ROBUSTNESS",
-           "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "alpha_text",
-           "sizes_text"]
+           "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "DEFAULT_RESTITUTION", "DEFAULT_ANCHOR_PERIOD_S", "DEFAULT_DAMPING_PCT", "DEFAULT_PERIODS",
+           "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS", "DEFAULT_RESPONSE_FREE_MOTION_S",
+           "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_FRAGILITY_RECORDS",
+           "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "DEFAULT_STRIPE_SPAN", "alpha_text",
+           "sizes_text", "SITE_LEVELS", "DEFAULT_SITE_LEVEL", "DEFAULT_RISK_TARGET"]
+

@@ -18,11 +18,9 @@ import numpy as np
 from scipy.optimize import minimize
 from scipy.stats import norm
 
+from audit.engine.defaults import DEFAULT_STRIPE_SPAN as DEFAULT_SPAN
+from audit.engine.defaults import DEFAULT_STRIPES
 from audit.physics.rocking import rocking_spectrum
-
-#: Default stripes: this many levels, geometric, from SPAN[0] to SPAN[1] × the centre intensity.
-DEFAULT_STRIPES = 24
-DEFAULT_SPAN = (0.2, 5.0)
 
 
 def stripe_levels(centre, count: int = DEFAULT_STRIPES, span=DEFAULT_SPAN) -> np.ndarray:

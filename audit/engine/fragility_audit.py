@@ -16,6 +16,7 @@ import pandas as pd
 from audit import G
 from audit.engine.calibration import PGV_LEVELS_M_S, brier_score, calibration, log_likelihood
 from audit.engine.fragility import fit_lognormal, stripe_outcomes
+from audit.errors import InputError
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.block import RigidBlock
 from procedures.probabilistic import LognormalFragility
@@ -31,6 +32,12 @@ def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -
     """The tables of the audit of ``procedure`` (a :class:`procedures.probabilistic.ProbabilisticProcedure`)
     on the records: file name → :class:`pandas.DataFrame`."""
     levels = np.asarray(levels_m_s, dtype=float)
+    zero = [record_id for record_id, motion in zip(record_ids, motions) if not motion.pgv > 0]
+    if zero:
+        raise InputError(f"records: {zero[0]} has zero intensity (PGV = 0: an all-zero record), "
+                         "so no PGV stripe can be reached by scaling it; leave it out"
+                         + (f" ({len(zero) - 1} other record(s) too)" if len(zero) > 1 else ""),
+                         "records")
     components, stripes, outcomes, bins = [], [], [], []
     for component in procedure.components:
         if not (component.has_block and component.intensity_measure == "PGV"):

@@ -37,7 +37,7 @@ class GroundTruth:
                                             else "")
 
 
-def parse_sensitivity(texts, option: str = "--sensitivity") -> tuple[str, ...]:
+def parse_sensitivity(texts, option: str = "sensitivity") -> tuple[str, ...]:
     """``restitution=A,B,...`` (impact models: ``x0.9``, ``0.9x``, a fixed r, ``housner``)
     and/or ``vertical``, given once or repeated; the alternatives in a canonical spelling
     (``restitution=x0.9``, ``vertical``)."""
@@ -50,7 +50,7 @@ def parse_sensitivity(texts, option: str = "--sensitivity") -> tuple[str, ...]:
         name, _, values = word.partition("=")
         if name.strip().lower() != "restitution" or not values.strip():
             raise InputError(f"{option}: expected restitution=MODEL,... or vertical, got "
-                             f"'{text}'")
+                             f"'{text}'", option)
         alternatives += [f"restitution={Restitution.parse(v, option)}"
                          for v in values.split(",") if v.strip()]
     return tuple(dict.fromkeys(alternatives))

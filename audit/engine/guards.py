@@ -6,9 +6,10 @@ sample for every period and damping ratio) and divides by throughputs measured o
 machine, kept low so the estimate is an upper bound in practice. Above
 :data:`WARN_SECONDS` a command prints one line with the estimate and proceeds; above
 :data:`REFUSE_SECONDS` or :data:`REFUSE_MEMORY_BYTES` it stops with an InputError unless
-``--force`` is given, naming what makes the work large: of the settings the work is
+``force`` is given, naming what makes the work large: of the settings the work is
 proportional to (the free motion, the longest record, the number of records, the command's grids),
-the one furthest beyond its usual size. Light: no scientific import.
+the one furthest beyond its usual size, by its field (the command line puts its flags in their
+place). Light: no scientific import.
 """
 
 from __future__ import annotations
@@ -41,12 +42,12 @@ USUAL_RECORD_SAMPLES = 18_000
 
 @dataclass(frozen=True)
 class Setting:
-    """An option of a command that the work is proportional to.
+    """A setting of a command that the work is proportional to.
 
     Attributes
     ----------
     option : str
-        The option, e.g. ``"--sizes"``.
+        The setting's field, e.g. ``"sizes_s"``.
     count : int
         Values it gives (sizes, slendernesses, stripes, periods, ...).
     default : int
@@ -89,6 +90,8 @@ class Estimate:
     work: str
     cause: str = ""
     memory_cause: str = ""
+    #: The fields the causes may name.
+    fields: tuple = ()
 
 
 def samples_with_tail(motion, free_motion_s: float) -> int:
@@ -98,7 +101,7 @@ def samples_with_tail(motion, free_motion_s: float) -> int:
 
 def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 0,
              jobs: int = 1, settings: tuple[Setting, ...] = (),
-             free_motion_option: str = "--free-motion") -> Estimate:
+             free_motion_option: str = "free_motion_s") -> Estimate:
     """Cost of ``blocks`` rocking runs and ``oscillators`` (period × damping) runs per motion.
 
     Parameters
@@ -115,7 +118,7 @@ def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 
     settings : tuple of Setting
         The command's options that ``blocks`` and ``oscillators`` are proportional to.
     free_motion_option : str
-        The option that sets ``free_motion_s`` (``--duration`` for ``rock``).
+        The field that sets the free motion.
     """
     motions = list(motions)
     samples = [samples_with_tail(m, free_motion_s) for m in motions]
@@ -133,13 +136,15 @@ def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 
     record = _record_cause(max(motions, key=lambda m: m.acceleration.size))
     causes = [free_motion, record,
               Cause(len(motions) / USUAL_RECORDS,
-                    f"the {len(motions):,} records of the suite (--records): audit fewer"),
+                    f"records, {len(motions):,} of them (usually at most {USUAL_RECORDS}): "
+                    "audit fewer"),
               *(Cause(s.count / max(s.default, 1),
                       f"{s.option}, {s.count:,} values ({s.default:,} by default): give fewer")
                 for s in settings)]
     memory = max([free_motion, record] if oscillators else [record], key=lambda c: c.ratio)
     return Estimate(seconds, max(stored) * BYTES_PER_SAMPLE, work,
-                    max(causes, key=lambda c: c.ratio).text, memory.text)
+                    max(causes, key=lambda c: c.ratio).text, memory.text,
+                    ("records", free_motion_option, *(s.option for s in settings)))
 
 
 def _free_motion_cause(motions, samples, free_motion_s: float, option: str) -> Cause:
@@ -168,7 +173,8 @@ def check(cost: Estimate, force: bool, out=None) -> None:
                                cost.memory_cause))
         raise InputError(f"work: {cost.work} would take {reason}, beyond the limit of "
                          f"{_duration(REFUSE_SECONDS)} / {REFUSE_MEMORY_BYTES / 1e9:g} GB, "
-                         f"mostly because of {cause}; or add --force")
+                         f"mostly because of {cause}; or pass force=True", *cost.fields,
+                         "force")
     if cost.seconds > WARN_SECONDS:
         print(f"warning: {cost.work}: this may take up to {_duration(cost.seconds)}",
               file=out)

@@ -31,76 +31,22 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pandas as pd
 
-from audit import G
 from audit.engine.blocks import BlockList
 from audit.engine.csv_text import csv_bytes
 from audit.engine.fragility import (bootstrap_lognormal, fit_lognormal, overturning_pattern,
                                     stripe_levels, stripe_outcomes)
+from audit.engine.intensity import IntensityMeasure
+from audit.engine.defaults import SITE_LEVELS
+from audit.engine.margins_settings import MarginsSettings
 from audit.engine.partial import PartialStore
+from audit.engine.runtime import Runtime
 from audit.engine.scheduler import computed_parts
 from audit.errors import InputError
 from audit.physics.block import Restitution
-from audit.physics.design_spectra import FEMA356Spectrum
-from audit.physics.oscillator import response_spectra
 from audit.physics.rocking import rocking_blocks
 from procedures.context import RecordContext
 from procedures.overturning import overturning_predictions, predicts_overturning
 from records.sites import scaled_site
-
-PGA, PGV, SA = "pga", "pgv", "sa"
-#: Damping of the spectral acceleration of ``sa:T`` [-].
-IM_DAMPING = 0.05
-
-
-@dataclass(frozen=True)
-class IntensityMeasure:
-    """An intensity measure: ``pga`` [g], ``pgv`` [m/s] or ``sa:T`` (true 5 %-damped spectral
-    acceleration max|ü + üg| at period T, [g])."""
-
-    kind: str
-    period_s: float | None = None
-
-    @classmethod
-    def parse(cls, text: str) -> IntensityMeasure:
-        """``pga``, ``pgv`` or ``sa:T``; InputError naming ``--im`` otherwise."""
-        text = text.strip().lower()
-        if text in (PGA, PGV):
-            return cls(text)
-        if text.startswith(f"{SA}:"):
-            try:
-                period = float(text[3:])
-            except ValueError:
-                period = math.nan
-            if math.isfinite(period) and period > 0:
-                return cls(SA, period)
-        raise InputError(f"--im: expected pga, pgv or sa:T with T a period in s, got '{text}'")
-
-    @property
-    def name(self) -> str:
-        return f"{SA}:{self.period_s:g}" if self.kind == SA else self.kind
-
-    @property
-    def unit(self) -> str:
-        return "m/s" if self.kind == PGV else "g"
-
-    def of_record(self, motion, free_motion_s: float) -> float:
-        """The intensity of a record (in :attr:`unit`)."""
-        if self.kind == PGA:
-            return motion.pga_g
-        if self.kind == PGV:
-            return motion.pgv
-        spectra = response_spectra(motion, np.array([self.period_s]), [IM_DAMPING],
-                                   free_motion_s)
-        return float(spectra.sa[0, 0]) / G
-
-    def of_design_site(self, site: dict) -> float | None:
-        """The intensity of a FEMA 356 design site (S_XS, S_X1 [g]), or None: PGA = 0.4 S_XS,
-        Sa(T) of the design spectrum at 5 %; PGV has no design value."""
-        if not site or self.kind == PGV:
-            return None
-        spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
-        return float(spectrum.acceleration(0.0 if self.kind == PGA else self.period_s, 0.05))
-
 
 def half_crossing(levels, fraction) -> float:
     """Where ``fraction`` first reaches 0.5 along ascending ``levels``, ln-interpolated; NaN if
@@ -137,7 +83,7 @@ class MarginsRun:
 
 
 @dataclass(frozen=True)
-class MarginsSettings:
+class StripeSettings:
     """What every record's stripes depend on (and the key of a resumable part).
 
     Attributes
@@ -198,7 +144,7 @@ class RecordStripes:
 
 
 def _at_level(entry, base: RecordContext, level: float, intensity: float,
-              settings: MarginsSettings):
+              settings: StripeSettings):
     """The record scaled to ``level`` and its context; its design spectrum scaled to the level
     too, where the site's design intensity is known."""
     factor = level / intensity
@@ -212,7 +158,7 @@ def _at_level(entry, base: RecordContext, level: float, intensity: float,
 STEP_TOLERANCE = 1e-7
 
 
-def step_level(procedure, entry, settings: MarginsSettings, block: int, low: float,
+def step_level(procedure, entry, settings: StripeSettings, block: int, low: float,
                high: float) -> float:
     """The level at which a procedure that reads only the site's design spectrum turns from
     not predicting overturning (at ``low``) to predicting it (at ``high``) for one block:
@@ -255,7 +201,7 @@ def procedure_predictions(proc, cases, p, groups, g) -> np.ndarray:
     return _SITE_ANSWERS[key][1].copy()
 
 
-def record_stripes(entry, procedures, settings: MarginsSettings,
+def record_stripes(entry, procedures, settings: StripeSettings,
                    context: RecordContext | None = None) -> RecordStripes:
     """The exact response and every procedure's prediction for one record scaled to each stripe
     (the unit of work of the design-level audit); ``context``, the record's spectra, when a
@@ -288,66 +234,51 @@ def record_stripes(entry, procedures, settings: MarginsSettings,
     return RecordStripes(entry.id, intensity, exact_over, exact_theta, predicted, evaluated)
 
 
-#: Hazard levels the site's spectral values may be given at: FEMA P695's collapse margin is
-#: over the MCE intensity, 1.5 × the design one (ASCE 7: S_MS = 1.5 S_DS, S_M1 = 1.5 S_D1).
-SITE_LEVELS = {"mce": 1.0, "design": 1.5}
-
-
-def run_margins(procedures, suite, im: IntensityMeasure, levels=None, alpha_deg=(10.0, 15.0, 20.0),
-                size_s=None, named_blocks=(), restitution: Restitution | None = None,
-                g: float = G, free_motion_s: float = 10.0, jobs: int = 1, progress=None,
-                scheduler: str = "local", partial_dir=None, resume: bool = False,
-                site_level: str = "mce") -> MarginsRun:
+def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
     """Multiple-stripe exact fragility of every block and each procedure's line against it.
 
     Parameters
     ----------
     procedures : list of procedures.Procedure
     suite : records.RecordSuite
-        Its ``design_site`` (``--site``) gives the design intensity.
-    im : IntensityMeasure
-    levels : array, optional
-        Stripes [unit of ``im``]; default :func:`~audit.engine.fragility.stripe_levels` around
-        the design intensity, else the suite's median intensity.
-    alpha_deg : sequence of float
-        Slendernesses of the grid [degrees].
-    size_s : array
-        Block sizes 2π/p of the grid [s].
-    named_blocks : sequence of audit.engine.blocks.NamedBlock
-        Blocks by their dimensions, beside the grid.
-    restitution : audit.physics.block.Restitution, optional
-        The impact model (Eq. 4.8 when not given).
-    g, free_motion_s, jobs :
-        Gravity [m/s²], free motion after each record [s], solver threads (worker processes of
-        ``scheduler="dask"``).
-    progress : callable, optional
-        ``progress(done, total, record_id, how)`` after each record.
-    scheduler, partial_dir, resume :
-        Where records are computed, the folder of parts kept as they complete, and whether to
-        reuse them (as for :func:`audit.engine.suite_run.run_audit`).
-    site_level : {"mce", "design"}
-        The hazard level of the site's spectral values: the CMR is over the MCE intensity
-        (:data:`SITE_LEVELS`).
+        Its ``design_site`` gives the design intensity.
+    settings : MarginsSettings
+        The intensity measure, the stripes (default
+        :func:`~audit.engine.fragility.stripe_levels` around the design intensity, else the
+        suite's median intensity), the grid and the named blocks, the impact model, gravity
+        and the free motion.
+    runtime : Runtime
+        Solver threads (worker processes of ``scheduler="dask"``), where records are computed,
+        the folder of parts kept as they complete and whether to reuse them, progress.
     """
-    if site_level not in SITE_LEVELS:
-        raise InputError(f"site_level: 'mce' or 'design', got {site_level!r}")
+    im, levels, alpha_deg = settings.im, settings.stripes, settings.alpha_deg
+    size_s, named_blocks, g = settings.size_s, settings.blocks, settings.g
+    restitution, free_motion_s, jobs = settings.restitution, settings.free_motion_s, runtime.jobs
+    partial_dir, resume, site_level = runtime.partial_dir, runtime.resume, settings.site_level
     entries = [entry for entry in suite if entry.motion is not None]
     if not entries:
-        raise InputError(f"--records: no record of {suite.description} has a file")
+        raise InputError(f"records: no record of {suite.description} has a file", "records")
+    intensities = {entry.id: im.of_record(entry.motion, free_motion_s) for entry in entries}
+    zero = [record_id for record_id, intensity in intensities.items() if not intensity > 0]
+    if zero:
+        raise InputError(f"records: {zero[0]} has zero intensity ({im.name} = 0: an all-zero "
+                         f"record), so no stripe can be reached by scaling it; leave it out"
+                         + (f" ({len(zero) - 1} other record(s) too)" if len(zero) > 1 else ""),
+                         "records")
     design = im.of_design_site(suite.design_site)
     if levels is None:
-        centre = design if design else float(np.median(
-            [im.of_record(e.motion, free_motion_s) for e in entries]))
+        centre = design if design else float(np.median(list(intensities.values())))
         levels = stripe_levels(centre)
     blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
     if not len(blocks):
-        raise InputError("--sizes/--block: no block to audit")
-    settings = MarginsSettings(im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()),
-                               design, blocks, restitution or Restitution(), float(g),
-                               float(free_motion_s), int(jobs))
+        raise InputError("sizes_s, alpha_deg, blocks: no block to audit", "sizes_s",
+                         "alpha_deg", "blocks")
+    settings = StripeSettings(im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()),
+                              design, blocks, restitution, float(g), float(free_motion_s),
+                              int(jobs))
     store = PartialStore(partial_dir, procedures, settings, resume) if partial_dir else None
     parts, resumed, where = computed_parts(record_stripes, entries, procedures, settings,
-                                           scheduler, store, resume, progress)
+                                           runtime.scheduler, store, resume, runtime.progress)
     levels = np.asarray(settings.levels)
     intensities = np.array([part.intensity for part in parts])
     exact_over = np.stack([part.exact_overturned for part in parts])  # (record, stripe, block)
@@ -482,7 +413,7 @@ def _fragility_rows(levels, blocks, im, exact_over, mce):
     return pd.DataFrame(rows), fits, boots
 
 
-def _step_levels(procedures, entries, settings: MarginsSettings, predicted, evaluated) -> dict:
+def _step_levels(procedures, entries, settings: StripeSettings, predicted, evaluated) -> dict:
     """Per (procedure name, block), the exact step of a procedure that reads only the site's
     design spectrum, where it turns to predicting overturning between two stripes."""
     levels = np.asarray(settings.levels)
@@ -533,8 +464,8 @@ SCAN_BLOCKS = 3
 SCAN_STEP = 1.002
 
 
-def amplitude_scans(run: MarginsRun, suite, restitution: Restitution | None = None,
-                    g: float = G, free_motion_s: float = 10.0, jobs: int = 1) -> pd.DataFrame:
+def amplitude_scans(run: MarginsRun, suite, settings: MarginsSettings,
+                    runtime: Runtime) -> pd.DataFrame:
     """A fine amplitude scan of chosen blocks: why the first overturning intensity is not a
     number to build on.
 
@@ -549,6 +480,8 @@ def amplitude_scans(run: MarginsRun, suite, restitution: Restitution | None = No
         ``record, alpha_deg, size_s, block_m, scale_factor, im_level, exact_overturned,
         exact_theta_rad`` (the columns of ``scan.csv``).
     """
+    restitution, g, free_motion_s = settings.restitution, settings.g, settings.free_motion_s
+    jobs = runtime.jobs
     fragility, stripes = run.fragility, run.stripes
     named = fragility[fragility["block_m"] != ""]
     chosen = named if len(named) else fragility.sort_values(
@@ -618,6 +551,6 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
             "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
 
 
-__all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "MarginsSettings", "RecordStripes",
+__all__ = ["IntensityMeasure", "run_margins", "MarginsRun", "StripeSettings", "RecordStripes",
            "record_stripes", "procedure_predictions", "half_crossing", "amplitude_scans",
            "margins_files", "SCAN_COLUMNS"]

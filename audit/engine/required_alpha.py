@@ -20,8 +20,9 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from audit import G
 from audit.engine.margins import procedure_predictions
+from audit.engine.margins_settings import MarginsSettings
+from audit.engine.runtime import Runtime
 from audit.engine.scheduler import computed_parts
 from audit.physics.block import Restitution
 from audit.physics.rocking import rocking_blocks, rocking_spectrum
@@ -108,10 +109,8 @@ def interpolated_alpha(alpha_deg, share, limit) -> float:
     return float(alpha_deg[j] + t * (alpha_deg[j + 1] - alpha_deg[j]))
 
 
-def required_alpha(procedures, suite, size_s, grid_deg=GRID_DEG, targets=TARGETS,
-                   bisections: int = BISECTIONS, restitution: Restitution | None = None,
-                   g: float = G, free_motion_s: float = 10.0, jobs: int = 1,
-                   scheduler: str = "local", progress=None) -> pd.DataFrame:
+def required_alpha(procedures, suite, settings: MarginsSettings, runtime: Runtime,
+                   grid_deg=GRID_DEG, targets=TARGETS, bisections: int = BISECTIONS) -> pd.DataFrame:
     """For each size, the smallest slenderness each procedure accepts for the suite as given
     (the site-scaled records), against the smallest α for which the exact share of those
     records that overturn the block stays ≤ each target (see the module's docstring).
@@ -120,16 +119,16 @@ def required_alpha(procedures, suite, size_s, grid_deg=GRID_DEG, targets=TARGETS
     ----------
     procedures : list of procedures.Procedure
     suite : records.RecordSuite
-    size_s : array
-        Block sizes 2π/p [s].
+    settings : audit.engine.margins_settings.MarginsSettings
+        Its block sizes 2π/p [s], impact model, gravity and free motion.
+    runtime : audit.engine.runtime.Runtime
+        As for :func:`audit.engine.margins.run_margins`.
     grid_deg : array
         Slendernesses of the search grid [degrees], ascending.
     targets : sequence of float
         Exact shares the exact curves target [-].
     bisections : int
         Halvings of each exact curve's last bracket.
-    restitution, g, free_motion_s, jobs, scheduler, progress :
-        As for :func:`audit.engine.margins.run_margins`.
 
     Returns
     -------
@@ -139,9 +138,10 @@ def required_alpha(procedures, suite, size_s, grid_deg=GRID_DEG, targets=TARGETS
         ``exact@0.10`` and ``exact@0.50``.
     """
     entries = [entry for entry in suite if entry.motion is not None]
-    size_s = np.asarray(size_s, dtype=float)
+    size_s = np.asarray(settings.size_s, dtype=float)
     grid_deg = np.asarray(grid_deg, dtype=float)
-    restitution = restitution or Restitution()
+    restitution, g, free_motion_s = settings.restitution, settings.g, settings.free_motion_s
+    jobs, scheduler, progress = runtime.jobs, runtime.scheduler, runtime.progress
 
     def settings(sizes, alphas):
         return SearchSettings(tuple(map(float, sizes)), tuple(map(float, alphas)), restitution,

@@ -117,6 +117,16 @@ def read_summary(run_dir: str | Path) -> dict:
         raise InputError(f"{run_dir}/{SUMMARY_JSON}: not valid JSON: {exc}") from None
 
 
+def checked_summary(run_dir: Path) -> dict:
+    """``summary.json`` of ``run_dir``, once the folder is found to hold every file of a run."""
+    if not run_dir.is_dir():
+        raise InputError(f"{run_dir}: not a directory of audit results")
+    for name in DATA_FILES:
+        if not (run_dir / name).is_file():
+            raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
+    return read_summary(run_dir)
+
+
 def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     """Read a run directory written by ``python -m audit run`` (or ``audit.api.run``).
 
@@ -131,14 +141,9 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
         suite of thousands of records is drawn in bounded memory.
     """
     run_dir = Path(run_dir)
-    if not run_dir.is_dir():
-        raise InputError(f"{run_dir}: not a directory of audit results")
-    for name in DATA_FILES:
-        if not (run_dir / name).is_file():
-            raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
+    summary = checked_summary(run_dir)
     files = {name: run_dir / name for name in DATA_FILES}
     where = str(run_dir)
-    summary = read_summary(run_dir)
     for name, path in files.items():
         if name in GUIDE:
             _check_columns(path, name, run_dir)

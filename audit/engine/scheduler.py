@@ -24,23 +24,11 @@ from pathlib import Path
 
 from audit.engine.partial import motion_digest
 from audit.engine.record_audit import audit_record
+from audit.engine.runtime import DASK, LOCAL, check_scheduler
 from audit.errors import InputError
 
-LOCAL = "local"
-DASK = "dask"
 #: Readers a worker can re-run from a motion's ``metadata["format"]``.
 _READERS = ("peer-at2", "columns")
-
-
-def check_scheduler(text: str) -> str:
-    """``--scheduler``: ``local``, ``dask`` or a Dask scheduler address ``tcp://HOST:PORT``."""
-    if text in (LOCAL, DASK):
-        return text
-    if text.startswith(("tcp://", "tls://")):
-        host, _, port = text.split("://", 1)[1].rpartition(":")
-        if host and port.isdigit():
-            return text
-    raise InputError(f"--scheduler: expected local, dask or tcp://HOST:PORT, got '{text}'")
 
 
 @dataclass(frozen=True)
@@ -190,7 +178,7 @@ class DaskScheduler:
 
 @contextmanager
 def open_scheduler(spec: str, jobs: int):
-    """The scheduler named by ``--scheduler`` (see :func:`check_scheduler`), closed on exit.
+    """The scheduler named by ``spec`` (see :func:`check_scheduler`), closed on exit.
 
     Parameters
     ----------
@@ -208,8 +196,8 @@ def open_scheduler(spec: str, jobs: int):
 
         from distributed import Client, LocalCluster
     except ImportError:
-        raise InputError(f"--scheduler {spec}: needs dask[distributed] "
-                         "(pip install 'dask[distributed]')") from None
+        raise InputError(f"scheduler {spec}: needs dask[distributed] "
+                         "(pip install 'dask[distributed]')", "scheduler") from None
     if spec == DASK:
         with LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
                           dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
@@ -219,7 +207,7 @@ def open_scheduler(spec: str, jobs: int):
     try:
         client = Client(spec, timeout="10s")
     except (OSError, TimeoutError) as exc:
-        raise InputError(f"--scheduler {spec}: cannot connect: {exc}") from None
+        raise InputError(f"scheduler {spec}: cannot connect: {exc}", "scheduler") from None
     with client:
         workers = len(client.scheduler_info()["workers"])
         yield DaskScheduler(client, f"the Dask cluster at {spec} ({workers} workers)")

@@ -5,10 +5,12 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass
 
 from audit import G
+from audit.engine import fields as check
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
-                                   DEFAULT_ROBUSTNESS, DEFAULT_SIZES)
+                                   DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS, DEFAULT_SIZES)
 from audit.engine.grid import size_grid
-from audit.engine.ground_truth import GroundTruth
+from audit.engine.ground_truth import GroundTruth, parse_sensitivity
+from audit.physics.block import Restitution
 from audit.physics.defaults import DEFAULT_REST_TOLERANCE, DEFAULT_STEPS_PER_RADIAN
 from procedures.iteration import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
                                   MAX_ITERATIONS, TOLERANCE_RATIO)
@@ -50,7 +52,10 @@ class AuditSettings:
         response is rerun under each and a verdict that changes is flagged
         ``exact_model_sensitive``.
     jobs : int
-        Threads of the exact solver (not part of what is computed).
+        Threads of the exact solver of one record: set by the engine from the run's
+        :class:`~audit.engine.runtime.Runtime` (not part of what is computed).
+
+    Build it with :meth:`parse`, which checks every field once.
     """
 
     alpha_deg: tuple = DEFAULT_ALPHA_DEG
@@ -59,11 +64,58 @@ class AuditSettings:
     agree_band: float = DEFAULT_AGREE_BAND
     robustness: float = DEFAULT_ROBUSTNESS
     g: float = G
-    restitution: str = "housner"
+    restitution: str = DEFAULT_RESTITUTION
     vertical: bool = False
     friction: float | None = None
     sensitivity: tuple = ()
     jobs: int = 1
+
+    @classmethod
+    def parse(cls, **values) -> AuditSettings:
+        """The settings of the given fields, each checked once (InputError naming the field);
+        a field not given takes its default (:mod:`audit.engine.defaults`).
+
+        Parameters
+        ----------
+        alpha_deg : float or sequence of float
+            Slendernesses [degrees], 0 < α < 45.
+        sizes_s : float or sequence of float, optional
+            Block sizes 2π/p [s], positive; default the grid of ``DEFAULT_SIZES``.
+        free_motion_s, agree_band, robustness, g :
+            As the attributes: ≥ 0 s; in [0, 1); in [0, 0.5); positive m/s².
+        restitution : str, float or Restitution
+            ``housner``, a fixed r in (0, 1] or ``xFACTOR``.
+        vertical : bool
+        friction : float, optional
+            Positive.
+        sensitivity : str or sequence of str
+        """
+        check.unknown("the audit settings", values, AUDIT_FIELDS)
+        value = {**AUDIT_DEFAULTS, **values}
+        sizes = value["sizes_s"]
+        return cls(
+            alpha_deg=check.numbers("alpha_deg", value["alpha_deg"],
+                                    "slendernesses between 0 and 45 degrees", 0, 45,
+                                    low_open=True, high_open=True),
+            size_s=(tuple(float(s) for s in size_grid(*DEFAULT_SIZES)) if sizes is None
+                    else check.numbers("sizes_s", sizes, "positive block sizes 2π/p in s", 0,
+                                       low_open=True)),
+            free_motion_s=check.number("free_motion_s", value["free_motion_s"],
+                                       "a duration ≥ 0 s", 0),
+            agree_band=check.number("agree_band", value["agree_band"], "a number in [0, 1)",
+                                    0, 1, high_open=True),
+            robustness=check.number("robustness", value["robustness"],
+                                    "a number in [0, 0.5)", 0, 0.5, high_open=True),
+            g=check.number("g", value["g"], "a positive acceleration in m/s²", 0,
+                           low_open=True),
+            restitution=str(value["restitution"] if isinstance(value["restitution"], Restitution)
+                            else Restitution.parse(value["restitution"], "restitution")),
+            vertical=check.flag("vertical", value["vertical"]),
+            friction=(None if value["friction"] is None else check.number(
+                "friction", value["friction"], "a positive friction coefficient μ", 0,
+                low_open=True)),
+            sensitivity=parse_sensitivity(check.words("sensitivity", value["sensitivity"]),
+                                          "sensitivity"))
 
     @property
     def ground_truth(self) -> GroundTruth:
@@ -91,4 +143,12 @@ class AuditSettings:
                 "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING]}
 
 
-__all__ = ["AuditSettings", "FIGURE_5_DAMPING", "HISTORY_POINTS"]
+#: The fields :meth:`AuditSettings.parse` takes, and their defaults (``sizes_s``: None, the
+#: default grid).
+AUDIT_DEFAULTS = {"alpha_deg": DEFAULT_ALPHA_DEG, "sizes_s": None,
+                  "free_motion_s": DEFAULT_FREE_MOTION_S, "agree_band": DEFAULT_AGREE_BAND,
+                  "robustness": DEFAULT_ROBUSTNESS, "g": G, "restitution": DEFAULT_RESTITUTION,
+                  "vertical": False, "friction": None, "sensitivity": ()}
+AUDIT_FIELDS = tuple(AUDIT_DEFAULTS)
+
+__all__ = ["AuditSettings", "AUDIT_DEFAULTS", "AUDIT_FIELDS", "FIGURE_5_DAMPING", "HISTORY_POINTS"]

@@ -79,7 +79,7 @@ class Restitution:
     value: float | None = None
 
     @classmethod
-    def parse(cls, text: str, option: str = "--restitution") -> Restitution:
+    def parse(cls, text: str, option: str = "restitution") -> Restitution:
         """``housner`` (Eq. 4.8), a fixed r ``VALUE`` in (0, 1], or ``xFACTOR`` times Eq. 4.8."""
         word = str(text).strip().lower()
         if word == "housner":
@@ -91,7 +91,7 @@ class Restitution:
             number = math.nan
         if not (math.isfinite(number) and 0 < number <= 1):
             raise InputError(f"{option}: expected housner, a coefficient of restitution in (0, 1] "
-                             f"or xFACTOR with a factor in (0, 1], got {text!r}")
+                             f"or xFACTOR with a factor in (0, 1], got {text!r}", option)
         return cls(factor=number) if scaled else cls(value=number)
 
     def r(self, alpha_rad):

@@ -1,0 +1,58 @@
+"""The Python API: the engine the command line runs, for notebooks and scripts.
+
+    import audit, records
+    block = audit.Block.from_dimensions(width_m=0.8, height_m=2.4)
+    response = audit.rock(block, "pacoima_dam_1971", records="pulses")
+    result = audit.run("all", records="p695-far-field", site=(1.5, 0.9), scale_to_site=True)
+    result.bottom_line                       # a DataFrame; result.write("out") for the files
+
+Angles are given in degrees and accelerations in g at this edge, as on the command line;
+everything inside is SI. Every argument is checked before any work starts; a bad one raises
+:class:`audit.errors.InputError` naming it (the command line prints the same message with its
+flag in the argument's place). A run's settings are fields of settings objects
+(:class:`~audit.engine.settings.AuditSettings`,
+:class:`~audit.engine.margins_settings.MarginsSettings`,
+:class:`~audit.engine.design_site.DesignSite`, :class:`~audit.engine.runtime.Runtime`), given
+as keyword arguments.
+
+Each name is loaded from its module on first use, so that a command that needs one of them
+(``rock``: no pandas) stays light.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+#: Name → the module that holds it.
+_WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
+          "rock": "audit.api.rocking", "run": "audit.api.runs", "AuditResult": "audit.api.runs",
+          "typed": "audit.api.runs", "design_suite": "audit.api.runs",
+          "margins": "audit.api.design_level", "MarginsResult": "audit.api.design_level",
+          "with_page": "audit.api.design_level", "fragility": "audit.api.probabilistic",
+          "FragilityResult": "audit.api.probabilistic",
+          "FRAGILITY_HTML": "audit.api.probabilistic",
+          "rocking_spectrum": "audit.api.spectra", "response_spectra": "audit.api.spectra",
+          "design_spectrum": "audit.api.spectra", "load_result": "audit.api.runs",
+          "risk": "audit.api.risk", "read_hazard": "audit.api.risk",
+          # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
+          # and its report, for the command line
+          "available_procedures": "procedures.registry", "size_grid": "audit.engine.grid",
+          "kept_parts": "audit.engine.partial", "PARTIAL_DIR": "audit.engine.partial",
+          "REPORT_HTML": "audit.engine.results"}
+
+
+def __getattr__(name):
+    if name in _WHERE:
+        return getattr(importlib.import_module(_WHERE[name]), name)
+    raise AttributeError(f"module 'audit.api' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(__all__)
+
+
+__all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite", "margins",
+           "MarginsResult", "fragility", "FragilityResult", "typed", "with_page", "PARTIAL_DIR",
+           "REPORT_HTML", "FRAGILITY_HTML", "rocking_spectrum", "response_spectra",
+           "design_spectrum", "load_result", "available_procedures", "size_grid", "kept_parts",
+           "risk", "read_hazard"]

@@ -1,0 +1,148 @@
+"""What the API accepts, turned into what the engine takes, each argument checked once:
+procedures (names, instances, classes of plug-ins), records (suite names, paths, suites),
+motions (ids, paths, GroundMotions, (array, dt) pairs), and the keyword arguments of a run
+sorted into its settings objects."""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+from audit.errors import InputError
+from procedures.base import Procedure
+
+#: Coefficient of restitution a plug-in's damping is probed with: Eq. 4.8 at α = 15° [-].
+PROBE_R = (1.0 - 1.5 * math.sin(math.radians(15.0)) ** 2) ** 2
+
+
+def procedures_of(procedures) -> list[Procedure]:
+    """Procedure instances from ``"all"``, a name, an instance, a class or a list of those;
+    a plug-in (an instance or class given here) is checked: a name of its own, and a damping
+    ratio from :meth:`~procedures.base.Procedure.damping`."""
+    from procedures import get_procedures
+    from procedures.registry import available_procedures
+    if isinstance(procedures, (str, Procedure, type)):
+        procedures = [procedures]
+    if not isinstance(procedures, (list, tuple)):
+        raise InputError(f"procedures: expected 'all', a name, a Procedure or a list of them, "
+                         f"got {procedures!r}", "procedures")
+    if not procedures:
+        raise InputError("procedures: none given; 'all' audits every registered one",
+                         "procedures")
+    registered = available_procedures()
+    out = []
+    for item in procedures:
+        if isinstance(item, str):
+            out += get_procedures(item)
+            continue
+        if isinstance(item, type) and issubclass(item, Procedure):
+            item = item()
+        if not isinstance(item, Procedure):
+            raise InputError(f"procedures: expected a name, 'all' or a Procedure, got {item!r}",
+                             "procedures")
+        if type(item) is not registered.get(item.name):
+            _check_plug_in(item, registered)
+        out.append(item)
+    names = [proc.name for proc in out]
+    twice = sorted({name for name in names if names.count(name) > 1})
+    if twice:
+        raise InputError(f"procedures: '{twice[0]}' given twice; each procedure's rows are "
+                         "named by it", "procedures")
+    return out
+
+
+def _check_plug_in(proc: Procedure, registered: dict) -> None:
+    kind = type(proc).__name__
+    if not isinstance(proc.name, str) or not proc.name.strip():
+        raise InputError(f"procedures: plug-in {kind} has no name (its class attribute "
+                         "'name', which names its rows)", "procedures")
+    if proc.name in registered:
+        raise InputError(f"procedures: plug-in {kind} is named '{proc.name}', the name of a "
+                         "registered procedure; give it a name of its own", "procedures")
+    if not proc.estimates_rotation:
+        return
+    try:
+        beta = proc.damping(PROBE_R)
+    except NotImplementedError:
+        raise InputError(f"procedures: plug-in '{proc.name}' ({kind}) has no damping(r)",
+                         "procedures") from None
+    except Exception as exc:
+        raise InputError(f"procedures: plug-in '{proc.name}' ({kind}): damping(r) raised "
+                         f"{type(exc).__name__}: {exc}", "procedures") from None
+    value = getattr(beta, "tolist", lambda: beta)()
+    if isinstance(value, list) and len(value) == 1:
+        value = value[0]
+    if isinstance(value, bool) or not isinstance(value, Real) or not 0 <= value < 1:
+        raise InputError(f"procedures: plug-in '{proc.name}' ({kind}): damping(r) must return "
+                         f"one damping ratio in [0, 1) for one r, got {beta!r}", "procedures")
+
+
+def suite_of(records):
+    """A :class:`records.RecordSuite` from a suite, a name or a path (None: the default)."""
+    from pathlib import Path
+
+    from records import RecordSuite, load_records
+    if isinstance(records, RecordSuite):
+        suite = records
+    elif records is None or isinstance(records, (str, Path)):
+        suite = load_records(records)
+    else:
+        raise InputError(f"records: expected a suite name, a path or a RecordSuite, got "
+                         f"{records!r}", "records")
+    if not len(suite):
+        raise InputError(f"records: {suite.description} holds no record", "records")
+    return suite
+
+
+def motion_of(motion, records=None):
+    """A :class:`records.GroundMotion` from a GroundMotion, a suite's RecordEntry, a record id
+    (of ``records``, default the default suite), a path to a record file, or a pair
+    ``(acceleration [m/s²], dt [s])``."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from records import GroundMotion, RecordEntry, load_path, load_records, resolve_motion
+    if isinstance(motion, GroundMotion):
+        return motion
+    if isinstance(motion, RecordEntry):
+        if motion.motion is None:
+            raise InputError(f"motion: record '{motion.id}' has no file "
+                             f"({motion.missing_reason})", "motion")
+        return motion.motion
+    if isinstance(motion, (str, Path)):
+        if Path(motion).is_file():  # a record file: no suite to look it up in
+            return load_path(motion).entries[0].motion
+        return resolve_motion(records if hasattr(records, "entries") else load_records(records),
+                              str(motion)).motion
+    if isinstance(motion, tuple) and len(motion) == 2:
+        acceleration, dt = motion
+        values = np.asarray(acceleration, dtype=float) if not isinstance(acceleration, str) \
+            else None
+        if values is None or values.ndim != 1 or values.size < 2 \
+                or not np.all(np.isfinite(values)):
+            raise InputError("motion: expected (acceleration, dt) with acceleration a 1-D array "
+                             "of finite values in m/s², at least 2 samples", "motion")
+        if isinstance(dt, bool) or not isinstance(dt, Real) or not (math.isfinite(dt) and dt > 0):
+            raise InputError(f"motion: dt must be a positive number of seconds, got {dt!r}",
+                             "motion")
+        return GroundMotion("motion", values, float(dt), source="array")
+    raise InputError(f"motion: expected a record id, a path, a GroundMotion or "
+                     f"(acceleration [m/s²], dt [s]), got {type(motion).__name__}"
+                     + (" (an array needs its dt: give (array, dt))"
+                        if hasattr(motion, "shape") else ""), "motion")
+
+
+def split(options: dict, *groups) -> list[dict]:
+    """``options`` sorted into the given groups of field names (one dict each); InputError
+    naming a keyword that is in none."""
+    known = [name for group in groups for name in group]
+    extra = [name for name in options if name not in known]
+    if extra:
+        raise InputError(f"{extra[0]}: not an argument (the arguments: {', '.join(known)})",
+                         extra[0])
+    return [{name: value for name, value in options.items() if name in group}
+            for group in groups]
+
+
+__all__ = ["procedures_of", "suite_of", "motion_of", "split"]

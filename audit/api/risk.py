@@ -1,0 +1,65 @@
+"""Risk at a site: hazard curves read from the files of the tools engineers run, and the
+annual rate of overturning of a block (:mod:`audit.engine.risk`)."""
+
+from __future__ import annotations
+
+from audit.errors import InputError
+
+
+def read_hazard(hazard, site=None, imt: str | None = None):
+    """A :class:`records.hazard.HazardCurve` as given, or read from a file: an OpenQuake
+    hazard-curve export, a USGS hazard service response (``.json``) or a plain CSV
+    ``im_g,annual_rate`` with a ``# imt=...`` line (see :func:`records.hazard.read_hazard`).
+
+    Parameters
+    ----------
+    hazard : HazardCurve, str or pathlib.Path
+    site : (float, float), optional
+        Longitude, latitude [degrees] of the site, matched within 0.001°.
+    imt : str, optional
+        ``PGA`` or ``SA(T)``: which curve of a USGS response.
+    """
+    from records.hazard import HazardCurve
+    from records.hazard import read_hazard as read_file
+    if isinstance(hazard, HazardCurve):
+        return hazard
+    return read_file(hazard, site, imt)
+
+
+def risk(fragility, hazard, site=None, imt: str | None = None):
+    """The mean annual rate of overturning of one block at a site, its probability in 50
+    years, and where it comes from (see :mod:`audit.engine.risk`).
+
+    Parameters
+    ----------
+    fragility :
+        ``(median_g, beta)``; a row of :attr:`MarginsResult.fragility` (its lognormal fit, of
+        its ``im``); or :class:`audit.engine.risk.LognormalFragility` /
+        :class:`~audit.engine.risk.StripeFragility`.
+    hazard : records.hazard.HazardCurve, str or pathlib.Path
+        The curve, or its file (:func:`read_hazard`).
+    site, imt :
+        As for :func:`read_hazard`.
+
+    Returns
+    -------
+    audit.engine.risk.OverturningRisk
+        ``.annual_rate`` [1/yr], ``.p50``, ``.im_range_90_g``, ``.deaggregation``, ...
+    """
+    from audit.engine.risk import LognormalFragility, StripeFragility, risk_integral
+    curve = read_hazard(hazard, site, imt)
+    if not isinstance(fragility, (LognormalFragility, StripeFragility)):
+        if hasattr(fragility, "get") and "median" in fragility:  # a fragility.csv row
+            fragility = LognormalFragility(float(fragility["median"]), float(fragility["beta"]),
+                                           fragility.get("im"))
+        else:
+            try:
+                median_g, beta = (float(v) for v in fragility)
+            except (TypeError, ValueError):
+                raise InputError("fragility: expected (median_g, beta), a row of "
+                                 "MarginsResult.fragility or a LognormalFragility") from None
+            fragility = LognormalFragility(median_g, beta)
+    return risk_integral(fragility, curve)
+
+
+__all__ = ["read_hazard", "risk"]

@@ -1,0 +1,248 @@
+"""The audit of guideline procedures over a grid of blocks: :func:`run` and its
+:class:`AuditResult`."""
+
+from __future__ import annotations
+
+import functools
+import tempfile
+import warnings
+from pathlib import Path
+
+import pandas as pd
+
+from audit.engine import fields as check
+from audit.engine.audit_run import AuditRun
+from audit.engine.design_site import SITE_FIELDS, DesignSite
+from audit.engine.runtime import RUNTIME_FIELDS, Runtime
+from audit.engine.settings import AUDIT_FIELDS, AuditSettings
+from audit.errors import InputWarning
+
+
+def typed(table: pd.DataFrame, file_name: str) -> pd.DataFrame:
+    """``table`` of ``file_name`` with its columns typed by the schema (the column guide):
+    numbers as floats (NaN where empty), flags as booleans (NA where empty), text as text."""
+    from audit.engine.schemas import GUIDE
+    table = table.copy()
+    for column, (unit, _) in GUIDE[file_name].items():
+        if column not in table:
+            continue
+        values = table[column]
+        if unit == "bool":
+            table[column] = values.map({True: True, False: False, "True": True,
+                                        "False": False}).astype("boolean")
+        elif unit != "text":
+            table[column] = pd.to_numeric(values.replace("", None), errors="coerce")
+    return table
+
+
+class AuditResult:
+    """An audit's files in a folder, its tables as DataFrames (read on first use), its bottom
+    line, and its report.
+
+    Attributes
+    ----------
+    folder : Path
+        Where the data files are (a scratch folder kept with the result unless ``run`` was
+        given one).
+    summary : dict
+        Everything of ``summary.json`` (read on first use).
+    """
+
+    def __init__(self, folder, scratch=None):
+        self.folder = Path(folder)
+        self._scratch = scratch  # a TemporaryDirectory, removed with the result
+
+    @functools.cached_property
+    def summary(self) -> dict:
+        """Everything of ``summary.json``, as saved."""
+        from audit.engine.results import read_summary
+        return read_summary(self.folder)
+
+    @functools.cached_property
+    def run(self) -> AuditRun:
+        """Everything the audit produced (also ``.spectra``, ``.rocking``, ``.histories``),
+        read from its files."""
+        from audit.engine.results import load_run
+        return load_run(self.folder)
+
+    results = property(lambda self: typed(self.run.results, "results.csv"),
+                       doc="One row per procedure × record × α × size (``results.csv``).")
+    suite = property(lambda self: typed(self.run.suite, "suite.csv"),
+                     doc="Verdict statistics over the records per procedure × α × size.")
+    checks = property(lambda self: typed(self.run.checks, "checks.csv"),
+                      doc="Limit-state checks against the exact response (``checks.csv``).")
+    claims = property(lambda self: typed(self.run.claims, "claims.csv"),
+                      doc="The reference report's claims, checked (``claims.csv``).")
+
+    @property
+    def bottom_line(self) -> pd.DataFrame:
+        """Per procedure: blocks compared, the % unsafe and uneconomic, the median approx/exact,
+        and the worst block."""
+        titles = {p["name"]: p["title"] for p in self.summary["procedures"]}
+        rows = []
+        for line in self.summary["bottom_line"]:
+            worst = line["worst"] or {}
+            rows.append({"procedure": line["name"], "title": titles[line["name"]],
+                         "records": line["records"], "blocks": line["blocks"],
+                         "unsafe_pct": line["unsafe_pct"],
+                         "uneconomic_pct": line["uneconomic_pct"],
+                         "agrees_pct": line["pct"]["agrees"],
+                         "not_converged_pct": line["pct"]["not-converged"],
+                         "median_ratio": line["median_ratio"],
+                         "worst_record": worst.get("record"),
+                         "worst_alpha_deg": worst.get("alpha_deg"),
+                         "worst_size_s": worst.get("size_s"),
+                         "worst_verdict": worst.get("verdict")})
+        return pd.DataFrame(rows)
+
+    def write(self, out_dir) -> Path:
+        """Write the result files and ``report.html`` into ``out_dir`` (atomically, together)."""
+        import shutil
+
+        from audit.engine.results import COLUMNS_JSON, DATA_FILES, REPORT_HTML
+        from audit.files import staged_folder
+        with staged_folder(out_dir) as staging:
+            for name in (*DATA_FILES, COLUMNS_JSON):
+                shutil.copyfile(self.folder / name, staging / name)
+            self.report(staging / REPORT_HTML)
+        return Path(out_dir)
+
+    def report(self, path) -> Path:
+        """Write only the self-contained HTML report to ``path``, drawn from the files as saved
+        (the rows of the records it shows, read in bounded memory)."""
+        from audit.engine.results import load_run
+        from audit.files import write_file_atomically
+        from reports import render_report
+        html = render_report(load_run(self.folder, shown=True))
+        write_file_atomically(Path(path), html.encode("utf-8"))
+        return Path(path)
+
+    def _repr_html_(self) -> str:
+        table = self.bottom_line[["title", "records", "blocks", "unsafe_pct",
+                                  "uneconomic_pct", "agrees_pct", "median_ratio"]]
+        return (f"<p><b>Rocking audit</b> on {self.summary['records_source']}: "
+                f"{self.blocks} block comparisons.</p>"
+                + table.to_html(index=False, float_format=lambda v: f"{v:.3g}", na_rep="—"))
+
+    def __repr__(self) -> str:
+        return (f"AuditResult({', '.join(p['name'] for p in self.summary['procedures'])} on "
+                f"{self.summary['records_source']}: {self.blocks} block comparisons)")
+
+    @property
+    def blocks(self) -> int:
+        """Blocks compared with the exact response, every procedure."""
+        return sum(line["blocks"] for line in self.summary["bottom_line"])
+
+
+def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
+        **options) -> AuditResult:
+    """Audit guideline procedures on a suite of records over a grid of blocks.
+
+    Every argument is checked before anything is read or computed; a bad one raises
+    :class:`~audit.errors.InputError` naming it.
+
+    Parameters
+    ----------
+    procedures : str, Procedure, type or list
+        ``"all"``, a registered name (``"fema356"``), a Procedure instance or subclass (a
+        plug-in written in the notebook), or a list of those.
+    records : str, path or records.RecordSuite, optional
+        A built-in suite name, a manifest / record file / folder, or a suite from
+        :func:`records.load`; default: ``$ROCKING_AUDIT_RECORDS``, else the shipped seed records.
+    out_dir : str or Path, optional
+        Write the result files and ``report.html`` there (atomically, together), record by
+        record: memory does not grow with the suite beyond a small term per record until the
+        tables are read (``.results``, ``.run``). Default: the data files in a scratch folder
+        kept with the result (``.write(out_dir)`` saves them later).
+    force : bool
+        Start even when the estimated work is beyond the limits (:mod:`audit.engine.guards`).
+    **options :
+        What is computed, the fields of :class:`~audit.engine.settings.AuditSettings`:
+        ``alpha_deg`` (slendernesses [degrees], a number or a list), ``sizes_s`` (block sizes
+        2π/p [s]; default 0.5 … 8.0 s in steps of 0.05 s), ``free_motion_s``, ``agree_band``,
+        ``robustness``, ``g``, ``restitution`` (``housner``, a fixed r, ``xFACTOR``),
+        ``vertical``, ``friction`` (μ of the base [-]), ``sensitivity``
+        (``"restitution=x0.9,x0.8"``, ``"vertical"``);
+        the design site, the fields of :class:`~audit.engine.design_site.DesignSite`: ``site``
+        (S_XS, S_X1 [g]), ``site_override``, ``scale_to_site``, ``anchor_period_s``,
+        ``ntc_site``;
+        how, the fields of :class:`~audit.engine.runtime.Runtime`: ``jobs``, ``scheduler``
+        (``local``, ``dask``, ``tcp://HOST:PORT``), ``partial_dir``, ``resume``, ``progress``
+        (True: a progress bar on standard error, or ``progress(done, total, record_id, how)``);
+        and ``detail``, the records whose detail the report shows.
+
+    Returns
+    -------
+    AuditResult
+    """
+    from audit.api.inputs import procedures_of, split, suite_of
+    from audit.engine import guards
+    from audit.engine.costs import audit_cost
+    from audit.engine.progress import Progress
+    from audit.engine.results import REPORT_HTML
+    from audit.engine.suite_run import compiles_first, compute_suite, write_suite
+    from audit.files import staged_folder
+    values, site, how, shown = split(options, AUDIT_FIELDS, SITE_FIELDS, RUNTIME_FIELDS,
+                                     ("detail",))
+    settings, site = AuditSettings.parse(**values), DesignSite.parse(**site)
+    detail = check.words("detail", shown.get("detail", ()))
+    bar = how.get("progress") is True
+    runtime = Runtime.parse(**{**how, "progress": None if how.get("progress") in (True, False)
+                               else how.get("progress")})
+    chosen = procedures_of(procedures)
+    suite = site.apply(suite_of(records))
+    _warn_without_vertical(suite, settings)
+    guards.check(audit_cost(chosen, suite, settings, runtime), force)
+    stage = Progress(len(suite), "record") if bar else runtime.progress
+    if bar:
+        runtime = Runtime(runtime.jobs, runtime.scheduler, runtime.partial_dir, runtime.resume,
+                          stage)
+        stage.stage(f"auditing {', '.join(p.name for p in chosen)} on {len(suite)} records")
+        if compiles_first():
+            stage.stage("compiling the rocking solver and the oscillator kernels for this "
+                        "machine (first run only: 5–10 s)")
+    stage = stage if hasattr(stage, "stage") else None
+    try:
+        computed = compute_suite(chosen, suite, settings, runtime, detail)
+    finally:
+        if bar:
+            stage.done()
+    if out_dir is None:
+        scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
+        write_suite(computed, scratch.name, stage)
+        return AuditResult(scratch.name, scratch)
+    # the summary is read back when asked: the report is drawn without a second copy in memory
+    with staged_folder(out_dir) as staging:  # files appear only when all are written
+        write_suite(computed, staging, stage)
+        del computed, suite  # the motions go too, unless the caller holds them
+        if stage is not None:
+            stage.stage(f"writing the report to {out_dir}")
+        AuditResult(staging).report(staging / REPORT_HTML)
+    return AuditResult(out_dir)
+
+
+def load_result(folder) -> AuditResult:
+    """The audit whose files are in ``folder`` (the output of :func:`run`, or of ``python -m
+    audit run``), read on first use."""
+    from audit.engine.results import checked_summary
+    result = AuditResult(folder)
+    result.summary = checked_summary(result.folder)  # a folder without an audit is refused
+    return result
+
+
+def design_suite(suite, **site):
+    """``suite`` with the design site and scaling of the fields of
+    :class:`~audit.engine.design_site.DesignSite` (``site``, ``site_override``,
+    ``scale_to_site``, ``anchor_period_s``, ``ntc_site``)."""
+    return DesignSite.parse(**site).apply(suite)
+
+
+def _warn_without_vertical(suite, settings: AuditSettings) -> None:
+    if settings.vertical or "vertical" in settings.sensitivity:
+        if not any(e.motion is not None and e.motion.vertical is not None for e in suite):
+            warnings.warn(f"vertical: none of the {len(suite)} records has a vertical "
+                          "component; the exact response stays horizontal", InputWarning,
+                          stacklevel=3)
+
+
+__all__ = ["run", "AuditResult", "typed", "design_suite", "load_result"]

@@ -1,0 +1,115 @@
+"""Spectra of one motion and of the codes: rocking spectra, oscillator response spectra, and
+the design spectra of FEMA 356, UBC 97 and NTC 2018; what ``python -m audit spectrum`` and
+``design-spectrum`` print."""
+
+from __future__ import annotations
+
+from audit.engine import fields as check
+from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_DESIGN_DAMPING_PCT,
+                                   DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, DEFAULT_PERIODS,
+                                   DEFAULT_RESPONSE_FREE_MOTION_S, DEFAULT_RESTITUTION)
+from audit.errors import InputError
+
+CODES = ("fema356", "ubc97", "ntc2018")
+
+
+def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUTION,
+                     free_motion_s: float = DEFAULT_FREE_MOTION_S, vertical: bool = False,
+                     jobs: int = DEFAULT_JOBS, force: bool = False):
+    """The rocking spectrum of ``motion`` (ids, paths, GroundMotions, (array, dt): see
+    :func:`audit.rock`) over sizes 2π/p [s] × slendernesses [degrees]: a DataFrame (one row per
+    block; ``audit.physics.rocking.RockingSpectrum.to_frame``), the record's id in
+    ``.attrs["record"]``."""
+    import numpy as np
+
+    from audit.api.inputs import motion_of
+    from audit.engine import guards
+    from audit.engine.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
+    from audit.engine.grid import size_grid
+    from audit.physics.block import Restitution
+    from audit.physics.rocking import rocking_spectrum as spectrum
+    motion = motion_of(motion)
+    sizes = check.numbers("sizes_s", sizes_s, "positive block sizes 2π/p in s", 0, low_open=True)
+    alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
+                           45, low_open=True, high_open=True)
+    free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
+    impact = restitution if isinstance(restitution, Restitution) else Restitution.parse(
+        restitution, "restitution")
+    if check.flag("vertical", vertical) and motion.vertical is None:
+        raise InputError(f"vertical: {motion.id} has no vertical component (give it in the "
+                         "manifest as vertical_file, or a PEER UP/DWN file beside the record)",
+                         "vertical")
+    jobs = check.whole("jobs", jobs, 1)
+    guards.check(guards.estimate(
+        [motion], free_motion_s, blocks=len(sizes) * len(alphas), jobs=jobs,
+        settings=(guards.Setting("sizes_s", len(sizes), size_grid(*DEFAULT_SIZES).size),
+                  guards.Setting("alpha_deg", len(alphas), len(DEFAULT_ALPHA_DEG)))), force)
+    frame = spectrum(motion, np.asarray(sizes), np.radians(alphas), impact,
+                     free_motion_s=free_motion_s, jobs=jobs, vertical=vertical).to_frame()
+    frame.attrs["record"] = motion.id
+    return frame
+
+
+def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
+                     free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False):
+    """True response spectra of ``motion`` at periods [s] and damping ratios [%]: a DataFrame
+    (``audit.physics.oscillator.ResponseSpectra.to_frame``)."""
+    import numpy as np
+
+    from audit.api.inputs import motion_of
+    from audit.engine import guards
+    from audit.engine.grid import size_grid
+    from audit.physics.oscillator import response_spectra as spectra
+    motion = motion_of(motion)
+    periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
+    damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,
+                            high_open=True)
+    free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
+    guards.check(guards.estimate(
+        [motion], free_motion_s, oscillators=len(periods) * len(damping),
+        settings=(guards.Setting("periods_s", len(periods), size_grid(*DEFAULT_PERIODS).size),
+                  guards.Setting("damping_pct", len(damping), len(DEFAULT_DAMPING_PCT)))), force)
+    frame = spectra(motion, np.asarray(periods), np.asarray(damping) / 100.0,
+                    free_motion_s).to_frame()
+    frame.attrs["record"] = motion.id
+    return frame
+
+
+def design_spectrum(code: str, periods_s, damping_pct=DEFAULT_DESIGN_DAMPING_PCT, **site):
+    """A code's design spectrum at periods [s] and damping ratios [%]: ``(spectrum, columns)``,
+    the spectrum object and a dict of equal-length columns ``period_s, damping_pct, sa_g,
+    sd_m`` (no pandas).
+
+    ``site``: FEMA 356 ``sxs_g, sx1_g``; UBC 97 ``na, nv`` (1 when not given); NTC 2018 ``ag_g,
+    f0, tc_star_s, soil, topography``.
+    """
+    import numpy as np
+
+    from audit.physics.design_spectra import FEMA356Spectrum, NTC2018Spectrum, UBC97Spectrum
+    periods = np.asarray(check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0))
+    damping = np.asarray(check.numbers("damping_pct", damping_pct,
+                                       "damping ratios in [0, 100) %", 0, 100,
+                                       high_open=True)) / 100.0
+    needs = {"fema356": ("sxs_g", "sx1_g"), "ntc2018": ("ag_g", "f0", "tc_star_s"),
+             "ubc97": ()}
+    if code not in needs:
+        raise InputError(f"code: expected one of {', '.join(CODES)}, got {code!r}", "code")
+    absent = [name for name in needs[code] if site.get(name) is None]
+    if absent:
+        raise InputError(f"{', '.join(absent)}: {code} needs {', '.join(needs[code])}",
+                         *needs[code])
+    if code == "fema356":
+        spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
+    elif code == "ntc2018":
+        spectrum = NTC2018Spectrum(site["ag_g"], site["f0"], site["tc_star_s"],
+                                   site.get("soil", "A"), site.get("topography", "T1"))
+    else:
+        spectrum = UBC97Spectrum(site.get("na") or 1.0, site.get("nv") or 1.0)
+    return spectrum, {
+        "period_s": np.tile(periods, damping.size),
+        "damping_pct": np.repeat(100.0 * damping, periods.size),
+        "sa_g": np.concatenate([spectrum.acceleration(periods, d) for d in damping]),
+        "sd_m": np.concatenate([spectrum.displacement(periods, d) for d in damping])}
+
+
+__all__ = ["rocking_spectrum", "response_spectra", "design_spectrum", "CODES"]

@@ -1,0 +1,64 @@
+"""The work of an audit and of a design-level audit, estimated before it starts
+(:mod:`audit.engine.guards` refuses or announces it): the exact solver's blocks and the
+oscillators of the spectra the procedures read, per record."""
+
+from __future__ import annotations
+
+from audit.engine import guards
+from audit.engine.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_MARGINS_SIZES, DEFAULT_SIZES,
+                                   DEFAULT_STRIPES)
+from audit.engine.grid import size_grid
+from audit.engine.margins_settings import MarginsSettings
+from audit.engine.runtime import Runtime
+from audit.engine.settings import AuditSettings
+from procedures.base import SPECTRUM_PERIODS_S
+
+#: Damping ratios of the record spectra every audited record gets (Figures 5.x).
+RECORD_SPECTRA = 3
+#: Slendernesses of the required-slenderness search per size, and its bisections
+#: (:mod:`audit.engine.required_alpha`).
+SEARCH_ALPHAS, SEARCH_BISECTIONS = 20, 8
+
+
+def _motions(suite) -> list:
+    return [entry.motion for entry in suite if entry.motion is not None]
+
+
+def audit_cost(procedures, suite, settings: AuditSettings, runtime: Runtime) -> guards.Estimate:
+    """The work of :func:`audit.engine.suite_run.compute_suite`: every block solved once, twice
+    more for the fragility flag (record × (1 ± ε)), once more per alternative model; the
+    record's spectra and each procedure's at each slenderness."""
+    sizes, alphas = len(settings.size_s), len(settings.alpha_deg)
+    return guards.estimate(
+        _motions(suite), settings.free_motion_s,
+        blocks=sizes * alphas * ((3 if settings.robustness else 1) + len(settings.sensitivity)),
+        oscillators=SPECTRUM_PERIODS_S.size * (RECORD_SPECTRA + alphas * len(procedures)),
+        jobs=runtime.jobs,
+        settings=(guards.Setting("sizes_s", sizes, size_grid(*DEFAULT_SIZES).size),
+                  guards.Setting("alpha_deg", alphas, len(DEFAULT_ALPHA_DEG))))
+
+
+def margins_cost(procedures, suite, settings: MarginsSettings,
+                 runtime: Runtime) -> guards.Estimate:
+    """The work of :func:`audit.engine.margins_audit.design_level_audit`: every block at every
+    stripe, then the required-slenderness grid and its bisections; the spectra each procedure
+    that reads the record's spectra (its rotation estimate) computes at each slenderness (once
+    per record, scaled to every stripe) and at each of the search's."""
+    stripes = DEFAULT_STRIPES if settings.stripes is None else len(settings.stripes)
+    sizes, alphas = len(settings.size_s), len(settings.alpha_deg)
+    slendernesses = len({*settings.alpha_deg, *(b.alpha_deg for b in settings.blocks)})
+    search = SEARCH_ALPHAS if settings.required else 0
+    readers = sum(p.requires_motion and p.estimates_rotation for p in procedures)
+    return guards.estimate(
+        _motions(suite), settings.free_motion_s,
+        blocks=(stripes * (sizes * alphas + len(settings.blocks))
+                + (sizes * (SEARCH_ALPHAS + SEARCH_BISECTIONS) if settings.required else 0)),
+        oscillators=SPECTRUM_PERIODS_S.size * (slendernesses + search) * readers,
+        jobs=runtime.jobs,
+        settings=(guards.Setting("stripes", stripes, DEFAULT_STRIPES),
+                  guards.Setting("sizes_s", sizes, size_grid(*DEFAULT_MARGINS_SIZES).size),
+                  guards.Setting("alpha_deg", alphas, len(DEFAULT_ALPHA_DEG)),
+                  guards.Setting("blocks", len(settings.blocks), 0)))
+
+
+__all__ = ["audit_cost", "margins_cost"]

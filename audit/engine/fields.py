@@ -1,0 +1,82 @@
+"""Checks of one settings field each, for the settings objects' ``parse``: the value as a user
+of the Python API may give it (a scalar where a list is expected, a list or an array), checked
+once and returned in one type, or an InputError naming the field.
+
+Light on purpose (no numpy import), so that the command line's start-up stays light.
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+from audit.errors import InputError
+
+
+def _real(field: str, value, what: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise InputError(f"{field}: expected {what}, got {value!r}", field)
+    return float(value)
+
+
+def number(field: str, value, what: str = "a number", low: float | None = None,
+           high: float | None = None, *, low_open: bool = False,
+           high_open: bool = False) -> float:
+    """``value`` as a finite float in [low, high] (open ends where asked)."""
+    number_ = _real(field, value, what)
+    below = low is not None and (number_ <= low if low_open else number_ < low)
+    above = high is not None and (number_ >= high if high_open else number_ > high)
+    if not math.isfinite(number_) or below or above:
+        raise InputError(f"{field}: expected {what}, got {value!r}", field)
+    return number_
+
+
+def numbers(field: str, value, what: str = "numbers", low: float | None = None,
+            high: float | None = None, *, low_open: bool = False,
+            high_open: bool = False) -> tuple[float, ...]:
+    """``value`` (a number, or a sequence or array of them) as a non-empty tuple of finite
+    floats, each in [low, high]."""
+    if isinstance(value, (str, bytes)) or value is None:
+        raise InputError(f"{field}: expected {what}, got {value!r}", field)
+    items = value.tolist() if hasattr(value, "tolist") else value
+    if not hasattr(items, "__iter__"):
+        items = [items]
+    items = list(items)
+    if not items:
+        raise InputError(f"{field}: expected {what}, got none", field)
+    return tuple(number(field, item, what, low, high, low_open=low_open, high_open=high_open)
+                 for item in items)
+
+
+def whole(field: str, value, low: int) -> int:
+    """``value`` as an int ≥ ``low`` (an integral float too, not a bool)."""
+    if isinstance(value, bool) or not isinstance(value, Real) or value != int(value) \
+            or value < low:
+        raise InputError(f"{field}: expected a whole number ≥ {low}, got {value!r}", field)
+    return int(value)
+
+
+def flag(field: str, value) -> bool:
+    """``value`` as a bool (True or False, numpy's too; not 'yes' or 1.5)."""
+    if value in (True, False) and not isinstance(value, (str, float)):
+        return bool(value)
+    raise InputError(f"{field}: expected True or False, got {value!r}", field)
+
+
+def words(field: str, value) -> tuple[str, ...]:
+    """``value`` (a string, or a sequence of them) as a tuple of strings."""
+    items = (value,) if isinstance(value, str) else value
+    if not isinstance(items, (list, tuple)) or not all(isinstance(item, str) for item in items):
+        raise InputError(f"{field}: expected text or a list of text, got {value!r}", field)
+    return tuple(items)
+
+
+def unknown(where: str, values: dict, known) -> None:
+    """InputError naming the first of ``values`` that is not a field of ``where``."""
+    extra = [name for name in values if name not in known]
+    if extra:
+        raise InputError(f"{extra[0]}: not an argument of {where} (its arguments: "
+                         f"{', '.join(known)})", extra[0])
+
+
+__all__ = ["number", "numbers", "whole", "flag", "words", "unknown"]

@@ -1,0 +1,74 @@
+"""Intensity measures of the design-level audit: PGA, PGV, or a true spectral acceleration."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from audit import G
+from audit.errors import InputError
+
+PGA, PGV, SA = "pga", "pgv", "sa"
+#: Damping of the spectral acceleration of ``sa:T`` [-].
+IM_DAMPING = 0.05
+
+
+@dataclass(frozen=True)
+class IntensityMeasure:
+    """An intensity measure: ``pga`` [g], ``pgv`` [m/s] or ``sa:T`` (true 5 %-damped spectral
+    acceleration max|ü + üg| at period T, [g])."""
+
+    kind: str
+    period_s: float | None = None
+
+    @classmethod
+    def parse(cls, text: str) -> IntensityMeasure:
+        """``pga``, ``pgv`` or ``sa:T``; InputError naming ``im`` otherwise."""
+        if not isinstance(text, str):
+            raise InputError(f"im: expected pga, pgv or sa:T with T a period in s, got {text!r}",
+                             "im")
+        text = text.strip().lower()
+        if text in (PGA, PGV):
+            return cls(text)
+        if text.startswith(f"{SA}:"):
+            try:
+                period = float(text[3:])
+            except ValueError:
+                period = math.nan
+            if math.isfinite(period) and period > 0:
+                return cls(SA, period)
+        raise InputError(f"im: expected pga, pgv or sa:T with T a period in s, got '{text}'",
+                         "im")
+
+    @property
+    def name(self) -> str:
+        return f"{SA}:{self.period_s:g}" if self.kind == SA else self.kind
+
+    @property
+    def unit(self) -> str:
+        return "m/s" if self.kind == PGV else "g"
+
+    def of_record(self, motion, free_motion_s: float) -> float:
+        """The intensity of a record (in :attr:`unit`)."""
+        if self.kind == PGA:
+            return motion.pga_g
+        if self.kind == PGV:
+            return motion.pgv
+        import numpy as np
+
+        from audit.physics.oscillator import response_spectra
+        spectra = response_spectra(motion, np.array([self.period_s]), [IM_DAMPING],
+                                   free_motion_s)
+        return float(spectra.sa[0, 0]) / G
+
+    def of_design_site(self, site: dict) -> float | None:
+        """The intensity of a FEMA 356 design site (S_XS, S_X1 [g]), or None: PGA = 0.4 S_XS,
+        Sa(T) of the design spectrum at 5 %; PGV has no design value."""
+        if not site or self.kind == PGV:
+            return None
+        from audit.physics.design_spectra import FEMA356Spectrum
+        spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
+        return float(spectrum.acceleration(0.0 if self.kind == PGA else self.period_s, 0.05))
+
+
+__all__ = ["IntensityMeasure", "PGA", "PGV", "SA", "IM_DAMPING"]

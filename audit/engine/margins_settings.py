@@ -1,0 +1,171 @@
+"""What the design-level audit computes (:mod:`audit.engine.margins`), checked once."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from audit import G
+from audit.engine import fields as check
+from audit.engine.blocks import NamedBlock, parse_blocks
+from audit.engine.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
+                                   DEFAULT_MARGINS_SIZES, DEFAULT_RESTITUTION,
+                                   DEFAULT_RISK_TARGET, DEFAULT_SITE_LEVEL,
+                                   SITE_LEVELS)
+from audit.engine.grid import size_grid
+from audit.engine.intensity import IntensityMeasure
+from audit.errors import InputError
+from audit.physics.block import Restitution
+
+#: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``sizes_s``: None, the
+#: default grid; ``stripes``: None, levels around the design intensity).
+MARGINS_DEFAULTS = {"im": DEFAULT_IM, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
+                    "sizes_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
+                    "free_motion_s": DEFAULT_FREE_MOTION_S, "required": True, "g": G,
+                    "site_level": DEFAULT_SITE_LEVEL, "hazard": None, "site_location": None,
+                    "risk_target": DEFAULT_RISK_TARGET}
+MARGINS_FIELDS = tuple(MARGINS_DEFAULTS)
+
+
+@dataclass(frozen=True)
+class MarginsSettings:
+    """What a design-level audit computes.
+
+    Attributes
+    ----------
+    im : IntensityMeasure
+    stripes : tuple of float or None
+        Intensity levels, increasing [unit of ``im``]; None: the default levels around the
+        design intensity (or the suite's median).
+    alpha_deg, size_s : tuple of float
+        Slendernesses [degrees] and sizes 2π/p [s] of the grid (either may be empty when
+        ``blocks`` are given).
+    blocks : tuple of audit.engine.blocks.NamedBlock
+        Blocks by their dimensions, beside the grid.
+    restitution : Restitution
+    free_motion_s, g : float
+        Free motion after each record [s]; gravity [m/s²].
+    required : bool
+        Also search the required slenderness of each size.
+    site_level : {"mce", "design"}
+        The hazard level of the site's spectral values: the CMR is over the MCE intensity
+        (:data:`SITE_LEVELS`).
+    hazard : records.hazard.HazardCurve or None
+        The site's hazard curve: the annual rate of overturning of every block and the
+        slenderness each size needs for ``risk_target`` (:mod:`audit.engine.margins_risk`).
+    risk_target : float
+        Probability of overturning in 50 years the risk-targeted slenderness meets [-].
+
+    Build it with :meth:`parse`, which checks every field once.
+    """
+
+    im: IntensityMeasure
+    stripes: tuple | None
+    alpha_deg: tuple
+    size_s: tuple
+    blocks: tuple
+    restitution: Restitution
+    free_motion_s: float
+    required: bool
+    g: float
+    site_level: str = DEFAULT_SITE_LEVEL
+    hazard: object = None
+    risk_target: float = DEFAULT_RISK_TARGET
+
+    @classmethod
+    def parse(cls, **values) -> MarginsSettings:
+        """The settings of the given fields, each checked once (InputError naming the field).
+
+        Parameters
+        ----------
+        im : str or IntensityMeasure
+            ``pga`` [g], ``pgv`` [m/s] or ``sa:T``.
+        stripes : float or sequence of float, optional
+            Positive, finite, increasing, each once.
+        alpha_deg, sizes_s : float or sequence of float
+        blocks : sequence of str or objects with ``width_m``, ``height_m``
+            ``"WIDTHxHEIGHT"`` [m], or a block (e.g. :class:`audit.Block`).
+        restitution : str, float or Restitution
+        free_motion_s : float
+        required : bool
+        g : float
+        site_level : {"mce", "design"}
+        hazard : records.hazard.HazardCurve, str or pathlib.Path, optional
+            A hazard curve or its file (OpenQuake, USGS or plain CSV); its IMT sets ``im``
+            when ``im`` is not given, and must be ``im`` when it is.
+        site_location : (float, float), optional
+            Longitude, latitude [degrees] of the site in a hazard file of several sites.
+        risk_target : float
+            In (0, 1).
+        """
+        check.unknown("the design-level audit", values, MARGINS_FIELDS)
+        value = {**MARGINS_DEFAULTS, **values}
+        im = value["im"]
+        g = check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True)
+        stripes = value["stripes"]
+        if stripes is not None:
+            stripes = check.numbers("stripes", stripes, "positive finite intensity levels", 0,
+                                    low_open=True)
+            if any(b <= a for a, b in zip(stripes, stripes[1:])):
+                raise InputError(f"stripes: expected increasing intensity levels, each once, "
+                                 f"got {', '.join(f'{s:g}' for s in stripes)}", "stripes")
+        sizes = value["sizes_s"]
+        if value["site_level"] not in SITE_LEVELS:
+            raise InputError(f"site_level: expected {' or '.join(SITE_LEVELS)}, got "
+                             f"{value['site_level']!r}", "site_level")
+        hazard = value["hazard"]
+        if hazard is not None:  # read and checked before any work
+            from audit.engine.risk import annual_rate_for, check_same_im, hazard_im
+            from records.hazard import HazardCurve, read_hazard
+            if not isinstance(hazard, HazardCurve):
+                hazard = read_hazard(hazard, value["site_location"])
+            if "im" in values:
+                check_same_im(hazard, im if isinstance(im, str) else im.name, "im")
+            im = hazard_im(hazard)
+            annual_rate_for(value["risk_target"])
+        return cls(
+            im=im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im),
+            stripes=stripes,
+            alpha_deg=_grid("alpha_deg", value["alpha_deg"], "slendernesses between 0 and 45 "
+                            "degrees", 0, 45),
+            size_s=(tuple(float(s) for s in size_grid(*DEFAULT_MARGINS_SIZES)) if sizes is None
+                    else _grid("sizes_s", sizes, "positive block sizes 2π/p in s", 0,
+                               math.inf)),
+            blocks=_blocks(value["blocks"], g),
+            restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
+                         else Restitution.parse(value["restitution"], "restitution")),
+            free_motion_s=check.number("free_motion_s", value["free_motion_s"],
+                                       "a duration ≥ 0 s", 0),
+            required=check.flag("required", value["required"]),
+            g=g, site_level=value["site_level"], hazard=hazard,
+            risk_target=float(value["risk_target"]))
+
+
+def _grid(field, value, what, low, high) -> tuple:
+    """A grid axis: may be empty (blocks are then given by their dimensions alone)."""
+    if value is not None and not isinstance(value, (str, bytes)) and hasattr(value, "__len__") \
+            and len(value) == 0:
+        return ()
+    return check.numbers(field, value, what, low, high, low_open=True, high_open=True)
+
+
+def _blocks(items, g: float) -> tuple:
+    """``blocks`` as NamedBlocks: ``"WIDTHxHEIGHT"`` texts, or blocks with dimensions."""
+    if isinstance(items, str) or not hasattr(items, "__iter__"):
+        items = [items]
+    blocks = []
+    for item in items:
+        if isinstance(item, str):
+            blocks += parse_blocks([item], "blocks", g)
+        elif isinstance(item, NamedBlock):
+            blocks.append(item)
+        elif hasattr(item, "width_m") and hasattr(item, "height_m"):
+            blocks.append(NamedBlock(float(item.width_m), float(item.height_m),
+                                     float(getattr(item, "g", g))))
+        else:
+            raise InputError(f"blocks: expected 'WIDTHxHEIGHT' in metres (e.g. '0.8x2.0') or a "
+                             f"Block, got {item!r}", "blocks")
+    return tuple(blocks)
+
+
+__all__ = ["MarginsSettings", "MARGINS_DEFAULTS", "MARGINS_FIELDS", "SITE_LEVELS"]
