@@ -4,7 +4,7 @@ Equation numbers refer to Makris & Konstantinidis, *The Rocking Spectrum and the
 Shortcomings of Design Guidelines*, PEER 2001/07.
 
 The Python API (:mod:`audit.api`) is here too: ``audit.Block``, ``audit.rock``, ``audit.run``,
-``audit.margins``, ``audit.fragility`` (loaded on first use, so that the command line starts
+``audit.margins``, ``audit.check``, ``audit.risk``, ``audit.fragility`` (loaded on first use, so that the command line starts
 light).
 """
 
@@ -15,21 +15,17 @@ G = 9.81
 
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
 _API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
-        "run", "margins", "fragility", "design_suite", "risk", "read_hazard")
-#: ``audit check``'s API (:mod:`audit.check_api`), loaded the same way.
-_CHECK_API = ("check", "CheckResult")
+        "run", "margins", "fragility", "design_suite", "risk", "read_hazard", "check",
+        "CheckResult")
 
 
 def __getattr__(name):
     if name in _API:
         from audit import api
         return getattr(api, name)
-    if name in _CHECK_API:
-        from audit import check_api
-        return getattr(check_api, name)
     raise AttributeError(f"module 'audit' has no attribute {name!r}")
 
 
 def __dir__():
     return sorted({*(name for name in globals() if not name.startswith("_")), "__version__",
-                   *_API, *_CHECK_API})
+                   *_API})

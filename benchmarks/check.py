@@ -27,7 +27,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from audit.api import design_suite  # noqa: E402
 from audit.engine.check import run_check  # noqa: E402
 from audit.engine.check_objects import CheckObject  # noqa: E402
-from audit.engine.margins import IntensityMeasure  # noqa: E402
+from audit.engine.intensity import IntensityMeasure  # noqa: E402
 from procedures import get_procedures  # noqa: E402
 from records import load_records  # noqa: E402
 

@@ -20,7 +20,7 @@ REPO = Path(__file__).resolve().parents[1]
 PACKAGES = ("audit", "procedures", "reports", "records")
 BASE = {"audit", "audit.errors", "audit.files"}
 LAYERS = (("records",), ("audit.physics",), ("procedures",), ("audit.engine",), ("reports",),
-          ("audit.api", "audit.check_api"), ("audit.cli", "audit.__main__"))
+          ("audit.api",), ("audit.cli", "audit.__main__"))
 
 
 def _modules() -> dict[str, Path]:
@@ -54,7 +54,7 @@ def _imports(name: str, path: Path) -> set[str]:
             continue
         out |= {target for target in targets if target in MODULES}
     if name == "audit":
-        out -= {"audit.api", "audit.check_api"}
+        out -= {"audit.api"}
     out.discard(name)
     return out
 

@@ -61,9 +61,9 @@ def add_parser(sub):
     p.set_defaults(func=run)
 
 
-def objects_of(args, g: float | None = None) -> list:
+def objects_of(args) -> list:
     """Every object of ``--block``, ``--objects`` and ``--alpha``/``--size``, checked."""
-    from audit.engine.check_objects import object_by_slenderness, parse_block_text, read_objects
+    from audit.api.object_check import object_by_slenderness, parse_block_text, read_objects
     objects = []
     for text in args.block or ():
         objects += parse_block_text(text)
@@ -87,10 +87,7 @@ def objects_of(args, g: float | None = None) -> list:
 
 
 def run(args) -> int:
-    from audit.check_api import check
-    from audit.engine.check_summary import summary_text
-    from audit.engine.progress import Progress
-    from audit.engine.scheduler import check_scheduler
+    from audit.api import check
     from audit.files import check_output_dir
     if not args.site:
         raise InputError("--site: required, S_XS,S_X1 [g] of the hazard level assessed "
@@ -105,24 +102,16 @@ def run(args) -> int:
             raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
         ntc_site = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
     out_dir = check_output_dir(Path(args.out)) if args.out else None
-    scheduler = check_scheduler(args.scheduler)
     objects = objects_of(args)
     start = time.perf_counter()
-    progress = Progress(1, "record")
-    progress.stage(f"checking {len(objects)} object{'s' if len(objects) > 1 else ''} at "
-                   f"S_XS = {site[0]:g} g, S_X1 = {site[1]:g} g")
-    try:
-        result = check(objects, site, procedures=args.procedure, records=args.records,
-                       im=args.im, ntc_site=ntc_site, restitution=args.restitution,
-                       jobs=args.jobs, free_motion_s=args.free_motion, scheduler=scheduler,
-                       progress=progress)
-    finally:
-        progress.done()
+    result = check(objects, site, procedures=args.procedure, records=args.records,
+                   im=args.im, ntc_site=ntc_site, restitution=args.restitution,
+                   jobs=args.jobs, free_motion_s=args.free_motion, scheduler=args.scheduler,
+                   progress=True)
     if out_dir is not None:
-        progress.stage(f"writing check.json, check.csv and check.html to {out_dir}")
         result.write(out_dir)
-    progress.stage(f"done in {time.perf_counter() - start:.1f} s")
-    sys.stdout.write(summary_text(result.document))
+    print(f"done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
+    sys.stdout.write(result.summary())
     if out_dir is not None:
         print(f"Wrote {out_dir / 'check.html'}, check.json and check.csv")
     return 0

@@ -19,7 +19,7 @@ FLAGS = {
     "width_m": "--block", "height_m": "--block", "skip_bad": "--skip-bad-records",
     "periods_s": "--periods", "damping_pct": "--damping", "sxs_g": "--sxs", "sx1_g": "--sx1",
     "ag_g": "--ag", "f0": "--f0", "tc_star_s": "--tc-star", "site_level": "--level",
-    "hazard": "--hazard", "site_location": "--site-location", "risk_target": "--risk-target",
+    "hazard": "--hazard", "objects": "--objects", "site_location": "--site-location", "risk_target": "--risk-target",
 }
 #: Where a command's flag for an argument differs from :data:`FLAGS`.
 COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}

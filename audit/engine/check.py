@@ -33,7 +33,7 @@ from audit.engine.blocks import BlockList
 from audit.engine.check_widths import (accepted_width, exact_required_widths,
                                       guideline_bracket, overturns_at)
 from audit.engine.fragility import bootstrap_lognormal, fit_lognormal
-from audit.engine.margins import MarginsSettings, RecordStripes, half_crossing, record_stripes
+from audit.engine.margins import RecordStripes, StripeSettings, half_crossing, record_stripes
 from audit.engine.scheduler import computed_parts, open_scheduler
 from audit.errors import InputError
 from audit.physics.block import Restitution
@@ -63,7 +63,7 @@ class CheckSettings:
 
     Attributes
     ----------
-    stripes : audit.engine.margins.MarginsSettings
+    stripes : audit.engine.margins.StripeSettings
         The stripes (the site's intensity its ``design_im``) and the objects as blocks.
     objects : tuple of audit.engine.check_objects.CheckObject
     per_record : tuple of str
@@ -71,7 +71,7 @@ class CheckSettings:
         site and are judged once.
     """
 
-    stripes: MarginsSettings
+    stripes: StripeSettings
     objects: tuple
     per_record: tuple
 
@@ -208,17 +208,18 @@ def run_check(procedures, suite, objects, im, restitution: Restitution | None = 
     from audit.engine.check_summary import object_answer, run_summary
     entries = [entry for entry in suite if entry.motion is not None]
     if not entries:
-        raise InputError(f"--records: no record of {suite.description} has a file")
+        raise InputError(f"records: no record of {suite.description} has a file", "records")
     site_im = im.of_design_site(suite.design_site)
     if not site_im:
-        raise InputError("--site: the check needs the site's S_XS,S_X1 [g]" if im.unit == "g"
-                         else f"--im {im.name}: a design spectrum gives no {im.name}; "
-                              "choose pga or sa:T")
+        raise (InputError("site: the check needs the site's S_XS,S_X1 [g]", "site")
+               if im.unit == "g" else
+               InputError(f"im: {im.name}: a design spectrum gives no {im.name}; choose pga or "
+                          "sa:T", "im"))
     levels = check_levels(site_im)
     restitution = restitution or Restitution()
     objects = tuple(objects)
     per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
-    settings = CheckSettings(MarginsSettings(im, tuple(levels.tolist()), site_im,
+    settings = CheckSettings(StripeSettings(im, tuple(levels.tolist()), site_im,
                                              BlockList.of(named=objects), restitution, float(g),
                                              float(free_motion_s), int(jobs)),
                              objects, per_record)

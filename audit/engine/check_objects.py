@@ -114,7 +114,7 @@ def object_by_slenderness(name: str, alpha_deg, size_s, where: str, g: float = G
     return checked_object(name, shaped.width_m, shaped.height_m, where, g)
 
 
-def parse_block_text(text: str, option: str = "--block", g: float = G) -> list[CheckObject]:
+def parse_block_text(text: str, option: str = "blocks", g: float = G) -> list[CheckObject]:
     """Objects of one ``--block`` value, ``WIDTHxHEIGHT`` [m] (several comma-separated), named
     as typed."""
     objects = []
@@ -129,7 +129,7 @@ def parse_block_text(text: str, option: str = "--block", g: float = G) -> list[C
     return objects
 
 
-def read_objects(path, option: str = "--objects", g: float = G) -> list[CheckObject]:
+def read_objects(path, option: str = "objects", g: float = G) -> list[CheckObject]:
     """An inventory: a CSV file with ``name`` and either ``width_m,height_m`` or
     ``alpha_deg,size_s`` on each row (a row may use either pair). InputError naming the file,
     the row and the field of the first bad row."""

@@ -194,7 +194,7 @@ def _compared(proc: dict) -> str:
 
 
 def _intensity(name: str):
-    from audit.engine.margins import IntensityMeasure
+    from audit.engine.intensity import IntensityMeasure
     return IntensityMeasure.parse(name)
 
 

@@ -168,7 +168,7 @@ def annual_rate_for(probability: float, years: float = YEARS) -> float:
 def hazard_im(curve):
     """The project's intensity measure (:class:`~audit.engine.margins.IntensityMeasure`) of a
     hazard curve: PGA → ``pga``, SA(T) → ``sa:T``."""
-    from audit.engine.margins import IntensityMeasure
+    from audit.engine.intensity import IntensityMeasure
     return IntensityMeasure("pga") if curve.imt == "PGA" else \
         IntensityMeasure("sa", float(curve.period_s))
 
@@ -178,7 +178,7 @@ def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
     the hazard curve's; None passes (the caller vouches for it)."""
     if im is None:
         return
-    from audit.engine.margins import IntensityMeasure
+    from audit.engine.intensity import IntensityMeasure
     mine, theirs = IntensityMeasure.parse(im), hazard_im(curve)
     same = mine.kind == theirs.kind and (
         mine.kind != "sa" or math.isclose(mine.period_s, theirs.period_s, rel_tol=1e-6))

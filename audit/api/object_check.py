@@ -19,6 +19,7 @@ from pathlib import Path
 import pandas as pd
 
 from audit import G
+from audit.engine.check_objects import object_by_slenderness, parse_block_text, read_objects
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, DEFAULT_SCHEDULER
 from audit.errors import InputError
 
@@ -150,9 +151,10 @@ def check(objects, site, procedures="all", records=DEFAULT_RECORDS, im: str = "s
     -------
     CheckResult
     """
-    from audit.api import _procedures, design_suite
+    from audit.api import design_suite
+    from audit.api.inputs import procedures_of
     from audit.engine.check import run_check
-    from audit.engine.margins import IntensityMeasure
+    from audit.engine.intensity import IntensityMeasure
     from audit.engine.progress import Progress
     from audit.physics.block import Restitution
     from records import RecordSuite, load_records
@@ -165,9 +167,10 @@ def check(objects, site, procedures="all", records=DEFAULT_RECORDS, im: str = "s
     if intensity.kind == "pgv":
         raise InputError("im: a design spectrum gives no PGV; choose pga or sa:T")
     impact = restitution if isinstance(restitution, Restitution) else Restitution.parse(restitution)
-    chosen = _procedures(procedures)
+    chosen = procedures_of(procedures)
     suite = records if isinstance(records, RecordSuite) else load_records(records)
-    suite = design_suite(suite, (sxs_g, sx1_g), True, True, None, ntc_site)
+    suite = design_suite(suite, site=(sxs_g, sx1_g), site_override=True, scale_to_site=True,
+                         ntc_site=ntc_site)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, intensity, impact, g, free_motion_s, jobs,
@@ -178,4 +181,4 @@ def check(objects, site, procedures="all", records=DEFAULT_RECORDS, im: str = "s
     return CheckResult(run)
 
 
-__all__ = ["check", "CheckResult"]
+__all__ = ["check", "CheckResult", "object_by_slenderness", "parse_block_text", "read_objects"]
