@@ -147,3 +147,19 @@ def test_audit_report_imports_no_solver(tmp_path):
     done = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True,
                           text=True, check=True)
     assert done.stdout.strip().splitlines()[-1] == "0 []"
+
+
+def test_no_api_name_is_shadowed_by_a_module_of_the_api_package():
+    """``audit.api``'s names are loaded lazily from its modules; a module named like one of
+    them (``audit/api/risk.py`` for ``audit.risk``) would replace the name by the module once
+    imported."""
+    import importlib
+    import inspect
+
+    import audit
+    import audit.api
+    for module in (REPO / "audit" / "api").glob("*.py"):
+        importlib.import_module(f"audit.api.{module.stem}")
+    shadowed = [name for name in audit.api.__all__ if inspect.ismodule(getattr(audit, name, None))
+                or inspect.ismodule(getattr(audit.api, name))]
+    assert not shadowed

@@ -33,7 +33,7 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           "FRAGILITY_HTML": "audit.api.probabilistic",
           "rocking_spectrum": "audit.api.spectra", "response_spectra": "audit.api.spectra",
           "design_spectrum": "audit.api.spectra", "load_result": "audit.api.runs",
-          "risk": "audit.api.risk", "read_hazard": "audit.api.risk",
+          "risk": "audit.api.site_risk", "read_hazard": "audit.api.site_risk",
           "check": "audit.api.object_check", "CheckResult": "audit.api.object_check",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
           # and its report, for the command line

@@ -66,9 +66,9 @@ def objects_of(args) -> list:
     from audit.api.object_check import object_by_slenderness, parse_block_text, read_objects
     objects = []
     for text in args.block or ():
-        objects += parse_block_text(text)
+        objects += parse_block_text(text, "--block")
     if args.objects:
-        objects += read_objects(args.objects)
+        objects += read_objects(args.objects, "--objects")
     if bool(args.alpha) != bool(args.size):
         raise InputError("--alpha and --size go together: objects by slenderness and size")
     if args.alpha:
