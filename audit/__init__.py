@@ -10,7 +10,8 @@ __version__ = "0.1.0"
 G = 9.81
 
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
-_API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "rock", "run", "margins")
+_API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "rock", "run", "margins",
+        "validate", "ValidationResult")
 
 
 def __getattr__(name):

@@ -1,4 +1,4 @@
-"""Command-line interface: ``python -m audit {list,rock,spectrum,design-spectrum,run,report,fragility}``.
+"""Command-line interface: ``python -m audit {list,rock,spectrum,design-spectrum,run,report,fragility,validate}``.
 
 One module per command, each with ``add_parser(subparsers)`` and ``run(args)``; a command's
 scientific imports happen inside its ``run``, so start-up and ``--help`` stay light. Angles are
@@ -16,10 +16,10 @@ import warnings
 
 from audit import __version__
 from audit.cli import (design_spectrum, fragility, listing, margins, options, report, rock, run,
-                       spectrum)
+                       spectrum, validate)
 from audit.errors import InputError, InputWarning
 
-COMMANDS = (listing, rock, spectrum, design_spectrum, run, margins, fragility, report)
+COMMANDS = (listing, rock, spectrum, design_spectrum, run, margins, fragility, report, validate)
 #: Exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it.
 EXIT_INTERRUPTED = 130
 
