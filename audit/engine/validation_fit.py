@@ -137,7 +137,7 @@ def _fit_slice(nodes, outcomes, log_nodes, lapse):
     def negative(x):
         return -_log_likelihood(outcomes, overturning_probability(
             nodes, log_nodes, x[0], math.exp(x[1]), lapse))
-    starts = [(mu, math.log(s)) for mu in log_nodes for s in (0.05, 0.15, 0.4, 1.0)]
+    starts = [(mu, math.log(s)) for mu in log_nodes for s in (0.1, 0.4)]
     start = min(starts, key=negative)
     bounds = [(log_nodes[0], log_nodes[-1]), tuple(np.log(SIGMA_BOUNDS))]
     best = minimize(negative, start, method="L-BFGS-B", bounds=bounds)

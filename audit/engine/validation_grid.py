@@ -46,9 +46,9 @@ class ValidationSettings:
         Solver threads.
     """
 
-    alpha_deg: tuple = tuple(np.round(np.geomspace(1.0, 30.0, 31), 4))
-    p_rad_s: tuple = tuple(np.round(np.geomspace(2.0, 8.0, 7), 4))
-    restitution_factors: tuple = (0.5, 0.7, 0.85, 1.0)
+    alpha_deg: tuple = tuple(np.round(np.geomspace(1.5, 20.0, 22), 4))
+    p_rad_s: tuple = tuple(np.round(np.geomspace(3.0, 8.0, 7), 4))
+    restitution_factors: tuple = (0.3, 0.45, 0.6, 0.8, 1.0)
     highpass_hz: float = 0.1
     lowpass_hz: float = 25.0
     folds: int = 5
