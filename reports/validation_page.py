@@ -25,6 +25,9 @@ VALIDATION_HTML = "validation.html"
 CALIBRATION_EDGES = np.linspace(0.0, 1.0, 11)
 #: Edges of the PGA bins of the table of failures [g].
 PGA_EDGES_G = (0.0, 0.1, 0.2, 0.3, 0.5, 0.8, 1.2, 10.0)
+_SCORE_HEADINGS = {"log_loss": "log-loss", "true_positive": "TP", "false_positive": "FP",
+                   "true_negative": "TN", "false_negative": "FN",
+                   "brier_minus_model": "Brier − model's", "brier_minus_model_se": "± SE"}
 _OUTCOME_STYLE = {1.0: ("overturned", "#d62728", "x"), 0.0: ("stood", "#1f77b4", "circle-open")}
 
 
@@ -35,7 +38,8 @@ def _fifty_percent_line(tests: pd.DataFrame, fit) -> dict:
     smooth = VectorLogistic.fit(tests["pga_g"], tests["pgv_pga_s"], tests["p_model"], 1e-9)
     b0, b1, b2 = smooth.coefficients
     tan_alpha = math.tan(math.radians(fit.alpha_deg))
-    x = np.geomspace(0.3, 100.0, 120)
+    reach = tests["pga_g"] / tan_alpha
+    x = np.geomspace(reach.min(), reach.max(), 120)
     y = fit.p_rad_s * np.exp(-(b0 + b1 * np.log(x * tan_alpha)) / b2)
     return {"type": "scatter", "mode": "lines", "name": "model, 50 % (smoothed)",
             "x": x, "y": y, "line": {"color": "black"}}
@@ -116,12 +120,31 @@ def _failures(tests: pd.DataFrame) -> str:
     known["PGA [g]"] = pd.cut(known["pga_g"], PGA_EDGES_G).astype(str)
     by_pga = known.groupby(["specimen", "PGA [g]"], sort=False).agg(
         tests=("wrong", "size"), wrong=("wrong", "sum"), missed_overturning=("missed", "sum"),
-        observed_overturned=("observed", "sum")).reset_index().sort_values(["specimen"],
+        observed_overturned=("observed", lambda v: int(v.sum()))).reset_index().sort_values(["specimen"],
                                                                           kind="stable")
     return (f"<h3>By PGA (cross-validated classification at P ≥ 0.5)</h3>"
             f"{by_pga.to_html(index=False)}"
             f"<h3>Ground motions with the most wrong predictions</h3>"
             f"{worst.to_html(index=False, float_format=lambda v: f'{v:.3g}')}")
+
+
+def _fits_table(fits: pd.DataFrame) -> str:
+    """Fitted values with their 95 % intervals, beside what the geometry gives."""
+    def span(row, name, digits, bounds=None):
+        low, high = (getattr(row, (bounds or name) + end) for end in ("_low", "_high"))
+        return f"{getattr(row, name):.{digits}f} ({low:.{digits}f}–{high:.{digits}f})"
+    rows = [{"specimen": row.specimen, "tests fitted": row.n_tests,
+             "α̂ [°] (95 %)": span(row, "alpha_deg", 2),
+             "σ of ln α (95 %)": span(row, "sigma_ln_alpha", 3, "sigma"),
+             "p [rad/s] (95 % grid set)": span(row, "p_rad_s", 2),
+             "restitution factor (95 % grid set)": span(row, "restitution_factor", 2),
+             "log-likelihood": f"{row.log_likelihood:.1f}",
+             "geometry α [°]": "" if pd.isna(row.geometry_alpha_deg)
+             else f"{row.geometry_alpha_deg:g}",
+             "geometry p [rad/s]": "" if pd.isna(row.geometry_p_rad_s)
+             else f"{row.geometry_p_rad_s:g}",
+             "geometry note": row.geometry_note} for row in fits.itertuples()]
+    return pd.DataFrame(rows).to_html(index=False)
 
 
 def render_validation_page(folder, title: str, solves: int) -> str:
@@ -150,13 +173,14 @@ def render_validation_page(folder, title: str, solves: int) -> str:
             f"exact solver ({solves:,} exact simulations). Scores are cross-validated by ground "
             f"motion: every test is predicted by a fit that saw no test of its record. The "
             f"baselines are fitted on the same folds; the peer columns are another group's "
-            f"predictions, scored as given. Brier difference: the method's Brier score minus "
+            f"predictions, scored as given (not cross-validated: they may have been tuned on "
+            f"these outcomes). Brier difference: the method's Brier score minus "
             f"the model's on the same tests (positive: the model is better), with its standard "
             f"error.</p>{''.join(verdicts)}"
             f"<h2>Fitted blocks and geometry</h2>"
-            f"{fits.to_html(index=False, float_format=number, na_rep='')}"
+            f"{_fits_table(fits)}"
             f"<h2>Cross-validated scores</h2>"
-            f"{scores.to_html(index=False, float_format=number)}"
+            f"{scores.rename(columns=_SCORE_HEADINGS).to_html(index=False, float_format=number)}"
             f"<h2>Figures</h2>{''.join(figures)}"
             f"<h2>Where the model fails</h2>{_failures(tests)}"
             f"<h2>Limits</h2><p>{html.escape(methods_statement(fits, scores))}</p>"
