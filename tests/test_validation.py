@@ -18,6 +18,7 @@ from audit.engine.validation_baselines import ThresholdFragility, scores
 from audit.engine.validation_cv import folds_by_record
 from audit.engine.validation_fit import fit_block, slenderness_weights
 from audit.engine.validation_grid import ValidationSettings, overturning_grid
+from audit.engine.validation_run import fitted_restitution, methods_statement
 from audit.errors import InputError
 from audit.physics.block import Restitution
 from audit.physics.rocking import rocking_blocks
@@ -185,7 +186,7 @@ def test_api_and_command_write_predictions_for_the_unknown_tests(synthetic, tmp_
 
 def test_command_writes_every_file(tmp_path):
     folder = tmp_path / "small"
-    _campaign(folder, unknown=2, periods=(0.5, 1.5), scales=4)  # the default grid: keep it small
+    _campaign(folder, unknown=2, periods=(1.0,), scales=4)  # the default grid: keep it small
     out = tmp_path / "out"
     geometry = tmp_path / "geometry.csv"
     geometry.write_text("specimen,alpha_deg,p_rad_s,note\nspec,8,4,known\n")
@@ -245,3 +246,21 @@ def test_granite_motions_hold_the_measured_pga(granite):
     table = pd.read_csv(granite.folder / "tests.csv")
     measured = np.array([m.pga_g for m in granite.motions])
     assert measured == pytest.approx(table["measured_pga_g"].to_numpy(), abs=1e-4)
+
+
+def test_fitted_restitution_is_an_option_the_audit_accepts():
+    fits = pd.DataFrame({"specimen": ["a", "b"], "restitution_factor": [0.6, 0.8]})
+    assert fitted_restitution(fits) is None  # the specimens differ: no one value
+    assert Restitution.parse(fitted_restitution(fits, "b")).factor == 0.8
+    assert fitted_restitution(fits.iloc[:1]) == "x0.6"
+
+
+def test_methods_statement_gives_the_fit_the_score_and_the_limits():
+    fits = pd.DataFrame({"specimen": ["a"], "alpha_deg": [3.5], "alpha_deg_low": [3.3],
+                         "alpha_deg_high": [3.7], "p_rad_s": [4.9], "restitution_factor": [0.6]})
+    scores_table = pd.DataFrame({"specimen": ["a"], "method": ["rocking model"], "n": [327],
+                                 "accuracy": [0.924], "brier": [0.0623]})
+    text = methods_statement(fits, scores_table)
+    for part in ("α = 3.5° (95 % 3.3–3.7°)", "p = 4.90 rad/s", "0.6 × Eq. 4.8", "accuracy 92%",
+                 "Brier 0.062 over 327 tests", "one laboratory", "3-D"):
+        assert part in text
