@@ -138,6 +138,10 @@ def _fits_table(fits: pd.DataFrame) -> str:
              "σ of ln α (95 %)": span(row, "sigma_ln_alpha", 3, "sigma"),
              "p [rad/s] (95 % grid set)": span(row, "p_rad_s", 2),
              "restitution factor (95 % grid set)": span(row, "restitution_factor", 2),
+             "over the folds: α̂ [°], p, f": f"{row.alpha_deg_folds_min:.2f}–"
+             f"{row.alpha_deg_folds_max:.2f}, {row.p_rad_s_folds_min:.2f}–"
+             f"{row.p_rad_s_folds_max:.2f}, {row.restitution_factor_folds_min:g}–"
+             f"{row.restitution_factor_folds_max:g}",
              "log-likelihood": f"{row.log_likelihood:.1f}",
              "geometry α [°]": "" if pd.isna(row.geometry_alpha_deg)
              else f"{row.geometry_alpha_deg:g}",

@@ -14,7 +14,7 @@ import pytest
 from scipy.special import ndtr
 
 from audit.cli import main
-from audit.engine.validation_baselines import ThresholdFragility, scores
+from audit.engine.validation_baselines import ThresholdFragility, VectorLogistic, scores
 from audit.engine.validation_cv import folds_by_record
 from audit.engine.validation_fit import fit_block, slenderness_weights
 from audit.engine.validation_grid import ValidationSettings, overturning_grid
@@ -137,6 +137,19 @@ def test_threshold_fragility_is_the_likelihood_maximum():
     assert fit.threshold == pytest.approx(1.3, rel=0.15)
 
 
+def test_vector_logistic_solves_the_likelihood_equations():
+    """At the maximum of a logistic likelihood Σ (y − P) x = 0 for every regressor x."""
+    rng = np.random.default_rng(7)
+    pga_g = np.exp(rng.normal(-1.5, 0.7, 400))
+    ratio = np.exp(rng.normal(-2.5, 0.6, 400))
+    truth = 1.0 / (1.0 + np.exp(-(4.0 + 1.5 * np.log(pga_g) + 1.0 * np.log(ratio))))
+    y = (rng.random(400) < truth).astype(float)
+    fit = VectorLogistic.fit(pga_g, ratio, y, 1e-12)
+    residual = y - fit.probability(pga_g, ratio)
+    for regressor in (np.ones(400), np.log(pga_g), np.log(ratio)):
+        assert abs(residual @ regressor) < 1e-3
+
+
 def test_reader_reads_outcomes_peers_and_motions(synthetic):
     folder, truth = synthetic
     campaign = read_campaign(folder)
@@ -197,7 +210,8 @@ def test_command_writes_every_file(tmp_path):
             "validation-tests.csv", "validation.html"} <= names
     fits = pd.read_csv(out / "validation-fits.csv")
     assert fits["geometry_alpha_deg"].iloc[0] == 8
-    assert "<script>" in (out / "validation.html").read_text()
+    page = (out / "validation.html").read_text()
+    assert "<script>" in page and "PGV threshold" in page and "one laboratory" in page
 
 
 @pytest.mark.parametrize("edit, field", [

@@ -18,7 +18,8 @@ saturates at 1 on overturning, so it cannot rank the motions that overturn the b
 (α̂, σ) are fitted by maximum likelihood at every (p, f) of the grid, and (p, f) chosen by the
 profile likelihood; its 95 % interval is the set of grid values within χ²₁(0.95)/2 = 1.92 of
 the best log-likelihood, and the standard errors of ln α̂ and ln σ come from the observed
-information (numerical Hessian) at the optimum.
+information (numerical Hessian) at the optimum; their intervals stop at the bounds of the search
+(an interval that reaches one says the outcomes do not pin that parameter down).
 """
 
 from __future__ import annotations
@@ -183,10 +184,13 @@ def fit_block(overturned: np.ndarray, outcomes: np.ndarray, settings) -> BlockFi
     inside = profile >= value - PROFILE_DROP_95
     kept_f = [factors[i] for i in np.flatnonzero(inside.any(axis=1))]
     kept_p = [ps[i] for i in np.flatnonzero(inside.any(axis=0))]
+    # an interval reaching a bound of the search (grid ends, SIGMA_BOUNDS) is not pinned down
+    bounds = ((log_nodes[0], log_nodes[-1]), np.log(SIGMA_BOUNDS))
+    low, high = (np.clip(x + side * 1.96 * se, *np.transpose(bounds)) for side in (-1, 1))
     return BlockFit(
         alpha_deg=math.degrees(math.exp(x[0])),
-        alpha_deg_95=tuple(math.degrees(math.exp(x[0] + s * 1.96 * se[0])) for s in (-1, 1)),
-        sigma=math.exp(x[1]), sigma_95=tuple(math.exp(x[1] + s * 1.96 * se[1]) for s in (-1, 1)),
+        alpha_deg_95=(math.degrees(math.exp(low[0])), math.degrees(math.exp(high[0]))),
+        sigma=math.exp(x[1]), sigma_95=(math.exp(low[1]), math.exp(high[1])),
         p_rad_s=ps[k], p_rad_s_95=(min(kept_p), max(kept_p)),
         restitution_factor=factors[j], restitution_factor_95=(min(kept_f), max(kept_f)),
         log_likelihood=value, n_tests=int(outcomes.size), profile=profile)

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from audit.errors import InputError
 from audit.engine.validation_baselines import scores
 from audit.engine.validation_cv import MODEL, folds_by_record, out_of_fold
 from audit.engine.validation_fit import fit_block
@@ -57,8 +58,8 @@ class CampaignValidation:
     settings: ValidationSettings
 
     def fits_table(self) -> pd.DataFrame:
-        """One row per specimen: fitted parameters with 95 % intervals beside the geometric
-        estimates (NaN where none was given)."""
+        """One row per specimen: fitted parameters with 95 % intervals, their range over the
+        cross-validation folds' fits, and the geometric estimates (NaN where none was given)."""
         rows = []
         for name, fit in self.fits.items():
             given = self.geometry[self.geometry["specimen"] == name]
@@ -74,10 +75,20 @@ class CampaignValidation:
                 "restitution_factor_low": fit.restitution_factor_95[0],
                 "restitution_factor_high": fit.restitution_factor_95[1],
                 "log_likelihood": fit.log_likelihood,
+                **self._fold_spread(name),
                 "geometry_alpha_deg": given["alpha_deg"].iloc[0] if len(given) else math.nan,
                 "geometry_p_rad_s": given["p_rad_s"].iloc[0] if len(given) else math.nan,
                 "geometry_note": given["note"].iloc[0] if len(given) else ""})
         return pd.DataFrame(rows)
+
+    def _fold_spread(self, name) -> dict:
+        """Smallest and largest α̂, p and f over the cross-validation folds' fits."""
+        out = {}
+        for column, attribute in (("alpha_deg", "alpha_deg"), ("p_rad_s", "p_rad_s"),
+                                  ("restitution_factor", "restitution_factor")):
+            values = [getattr(fit, attribute) for fit in self.fold_fits[name]]
+            out[f"{column}_folds_min"], out[f"{column}_folds_max"] = min(values), max(values)
+        return out
 
     def files(self) -> dict:
         """The output files (name → bytes)."""
@@ -126,7 +137,12 @@ def run_validation(campaign, settings: ValidationSettings, geometry: pd.DataFram
         observed = campaign.outcomes[name]
         known = ~np.isnan(observed)
         y = observed[known]
-        fold = folds_by_record(campaign.tests["ground_motion"][known], settings.folds)
+        motions_known = campaign.tests["ground_motion"][known]
+        if motions_known.nunique() < settings.folds:
+            raise InputError(f"{campaign.folder / 'tests.csv'}: {name}_overturned: outcomes of "
+                             f"{motions_known.nunique()} ground motions, fewer than the "
+                             f"{settings.folds} cross-validation folds")
+        fold = folds_by_record(motions_known, settings.folds)
         oof = out_of_fold(grid.overturned[known], y, fold,
                           Intensities(measures.pga[known], measures.pgv[known]), settings)
         fold_fits[name] = tuple(oof.pop("fits"))
