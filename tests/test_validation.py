@@ -17,7 +17,7 @@ from audit.cli import main
 from audit.engine.validation_baselines import ThresholdFragility, VectorLogistic, scores
 from audit.engine.validation_cv import folds_by_record
 from audit.engine.validation_fit import fit_block, slenderness_weights
-from audit.engine.validation_grid import ValidationSettings, overturning_grid
+from audit.engine.validation_grid import ValidationSettings, band_passed, overturning_grid
 from audit.engine.validation_run import fitted_restitution, methods_statement
 from audit.errors import InputError
 from audit.physics.block import Restitution
@@ -100,6 +100,16 @@ def test_weights_collapse_to_interpolation_as_sigma_vanishes():
     weights = slenderness_weights(nodes, mu, 1e-6)
     share = (mu - nodes[0]) / (nodes[1] - nodes[0])
     assert weights == pytest.approx([1 - share, share, 0.0], abs=1e-6)
+
+
+def test_band_pass_removes_the_offset_and_keeps_the_rocking_band():
+    """A 0.05 g offset goes; a 1 Hz sine keeps its amplitude; 40 Hz noise goes (0.1–25 Hz)."""
+    t = np.arange(0.0, 120.0, DT)
+    sine = 0.3 * np.sin(2 * np.pi * t)
+    motion = GroundMotion("m", 9.81 * (0.05 + sine + 0.05 * np.sin(2 * np.pi * 40 * t)), DT)
+    kept = band_passed(motion, ValidationSettings()).acceleration / 9.81
+    middle = slice(2000, -2000)  # 20 s from the ends: past the 0.1 Hz filter's transients
+    assert np.max(np.abs(kept[middle] - sine[middle])) < 0.002
 
 
 def test_folds_keep_each_ground_motion_whole_and_balanced():

@@ -9,7 +9,7 @@ with a DC drift and content above 25 Hz; docs/validation.md).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.signal import butter, sosfiltfilt
@@ -87,8 +87,9 @@ def band_passed(motion, settings: ValidationSettings):
                      fs=1.0 / motion.dt, output="sos")
     else:
         sos = butter(4, settings.highpass_hz, "highpass", fs=1.0 / motion.dt, output="sos")
-    return motion.__class__(motion.id, sosfiltfilt(sos, motion.acceleration), motion.dt,
-                            component=motion.component + ", band-passed", source=motion.source)
+    return replace(motion, acceleration=sosfiltfilt(sos, motion.acceleration),
+                   component=f"{motion.component}, band-passed "
+                             f"{settings.highpass_hz:g}–{settings.lowpass_hz:g} Hz")
 
 
 @dataclass(frozen=True)
