@@ -142,7 +142,8 @@ def test_threshold_fragility_is_the_likelihood_maximum():
     def loglik(threshold, beta):
         p = 0.005 + 0.99 * ndtr(np.log(x / threshold) / beta)
         return np.sum(y * np.log(p) + (1 - y) * np.log1p(-p))
-    best = max(loglik(t, b) for t in np.geomspace(0.5, 3.0, 120) for b in np.geomspace(0.1, 1.5, 80))
+    best = max(loglik(t, b) for t in np.geomspace(0.5, 3.0, 120)
+               for b in np.geomspace(0.1, 1.5, 80))
     assert loglik(fit.threshold, fit.beta) >= best - 1e-6
     assert fit.threshold == pytest.approx(1.3, rel=0.15)
 

@@ -27,7 +27,8 @@ def add_parser(sub):
     p.add_argument("--geometry", metavar="CSV",
                    help="geometric estimates (specimen, alpha_deg, p_rad_s, note) shown beside "
                         "the fit; default FOLDER/specimens.csv if present")
-    p.add_argument("--folds", type=int, default=5, help="cross-validation folds (whole ground motions per fold)")
+    p.add_argument("--folds", type=int, default=5,
+                   help="cross-validation folds (whole ground motions per fold)")
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS, help="solver threads")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
                    metavar="S", help="free rocking simulated after each motion [s]")

@@ -7,13 +7,16 @@ overturning scale from its neighbours and overstate the accuracy.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from audit.engine.validation_baselines import ThresholdFragility, VectorLogistic
 from audit.engine.validation_fit import fit_block
 
 #: Method names, in the order of the tables.
-MODEL, PGA, PGV, VECTOR = "rocking model", "PGA threshold", "PGV threshold", "logistic (PGA, PGV/PGA)"
+MODEL, PGA, PGV = "rocking model", "PGA threshold", "PGV threshold"
+VECTOR = "logistic (PGA, PGV/PGA)"
 
 
 def folds_by_record(groups, folds: int) -> np.ndarray:
@@ -33,7 +36,16 @@ def folds_by_record(groups, folds: int) -> np.ndarray:
     return np.array([fold_of[g] for g in groups], dtype=int)
 
 
-def out_of_fold(overturned, outcomes, fold, intensities, settings) -> dict:
+@dataclass(frozen=True)
+class OutOfFold:
+    """Out-of-fold predictions: ``probabilities`` (method name → P(overturn) of every test,
+    from the fit on the other folds) and ``fits`` (the model's BlockFit of each fold)."""
+
+    probabilities: dict
+    fits: tuple
+
+
+def out_of_fold(overturned, outcomes, fold, intensities, settings) -> OutOfFold:
     """Each method's probability for every test, fitted on the other folds.
 
     Parameters
@@ -50,8 +62,7 @@ def out_of_fold(overturned, outcomes, fold, intensities, settings) -> dict:
 
     Returns
     -------
-    dict
-        Method name → probabilities; ``"fits"`` → the model's BlockFit of each fold.
+    OutOfFold
     """
     out = {name: np.empty(outcomes.size) for name in (MODEL, PGA, PGV, VECTOR)}
     fits = []
@@ -71,8 +82,7 @@ def out_of_fold(overturned, outcomes, fold, intensities, settings) -> dict:
         out[VECTOR][test] = VectorLogistic.fit(pga_g[train], ratio[train], y,
                                                settings.lapse).probability(pga_g[test],
                                                                            ratio[test])
-    out["fits"] = fits
-    return out
+    return OutOfFold(out, tuple(fits))
 
 
-__all__ = ["folds_by_record", "out_of_fold", "MODEL", "PGA", "PGV", "VECTOR"]
+__all__ = ["OutOfFold", "folds_by_record", "out_of_fold", "MODEL", "PGA", "PGV", "VECTOR"]

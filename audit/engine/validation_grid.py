@@ -126,14 +126,12 @@ class OverturningGrid:
     Attributes
     ----------
     overturned : numpy.ndarray of bool
-        Shaped (test, restitution factor, p, α).
-    settings : ValidationSettings
+        Shaped (test, restitution factor, p, α) of the settings' grid.
     solves : int
         Exact simulations run.
     """
 
     overturned: np.ndarray
-    settings: ValidationSettings
     solves: int
 
 
@@ -161,7 +159,7 @@ def overturning_grid(motions, settings: ValidationSettings, progress=None) -> Ov
             out[i, j] = peaks[:, 3].reshape(shape[1:]) > 0.5
         if progress is not None:
             progress(i + 1, len(motions), motion.id)
-    return OverturningGrid(out, settings, len(motions) * settings.solves_per_test)
+    return OverturningGrid(out, len(motions) * settings.solves_per_test)
 
 
 __all__ = ["ValidationSettings", "Intensities", "OverturningGrid", "band_passed", "intensities",

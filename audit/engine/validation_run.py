@@ -145,9 +145,9 @@ def run_validation(campaign, settings: ValidationSettings, geometry: pd.DataFram
         fold = folds_by_record(motions_known, settings.folds)
         oof = out_of_fold(grid.overturned[known], y, fold,
                           Intensities(measures.pga[known], measures.pgv[known]), settings)
-        fold_fits[name] = tuple(oof.pop("fits"))
+        fold_fits[name] = oof.fits
         fits[name] = fit = fit_block(grid.overturned[known], y, settings)
-        probabilities = dict(oof)
+        probabilities = dict(oof.probabilities)
         for column, values in campaign.peers[name].items():
             if not np.isnan(values[known]).any():
                 probabilities[column] = values[known]
@@ -155,14 +155,15 @@ def run_validation(campaign, settings: ValidationSettings, geometry: pd.DataFram
         model = fit.probability(grid.overturned, settings)
         frame = base.assign(specimen=name, observed=observed, fold=-1, p_model=model)
         frame.loc[known, "fold"] = fold
-        for method, values in oof.items():
+        for method, values in oof.probabilities.items():
             column = np.full(observed.size, np.nan)
             column[known] = values
             frame["cv_" + method] = column
         test_frames.append(frame)
         predictions.append(pd.DataFrame({
             "test": campaign.tests["test"][~known], "specimen": name,
-            "p_overturn": model[~known], "predicted_overturned": (model[~known] >= 0.5).astype(int)}))
+            "p_overturn": model[~known],
+            "predicted_overturned": (model[~known] >= 0.5).astype(int)}))
     order = ["test", "specimen", "ground_motion", "fold", "pga_g", "pgv_m_s", "pgv_pga_s",
              "observed", "p_model"]
     tests = pd.concat(test_frames, ignore_index=True)
