@@ -16,7 +16,7 @@ G = 9.81
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
 _API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
         "run", "margins", "fragility", "design_suite", "risk", "read_hazard", "check",
-        "CheckResult")
+        "CheckResult", "validate", "ValidationResult")
 
 
 def __getattr__(name):

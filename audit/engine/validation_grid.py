@@ -1,0 +1,166 @@
+"""The exact solver over a grid of equivalent blocks for every test of a campaign, solved once.
+
+Every fit of the validation (each specimen, each cross-validation fold) reads this one table of
+exact outcomes, so the solve count is that of the grid: tests × α × p × restitution factors.
+The table motions are band-passed first (the campaign's records are unfiltered feedback signals
+with a DC drift and content above 25 Hz; docs/validation.md).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy.signal import butter, sosfiltfilt
+
+from audit import G
+from audit.errors import InputError
+from audit.physics.block import Restitution
+from audit.physics.rocking import rocking_blocks
+
+
+@dataclass(frozen=True)
+class ValidationSettings:
+    """How a campaign is validated (checked once).
+
+    Attributes
+    ----------
+    alpha_deg : tuple
+        Slenderness nodes of the grid [degrees], increasing (log-spaced by default).
+    p_rad_s : tuple
+        Frequency parameters of the grid [rad/s].
+    restitution_factors : tuple
+        Multiples of Eq. 4.8's r on the grid [-].
+    highpass_hz, lowpass_hz : float
+        Zero-phase 4th-order Butterworth band applied to each table motion [Hz]; the low-pass is
+        skipped at or above the Nyquist frequency.
+    folds : int
+        Cross-validation folds (tests of one ground motion always share a fold).
+    lapse : float
+        Probabilities are kept in [lapse, 1 − lapse] (mis-recorded outcomes), so one outcome
+        cannot make a likelihood −∞ [-].
+    free_motion_s : float
+        Free rocking simulated after each motion [s].
+    jobs : int
+        Solver threads.
+    """
+
+    alpha_deg: tuple = tuple(np.round(np.geomspace(1.5, 20.0, 22), 4))
+    p_rad_s: tuple = tuple(np.round(np.geomspace(3.0, 8.0, 7), 4))
+    restitution_factors: tuple = (0.3, 0.45, 0.6, 0.8, 1.0)
+    highpass_hz: float = 0.1
+    lowpass_hz: float = 25.0
+    folds: int = 5
+    lapse: float = 0.005
+    free_motion_s: float = 10.0
+    jobs: int = 1
+
+    def __post_init__(self):
+        alpha = np.asarray(self.alpha_deg, dtype=float)
+        if alpha.size < 2 or not (np.all(np.diff(alpha) > 0) and alpha[0] > 0 and alpha[-1] < 45):
+            raise InputError("alpha_deg: needs ≥ 2 increasing slendernesses in (0, 45) degrees")
+        if not (len(self.p_rad_s) and all(math.isfinite(p) and p > 0 for p in self.p_rad_s)):
+            raise InputError("p_rad_s: needs positive frequency parameters")
+        if not (len(self.restitution_factors)
+                and all(0 < f <= 1 for f in self.restitution_factors)):
+            raise InputError("restitution_factors: each must lie in (0, 1]")
+        if not 0 < self.highpass_hz < self.lowpass_hz:
+            raise InputError("highpass_hz: must be positive and below lowpass_hz")
+        if not (isinstance(self.folds, int) and self.folds >= 2):
+            raise InputError(f"folds: must be an integer ≥ 2, got {self.folds!r}")
+        if not 0 < self.lapse < 0.5:
+            raise InputError(f"lapse: must lie in (0, 0.5), got {self.lapse}")
+        if not (isinstance(self.jobs, int) and self.jobs >= 1):
+            raise InputError(f"jobs: must be an integer ≥ 1, got {self.jobs!r}")
+
+    @property
+    def solves_per_test(self) -> int:
+        return len(self.alpha_deg) * len(self.p_rad_s) * len(self.restitution_factors)
+
+
+def band_passed(motion, settings: ValidationSettings):
+    """The motion band-passed (zero phase) as ``settings`` says; SI in and out."""
+    nyquist = 0.5 / motion.dt
+    if settings.lowpass_hz < nyquist:
+        sos = butter(4, [settings.highpass_hz, settings.lowpass_hz], "bandpass",
+                     fs=1.0 / motion.dt, output="sos")
+    else:
+        sos = butter(4, settings.highpass_hz, "highpass", fs=1.0 / motion.dt, output="sos")
+    return replace(motion, acceleration=sosfiltfilt(sos, motion.acceleration),
+                   component=f"{motion.component}, band-passed "
+                             f"{settings.highpass_hz:g}–{settings.lowpass_hz:g} Hz")
+
+
+@dataclass(frozen=True)
+class Intensities:
+    """Per test: PGA [m/s²] and PGV [m/s] of the band-passed motion."""
+
+    pga: np.ndarray
+    pgv: np.ndarray
+
+    @property
+    def pga_g(self) -> np.ndarray:
+        return self.pga / G
+
+    @property
+    def pgv_pga_s(self) -> np.ndarray:
+        return self.pgv / self.pga
+
+
+def intensities(motions) -> Intensities:
+    """PGA and PGV (trapezoid integral from rest) of each (band-passed) motion."""
+    pga, pgv = [], []
+    for motion in motions:
+        acc = motion.acceleration
+        velocity = np.concatenate(([0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * motion.dt)))
+        pga.append(np.max(np.abs(acc)))
+        pgv.append(np.max(np.abs(velocity)))
+    return Intensities(np.asarray(pga), np.asarray(pgv))
+
+
+@dataclass(frozen=True)
+class OverturningGrid:
+    """Exact overturning of every grid block under every test.
+
+    Attributes
+    ----------
+    overturned : numpy.ndarray of bool
+        Shaped (test, restitution factor, p, α) of the settings' grid.
+    solves : int
+        Exact simulations run.
+    """
+
+    overturned: np.ndarray
+    solves: int
+
+
+def overturning_grid(motions, settings: ValidationSettings, progress=None) -> OverturningGrid:
+    """Solve every grid block (α, p, restitution factor) under every motion exactly.
+
+    Parameters
+    ----------
+    motions : sequence of GroundMotion
+        Band-passed table motions [m/s²].
+    settings : ValidationSettings
+    progress : callable, optional
+        Called as ``progress(done, total, what)`` after each test.
+    """
+    alpha = np.radians(np.asarray(settings.alpha_deg, dtype=float))
+    p = np.asarray(settings.p_rad_s, dtype=float)
+    grid_p, grid_alpha = np.meshgrid(p, alpha, indexing="ij")
+    size = 2.0 * np.pi / grid_p.ravel()
+    shape = (len(settings.restitution_factors), p.size, alpha.size)
+    out = np.empty((len(motions),) + shape, dtype=bool)
+    for i, motion in enumerate(motions):
+        for j, factor in enumerate(settings.restitution_factors):
+            peaks = rocking_blocks(motion, size, grid_alpha.ravel(), Restitution(factor=factor),
+                                   free_motion_s=settings.free_motion_s, jobs=settings.jobs)
+            out[i, j] = peaks[:, 3].reshape(shape[1:]) > 0.5
+        if progress is not None:
+            progress(i + 1, len(motions), motion.id)
+    return OverturningGrid(out, len(motions) * settings.solves_per_test)
+
+
+__all__ = ["ValidationSettings", "Intensities", "OverturningGrid", "band_passed", "intensities",
+           "overturning_grid"]
