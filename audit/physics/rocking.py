@@ -222,19 +222,35 @@ def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
 
 
 @numba.njit(cache=True, nogil=True)
+def _restoring(t_a, t_b, kind, a0, slope, t0, amp, omega_p, v0, vslope, p2, alpha, g):
+    """Smallest restoring deceleration on either corner at small θ over [t_a, t_b] inside one
+    smooth interval [rad/s²] (negative where the ground can lift the block there)."""
+    largest = _largest_ground(t_a, t_b, kind, a0, slope, t0, amp, omega_p)
+    weight = g + min(v0 + vslope * (t_a - t0), v0 + vslope * (t_b - t0))
+    return p2 * math.cos(alpha) * (weight * math.tan(alpha) - largest) / g
+
+
+@numba.njit(cache=True, nogil=True)
 def _chatter_ends(omega, t_imp, t1, kind, a0, slope, t0, amp, omega_p, v0, vslope, p2, alpha, g,
                   velocity_ratio, rest_tolerance):
-    """Whether a rebound at θ' = ``omega`` at ``t_imp`` ends in rest within the smooth interval
-    that ends at ``t1``: the ground cannot lift the block on either corner anywhere until the
-    chatter has converged (:func:`chatter_time_bound`), and the rebounds stay below
-    ``rest_tolerance``·α, so the linearised flights hold. Otherwise the block rocks on: a small
+    """Whether a rebound at θ' = ``omega`` at ``t_imp`` ends in rest: its chatter converges
+    (:func:`chatter_time_bound`) inside the smooth interval that ends at ``t1``, before the
+    ground could lift the block on either corner, with rebounds below ``rest_tolerance``·α so
+    the linearised flights hold. The bound is taken over a window twice the chatter's time at
+    the impact's deceleration and must fit in it. Otherwise the block rocks on: a small
     rebound while the ground is near g tan α is not rest (it can grow into real rocking)."""
-    largest = _largest_ground(t_imp, t1, kind, a0, slope, t0, amp, omega_p)
-    weight = g + min(v0 + vslope * (t_imp - t0), v0 + vslope * (t1 - t0))
-    restoring = p2 * math.cos(alpha) * (weight * math.tan(alpha) - largest) / g
+    if abs(omega) < 1e-150:
+        return True  # no motion left to follow (and √r·ω would stall among denormals)
+    at_impact = _restoring(t_imp, t_imp, kind, a0, slope, t0, amp, omega_p, v0, vslope, p2,
+                           alpha, g)
+    if at_impact <= 0.0:
+        return False
+    window = min(2.0 * chatter_time_bound(omega, at_impact, velocity_ratio), t1 - t_imp)
+    restoring = _restoring(t_imp, t_imp + window, kind, a0, slope, t0, amp, omega_p, v0, vslope,
+                           p2, alpha, g)
     if restoring <= 0.0 or omega * omega >= 2.0 * restoring * rest_tolerance * alpha:
         return False
-    return t_imp + chatter_time_bound(omega, restoring, velocity_ratio) <= t1
+    return chatter_time_bound(omega, restoring, velocity_ratio) <= window
 
 
 @numba.njit(cache=True, nogil=True)
