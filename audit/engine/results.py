@@ -118,12 +118,15 @@ def read_summary(run_dir: str | Path) -> dict:
 
 
 def checked_summary(run_dir: Path) -> dict:
-    """``summary.json`` of ``run_dir``, once the folder is found to hold every file of a run."""
+    """``summary.json`` of ``run_dir``, once the folder is found to hold every file of a run,
+    each table with the columns of its schema."""
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a directory of audit results")
     for name in DATA_FILES:
         if not (run_dir / name).is_file():
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
+        if name in GUIDE:
+            _check_columns(run_dir / name, name, run_dir)
     return read_summary(run_dir)
 
 
@@ -144,9 +147,6 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
     summary = checked_summary(run_dir)
     files = {name: run_dir / name for name in DATA_FILES}
     where = str(run_dir)
-    for name, path in files.items():
-        if name in GUIDE:
-            _check_columns(path, name, run_dir)
     records = detailed = histories_kept = None
     if shown:
         absent = [key for key in ("detail_records", "worst_blocks", "shown_records")
