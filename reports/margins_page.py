@@ -275,6 +275,16 @@ def render_margins_page(folder) -> str:
                      "achieved probability is the exact P(overturn) there. Medians over the "
                      "blocks.</p>")
         parts.append(_table(_margins_table(fragility, capacity, required, titles)))
+    if summary.get("acceptance"):
+        parts.append("<h2>Would each guideline pass FEMA P695 as a seismic system?</h2><p>The "
+                     "blocks each guideline sizes (its required slenderness at every size) get "
+                     "their exact fragility; P695 accepts when every one has CMR ≥ ACMR20 % and "
+                     "their mean CMR ≥ ACMR10 %, the ACMRs at β_TOT = √(β_RTR² + β_MDL²), "
+                     "β_RTR the fitted record-to-record β, β_MDL the ground truth's modelling "
+                     "uncertainty measured with the impact model × 0.9 and × 0.8 (spectral "
+                     "shape factor 1). Per block in acceptance.csv.</p>")
+        parts.append(_table(pd.DataFrame(summary["acceptance"]).assign(
+            procedure=lambda f: f["procedure"].map(lambda n: titles.get(n, n)))))
     parts.append("<h3>How each procedure meets the stripes</h3><ul>" + "".join(
         f"<li><b>{html.escape(p['title'])}</b>: {html.escape(p['reads'])}</li>"
         for p in summary["procedures"]) + "</ul>")

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 from scipy.stats import norm
 
@@ -275,3 +276,29 @@ def test_margins_command_names_the_block_option(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--block" in err[0]
     assert not (tmp_path / "m").exists()
+
+
+def test_p695_acceptance_of_the_blocks_a_guideline_sizes():
+    """The block a guideline sizes gets the fragility its grid twin gets; β_MDL is measured from
+    the exact medians with r × 0.9 and × 0.8; ACMRxx = exp(−Φ⁻¹(xx)·β_TOT) (FEMA P695 §7.4)."""
+    from audit.engine.p695_acceptance import p695_acceptance
+    suite = _suite()
+    required = pd.DataFrame({"procedure": ["priestley1978", "exact@0.10"], "size_s": [SIZE_S] * 2,
+                             "required_alpha_deg": [ALPHA_DEG] * 2,
+                             "exact_overturning_share": [0.0, 0.0]})
+    table, verdicts = p695_acceptance(suite, _settings(), Runtime(), required)
+    assert list(table["procedure"]) == ["priestley1978"]  # the exact curves are no guideline
+    row = table.iloc[0]
+    medians = {v: run_margins([], suite, _settings(restitution=v), Runtime()).fragility.iloc[0]
+               for v in ("housner", "x0.9", "x0.8")}
+    twin = medians["housner"]
+    assert row["median"] == pytest.approx(twin["median"], rel=1e-6)
+    assert row["cmr"] == pytest.approx(twin["median"] / 0.6, rel=1e-6)  # PGA MCE: 0.4 S_XS
+    log_ratios = [math.log(medians[v]["median"] / twin["median"]) for v in ("x0.9", "x0.8")]
+    assert row["beta_mdl"] == pytest.approx(math.sqrt(np.mean(np.square(log_ratios))), rel=1e-6)
+    beta_total = math.hypot(twin["beta"], row["beta_mdl"])
+    assert row["acmr20"] == pytest.approx(math.exp(-norm.ppf(0.2) * beta_total), rel=1e-6)
+    assert row["meets_acmr20"] == (row["cmr"] >= row["acmr20"])
+    verdict = verdicts[0]
+    assert verdict["acmr10"] == pytest.approx(math.exp(-norm.ppf(0.1) * beta_total), rel=1e-6)
+    assert verdict["passes"] == (row["meets_acmr20"] and row["cmr"] >= verdict["acmr10"])

@@ -12,7 +12,8 @@ from audit.engine.runtime import RUNTIME_FIELDS, Runtime
 
 class MarginsResult:
     """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity``,
-    ``.required_alpha``, ``.scan``, and at a site ``.risk``, ``.risk_alpha`` (DataFrames,
+    ``.required_alpha``, ``.scan``, ``.acceptance`` (FEMA P695's test of the blocks each
+    guideline sizes, with a design site), and at a site ``.risk``, ``.risk_alpha`` (DataFrames,
     the columns of the CSV files of the same names), ``.summary``, ``.write(folder)`` (the
     files and ``margins.html``) and ``.report(path)``."""
 
@@ -22,6 +23,7 @@ class MarginsResult:
         self.capacity, self.summary = margins.capacity, margins.summary
         self.required_alpha, self.scan = margins.required_alpha, margins.scan
         self.risk, self.risk_alpha = margins.risk, margins.risk_alpha
+        self.acceptance = margins.acceptance
 
     def files(self) -> dict[str, bytes]:
         """Every file of the audit, the page drawn from the CSV files as saved."""

@@ -140,5 +140,10 @@ def _print_summary(result, seconds) -> None:
         print(f"  {name} accepts blocks more slender than the exact 10 % curve for "
               + (f"2π/p = {min(below):g}–{max(below):g} s ({len(below)} of {sizes.size} sizes)"
                  if below else "no size"))
+    for verdict in summary.get("acceptance", ()):
+        print(f"  {verdict['procedure']} as a seismic system (FEMA P695): "
+              f"{verdict['share_meeting_acmr20']:.0%} of the {verdict['blocks']} blocks it "
+              f"sizes meet ACMR20 %; mean CMR {verdict['mean_cmr']:.2f} against ACMR10 % "
+              f"{verdict['acmr10']:.2f}: {'passes' if verdict['passes'] else 'fails'}")
     if result.risk is not None:
         _print_risk(result)

@@ -80,6 +80,9 @@ class MarginsRun:
     risk: pd.DataFrame | None = None
     risk_alpha: pd.DataFrame | None = None
     hazard: pd.DataFrame | None = None
+    #: ``acceptance.csv`` (:func:`~audit.engine.p695_acceptance.p695_acceptance`), None
+    #: without the required slenderness or a design site.
+    acceptance: pd.DataFrame | None = None
 
 
 @dataclass(frozen=True)
@@ -535,6 +538,8 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
         files["required_alpha.csv"] = csv_bytes(run.required_alpha, "%.4g")
     if run.scan is not None:
         files["scan.csv"] = csv_bytes(run.scan, "%.8g")
+    if run.acceptance is not None:
+        files["acceptance.csv"] = csv_bytes(run.acceptance, "%.6g")
     guides = column_guide()
     if run.risk is not None:
         from audit.engine.risk_schema import RISK_GUIDE

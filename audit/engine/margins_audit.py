@@ -12,6 +12,7 @@ from audit.engine.defaults import DEFAULT_STRIPES
 from audit.engine.margins import MarginsRun, amplitude_scans, run_margins
 from audit.engine.margins_risk import hazard_summary, hazard_table, margins_risk
 from audit.engine.margins_settings import MarginsSettings
+from audit.engine.p695_acceptance import p695_acceptance
 from audit.engine.required_alpha import required_alpha
 from audit.engine.runtime import Runtime
 from audit.engine.scheduler import open_scheduler
@@ -39,6 +40,12 @@ def design_level_audit(procedures, suite, settings: MarginsSettings,
                   "curves bisected")
             run.required_alpha = required_alpha(procedures, suite, settings,
                                                 replace(on, partial_dir=None, resume=False))
+            if run.summary["mce_im"]:
+                stage("FEMA P695 acceptance: the exact fragility of the blocks each guideline "
+                      "sizes, with the impact model × 0.9 and × 0.8 for the modelling "
+                      "uncertainty")
+                run.acceptance, run.summary["acceptance"] = p695_acceptance(
+                    suite, settings, on, run.required_alpha)
     run.scan = amplitude_scans(run, suite, settings, runtime)
     if settings.hazard is not None:
         run.risk, run.risk_alpha = margins_risk(run, settings.hazard, settings.risk_target)

