@@ -125,9 +125,11 @@ def checked_summary(run_dir: Path) -> dict:
     for name in DATA_FILES:
         if not (run_dir / name).is_file():
             raise InputError(f"{run_dir / name}: missing; is {run_dir} the output of 'audit run'?")
+    summary = read_summary(run_dir)
+    for name in DATA_FILES:
         if name in GUIDE:
             _check_columns(run_dir / name, name, run_dir)
-    return read_summary(run_dir)
+    return summary
 
 
 def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
