@@ -138,7 +138,7 @@ def _print_summary(result, seconds) -> None:
         below = [size for size in sizes
                  if exact.get((name, size), math.nan) < exact.get(("exact@0.10", size), math.nan)]
         print(f"  {name} accepts blocks more slender than the exact 10 % curve for "
-              + (f"2π/p = {min(below):g}–{max(below):g} s ({len(below)} of {sizes.size} sizes)"
+              + (f"2π/p = {min(below):g}–{max(below):g} s ({len(below)} of {len(sizes)} sizes)"
                  if below else "no size"))
     for verdict in summary.get("acceptance", ()):
         print(f"  {verdict['procedure']} as a seismic system (FEMA P695): "
