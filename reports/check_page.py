@@ -17,7 +17,7 @@ import numpy as np
 from jinja2 import Environment, PackageLoader, select_autoescape
 from scipy.special import ndtr
 
-from reports.margins_page import LOG_TICKS
+from reports.margins_page import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
 from reports.plots import _axis, _layout, to_json
 
@@ -98,33 +98,19 @@ def _fragility(obj, document, colours) -> dict:
                  "name": f"at the site, {im} = {site:.3g} {unit}: P = "
                          f"{exact['p_overturn_at_site']:.0%} "
                          f"[{exact['p_band'][0]:.0%}–{exact['p_band'][1]:.0%}]"})
-    shapes = [_vertical(site, SITE_COLOUR, "dot")]
+    shapes = [vertical_line(site, SITE_COLOUR, "dot")]
     for proc in obj["procedures"]:
         line = proc["guideline_im"]
         if line is None:
             continue
-        shapes.append(_vertical(line, colours[proc["name"]], "dash"))
+        shapes.append(vertical_line(line, colours[proc["name"]], "dash"))
         data.append({"type": "scatter", "mode": "lines", "x": [line, line], "y": [0, 1],
                      "line": {"color": colours[proc["name"]], "dash": "dash"},
                      "name": f"{proc['title']}: predicts overturning for half the records from "
                              f"{line:.3g} {unit}"})
     layout = _layout(470, shapes=shapes)
-    # whole labels on the log axis: plotly's minor labels read "9" for 0.9
-    low, high = min(band["im"]), max(band["im"])
-    ticks = [t for t in LOG_TICKS if low <= t <= high]
-    layout["xaxis"] = _axis(f"{im} [{unit}]", type="log", tickvals=ticks,
-                            ticktext=[f"{t:g}" for t in ticks])
-    layout["yaxis"] = _axis("P(overturn)", range=[-0.02, 1.02], tickformat=".0%")
-    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.2, "yanchor": "top",
-                        "font": {"size": 11}}
-    layout["margin"]["b"] = 170
-    layout["height"] = 560
+    fragility_axes(layout, f"{im} [{unit}]", min(band["im"]), max(band["im"]), 170, 560)
     return {"data": data, "layout": layout}
-
-
-def _vertical(x, colour, dash) -> dict:
-    return {"type": "line", "xref": "x", "x0": x, "x1": x, "yref": "y domain", "y0": 0, "y1": 1,
-            "line": {"color": colour, "dash": dash, "width": 1.5}}
 
 
 def _number(value, fmt="{:.3g}") -> str:

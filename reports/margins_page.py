@@ -150,13 +150,13 @@ def _fragility_figure(block, stripes, capacity, names, titles, summary) -> dict:
                              f"β {block['beta']:.2f})", "line": {"color": "#000", "width": 2}})
     shapes, notes = [], []
     if summary.get("design_im"):
-        shapes.append(_vertical(summary["design_im"], "#b58900", "dot"))
+        shapes.append(vertical_line(summary["design_im"], "#b58900", "dot"))
         notes.append(_top_note(summary["design_im"], "design", "#b58900"))
     for row in capacity.itertuples():
         if not math.isfinite(row.guideline_im):
             continue
         colour = _procedure_colour(names, row.procedure)
-        shapes.append(_vertical(row.guideline_im, colour, "dash"))
+        shapes.append(vertical_line(row.guideline_im, colour, "dash"))
         data.append({"type": "scatter", "mode": "markers", "x": [row.guideline_im],
                      "y": [row.achieved_p_fit], "name": f"{titles.get(row.procedure, row.procedure)}"
                      f": line at {row.guideline_im:.3g} {unit}, exact P there "
@@ -164,19 +164,25 @@ def _fragility_figure(block, stripes, capacity, names, titles, summary) -> dict:
                      "marker": {"color": colour, "size": 11, "symbol": "diamond"}})
     layout = _layout(380, shapes=shapes, annotations=notes)
     layout["title"] = {"text": _label(block), "font": {"size": 13}}
-    # whole labels on the log axis: plotly's minor labels read "2" for 0.2
-    ticks = [t for t in LOG_TICKS if levels.min() / 1.5 <= t <= levels.max() * 1.5]
-    layout["xaxis"] = _axis(f"{im} [{unit}]", type="log", tickvals=ticks,
-                            ticktext=[f"{t:g}" for t in ticks])
-    layout["yaxis"] = _axis("P(overturn)", range=[-0.02, 1.02], tickformat=".0%")
-    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.22, "yanchor": "top",
-                        "font": {"size": 11}}
-    layout["margin"]["b"] = 150
-    layout["height"] = 480
+    fragility_axes(layout, f"{im} [{unit}]", levels.min() / 1.5, levels.max() * 1.5, 150, 480)
     return {"data": data, "layout": layout}
 
 
-def _vertical(x, colour, dash) -> dict:
+def fragility_axes(layout: dict, title: str, low: float, high: float, legend_room: int,
+                   height: int) -> None:
+    """A fragility figure's axes: intensity on a log axis with whole labels between ``low`` and
+    ``high`` (plotly's minor labels read "2" for 0.2), P(overturn) in %, the legend below."""
+    ticks = [t for t in LOG_TICKS if low <= t <= high]
+    layout["xaxis"] = _axis(title, type="log", tickvals=ticks, ticktext=[f"{t:g}" for t in ticks])
+    layout["yaxis"] = _axis("P(overturn)", range=[-0.02, 1.02], tickformat=".0%")
+    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.2, "yanchor": "top",
+                        "font": {"size": 11}}
+    layout["margin"]["b"] = legend_room
+    layout["height"] = height
+
+
+def vertical_line(x, colour, dash) -> dict:
+    """A vertical line at ``x`` across the plot (a plotly shape)."""
     return {"type": "line", "xref": "x", "x0": x, "x1": x, "yref": "y domain", "y0": 0, "y1": 1,
             "line": {"color": colour, "dash": dash, "width": 1.5}}
 
@@ -198,7 +204,7 @@ def _scan_figure(scan: pd.DataFrame, summary) -> dict:
              "hovertemplate": f"{summary['im']} = %{{x:.5g}} {unit}<br>peak θ/α = %{{y:.3f}}"
                               "<extra></extra>"}]
     row = scan.iloc[0]
-    layout = _layout(330, shapes=[_vertical(first, "#d62728", "dot")])
+    layout = _layout(330, shapes=[vertical_line(first, "#d62728", "dot")])
     layout["title"] = {"text": f"{row['record']}, {_label(row)}: overturns first at "
                                f"{first:.4g} {unit}; survives {len(survives)} higher levels "
                                "of the scan", "font": {"size": 12}}
