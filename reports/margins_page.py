@@ -22,7 +22,7 @@ from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
 from reports.margins_risk_section import risk_section
 from reports.palette import _EXTRA_COLOURS
-from reports.plots import _axis, _layout, describe_block
+from reports.plots import _axis, _layout, describe_block, required_alpha_layout
 
 MARGINS_HTML = "margins.html"
 #: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].
@@ -106,12 +106,7 @@ def _required_figure(required: pd.DataFrame, names: list, titles) -> dict:
                                       "(%{text})<br>"
                                       "exact share overturning there: %{customdata:.0%}"
                                       "<extra></extra>"})
-    layout = _layout(440)
-    layout["xaxis"] = _axis("block size 2π/p [s]")
-    layout["yaxis"] = _axis("required α [°]")
-    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.18, "yanchor": "top"}
-    layout["margin"]["b"] = 120
-    return {"data": data, "layout": layout}
+    return {"data": data, "layout": required_alpha_layout()}
 
 
 def _cmr_figure(fragility: pd.DataFrame) -> dict:

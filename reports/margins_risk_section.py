@@ -16,7 +16,7 @@ import pandas as pd
 from audit.engine.risk import block_fragilities, risk_integral
 from records.hazard import HazardCurve
 from reports.html_parts import html_table, plot_div
-from reports.plots import _axis, _layout
+from reports.plots import _axis, _layout, required_alpha_layout
 from reports.risk_figure import risk_figure
 
 _EXACT_RISK = "exact@risk"
@@ -53,12 +53,7 @@ def _alpha_figure(risk_alpha, titles, colour_of, target) -> dict:
                      "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}°<br>"
                                       "P of overturning in 50 years there: %{customdata:.2%}"
                                       "<extra></extra>"})
-    layout = _layout(440)
-    layout["xaxis"] = _axis("block size 2π/p [s]")
-    layout["yaxis"] = _axis("required α [°]")
-    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.18, "yanchor": "top"}
-    layout["margin"]["b"] = 120
-    return {"data": data, "layout": layout}
+    return {"data": data, "layout": required_alpha_layout()}
 
 
 def _map_figure(risk: pd.DataFrame, target_rate: float) -> dict:

@@ -128,6 +128,17 @@ def _axis(title, domain=None, anchor=None, **extra):
     return axis
 
 
+def required_alpha_layout() -> dict:
+    """The layout of a required-slenderness chart: α against the block size 2π/p, the legend
+    below."""
+    layout = _layout(440)
+    layout["xaxis"] = _axis("block size 2π/p [s]")
+    layout["yaxis"] = _axis("required α [°]")
+    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.18, "yanchor": "top"}
+    layout["margin"]["b"] = 120
+    return layout
+
+
 def _domains(count, gap):
     """``count`` equal [bottom, top] paper domains from the top down, ``gap`` apart."""
     height = (1.0 - gap * (count - 1)) / count
