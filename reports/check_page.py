@@ -4,7 +4,10 @@ Per object: the sentence for a calculation note; each guideline's verdict and th
 compares; the object drawn to scale beside outlines of the width each guideline requires at its
 height and the exact widths for P(overturn) ≤ 10 % and ≤ 50 % at the site; its exact fragility
 (stripe shares, the lognormal fit, the bootstrap band over records) with the site's intensity
-and each guideline's line; the records that overturn it at the site's level.
+and each guideline's line; the records that overturn it at the site's level. With a hazard
+curve: the risk of each guideline's width, the exact width for the risk target, and the
+hazard × fragility figure (:func:`reports.risk_figure.risk_figure`, the integral recomputed
+from the curve and the fragility the JSON holds).
 """
 
 from __future__ import annotations
@@ -17,9 +20,13 @@ import numpy as np
 from jinja2 import Environment, PackageLoader, select_autoescape
 from scipy.special import ndtr
 
+from audit.engine.check_risk import quiet_risk
+from audit.engine.risk import LognormalFragility, StripeFragility
+from records.hazard import HazardCurve
 from reports.margins_page import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
 from reports.plots import _axis, _layout, to_json
+from reports.risk_figure import risk_figure
 
 CHECK_JSON = "check.json"
 #: Colours of the procedures, in the order of the run (the exact answer is black).
@@ -47,6 +54,10 @@ def _drawing(obj, colours) -> dict:
         width = exact[f"required_width_m_{target}pct"]
         if width is not None:
             columns.append((f"exact, P ≤ {target} %", width, "#000", dash, None))
+    risk = obj["risk"]
+    if risk and risk["required_width_m"] is not None:
+        columns.append((f"exact, {risk['target_p50']:.0%} in 50 yr", risk["required_width_m"],
+                        SITE_COLOUR, "solid", None))
     for proc in obj["procedures"]:
         if proc["required_width_m"] is not None:
             columns.append((proc["title"], proc["required_width_m"], colours[proc["name"]],
@@ -113,6 +124,25 @@ def _fragility(obj, document, colours) -> dict:
     return {"data": data, "layout": layout}
 
 
+def _risk(obj, document) -> dict:
+    """The site's hazard curve, the object's fragility and their product (the deaggregation)."""
+    hazard, exact, risk = document["hazard"], obj["exact"], obj["risk"]
+    curve = HazardCurve.checked(hazard["im"], hazard["curve"]["im_g"],
+                                hazard["curve"]["annual_rate"], hazard["source"],
+                                tuple(hazard["site"] or ()) or None)
+    counted = StripeFragility(np.array(exact["stripes"]["im"]),
+                              np.array(exact["stripes"]["overturned"])
+                              / exact["stripes"]["records"])
+    fitted = (LognormalFragility(exact["median_g"], exact["beta"])
+              if exact["median_g"] and exact["beta"] else None)
+    low, high = risk["im_range_90_g"]
+    return risk_figure(curve, fitted or counted, quiet_risk(fitted or counted, curve),
+                       counted if fitted else None,
+                       f"{obj['name']}: λ_ov = {risk['annual_rate']:.3g}/yr, P in 50 years "
+                       f"{risk['p50']:.2%}; 90 % of it from {_number(low)} to "
+                       f"{_number(high)} g (shaded)")
+
+
 def _number(value, fmt="{:.3g}") -> str:
     return "—" if value is None or (isinstance(value, float) and math.isnan(value)) \
         else fmt.format(value)
@@ -128,7 +158,8 @@ def render_check_page(folder) -> str:
                       lstrip_blocks=True)
     env.filters["num"] = _number
     objects = [{**obj, "drawing": to_json(_drawing(obj, colours)),
-                "fragility": to_json(_fragility(obj, document, colours))}
+                "fragility": to_json(_fragility(obj, document, colours)),
+                "risk_figure": to_json(_risk(obj, document)) if obj["risk"] else None}
                for obj in document["objects"]]
     return env.get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs())

@@ -14,16 +14,15 @@ argument.
 from __future__ import annotations
 
 import html
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
 
-from audit import G
 from audit.engine.check_objects import object_by_slenderness, parse_block_text, read_objects
-from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, DEFAULT_SCHEDULER
+from audit.engine.defaults import DEFAULT_CHECK_RECORDS
 from audit.errors import InputError
 
-DEFAULT_RECORDS = "p695-far-field"
 
 
 class CheckResult:
@@ -117,12 +116,14 @@ def _objects(objects, g: float) -> list:
     return out
 
 
-def check(objects, site, procedures="all", records=DEFAULT_RECORDS, im: str = "sa:1.0",
-          ntc_site=None, restitution="housner", jobs: int = DEFAULT_JOBS,
-          free_motion_s: float = DEFAULT_FREE_MOTION_S, scheduler: str = DEFAULT_SCHEDULER,
-          progress=False, seed: int | None = None, g: float = G) -> CheckResult:
+def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc_site=None,
+          progress=False, **options) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
-    intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check`).
+    intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check`);
+    with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check_risk`).
+
+    Every argument is checked before anything is read or computed; a bad one raises
+    :class:`~audit.errors.InputError` naming it.
 
     Parameters
     ----------
@@ -134,47 +135,47 @@ def check(objects, site, procedures="all", records=DEFAULT_RECORDS, im: str = "s
     procedures, records :
         As for :func:`audit.api.run`; records default to the FEMA P695 far-field set, scaled to
         the site.
-    im : str
-        ``pga`` or ``sa:T`` (the site's intensity read from its design spectrum).
     ntc_site : (float, float, float, str, str), optional
         NTC 2018 site, see :func:`audit.api.design_suite`.
-    restitution, jobs, free_motion_s, scheduler :
-        As for :func:`audit.api.margins`.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, record_id, how)``.
-    seed : int, optional
-        Seed of the bootstrap over records.
-    g : float
-        Acceleration of gravity [m/s²].
+    **options :
+        What is computed, the fields of :class:`~audit.engine.check_settings.CheckSettings`:
+        ``im`` (``pga`` or ``sa:T``, the site's intensity read from its design spectrum;
+        default ``sa:1.0``), ``restitution``, ``free_motion_s``, ``g``, ``seed`` (of the
+        bootstrap over records), ``hazard`` (a hazard curve or its file: the risk; its IMT
+        sets ``im``), ``site_location`` (lon, lat [degrees] in a file of several sites),
+        ``risk_target`` (probability of overturning in 50 years, default 0.01); how:
+        ``jobs``, ``scheduler``.
 
     Returns
     -------
     CheckResult
     """
     from audit.api import design_suite
-    from audit.api.inputs import procedures_of
+    from audit.api.inputs import procedures_of, split, suite_of
     from audit.engine.check import run_check
-    from audit.engine.intensity import IntensityMeasure
+    from audit.engine.check_settings import CHECK_FIELDS, CheckSettings
     from audit.engine.progress import Progress
-    from audit.physics.block import Restitution
-    from records import RecordSuite, load_records
-    chosen_objects = _objects(objects, g)
+    from audit.engine.runtime import Runtime
+    values, how = split(options, CHECK_FIELDS, ("jobs", "scheduler"))
+    settings = CheckSettings.parse(**values)
+    chosen_objects = _objects(objects, settings.g)
     try:
         sxs_g, sx1_g = (float(v) for v in site)
     except (TypeError, ValueError):
-        raise InputError(f"site: expected (S_XS, S_X1) in g, got {site!r}") from None
-    intensity = IntensityMeasure.parse(im)
-    if intensity.kind == "pgv":
-        raise InputError("im: a design spectrum gives no PGV; choose pga or sa:T")
-    impact = restitution if isinstance(restitution, Restitution) else Restitution.parse(restitution)
+        raise InputError(f"site: expected (S_XS, S_X1) in g, got {site!r}", "site") from None
+    if progress not in (True, False) and not callable(progress):
+        raise InputError(f"progress: expected True, False or progress(done, total, record_id, "
+                         f"how), got {progress!r}", "progress")
+    runtime = Runtime.parse(**how, progress=progress if callable(progress) else None)
     chosen = procedures_of(procedures)
-    suite = records if isinstance(records, RecordSuite) else load_records(records)
-    suite = design_suite(suite, site=(sxs_g, sx1_g), site_override=True, scale_to_site=True,
-                         ntc_site=ntc_site)
+    suite = design_suite(suite_of(records), site=(sxs_g, sx1_g), site_override=True,
+                         scale_to_site=True, ntc_site=ntc_site)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
-        run = run_check(chosen, suite, chosen_objects, intensity, impact, g, free_motion_s, jobs,
-                        scheduler, bar or progress or None, seed)
+        run = run_check(chosen, suite, chosen_objects, settings,
+                        replace(runtime, progress=bar) if bar else runtime)
     finally:
         if bar is not None:
             bar.done()

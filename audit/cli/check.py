@@ -7,11 +7,10 @@ import time
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
+from audit.engine.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
+                                   DEFAULT_JOBS)
 from audit.errors import InputError
 
-DEFAULT_RECORDS = "p695-far-field"
-DEFAULT_IM = "sa:1.0"
 
 
 def add_parser(sub):
@@ -25,7 +24,10 @@ def add_parser(sub):
                     "band over records), and the base width each guideline requires at the "
                     "object's height against the exact width for P(overturn) ≤ 10 % and "
                     "≤ 50 %. The site's S_XS, S_X1 are those of the hazard level you assess "
-                    "(e.g. BSE-1E or BSE-2E): every number is at that level. With --out, writes "
+                    "(e.g. BSE-1E or BSE-2E): every number is at that level. With --hazard, "
+                    "also each object's mean annual rate of overturning and P in 50 years from "
+                    "the site's hazard curve, the P in 50 years of the object as each guideline "
+                    "sizes it, and the exact width for the risk target. With --out, writes "
                     "check.json, check.csv and check.html.")
     p.add_argument("--block", action="append", metavar="WIDTHxHEIGHT",
                    help="an object by its full base width × full height [m] (of the box of its "
@@ -43,13 +45,14 @@ def add_parser(sub):
                    help="NTC 2018 site as for 'run' (NTC 2018 then reads its code spectrum)")
     p.add_argument("procedure", nargs="?", default="all",
                    help="registered procedure name ({registered}), or 'all'")
-    p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_RECORDS,
+    p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
                    help="record suite (see 'list'), manifest, file or folder; each record is "
                         "scaled to the site's intensity and to stripes around it")
-    p.add_argument("--im", default=DEFAULT_IM, metavar="pga|sa:T",
-                   help="intensity measure: the true 5 %%-damped spectral acceleration at T "
-                        "[g] (the site's intensity: its design spectrum at T; S_X1 at 1 s) or "
-                        "PGA (0.4 S_XS)")
+    p.add_argument("--im", default=None, metavar="pga|sa:T",
+                   help=f"intensity measure (default {DEFAULT_IM}, or the --hazard file's IMT): "
+                        "the true 5 %%-damped spectral acceleration at T [g] (the site's "
+                        "intensity: its design spectrum at T; S_X1 at 1 s) or PGA (0.4 S_XS)")
+    options.add_hazard_options(p)
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -104,10 +107,18 @@ def run(args) -> int:
     out_dir = check_output_dir(Path(args.out)) if args.out else None
     objects = objects_of(args)
     start = time.perf_counter()
+    values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
+              "risk_target": args.risk_target}
+    if args.im is not None:  # without it, the default or the hazard file's IMT
+        values["im"] = args.im
+    if args.hazard:
+        values.update(hazard=args.hazard,
+                      site_location=options.site_location(args.site_location))
+    elif args.site_location:
+        raise InputError("--site-location: a site of the --hazard file; no --hazard given")
     result = check(objects, site, procedures=args.procedure, records=args.records,
-                   im=args.im, ntc_site=ntc_site, restitution=args.restitution,
-                   jobs=args.jobs, free_motion_s=args.free_motion, scheduler=args.scheduler,
-                   progress=True)
+                   ntc_site=ntc_site, jobs=args.jobs, scheduler=args.scheduler,
+                   progress=True, **values)
     if out_dir is not None:
         result.write(out_dir)
     print(f"done in {time.perf_counter() - start:.1f} s", file=sys.stderr)

@@ -24,18 +24,23 @@ site, not its whole grid. From it, per object:
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 from audit import G
 from audit.engine.blocks import BlockList
-from audit.engine.check_widths import (accepted_width, exact_required_widths,
-                                      guideline_bracket, overturns_at)
+from audit.engine.check_risk import hazard_document, object_risk, p50_of_blocks
+from audit.engine.check_settings import CheckSettings
+from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
+                                      guideline_bracket, overturns_at, probability_at_site)
 from audit.engine.fragility import bootstrap_lognormal, fit_lognormal
 from audit.engine.margins import RecordStripes, StripeSettings, half_crossing, record_stripes
+from audit.engine.risk import LognormalFragility, StripeFragility
+from audit.engine.runtime import Runtime
 from audit.engine.scheduler import computed_parts, open_scheduler
-from audit.errors import InputError
+from audit.errors import InputError, InputWarning
 from audit.physics.block import Restitution
 from procedures.base import EXACT_OVERTURNING, OVERTURN
 from procedures.context import RecordContext
@@ -58,7 +63,7 @@ def check_levels(site_im: float) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class CheckSettings:
+class CheckWork:
     """What every record's part of a check depends on.
 
     Attributes
@@ -164,7 +169,7 @@ def at_site(entry, context, intensity: float, site_im: float):
     return scaled, context.scaled(scaled, float(factor))
 
 
-def check_record(entry, procedures, settings: CheckSettings) -> CheckRecord:
+def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
     """The unit of work of a check: one record's stripes, then each record-reading procedure's
     judgement at the site, on the same cached spectra."""
     margins = settings.stripes
@@ -188,9 +193,8 @@ class CheckRun:
     summary: dict
 
 
-def run_check(procedures, suite, objects, im, restitution: Restitution | None = None,
-              g: float = G, free_motion_s: float = 10.0, jobs: int = 1,
-              scheduler: str = "local", progress=None, seed: int | None = None) -> CheckRun:
+def run_check(procedures, suite, objects, settings: CheckSettings,
+              runtime: Runtime) -> CheckRun:
     """Check every object at the suite's design site (see the module).
 
     Parameters
@@ -199,87 +203,141 @@ def run_check(procedures, suite, objects, im, restitution: Restitution | None = 
     suite : records.RecordSuite
         Its ``design_site`` (S_XS, S_X1 [g]) is the site.
     objects : sequence of audit.engine.check_objects.CheckObject
-    im : audit.engine.margins.IntensityMeasure
-    restitution, g, free_motion_s, jobs, scheduler, progress :
-        As for :func:`audit.engine.margins.run_margins`.
-    seed : int, optional
-        Seed of the bootstrap (its default when not given).
+    settings : audit.engine.check_settings.CheckSettings
+        With a hazard curve, also the risk (:mod:`audit.engine.check_risk`).
+    runtime : audit.engine.runtime.Runtime
+        ``jobs``, ``scheduler`` and ``progress`` (a check keeps no parts to resume).
     """
     from audit.engine.check_summary import object_answer, run_summary
     entries = [entry for entry in suite if entry.motion is not None]
     if not entries:
         raise InputError(f"records: no record of {suite.description} has a file", "records")
+    im, restitution, g = settings.im, settings.restitution, settings.g
     site_im = im.of_design_site(suite.design_site)
     if not site_im:
-        raise (InputError("site: the check needs the site's S_XS,S_X1 [g]", "site")
-               if im.unit == "g" else
-               InputError(f"im: {im.name}: a design spectrum gives no {im.name}; choose pga or "
-                          "sa:T", "im"))
+        raise InputError("site: the check needs the site's S_XS,S_X1 [g]", "site")
     levels = check_levels(site_im)
-    restitution = restitution or Restitution()
     objects = tuple(objects)
+    jobs, progress = runtime.jobs, runtime.progress
     per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
-    settings = CheckSettings(StripeSettings(im, tuple(levels.tolist()), site_im,
-                                             BlockList.of(named=objects), restitution, float(g),
-                                             float(free_motion_s), int(jobs)),
-                             objects, per_record)
-    with open_scheduler(scheduler, jobs) as executor:
-        parts, _, where = computed_parts(check_record, entries, procedures, settings, executor,
+    work = CheckWork(StripeSettings(im, tuple(levels.tolist()), site_im,
+                                    BlockList.of(named=objects), restitution, g,
+                                    settings.free_motion_s, jobs),
+                     objects, per_record)
+    curve = settings.hazard
+    targets = TARGETS + ((settings.risk_target,) if curve is not None else ())
+
+    def measure(overturned, levels):  # P at the site for TARGETS, P in 50 years for the risk
+        p_site = probability_at_site(overturned, levels, site_im)
+        if curve is None:
+            return p_site
+        return np.column_stack([p_site] * len(TARGETS) + [p50_of_blocks(overturned, levels,
+                                                                         curve)])
+
+    with open_scheduler(runtime.scheduler, jobs) as executor:
+        parts, _, where = computed_parts(check_record, entries, procedures, work, executor,
                                          progress=progress)
-        if progress is not None and hasattr(progress, "stage"):
-            progress.stage("the exact width for P(overturn) ≤ 10 % and ≤ 50 % at each height")
+        _stage(progress, "the exact width for P(overturn) ≤ 10 % and ≤ 50 % at each height"
+               + (" and for the risk target" if curve is not None else ""))
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
-        widths = exact_required_widths(entries, [o.height_m for o in objects], levels,
-                                       intensity, site_im, TARGETS, restitution, g,
-                                       free_motion_s, jobs, executor)
-    contexts = {}  # records scaled to the site with their spectra, made as the searches need
+        family = Family(entries, levels, intensity, settings, jobs, executor)
+        widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure)
+        contexts = {}  # records scaled to the site with their spectra, made as the searches need
 
-    def site_context(i: int):
-        if i not in contexts:
-            contexts[i] = at_site(entries[i], RecordContext(entries[i], free_motion_s, jobs),
-                                  intensity[entries[i].id], site_im)
-        return contexts[i]
+        def site_context(i: int):
+            if i not in contexts:
+                contexts[i] = at_site(entries[i], RecordContext(entries[i],
+                                                                settings.free_motion_s, jobs),
+                                      intensity[entries[i].id], site_im)
+            return contexts[i]
 
-    # a procedure reading only the site: one answer for every record, judged on the first
-    site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
-                   for p in procedures if p.name not in per_record
-                   and p.unmet_requirements(site_context(0)[0]) is None}
-    if progress is not None and hasattr(progress, "stage"):
-        progress.stage("the width each guideline requires at each object's height")
-    exact_over = np.stack([part.stripes.exact_overturned for part in parts])  # (rec, stripe, obj)
+        # a procedure reading only the site: one answer for every record, judged on the first
+        site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
+                       for p in procedures if p.name not in per_record
+                       and p.unmet_requirements(site_context(0)[0]) is None}
+        _stage(progress, "the width each guideline requires at each object's height")
+        exact_over = np.stack([part.stripes.exact_overturned for part in parts])
+        judged = [[_guideline(proc, b, obj, parts, levels, site_judged, site_context, settings)
+                   for proc in procedures] for b, obj in enumerate(objects)]
+        guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
+                         else {})
     answers = []
     for b, obj in enumerate(objects):
-        over = exact_over[:, :, b]
+        over = exact_over[:, :, b]  # (record, stripe)
         try:
             fit = fit_lognormal(levels, np.full(levels.size, len(entries)), over.sum(axis=0))
         except ValueError:
             fit = None
-        boot = (bootstrap_lognormal(levels, over) if seed is None
-                else bootstrap_lognormal(levels, over, seed=seed))
-        judged = []
-        for proc in procedures:
-            records = ([0] if proc.name in site_judged else
-                       [i for i, part in enumerate(parts) if proc.name in part.judged])
-            mine = ([site_judged[proc.name]] if proc.name in site_judged
-                    else [parts[i].judged[proc.name] for i in records])
-            evaluated = np.array([part.stripes.evaluated[proc.name] for part in parts])
-            fraction = (np.mean([part.stripes.predicted[proc.name][:, b]
-                                 for part, ok in zip(parts, evaluated) if ok], axis=0)
-                        if evaluated.any() else None)
-            line = half_crossing(levels, fraction) if fraction is not None else math.nan
-            width = math.nan
-            if mine:
-                def refine(which, widths, proc=proc, records=records, obj=obj):
-                    return [overturns_at(proc, *site_context(records[k]), obj, float(w),
-                                         restitution, g) for k, w in zip(which, widths)]
-                width = accepted_width([j.width_low[b] for j in mine],
-                                       [j.width_high[b] for j in mine], refine)
-            judged.append((proc, mine, line, width))
+        boot = (bootstrap_lognormal(levels, over) if settings.seed is None
+                else bootstrap_lognormal(levels, over, seed=settings.seed))
+        risk = None
+        if curve is not None:
+            fitted = LognormalFragility(fit.median, fit.beta) if fit else None
+            counted = StripeFragility(levels, over.mean(axis=0))
+            width = widths[b][len(TARGETS)]
+            risk = object_risk(fitted, counted, curve, settings.risk_target,
+                               float(width) if math.isfinite(width) else None)
         answers.append(object_answer(obj, b, levels, site_im, im, fit, boot, over,
-                                     [e.id for e in entries], widths[b], judged, entries[0]))
-    return CheckRun(answers, run_summary(suite, entries, im, levels, site_im, procedures,
-                                         restitution, where))
+                                     [e.id for e in entries], widths[b], judged[b],
+                                     entries[0], risk, guideline_p50.get(b, {})))
+    if curve is not None:
+        _warn_truncated(answers, curve)
+    summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
+    if curve is not None:
+        summary["hazard"] = hazard_document(curve, settings.risk_target)
+    return CheckRun(answers, summary)
 
 
-__all__ = ["run_check", "CheckRun", "CheckSettings", "check_record", "check_levels",
+def _stage(progress, text: str) -> None:
+    if progress is not None and hasattr(progress, "stage"):
+        progress.stage(text)
+
+
+def _guideline(proc, b, obj, parts, levels, site_judged, site_context, settings) -> tuple:
+    """(procedure, its judgements of object ``b``, its line on the stripes, its required
+    width [m])."""
+    records = ([0] if proc.name in site_judged else
+               [i for i, part in enumerate(parts) if proc.name in part.judged])
+    mine = ([site_judged[proc.name]] if proc.name in site_judged
+            else [parts[i].judged[proc.name] for i in records])
+    evaluated = np.array([part.stripes.evaluated[proc.name] for part in parts])
+    fraction = (np.mean([part.stripes.predicted[proc.name][:, b]
+                         for part, ok in zip(parts, evaluated) if ok], axis=0)
+                if evaluated.any() else None)
+    line = half_crossing(levels, fraction) if fraction is not None else math.nan
+    width = math.nan
+    if mine:
+        def refine(which, widths):
+            return [overturns_at(proc, *site_context(records[k]), obj, float(w),
+                                 settings.restitution, settings.g)
+                    for k, w in zip(which, widths)]
+        width = accepted_width([j.width_low[b] for j in mine],
+                               [j.width_high[b] for j in mine], refine)
+    return proc, mine, line, width
+
+
+def _guideline_risk(family: Family, objects, judged, curve) -> dict:
+    """P in 50 years of each object at the width each guideline requires, {object: {procedure
+    name: P}}: every such block solved together."""
+    pairs = [(b, proc.name, width) for b, row in enumerate(judged)
+             for proc, _, _, width in row if math.isfinite(width) and width > 0]
+    out = {b: {} for b in range(len(objects))}
+    if pairs:
+        overturned = family.overturned([objects[b].height_m for b, _, _ in pairs],
+                                       [w for _, _, w in pairs])
+        for (b, name, _), p50 in zip(pairs, p50_of_blocks(overturned, family.levels, curve)):
+            out[b][name] = float(p50)
+    return out
+
+
+def _warn_truncated(answers, curve) -> None:
+    truncated = [a["name"] for a in answers if a["risk"]["truncated"]]
+    if truncated:
+        warnings.warn(f"hazard: {curve.source}: the curve stops below the fragility's median "
+                      f"of {', '.join(truncated)}: their annual rate is a lower bound "
+                      "(check.json risk.annual_rate_upper bounds it)", InputWarning,
+                      stacklevel=3)
+
+
+__all__ = ["run_check", "CheckRun", "CheckWork", "check_record", "check_levels",
            "compared_numbers", "judge", "SITE_STRIPES", "STRIPE_STEP", "TARGETS"]

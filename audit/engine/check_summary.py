@@ -3,8 +3,9 @@ one sentence for a calculation note, the table of ``check.csv`` (one row per obj
 procedure) and the summary printed on standard output.
 
 Every probability is conditional on the site's intensity at the hazard level of the S_XS, S_X1
-given; ``risk`` (per object) and ``risk_p50`` (per procedure) are reserved for the annual rate
-from a hazard curve, null until one is given.
+given, except ``risk`` (per object: the annual rate of overturning from the site's hazard curve,
+P in 50 years, the exact width for the risk target) and ``risk_p50`` (per procedure: P in 50
+years of the object at the width the guideline requires), null without a hazard curve.
 """
 
 from __future__ import annotations
@@ -22,6 +23,8 @@ from audit.engine.schemas import GUIDE
 HAZARD_LEVEL = ("the hazard level of the S_XS, S_X1 given (e.g. ASCE 41's BSE-1E or BSE-2E): "
                 "every verdict and probability is at the site's intensity at that level")
 CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
+#: Share of an annual rate from outside the stripes above which the sentence warns of it.
+EXTRAPOLATED_SHARE = 0.10
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 
@@ -39,11 +42,12 @@ def im_words(im, site_im: float) -> str:
     return f"PGA = 0.4 S_XS = {site_im:.3g} g"
 
 
-def _procedure_answer(proc, judgements, line, width, b: int, first_entry) -> dict:
+def _procedure_answer(proc, judgements, line, width, b: int, first_entry,
+                      risk_p50: float | None) -> dict:
     answer = {"name": proc.name, "title": proc.title, "verdict": None, "compares": None,
               "demand": None, "capacity": None, "unit": None, "share_predicting_overturn": None,
               "records_judged": len(judgements), "required_width_m": None,
-              "guideline_im": _number(line), "reason": None, "risk_p50": None}
+              "guideline_im": _number(line), "reason": None, "risk_p50": risk_p50}
     if not judgements:
         answer["reason"] = (proc.unmet_requirements(first_entry)
                             or "it can evaluate no record of the suite")
@@ -72,8 +76,11 @@ def _procedure_answer(proc, judgements, line, width, b: int, first_entry) -> dic
 
 
 def object_answer(obj, b: int, levels, site_im: float, im, fit, boot, overturned, record_ids,
-                  widths, judged, first_entry) -> dict:
-    """The entry of ``check.json`` for one object (see the module)."""
+                  widths, judged, first_entry, risk: dict | None = None,
+                  guideline_p50: dict | None = None) -> dict:
+    """The entry of ``check.json`` for one object (see the module): ``risk`` its entry of
+    :func:`~audit.engine.check_risk.object_risk`, ``guideline_p50`` P in 50 years at each
+    guideline's width by procedure name (both with a hazard curve)."""
     site = int(np.argmin(np.abs(levels - site_im)))
     if fit is not None:
         p_site = float(fit.probability(site_im))
@@ -100,9 +107,10 @@ def object_answer(obj, b: int, levels, site_im: float, im, fit, boot, overturned
                               "records": int(overturned.shape[0])},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
                                  "high": curve_high.tolist()}},
-        "procedures": [_procedure_answer(proc, mine, line, width, b, first_entry)
+        "procedures": [_procedure_answer(proc, mine, line, width, b, first_entry,
+                                         (guideline_p50 or {}).get(proc.name))
                        for proc, mine, line, width in judged],
-        "risk": None}
+        "risk": risk}
     answer["sentence"] = sentence(answer, im)
     return answer
 
@@ -131,9 +139,26 @@ def sentence(answer: dict, im) -> str:
             f"[{100 * low:.0f}–{100 * high:.0f} %]")
     w10, w50 = exact["required_width_m_10pct"], exact["required_width_m_50pct"]
     if w10 is None:
-        return text + "; no width up to 0.95 × its height brings it to 10 % (restrain it)."
-    return (text + f"; it needs {w10:.2f} m of base width for 10 %"
-            + (f" ({w50:.2f} m for 50 %)." if w50 is not None else "."))
+        text += "; no width up to 0.95 × its height brings it to 10 % (restrain it)"
+    else:
+        text += (f"; it needs {w10:.2f} m of base width for 10 %"
+                 + (f" ({w50:.2f} m for 50 %)" if w50 is not None else ""))
+    risk = answer["risk"]
+    if risk is None:
+        return text + "."
+    width = risk["required_width_m"]
+    rate = risk["annual_rate"]
+    outside = risk["share_below_stripes"] + risk["share_above_stripes"]
+    return (text + f". From the site's hazard curve it overturns at {rate:.2g}/yr"
+            + (f" (once in {1 / rate:,.0f} years)" if rate > 0 else "")
+            + f", P = {100 * risk['p50']:.2g} % in 50 years "
+            f"({'within' if risk['meets_target'] else 'above'} the "
+            f"{100 * risk['target_p50']:g} % target"
+            + (f"; {width:.2f} m of base width meets it)" if width is not None else
+               "; no width up to 0.95 × its height meets it)")
+            + (f"; {100 * outside:.0f} % of that rate comes from intensities outside the stripes, "
+               "where the fitted fragility is extrapolated." if outside > EXTRAPOLATED_SHARE
+               else "."))
 
 
 def run_summary(suite, entries, im, levels, site_im, procedures, restitution, where) -> dict:
@@ -153,7 +178,7 @@ def check_table(objects: list) -> pd.DataFrame:
     """One row per object × procedure (the columns of ``check.csv``)."""
     rows = []
     for obj in objects:
-        exact = obj["exact"]
+        exact, risk = obj["exact"], obj["risk"]
         for proc in obj["procedures"]:
             rows.append({
                 "object": obj["name"], "width_m": obj["width_m"], "height_m": obj["height_m"],
@@ -169,7 +194,11 @@ def check_table(objects: list) -> pd.DataFrame:
                 "p_band_low": exact["p_band"][0], "p_band_high": exact["p_band"][1],
                 "exact_median": exact["median_g"], "exact_beta": exact["beta"],
                 "exact_required_width_m_10pct": exact["required_width_m_10pct"],
-                "exact_required_width_m_50pct": exact["required_width_m_50pct"]})
+                "exact_required_width_m_50pct": exact["required_width_m_50pct"],
+                "risk_p50": proc["risk_p50"],
+                "p50": risk["p50"] if risk else None,
+                "annual_rate": risk["annual_rate"] if risk else None,
+                "exact_required_width_m_risk": risk["required_width_m"] if risk else None})
     return pd.DataFrame(rows, columns=CSV_COLUMNS).astype(
         {c: float for c in CSV_COLUMNS if c not in ("object", "procedure", "verdict", "compares",
                                                      "unit", "reason", "im")})
@@ -193,6 +222,10 @@ def _compared(proc: dict) -> str:
     return f"demand {demand} vs capacity {proc['capacity']:.3g} {unit}"
 
 
+def _percent(p: float | None) -> str:
+    return "—" if p is None else f"{100 * p:.2g} %"
+
+
 def _intensity(name: str):
     from audit.engine.intensity import IntensityMeasure
     return IntensityMeasure.parse(name)
@@ -207,20 +240,33 @@ def summary_text(document: dict) -> str:
              f"to {im_words(_intensity(document['im']), document['site_im'])} and to "
              f"{len(document['levels'])} stripes {min(document['levels']):.3g}–"
              f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility.", ""]
+    hazard = document.get("hazard")
+    if hazard:
+        lines[-1:-1] = [f"Risk from the hazard curve {hazard['source']}: target P ≤ "
+                        f"{100 * hazard['target_p50']:g} % of overturning in 50 years; "
+                        "'P in 50 yr' is of the object at the width each row requires."]
     for obj in document["objects"]:
         lines += [obj["sentence"], ""]
-        rows = [("procedure", "verdict", "compares", "width needed")]
+        rows = [("procedure", "verdict", "compares", "width needed")
+                + (("P in 50 yr",) if hazard else ())]
         for proc in obj["procedures"]:
             width = proc["required_width_m"]
             rows.append((proc["title"], proc["verdict"] or "—",
                          _compared(proc) if proc["verdict"] else "cannot judge",
-                         f"{width:.2f} m" if width is not None else "—"))
+                         f"{width:.2f} m" if width is not None else "—")
+                        + ((_percent(proc["risk_p50"]),) if hazard else ()))
         exact = obj["exact"]
         for target in ("10", "50"):
             width = exact[f"required_width_m_{target}pct"]
             rows.append((f"exact, P(overturn) ≤ {target} %", "", "",
-                         f"{width:.2f} m" if width is not None else "none ≤ 0.95 h"))
-        sizes = [max(len(row[k]) for row in rows) for k in range(4)]
+                         f"{width:.2f} m" if width is not None else "none ≤ 0.95 h")
+                        + (("",) if hazard else ()))
+        if hazard:
+            width = obj["risk"]["required_width_m"]
+            rows.append((f"exact, P in 50 years ≤ {100 * hazard['target_p50']:g} %", "", "",
+                         f"{width:.2f} m" if width is not None else "none ≤ 0.95 h",
+                         f"≤ {_percent(hazard['target_p50'])}" if width is not None else ""))
+        sizes = [max(len(row[k]) for row in rows) for k in range(len(rows[0]))]
         lines += ["  " + "  ".join(cell.ljust(size) for cell, size in zip(row, sizes)).rstrip()
                   for row in rows]
         lines += [f"  (object width {obj['width_m']:.3g} m; exact fragility: median "

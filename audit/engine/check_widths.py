@@ -83,16 +83,18 @@ def probability_at_site(overturned, levels, site_im: float) -> np.ndarray:
     return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, p))
 
 
-def required_width(probability, heights_m, targets, scan=SCAN_FRACTIONS, count=SCAN_WIDTHS,
+def required_width(measure, heights_m, targets, scan=SCAN_FRACTIONS, count=SCAN_WIDTHS,
                    tolerance=WIDTH_TOLERANCE) -> np.ndarray:
-    """The smallest width above which P(w) ≤ each target, per height (see the module).
+    """The smallest width above which the measure stays ≤ each target, per height (see the
+    module).
 
     Parameters
     ----------
-    probability : callable
-        ``probability(heights_m, widths_m)`` → P at the site of each (height, width) pair
-        (arrays of one length), the expensive step: called once for the scan and once per
-        halving, with every open bracket together.
+    measure : callable
+        ``measure(heights_m, widths_m)`` → what each target limits (P(overturn) at the site, or
+        P in 50 years) for each (height, width) pair (arrays of one length), shaped (pair,) when
+        one measure serves every target or (pair, target); the expensive step: called once for
+        the scan and once per halving, with every open bracket together.
     heights_m : array
         Heights of the families [m].
     targets : sequence of float
@@ -104,51 +106,88 @@ def required_width(probability, heights_m, targets, scan=SCAN_FRACTIONS, count=S
     Returns
     -------
     numpy.ndarray
-        Shaped (height, target) [m]: the narrowest scanned width where P is already within the
-        target there; NaN where P exceeds the target still at the widest.
+        Shaped (height, target) [m]: the narrowest scanned width where the measure is already
+        within the target there; NaN where it exceeds the target still at the widest.
     """
     heights = np.asarray(heights_m, dtype=float)
     fractions = np.geomspace(scan[0], scan[1], count)
     widths = heights[:, None] * fractions[None, :]
-    p = probability(np.repeat(heights, count), widths.ravel()).reshape(widths.shape)
+
+    def measured(h, w):
+        values = np.asarray(measure(h, w), dtype=float)
+        return np.broadcast_to(values.reshape(len(w), -1), (len(w), len(targets)))
+
+    p = measured(np.repeat(heights, count), widths.ravel()).reshape(*widths.shape, len(targets))
     pairs = [(h, t) for h in range(heights.size) for t in range(len(targets))]
     low = np.full(len(pairs), np.nan)
     high = np.full(len(pairs), np.nan)
     for k, (h, t) in enumerate(pairs):
-        over = np.flatnonzero(p[h] > targets[t])
+        over = np.flatnonzero(p[h, :, t] > targets[t])
         if over.size == 0:
             high[k] = widths[h, 0]
         elif over[-1] < count - 1:
             low[k], high[k] = widths[h, over[-1]], widths[h, over[-1] + 1]
     limit = np.array([targets[t] for _, t in pairs])
     height_of = np.array([heights[h] for h, _ in pairs])
+    target_of = np.array([t for _, t in pairs])
     while True:
         open_ = np.flatnonzero(np.isfinite(low) & (high / low > 1.0 + tolerance))
         if not open_.size:
             break
         middle = np.sqrt(low[open_] * high[open_])
-        above = probability(height_of[open_], middle) > limit[open_]
+        values = measured(height_of[open_], middle)[np.arange(open_.size), target_of[open_]]
+        above = values > limit[open_]
         low[open_[above]] = middle[above]
         high[open_[~above]] = middle[~above]
     return high.reshape(heights.size, len(targets))
 
 
-def exact_required_widths(entries, heights_m, levels, intensity: dict, site_im: float, targets,
-                          restitution, g: float, free_motion_s: float, jobs: int,
-                          scheduler) -> np.ndarray:
-    """:func:`required_width` of the exact fragility: every P(w) from the records' outcomes at
-    the stripes (:func:`record_family`), widths [m] shaped (height, target)."""
-    from audit.engine.check_objects import CheckObject
+@dataclass(frozen=True)
+class Family:
+    """The records of a check, ready to solve any object of any width at every stripe.
 
-    def probability(heights, widths):
-        blocks = [CheckObject("", w, h, g) for h, w in zip(heights, widths)]
-        settings = FamilySettings(tuple(b.size_s for b in blocks),
-                                  tuple(b.alpha_deg for b in blocks), tuple(levels),
-                                  tuple(intensity.items()), restitution, g, free_motion_s, jobs)
-        parts, _, _ = computed_parts(record_family, entries, [], settings, scheduler)
-        return probability_at_site(np.stack(parts), levels, site_im)
+    Attributes
+    ----------
+    entries : list of records.RecordEntry
+    levels : numpy.ndarray
+        The check's stripes [unit of its intensity measure].
+    intensity : dict
+        Each record's intensity (record id → value), so each is scaled to the stripes exactly
+        as for the object's own fragility.
+    settings : audit.engine.check_settings.CheckSettings
+    jobs : int
+    scheduler :
+        An open scheduler (:func:`~audit.engine.scheduler.open_scheduler`).
+    """
 
-    return required_width(probability, heights_m, targets)
+    entries: list
+    levels: np.ndarray
+    intensity: dict
+    settings: object
+    jobs: int
+    scheduler: object
+
+    def overturned(self, heights_m, widths_m) -> np.ndarray:
+        """Exact overturning of the block of each (height, width) pair [m] under every record at
+        every stripe, shaped (record, stripe, block)."""
+        from audit.engine.check_objects import CheckObject
+        g = self.settings.g
+        blocks = [CheckObject("", w, h, g) for h, w in zip(heights_m, widths_m)]
+        work = FamilySettings(tuple(b.size_s for b in blocks),
+                              tuple(b.alpha_deg for b in blocks), tuple(self.levels),
+                              tuple(self.intensity.items()), self.settings.restitution, g,
+                              self.settings.free_motion_s, self.jobs)
+        parts, _, _ = computed_parts(record_family, self.entries, [], work, self.scheduler)
+        return np.stack(parts)
+
+
+def exact_required_widths(family: Family, heights_m, targets, measure) -> np.ndarray:
+    """:func:`required_width` of the exact fragility: ``measure(overturned, levels)`` → what
+    each target limits, per block (shaped (block,) or (block, target)), from the records'
+    outcomes at the stripes (:meth:`Family.overturned`); widths [m] shaped (height, target)."""
+    return required_width(
+        lambda heights, widths: measure(family.overturned(heights, widths), family.levels),
+        heights_m, targets)
 
 
 def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g: float) -> bool:
@@ -208,7 +247,7 @@ def accepted_width(low, high, refine, tolerance: float = GUIDELINE_TOLERANCE) ->
         high[straddle[~over]] = middle[~over]
 
 
-__all__ = ["required_width", "exact_required_widths", "overturns_at", "guideline_bracket",
+__all__ = ["required_width", "exact_required_widths", "Family", "overturns_at", "guideline_bracket",
            "accepted_width", "probability_at_site",
            "record_family", "FamilySettings", "SCAN_FRACTIONS", "SCAN_WIDTHS",
            "WIDTH_TOLERANCE"]

@@ -30,6 +30,8 @@ DEFAULT_RESPONSE_FREE_MOTION_S = 0.0
 #: The probabilistic procedure audited by ``fragility``, and its records.
 DEFAULT_PROBABILISTIC_PROCEDURE = "femap58"
 DEFAULT_FRAGILITY_RECORDS = "p695-far-field"
+#: Records of ``check``: the FEMA P695 far-field set, scaled to the site.
+DEFAULT_CHECK_RECORDS = "p695-far-field"
 #: The exact solver's impact model: Eq. 4.8 (Housner's).
 DEFAULT_RESTITUTION = "housner"
 #: Intensity measure of the design-level audit (``margins``): true 5 %-damped Sa at 1 s [g].
@@ -65,7 +67,7 @@ DEFAULT_RISK_TARGET = 0.01
 __all__ = ["DEFAULT_ALPHA_DEG", "DEFAULT_SIZES", "DEFAULT_AGREE_BAND", "DEFAULT_ROBUSTNESS",
            "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "DEFAULT_RESTITUTION", "DEFAULT_ANCHOR_PERIOD_S", "DEFAULT_DAMPING_PCT", "DEFAULT_PERIODS",
            "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS", "DEFAULT_RESPONSE_FREE_MOTION_S",
-           "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_FRAGILITY_RECORDS",
+           "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_FRAGILITY_RECORDS", "DEFAULT_CHECK_RECORDS",
            "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "DEFAULT_STRIPE_SPAN", "alpha_text",
            "sizes_text", "SITE_LEVELS", "DEFAULT_SITE_LEVEL", "DEFAULT_RISK_TARGET"]
 

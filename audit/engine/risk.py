@@ -161,7 +161,8 @@ class OverturningRisk:
 def annual_rate_for(probability: float, years: float = YEARS) -> float:
     """The annual rate [1/yr] whose probability in ``years`` is ``probability`` (Poisson)."""
     if not 0.0 < probability < 1.0:
-        raise InputError(f"risk target: a probability in (0, 1) is needed, got {probability}")
+        raise InputError(f"risk_target: a probability in (0, 1) is needed, got {probability}",
+                         "risk_target")
     return float(-np.log1p(-probability) / years)
 
 
@@ -185,7 +186,7 @@ def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
     if not same:
         raise InputError(f"hazard: imt: the curve is of {curve.im_name} ({curve.source}) but "
                          f"the {what} is of {mine.name}; use the intensity measure "
-                         f"{theirs.name} for both")
+                         f"{theirs.name} for both", "hazard", what)
 
 
 def risk_integral(fragility, curve) -> OverturningRisk:

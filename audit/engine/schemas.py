@@ -264,6 +264,16 @@ GUIDE["check.csv"] = {
                                           "the exact P(overturn) at the site stays ≤ 10 % "
                                           "(empty where none up to 0.95 × the height)"),
     "exact_required_width_m_50pct": ("m", "the same for P(overturn) ≤ 50 %"),
+    "risk_p50": ("-", "with --hazard: P of overturning in 50 years of the object at the width "
+                      "this procedure requires (empty where it requires none)"),
+    "p50": ("-", "with --hazard: the object's P of overturning in 50 years, "
+                 "1 − exp(−50 annual_rate)"),
+    "annual_rate": ("1/yr", "with --hazard: the object's mean annual rate of overturning, its "
+                            "exact fragility integrated over the site's hazard curve"),
+    "exact_required_width_m_risk": ("m", "with --hazard: narrowest width at the object's "
+                                         "height above which the exact P in 50 years stays "
+                                         "within the risk target (empty where none up to "
+                                         "0.95 × the height)"),
 }
 
 GUIDE["required_alpha.csv"] = {
