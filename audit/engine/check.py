@@ -155,11 +155,13 @@ def judge(procedure, entry, context, objects, restitution: Restitution, g: float
 
 @dataclass
 class CheckRecord:
-    """One record's part of a check: its stripes and the judgements of the procedures that read
-    it (None where a procedure cannot evaluate the record)."""
+    """One record's part of a check: its stripes, the judgements of the procedures that read
+    it (None where a procedure cannot evaluate the record), and its context, whose cached
+    spectra the width searches read again."""
 
     stripes: RecordStripes
     judged: dict
+    context: RecordContext
 
 
 def at_site(entry, context, intensity: float, site_im: float):
@@ -181,7 +183,7 @@ def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
         if proc.name in settings.per_record and proc.unmet_requirements(scaled) is None:
             judged[proc.name] = judge(proc, scaled, scaled_context, settings.objects,
                                       margins.restitution, margins.g)
-    return CheckRecord(stripes, judged)
+    return CheckRecord(stripes, judged, context)
 
 
 @dataclass
@@ -242,13 +244,12 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
         family = Family(entries, levels, intensity, settings, jobs, executor)
         widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure)
-        contexts = {}  # records scaled to the site with their spectra, made as the searches need
+        contexts = {}  # records scaled to the site, on the spectra their parts computed
 
         def site_context(i: int):
             if i not in contexts:
-                contexts[i] = at_site(entries[i], RecordContext(entries[i],
-                                                                settings.free_motion_s, jobs),
-                                      intensity[entries[i].id], site_im)
+                contexts[i] = at_site(entries[i], parts[i].context, intensity[entries[i].id],
+                                      site_im)
             return contexts[i]
 
         # a procedure reading only the site: one answer for every record, judged on the first
