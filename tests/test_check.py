@@ -16,7 +16,8 @@ from audit.cli import main
 from audit.engine.check_objects import CheckObject
 from audit.engine.check_summary import CSV_COLUMNS
 from audit.engine.check_widths import required_width
-from audit.engine.fragility import bootstrap_lognormal, fit_lognormal
+from audit.engine.fragility_bootstrap import bootstrap_lognormal
+from audit.engine.lognormal_fit import fit_lognormal
 from audit.errors import InputError
 from audit.physics.block import coefficient_of_restitution
 from procedures import get_procedures

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from audit.engine.fragility import (fit_lognormal, overturning_pattern, stripe_levels,
-                                    stripe_outcomes)
+from audit.engine.fragility import overturning_pattern, stripe_levels, stripe_outcomes
+from audit.engine.lognormal_fit import fit_lognormal
 from records import one_pulse
 
 

@@ -12,7 +12,7 @@ from scipy.stats import norm
 
 from audit.cli import main
 from audit.engine.blocks import BlockList, NamedBlock
-from audit.engine.fragility import fit_lognormal
+from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.margins import IntensityMeasure, _fragility_rows, run_margins
 from audit.engine.margins_settings import MarginsSettings
 from audit.engine.runtime import Runtime

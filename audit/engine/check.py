@@ -8,9 +8,9 @@ hazard level the user assesses), the suite's records are each scaled to the site
 audit's unit of work (:func:`audit.engine.margins.record_stripes`) on a stripe set around the
 site, not its whole grid. From it, per object:
 
-* the exact multiple-stripe fragility (:func:`~audit.engine.fragility.fit_lognormal`) and its
+* the exact multiple-stripe fragility (:func:`~audit.engine.lognormal_fit.fit_lognormal`) and its
   P(overturn) at the site's intensity, with a band from a bootstrap over records
-  (:func:`~audit.engine.fragility.bootstrap_lognormal`);
+  (:func:`~audit.engine.fragility_bootstrap.bootstrap_lognormal`);
 * per procedure, its verdict at the site (it accepts the object when it predicts overturning for
   at most half the records it can evaluate, as the required-slenderness search reads it; a
   procedure reading only the site's design spectrum gives one answer for all), the numbers it
@@ -35,7 +35,8 @@ from audit.engine.check_risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check_settings import CheckSettings
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
                                       guideline_bracket, overturns_at, probability_at_site)
-from audit.engine.fragility import bootstrap_lognormal, fit_lognormal
+from audit.engine.fragility_bootstrap import bootstrap_lognormal
+from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.margins import RecordStripes, StripeSettings, half_crossing, record_stripes
 from audit.engine.risk import LognormalFragility, StripeFragility
 from audit.engine.runtime import Runtime

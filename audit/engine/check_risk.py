@@ -17,7 +17,7 @@ import warnings
 
 import numpy as np
 
-from audit.engine.fragility import lognormal_fits
+from audit.engine.lognormal_fit import lognormal_fits
 from audit.engine.risk import (YEARS, LognormalFragility, StripeFragility, annual_rate_for,
                                risk_integral)
 from audit.errors import InputWarning

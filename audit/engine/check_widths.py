@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import norm
 
-from audit.engine.fragility import lognormal_fits
+from audit.engine.lognormal_fit import lognormal_fits
 from audit.engine.scheduler import computed_parts
 from audit.physics.rocking import rocking_blocks
 from procedures.overturning import predicts_overturning

@@ -15,7 +15,8 @@ import pandas as pd
 
 from audit import G
 from audit.engine.calibration import PGV_LEVELS_M_S, brier_score, calibration, log_likelihood
-from audit.engine.fragility import fit_lognormal, stripe_outcomes
+from audit.engine.fragility import stripe_outcomes
+from audit.engine.lognormal_fit import fit_lognormal
 from audit.errors import InputError
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.block import RigidBlock

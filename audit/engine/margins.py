@@ -33,8 +33,9 @@ import pandas as pd
 
 from audit.engine.blocks import BlockList
 from audit.engine.csv_text import csv_bytes
-from audit.engine.fragility import (bootstrap_lognormal, fit_lognormal, overturning_pattern,
-                                    stripe_levels, stripe_outcomes)
+from audit.engine.fragility import overturning_pattern, stripe_levels, stripe_outcomes
+from audit.engine.fragility_bootstrap import bootstrap_lognormal
+from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.intensity import IntensityMeasure
 from audit.engine.defaults import SITE_LEVELS
 from audit.engine.margins_settings import MarginsSettings
