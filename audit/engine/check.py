@@ -25,16 +25,16 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
-from audit import G
 from audit.engine.blocks import BlockList
 from audit.engine.check_risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check_settings import CheckSettings
+from audit.engine.check_judgement import at_site, judge
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
-                                      guideline_bracket, overturns_at, probability_at_site)
+                                      overturns_at, probability_at_site)
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
 from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.margins import RecordStripes, StripeSettings, half_crossing, record_stripes
@@ -42,10 +42,7 @@ from audit.engine.risk import LognormalFragility, StripeFragility
 from audit.engine.runtime import Runtime
 from audit.engine.scheduler import computed_parts, open_scheduler
 from audit.errors import InputError, InputWarning
-from audit.physics.block import Restitution
-from procedures.base import EXACT_OVERTURNING, OVERTURN
 from procedures.context import RecordContext
-from procedures.overturning import predicts_overturning
 
 #: Stripes either side of the site's intensity, and the ratio between neighbours: 0.25–4 ×.
 SITE_STRIPES = 4
@@ -90,71 +87,6 @@ class CheckWork:
 
 
 @dataclass
-class Judgement:
-    """A procedure's answer for every object under one record at the site, arrays over objects.
-
-    Attributes
-    ----------
-    overturns : numpy.ndarray of bool
-        It predicts overturning.
-    demand, capacity : numpy.ndarray
-        The numbers it compares (+inf demand where its rotation estimate reaches α).
-    width_low, width_high : numpy.ndarray
-        Bracket of the narrowest width at the object's height it does not predict overturning
-        for [m] (:func:`~audit.engine.check_widths.guideline_bracket`).
-    quantity, unit : list of str
-        What the numbers are, and their unit.
-    """
-
-    overturns: np.ndarray
-    demand: np.ndarray
-    capacity: np.ndarray
-    width_low: np.ndarray
-    width_high: np.ndarray
-    quantity: list
-    unit: list
-
-
-def compared_numbers(evaluation, alpha_rad: float) -> tuple[str, str, float, float]:
-    """(quantity, unit, demand, capacity) a procedure compares for one block: its rotation
-    estimate against α [degrees], else its overturning check's demand and capacity."""
-    if evaluation.estimate is not None:
-        estimate = evaluation.estimate
-        demand = (math.inf if estimate.outcome[0] == OVERTURN
-                  else math.degrees(float(estimate.theta[0])))
-        return "peak rotation θ against α", "deg", demand, math.degrees(alpha_rad)
-    for check in evaluation.checks:
-        if check.exact_event != EXACT_OVERTURNING:
-            continue
-        for demand, capacity, unit, scale in ((check.demand_m_s, check.capacity_m_s, "m/s", 1.0),
-                                              (check.demand_m_s2, check.capacity_m_s2, "g", 1 / G),
-                                              (check.demand_m, check.capacity_m, "m", 1.0)):
-            first = float(np.ravel(demand)[0])
-            if math.isfinite(first):
-                return (f"{check.limit_state} check", unit, first * scale,
-                        float(np.ravel(capacity)[0]) * scale)
-    return "", "", math.nan, math.nan
-
-
-def judge(procedure, entry, context, objects, restitution: Restitution, g: float) -> Judgement:
-    """``procedure``'s :class:`Judgement` of every object under ``entry`` (scaled to the site)."""
-    out = Judgement(np.zeros(len(objects), dtype=bool), *np.full((4, len(objects)), np.nan),
-                    [], [])
-    for i, obj in enumerate(objects):
-        alpha = math.radians(obj.alpha_deg)
-        evaluation = procedure.evaluate(entry, np.array([2.0 * math.pi / obj.size_s]), alpha,
-                                        float(restitution.r(alpha)), context, g)
-        out.overturns[i] = predicts_overturning(evaluation)[0]
-        quantity, unit, out.demand[i], out.capacity[i] = compared_numbers(evaluation, alpha)
-        out.quantity.append(quantity)
-        out.unit.append(unit)
-        out.width_low[i], out.width_high[i] = guideline_bracket(
-            lambda width: overturns_at(procedure, entry, context, obj, width, restitution, g),
-            obj, out.overturns[i])
-    return out
-
-
-@dataclass
 class CheckRecord:
     """One record's part of a check: its stripes, the judgements of the procedures that read
     it (None where a procedure cannot evaluate the record), and its context, whose cached
@@ -163,13 +95,6 @@ class CheckRecord:
     stripes: RecordStripes
     judged: dict
     context: RecordContext
-
-
-def at_site(entry, context, intensity: float, site_im: float):
-    """The record scaled to the site's intensity, and its context (the cached spectra scaled)."""
-    factor = site_im / intensity
-    scaled = replace(entry, motion=entry.motion.scaled(float(factor)))
-    return scaled, context.scaled(scaled, float(factor))
 
 
 def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
@@ -342,4 +267,4 @@ def _warn_truncated(answers, curve) -> None:
 
 
 __all__ = ["run_check", "CheckRun", "CheckWork", "check_record", "check_levels",
-           "compared_numbers", "judge", "SITE_STRIPES", "STRIPE_STEP", "TARGETS"]
+           "SITE_STRIPES", "STRIPE_STEP", "TARGETS"]
