@@ -22,7 +22,8 @@ from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
 from reports.margins_risk_section import risk_section
 from reports.palette import _EXTRA_COLOURS
-from reports.plots import _axis, _layout, describe_block, required_alpha_layout
+from reports.block_metres import describe_block
+from reports.plots import _axis, _layout, required_alpha_layout
 
 MARGINS_HTML = "margins.html"
 #: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].

@@ -405,7 +405,7 @@ def test_a_large_suite_details_the_records_asked_for_or_the_worst_and_reads_only
 def test_procedure_figure_draws_cycles_and_repelling_fixed_points():
     """A cycle is a vertical band between its branches, a repelling fixed point is marked,
     and empty columns (no cycle, no fixed points) draw nothing."""
-    from reports.plots import procedure_figure
+    from reports.spectra_figures import procedure_figure
     alpha = math.radians(10.0)
     rows = pd.DataFrame({
         "alpha_deg": 10.0, "size_s": [6.0, 8.0, 7.0], "beta_pct": 5.0,
@@ -509,7 +509,7 @@ def test_csv_text_is_the_bytes_pandas_writes(seed_report):
 
 
 def test_grid_pivot_is_pandas_pivot_table():
-    from reports.plots import _pivot
+    from reports.grid_figures import _pivot
     frame = pd.DataFrame({"alpha_deg": [10, 10, 20, 20, 10, 30, 20],
                           "size_s": [1.0, 2.0, 1.0, 1.0, 1.0, 3.0, 3.0],
                           "v": [np.nan, 0.5, 0.2, 0.9, 0.7, np.nan, np.inf]})
