@@ -7,6 +7,7 @@ full width is 2R sin α and its full height 2R cos α.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -15,6 +16,7 @@ from audit import G
 from audit.physics.block import RigidBlock
 
 
+@functools.lru_cache(maxsize=4096)  # a map names the same grid cells once per panel
 def describe_block(alpha_deg: float, size_s: float) -> str:
     """The object a grid cell is, in metres: ``a 0.38 m × 1.15 m block`` (full width × full
     height, 2R sin α × 2R cos α with R = 3g/(4p²), p = 2π/size)."""
@@ -22,23 +24,66 @@ def describe_block(alpha_deg: float, size_s: float) -> str:
     return f"a {2 * block.half_width:.2f} m × {2 * block.half_height:.2f} m block"
 
 
-#: Heights of the ticks of a metres axis [m].
-METRE_TICKS = (0.1, 0.2, 0.3, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0, 12.0, 20.0, 30.0, 50.0)
+#: Lengths at the ticks of a metres axis [m]: round numbers, 1–2–5 in each decade.
+METRE_TICKS = (0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0)
+#: Title of a metres axis over several α: the diagonal does not depend on α, the height does.
+DIAGONAL_TITLE = "block diagonal 2R [m] (height = 2R cos α)"
+#: Room [px] above a plot for a titled metres axis: its tick labels and its title.
+METRES_ROOM_PX = 40
 
 
-def metres_axis(alpha_deg: float, span, overlaying: str, anchor: str) -> dict:
-    """A secondary x axis, on top of a 2π/p axis spanning ``span`` [s], labelled with the
-    height [m] of the block of each size at slenderness α: h = 2R cos α, R = 3g/(4p²),
-    p = 2π/size, so size = 2π √(2R/(3g)) with R = h/(2 cos α)."""
-    radius = np.array(METRE_TICKS) / (2.0 * math.cos(math.radians(alpha_deg)))
+def metres_axis(alpha_deg: float | None, span, overlaying: str, anchor: str,
+                log: bool = False) -> dict:
+    """A secondary x axis on top of the 2π/p axis ``overlaying`` spanning ``span`` [s], with the
+    same range, ticked at the sizes of blocks of round lengths [m].
+
+    The length is the block's height h = 2R cos α at slenderness ``alpha_deg`` [°], or, with
+    ``alpha_deg=None`` (a figure over several α), its diagonal 2R, the same at every α (titled
+    :data:`DIAGONAL_TITLE`). R = 3g/(4p²) with p = 2π/size, so size = 2π √(4R/(3g)): a
+    monotone map, so the ticks sit exactly where the 2π/p axis has those sizes. ``log``: the
+    2π/p axis is logarithmic; this one is too, its range in decades as plotly reads it.
+    """
+    cos_alpha = 1.0 if alpha_deg is None else math.cos(math.radians(alpha_deg))
+    radius = np.array(METRE_TICKS) / (2.0 * cos_alpha)
     sizes = 2.0 * np.pi * np.sqrt(4.0 * radius / (3.0 * G))
+    scale = np.log10 if log else np.asarray
+    low, high = (float(v) for v in scale(np.asarray(span, dtype=float)))
     kept, last = [], -math.inf
-    for height, size in zip(METRE_TICKS, sizes):  # a tick an eighth of the span from the last
-        if span[0] <= size <= span[1] and size - last >= (span[1] - span[0]) / 8.0:
-            kept.append((height, size))
-            last = size
-    return {"overlaying": overlaying, "anchor": anchor, "side": "top", "range": list(span),
+    for length, size in zip(METRE_TICKS, sizes):  # a tick an eighth of the span from the last
+        at = float(scale(size))
+        if low <= at <= high and at - last >= (high - low) / 8.0:
+            kept.append((length, size))
+            last = at
+    axis = {"overlaying": overlaying, "anchor": anchor, "side": "top", "range": [low, high],
             "tickvals": [size for _, size in kept],
-            "ticktext": [f"{height:g} m" for height, _ in kept], "tickangle": 0,
+            "ticktext": [f"{length:g} m" for length, _ in kept], "tickangle": 0,
             "tickfont": {"size": 9, "color": "#666"}, "showgrid": False, "ticks": "outside",
             "zeroline": False}
+    if log:
+        axis["type"] = "log"
+    if alpha_deg is None:
+        axis["title"] = {"text": DIAGONAL_TITLE, "font": {"size": 11, "color": "#666"},
+                         "standoff": 4}
+    return axis
+
+
+def add_metres_axis(figure: dict, span, axis: str = "xaxis", alpha_deg: float | None = None,
+                    room_px: int = 0) -> str:
+    """Put a :func:`metres_axis` on top of the 2π/p axis ``axis`` (a layout key) of ``figure``
+    (a plotly spec), giving both the range ``span`` [s] so that they align; the layout key of
+    the new axis. Plotly draws an axis only under a trace: an empty one is added. ``room_px``
+    is added to the top margin and to the height (the plot keeps its size): room above the
+    plot for the axis' ticks and title (:data:`METRES_ROOM_PX`)."""
+    layout = figure["layout"]
+    layout["margin"]["t"] += room_px
+    layout["height"] += room_px
+    primary = layout[axis]
+    anchor = primary.get("anchor", "y")
+    number = 1 + max(int(key[5:] or 1) for key in layout if key.startswith("xaxis"))
+    overlay = metres_axis(alpha_deg, span, "x" + axis[5:], anchor, primary.get("type") == "log")
+    primary["range"] = list(overlay["range"])
+    layout[f"xaxis{number}"] = overlay
+    figure["data"].append({"type": "scatter", "x": list(span), "y": [None, None],
+                           "xaxis": f"x{number}", "yaxis": anchor, "showlegend": False,
+                           "hoverinfo": "skip"})
+    return f"xaxis{number}"

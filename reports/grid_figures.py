@@ -6,9 +6,19 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from reports.block_metres import METRES_ROOM_PX, add_metres_axis, describe_block
 from reports.outcome_words import describe_exact, describe_guideline
 from reports.palette import VERDICT_COLOURS, alpha_colour
-from reports.plots import _axis, _domains, _layout, _literal, _ref, _stacked
+from reports.plots import _axis, _domains, _layout, _literal, _ref, _stacked, cell_span, \
+    padded_span
+
+
+def _metres_on_top(figure: dict, sizes) -> dict:
+    """The block diagonal over the top panel of a stack of maps (its x axis ``xaxis``, which
+    the others match), the top panel's name lifted above the axis' title."""
+    add_metres_axis(figure, cell_span(sizes), room_px=METRES_ROOM_PX)
+    figure["layout"]["annotations"][0]["yshift"] = METRES_ROOM_PX - 4
+    return figure
 
 
 def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdicts) -> dict:
@@ -38,7 +48,8 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
             j = int(np.searchsorted(sizes, row["size_s"]))
             z[i, j] = codes[row["verdict"]]
             present.add(row["verdict"])
-            custom[i][j] = [describe_exact(row), describe_guideline(row), row["verdict"]]
+            custom[i][j] = [describe_exact(row), describe_guideline(row), row["verdict"],
+                            describe_block(row["alpha_deg"], row["size_s"])]
             if row["exact_fragile"] is True:
                 fragile_x.append(row["size_s"])
                 fragile_y.append(row["alpha_deg"])
@@ -49,7 +60,7 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
             "xgap": 0, "ygap": 1,
             # the record's name once per panel, not once per cell: it keeps the page light
             "hovertemplate": f"{_literal(names.get(record, record))}<br>"
-                             "α = %{y}°, 2π/p = %{x:.2f} s<br>"
+                             "α = %{y}°, 2π/p = %{x:.2f} s: %{customdata[3]}<br>"
                              "exact: %{customdata[0]}<br>guideline: %{customdata[1]}<br>"
                              "<b>%{customdata[2]}</b><extra></extra>"})
         if fragile_x:
@@ -73,7 +84,8 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
         if key.startswith("xaxis") and layout[key].get("matches") is None:
             layout[key].pop("matches", None)
     layout["showlegend"] = False
-    return {"data": data, "layout": layout, "present": [v for v in verdicts if v in present]}
+    figure = _metres_on_top({"data": data, "layout": layout}, results["size_s"])
+    return dict(figure, present=[v for v in verdicts if v in present])
 
 
 def _pivot(rows: pd.DataFrame, value: str):
@@ -95,16 +107,19 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
     """A map of ``value`` over (2π/p across, α up), one panel per key of ``panels``
     (``frame`` rows selected by ``panels[i][1]``, a boolean mask); for suite statistics and
     limit-state checks. ``hover`` is the hover template, where ``{title}`` stands for the
-    panel's title and ``%{text}`` for ``labels[z]`` when ``labels`` name the integer codes of
-    ``value``."""
+    panel's title, ``%{customdata}`` for the block the cell is, in metres
+    (:func:`~reports.block_metres.describe_block`), and ``%{text}`` for ``labels[z]`` when
+    ``labels`` name the integer codes of ``value``."""
     height, gap = _stacked(len(panels))
     domains = _domains(len(panels), gap)
-    data, annotations = [], []
+    data, annotations, drawn = [], [], []
     layout = _layout(height, margin={"l": 60, "r": 90 if colourbar else 20, "t": 20, "b": 50})
     for n, (key, mask) in enumerate(panels, start=1):
         alphas, sizes, z = _pivot(frame[mask], value)
+        drawn.append(sizes)
         title = title_of(key)
         data.append({"type": "heatmap", "x": sizes, "y": alphas, "z": z,
+                     "customdata": [[describe_block(a, s) for s in sizes] for a in alphas],
                      "colorscale": colourscale, "zmin": zmin, "zmax": zmax,
                      "showscale": bool(colourbar) and n == 1, "ygap": 1,
                      "colorbar": {"title": {"text": colourbar or ""}, "len": 1, "x": 1.01,
@@ -126,7 +141,7 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
                             "showarrow": False, "font": {"size": 11}})
     layout["annotations"] = annotations
     layout["showlegend"] = False
-    return {"data": data, "layout": layout}
+    return _metres_on_top({"data": data, "layout": layout}, np.concatenate(drawn))
 
 
 def ratio_band_figure(suite: pd.DataFrame) -> dict:
@@ -148,6 +163,7 @@ def ratio_band_figure(suite: pd.DataFrame) -> dict:
                      "hovertemplate": f"α = {alpha:g}°, 2π/p = %{{x:.2f}} s<br>"
                                       "median approx/exact = %{y:.3f}<extra></extra>"})
     layout = _layout(380)
+    layout["margin"]["t"] = 20
     layout["xaxis"] = _axis("2π/p [s]")
     # whole numbers on the log axis: plotly's default minor labels read "3" for 30
     ticks = [0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100]
@@ -155,4 +171,6 @@ def ratio_band_figure(suite: pd.DataFrame) -> dict:
                             ticktext=[f"{t:g}" for t in ticks])
     layout["shapes"] = [{"type": "line", "xref": "x domain", "x0": 0, "x1": 1, "yref": "y",
                          "y0": 1, "y1": 1, "line": {"color": "#888888", "dash": "dot"}}]
-    return {"data": data, "layout": layout}
+    figure = {"data": data, "layout": layout}
+    add_metres_axis(figure, padded_span(suite["size_s"], 0.0), room_px=METRES_ROOM_PX)
+    return figure

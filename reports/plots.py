@@ -123,13 +123,33 @@ def _axis(title, domain=None, anchor=None, **extra):
 
 def required_alpha_layout() -> dict:
     """The layout of a required-slenderness chart: α against the block size 2π/p, the legend
-    below."""
+    below, the top margin left for a metres axis to add (``reports.block_metres``)."""
     layout = _layout(440)
+    layout["margin"]["t"] = 20
     layout["xaxis"] = _axis("block size 2π/p [s]")
     layout["yaxis"] = _axis("required α [°]")
     layout["legend"] = {"orientation": "h", "x": 0, "y": -0.18, "yanchor": "top"}
     layout["margin"]["b"] = 120
     return layout
+
+
+def cell_span(centres) -> list[float]:
+    """The extent [same unit] of a heatmap's cells along an axis of their ``centres``, as
+    plotly draws them: half a step beyond the first and the last centre (a lone cell is 1
+    wide)."""
+    x = np.unique(np.asarray(centres, dtype=float))
+    if x.size == 1:
+        return [float(x[0]) - 0.5, float(x[0]) + 0.5]
+    return [float(x[0] - (x[1] - x[0]) / 2), float(x[-1] + (x[-1] - x[-2]) / 2)]
+
+
+def padded_span(values, fraction: float = 0.03) -> list[float]:
+    """The extent of ``values`` [same unit] with ``fraction`` of it added on each side (0.1
+    where all are equal), room for the markers at the ends; NaN ignored."""
+    x = np.asarray(values, dtype=float)
+    low, high = float(np.nanmin(x)), float(np.nanmax(x))
+    pad = fraction * (high - low) or 0.1
+    return [low - pad, high + pad]
 
 
 def _domains(count, gap):

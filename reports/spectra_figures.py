@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from reports.block_metres import metres_axis
+from reports.block_metres import METRES_ROOM_PX, add_metres_axis
 from reports.palette import alpha_colour, damping_colour
 from reports.plots import _axis, _domains, _layout, _note, _ref
 
@@ -98,7 +98,10 @@ def response_and_rocking_figure(response: pd.DataFrame, rocking: pd.DataFrame, d
                         "font": {"size": 11}}
     layout["margin"]["b"] = 110
     layout["height"] = 700
-    return {"data": data, "layout": layout}
+    figure = {"data": data, "layout": layout}
+    if span:  # over every α: the block's diagonal, titled, above the rocking spectra
+        add_metres_axis(figure, span, "xaxis4", room_px=METRES_ROOM_PX)
+    return figure
 
 
 def _placeholder(size, axes) -> dict:
@@ -127,7 +130,7 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
     rows_dom = _domains(len(alphas), 0.22 / max(1, len(alphas)))
     data, annotations = [], []
     layout = _layout(120 + 230 * len(alphas), margin={"l": 70, "r": 20, "t": 30, "b": 120})
-    shown = set()
+    shown, metres = set(), []
 
     def legend(name):
         first = name not in shown
@@ -241,12 +244,11 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
                                           **({} if np.isfinite(period).any() else
                                              {"showticklabels": False, "showgrid": False,
                                               "range": [0, 1]}))
-        for k, n in enumerate((b, c)):  # the height of the block of each size at α, on top
-            m = 3 * len(alphas) + 2 * r + k + 1
-            layout[f"xaxis{m}"] = metres_axis(alpha, span, f"x{_ref(n)}", f"y{_ref(n)}")
-            data.append({"type": "scatter", "x": span, "y": [None, None], "xaxis": f"x{m}",
-                         "yaxis": f"y{_ref(n)}", "showlegend": False, "hoverinfo": "skip"})
+        metres += [(span, f"xaxis{_ref(n)}", alpha) for n in (b, c)]
     layout["annotations"] = annotations
     layout["legend"] = {"orientation": "h", "x": 0, "y": -60 / layout["height"] - 0.02,
                         "yanchor": "top", "font": {"size": 11}}
-    return {"data": data, "layout": layout}
+    figure = {"data": data, "layout": layout}
+    for span, axis, alpha in metres:  # one α per row: the height of the block of each size
+        add_metres_axis(figure, span, axis, alpha)
+    return figure
