@@ -7,7 +7,6 @@ full width is 2R sin α and its full height 2R cos α.
 
 from __future__ import annotations
 
-import functools
 import math
 
 import numpy as np
@@ -16,12 +15,25 @@ from audit import G
 from audit.physics.block import RigidBlock
 
 
-@functools.lru_cache(maxsize=4096)  # a map names the same grid cells once per panel
 def describe_block(alpha_deg: float, size_s: float) -> str:
     """The object a grid cell is, in metres: ``a 0.38 m × 1.15 m block`` (full width × full
     height, 2R sin α × 2R cos α with R = 3g/(4p²), p = 2π/size)."""
     block = RigidBlock.from_size(float(size_s), math.radians(float(alpha_deg)))
     return f"a {2 * block.half_width:.2f} m × {2 * block.half_height:.2f} m block"
+
+
+def block_size_m(alpha_deg: float, size_s: float) -> list[float]:
+    """[full width, full height] [m] of the block of slenderness α and size 2π/p, to the
+    centimetre: a map's hover data per cell (:func:`block_hover`), two short numbers where
+    :func:`describe_block` would be a string, so that a page of many maps stays light."""
+    block = RigidBlock.from_size(float(size_s), math.radians(float(alpha_deg)))
+    return [round(2 * block.half_width, 2), round(2 * block.half_height, 2)]
+
+
+def block_hover(first: int) -> str:
+    """The words of :func:`describe_block` in a hover template, from a cell's
+    :func:`block_size_m` at ``customdata[first]`` and ``customdata[first + 1]``."""
+    return f"a %{{customdata[{first}]:.2f}} m × %{{customdata[{first + 1}]:.2f}} m block"
 
 
 #: Lengths at the ticks of a metres axis [m]: round numbers, 1–2–5 in each decade.

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from reports.block_metres import METRES_ROOM_PX, add_metres_axis, describe_block
+from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m
 from reports.outcome_words import describe_exact, describe_guideline
 from reports.palette import VERDICT_COLOURS, alpha_colour
 from reports.plots import _axis, _domains, _layout, _literal, _ref, _stacked, cell_span, \
@@ -49,7 +49,7 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
             z[i, j] = codes[row["verdict"]]
             present.add(row["verdict"])
             custom[i][j] = [describe_exact(row), describe_guideline(row), row["verdict"],
-                            describe_block(row["alpha_deg"], row["size_s"])]
+                            *block_size_m(row["alpha_deg"], row["size_s"])]
             if row["exact_fragile"] is True:
                 fragile_x.append(row["size_s"])
                 fragile_y.append(row["alpha_deg"])
@@ -60,7 +60,7 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
             "xgap": 0, "ygap": 1,
             # the record's name once per panel, not once per cell: it keeps the page light
             "hovertemplate": f"{_literal(names.get(record, record))}<br>"
-                             "α = %{y}°, 2π/p = %{x:.2f} s: %{customdata[3]}<br>"
+                             f"α = %{{y}}°, 2π/p = %{{x:.2f}} s: {block_hover(3)}<br>"
                              "exact: %{customdata[0]}<br>guideline: %{customdata[1]}<br>"
                              "<b>%{customdata[2]}</b><extra></extra>"})
         if fragile_x:
@@ -107,8 +107,8 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
     """A map of ``value`` over (2π/p across, α up), one panel per key of ``panels``
     (``frame`` rows selected by ``panels[i][1]``, a boolean mask); for suite statistics and
     limit-state checks. ``hover`` is the hover template, where ``{title}`` stands for the
-    panel's title, ``%{customdata}`` for the block the cell is, in metres
-    (:func:`~reports.block_metres.describe_block`), and ``%{text}`` for ``labels[z]`` when
+    panel's title, ``{block}`` for the block the cell is, in metres
+    (:func:`~reports.block_metres.block_hover`), and ``%{text}`` for ``labels[z]`` when
     ``labels`` name the integer codes of ``value``."""
     height, gap = _stacked(len(panels))
     domains = _domains(len(panels), gap)
@@ -119,13 +119,14 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
         drawn.append(sizes)
         title = title_of(key)
         data.append({"type": "heatmap", "x": sizes, "y": alphas, "z": z,
-                     "customdata": [[describe_block(a, s) for s in sizes] for a in alphas],
+                     "customdata": [[block_size_m(a, s) for s in sizes] for a in alphas],
                      "colorscale": colourscale, "zmin": zmin, "zmax": zmax,
                      "showscale": bool(colourbar) and n == 1, "ygap": 1,
                      "colorbar": {"title": {"text": colourbar or ""}, "len": 1, "x": 1.01,
                                   "thickness": 12, "tickformat": ".0%"},
                      "xaxis": f"x{_ref(n)}", "yaxis": f"y{_ref(n)}",
-                     "hovertemplate": hover.replace("{title}", _literal(title))})
+                     "hovertemplate": hover.replace("{title}", _literal(title)).replace(
+                         "{block}", block_hover(0))})
         if labels is not None:
             data[-1]["text"] = [[labels[int(v)] if np.isfinite(v) else "" for v in row]
                                 for row in z]

@@ -22,7 +22,8 @@ from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
 from reports.margins_risk_section import risk_section
 from reports.palette import _EXTRA_COLOURS
-from reports.block_metres import METRES_ROOM_PX, add_metres_axis, describe_block
+from reports.block_metres import (METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m,
+                                   describe_block)
 from reports.plots import _axis, _layout, cell_span, padded_span, required_alpha_layout
 
 MARGINS_HTML = "margins.html"
@@ -125,10 +126,10 @@ def _cmr_figure(fragility: pd.DataFrame) -> dict:
              "z": pivot.to_numpy(dtype=float), "zmin": 0, "zmid": 1, "zmax": 4,
              "colorscale": [[0, "#b2182b"], [0.25, "#f7f7f7"], [1, "#2166ac"]], "ygap": 2,
              "colorbar": {"title": {"text": "CMR"}, "thickness": 12},
-             "customdata": [[[describe_block(a, s), bound] for s, bound in zip(sizes, row)]
+             "customdata": [[[*block_size_m(a, s), bound] for s, bound in zip(sizes, row)]
                             for a, row in zip(alphas, bounds.to_numpy(dtype=object))],
-             "hovertemplate": "α = %{y:g}°, 2π/p = %{x:g} s: %{customdata[0]}<br>"
-                              "CMR = %{z:.3g}%{customdata[1]}<extra></extra>"}]
+             "hovertemplate": f"α = %{{y:g}}°, 2π/p = %{{x:g}} s: {block_hover(0)}<br>"
+                              "CMR = %{z:.3g}%{customdata[2]}<extra></extra>"}]
     layout = _layout(120 + 50 * max(len(alphas), 1))
     layout["margin"]["t"] = 20
     layout["xaxis"] = _axis("block size 2π/p [s]")

@@ -16,7 +16,7 @@ import pandas as pd
 from audit.engine.risk import block_fragilities, risk_integral
 from records.hazard import HazardCurve
 from reports.html_parts import html_table, plot_div
-from reports.block_metres import METRES_ROOM_PX, add_metres_axis, describe_block
+from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m
 from reports.plots import _axis, _layout, cell_span, padded_span, required_alpha_layout
 from reports.risk_figure import risk_figure
 
@@ -70,13 +70,13 @@ def _map_figure(risk: pd.DataFrame, target_rate: float) -> dict:
         z = np.log10(rates)
     ticks = np.arange(-7, 0)
     data = [{"type": "heatmap", "x": sizes, "y": alphas, "z": z,
-             "customdata": [[[rate, describe_block(a, s)] for s, rate in zip(sizes, row)]
+             "customdata": [[[rate, *block_size_m(a, s)] for s, rate in zip(sizes, row)]
                             for a, row in zip(alphas, rates)],
              "zmid": math.log10(target_rate),
              "colorscale": [[0, "#2166ac"], [0.5, "#f7f7f7"], [1, "#b2182b"]], "ygap": 2,
              "colorbar": {"title": {"text": "λ_ov [1/yr]"}, "thickness": 12,
                           "tickvals": ticks, "ticktext": [f"1e{t}" for t in ticks]},
-             "hovertemplate": "α = %{y:g}°, 2π/p = %{x:g} s: %{customdata[1]}<br>"
+             "hovertemplate": f"α = %{{y:g}}°, 2π/p = %{{x:g}} s: {block_hover(1)}<br>"
                               "λ_ov = %{customdata[0]:.3g}/yr<extra></extra>"}]
     layout = _layout(120 + 50 * max(len(alphas), 1))
     layout["margin"]["t"] = 20
