@@ -60,7 +60,7 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
             "xgap": 0, "ygap": 1,
             # the record's name once per panel, not once per cell: it keeps the page light
             "hovertemplate": f"{_literal(names.get(record, record))}<br>"
-                             f"α = %{{y}}°, 2π/p = %{{x:.2f}} s: {block_hover(3)}<br>"
+                             f"α = %{{y:~g}}°, 2π/p = %{{x:.2f}} s: {block_hover(3)}<br>"
                              "exact: %{customdata[0]}<br>guideline: %{customdata[1]}<br>"
                              "<b>%{customdata[2]}</b><extra></extra>"})
         if fragile_x:

@@ -128,7 +128,7 @@ def _cmr_figure(fragility: pd.DataFrame) -> dict:
              "colorbar": {"title": {"text": "CMR"}, "thickness": 12},
              "customdata": [[[*block_size_m(a, s), bound] for s, bound in zip(sizes, row)]
                             for a, row in zip(alphas, bounds.to_numpy(dtype=object))],
-             "hovertemplate": f"α = %{{y:g}}°, 2π/p = %{{x:g}} s: {block_hover(0)}<br>"
+             "hovertemplate": f"α = %{{y:~g}}°, 2π/p = %{{x:~g}} s: {block_hover(0)}<br>"
                               "CMR = %{z:.3g}%{customdata[2]}<extra></extra>"}]
     layout = _layout(120 + 50 * max(len(alphas), 1))
     layout["margin"]["t"] = 20

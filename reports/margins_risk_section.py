@@ -76,7 +76,7 @@ def _map_figure(risk: pd.DataFrame, target_rate: float) -> dict:
              "colorscale": [[0, "#2166ac"], [0.5, "#f7f7f7"], [1, "#b2182b"]], "ygap": 2,
              "colorbar": {"title": {"text": "λ_ov [1/yr]"}, "thickness": 12,
                           "tickvals": ticks, "ticktext": [f"1e{t}" for t in ticks]},
-             "hovertemplate": f"α = %{{y:g}}°, 2π/p = %{{x:g}} s: {block_hover(1)}<br>"
+             "hovertemplate": f"α = %{{y:~g}}°, 2π/p = %{{x:~g}} s: {block_hover(1)}<br>"
                               "λ_ov = %{customdata[0]:.3g}/yr<extra></extra>"}]
     layout = _layout(120 + 50 * max(len(alphas), 1))
     layout["margin"]["t"] = 20

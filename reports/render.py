@@ -255,7 +255,7 @@ def _suite_section(run, procedures, pending) -> dict | None:
     if present:
         figure = pending.add("suite-unsafe", grid_map_figure(
             suite, "frac_unsafe", [(p["title"], suite["procedure"] == p["name"]) for p in present],
-            lambda title: title, "{title}<br>α = %{y}°, 2π/p = %{x:.2f} s: {block}<br>"
+            lambda title: title, "{title}<br>α = %{y:~g}°, 2π/p = %{x:.2f} s: {block}<br>"
             "unsafe for %{z:.1%} of the records<extra></extra>", reds, 0, 1, "unsafe"))
         figure["caption"] = ("Share of the records for which each guideline is unsafe "
                              "(missed overturning or underestimate beyond the band), per block.")
@@ -301,7 +301,7 @@ def _checks_section(run, names, pending, detail_ids) -> dict | None:
         figure = pending.add(f"checks-{procedure}-{state}", grid_map_figure(
             rows, "code", [(r, rows["record"] == r) for r in records],
             lambda r: names.get(r, r),
-            "{title}<br>α = %{y}°, 2π/p = %{x:.2f} s: {block}<br>"
+            "{title}<br>α = %{y:~g}°, 2π/p = %{x:.2f} s: {block}<br>"
             f"{state}: " + "%{text}<extra></extra>", scale, -0.5, len(classes) - 0.5,
             labels=classes))
         figure["caption"] = (f"Limit-state check {state} of {titles.get(procedure, procedure)} "

@@ -172,7 +172,7 @@ def test_a_block_can_be_looked_up_by_hover(parsed, seed_report):
         for trace in spec["data"]:
             if trace["type"] != "heatmap":
                 continue
-            assert "%{x" in trace["hovertemplate"] and "%{y}" in trace["hovertemplate"]
+            assert "%{x" in trace["hovertemplate"] and "%{y" in trace["hovertemplate"]
             for i, alpha in enumerate(trace["y"]):
                 for j, size in enumerate(trace["x"]):
                     exact, guideline, verdict, *block_m = trace["customdata"][i][j]
