@@ -1,7 +1,7 @@
 """Static matplotlib images for the CLI's ``--plot FILE.png`` (``rock``, ``spectrum``).
 
-The HTML report draws its figures in the browser (:mod:`reports.plots`); this module is imported
-only when a PNG is asked for. Every ``draw_*`` function fills a given
+The HTML report draws its figures in the browser (:mod:`reports.plots` and the ``*_figures``
+modules); this module is imported only when a PNG is asked for. Every ``draw_*`` function fills a given
 :class:`matplotlib.figure.Figure` from plain arrays or DataFrames; units on every axis.
 """
 

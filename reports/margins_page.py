@@ -22,7 +22,9 @@ from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
 from reports.margins_risk_section import risk_section
 from reports.palette import _EXTRA_COLOURS
-from reports.plots import _axis, _layout, describe_block, required_alpha_layout
+from reports.block_metres import (METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m,
+                                   describe_block)
+from reports.plots import _axis, _layout, cell_span, padded_span, required_alpha_layout
 
 MARGINS_HTML = "margins.html"
 #: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].
@@ -106,7 +108,9 @@ def _required_figure(required: pd.DataFrame, names: list, titles) -> dict:
                                       "(%{text})<br>"
                                       "exact share overturning there: %{customdata:.0%}"
                                       "<extra></extra>"})
-    return {"data": data, "layout": required_alpha_layout()}
+    figure = {"data": data, "layout": required_alpha_layout()}
+    add_metres_axis(figure, padded_span(required["size_s"]), room_px=METRES_ROOM_PX)
+    return figure
 
 
 def _cmr_figure(fragility: pd.DataFrame) -> dict:
@@ -117,17 +121,22 @@ def _cmr_figure(fragility: pd.DataFrame) -> dict:
          "at most": " (at most: median below the stripes)"})).pivot(
         index="alpha_deg", columns="size_s", values="bound")
     alphas = pivot.index.to_numpy(dtype=float)
-    data = [{"type": "heatmap", "x": pivot.columns.to_numpy(dtype=float), "y": alphas,
+    sizes = pivot.columns.to_numpy(dtype=float)
+    data = [{"type": "heatmap", "x": sizes, "y": alphas,
              "z": pivot.to_numpy(dtype=float), "zmin": 0, "zmid": 1, "zmax": 4,
              "colorscale": [[0, "#b2182b"], [0.25, "#f7f7f7"], [1, "#2166ac"]], "ygap": 2,
              "colorbar": {"title": {"text": "CMR"}, "thickness": 12},
-             "customdata": bounds.to_numpy(dtype=object).tolist(),
-             "hovertemplate": "α = %{y:g}°, 2π/p = %{x:g} s<br>CMR = %{z:.3g}%{customdata}"
-                              "<extra></extra>"}]
+             "customdata": [[[*block_size_m(a, s), bound] for s, bound in zip(sizes, row)]
+                            for a, row in zip(alphas, bounds.to_numpy(dtype=object))],
+             "hovertemplate": f"α = %{{y:~g}}°, 2π/p = %{{x:~g}} s: {block_hover(0)}<br>"
+                              "CMR = %{z:.3g}%{customdata[2]}<extra></extra>"}]
     layout = _layout(120 + 50 * max(len(alphas), 1))
+    layout["margin"]["t"] = 20
     layout["xaxis"] = _axis("block size 2π/p [s]")
     layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
-    return {"data": data, "layout": layout}
+    figure = {"data": data, "layout": layout}
+    add_metres_axis(figure, cell_span(sizes), room_px=METRES_ROOM_PX)
+    return figure
 
 
 def _fragility_figure(block, stripes, capacity, names, titles, summary) -> dict:

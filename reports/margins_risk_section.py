@@ -16,7 +16,8 @@ import pandas as pd
 from audit.engine.risk import block_fragilities, risk_integral
 from records.hazard import HazardCurve
 from reports.html_parts import html_table, plot_div
-from reports.plots import _axis, _layout, required_alpha_layout
+from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m
+from reports.plots import _axis, _layout, cell_span, padded_span, required_alpha_layout
 from reports.risk_figure import risk_figure
 
 _EXACT_RISK = "exact@risk"
@@ -53,7 +54,9 @@ def _alpha_figure(risk_alpha, titles, colour_of, target) -> dict:
                      "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}°<br>"
                                       "P of overturning in 50 years there: %{customdata:.2%}"
                                       "<extra></extra>"})
-    return {"data": data, "layout": required_alpha_layout()}
+    figure = {"data": data, "layout": required_alpha_layout()}
+    add_metres_axis(figure, padded_span(risk_alpha["size_s"]), room_px=METRES_ROOM_PX)
+    return figure
 
 
 def _map_figure(risk: pd.DataFrame, target_rate: float) -> dict:
@@ -61,20 +64,27 @@ def _map_figure(risk: pd.DataFrame, target_rate: float) -> dict:
     pivot = grid.pivot_table(index="alpha_deg", columns="size_s", values="annual_rate_fit",
                              aggfunc="first")
     alphas = pivot.index.to_numpy(dtype=float)
+    sizes = pivot.columns.to_numpy(dtype=float)
+    rates = pivot.to_numpy(dtype=float)
     with np.errstate(divide="ignore"):
-        z = np.log10(pivot.to_numpy(dtype=float))
+        z = np.log10(rates)
     ticks = np.arange(-7, 0)
-    data = [{"type": "heatmap", "x": pivot.columns.to_numpy(dtype=float), "y": alphas, "z": z,
-             "customdata": pivot.to_numpy(dtype=float), "zmid": math.log10(target_rate),
+    data = [{"type": "heatmap", "x": sizes, "y": alphas, "z": z,
+             "customdata": [[[rate, *block_size_m(a, s)] for s, rate in zip(sizes, row)]
+                            for a, row in zip(alphas, rates)],
+             "zmid": math.log10(target_rate),
              "colorscale": [[0, "#2166ac"], [0.5, "#f7f7f7"], [1, "#b2182b"]], "ygap": 2,
              "colorbar": {"title": {"text": "λ_ov [1/yr]"}, "thickness": 12,
                           "tickvals": ticks, "ticktext": [f"1e{t}" for t in ticks]},
-             "hovertemplate": "α = %{y:g}°, 2π/p = %{x:g} s<br>λ_ov = %{customdata:.3g}/yr"
-                              "<extra></extra>"}]
+             "hovertemplate": f"α = %{{y:~g}}°, 2π/p = %{{x:~g}} s: {block_hover(1)}<br>"
+                              "λ_ov = %{customdata[0]:.3g}/yr<extra></extra>"}]
     layout = _layout(120 + 50 * max(len(alphas), 1))
+    layout["margin"]["t"] = 20
     layout["xaxis"] = _axis("block size 2π/p [s]")
     layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
-    return {"data": data, "layout": layout}
+    figure = {"data": data, "layout": layout}
+    add_metres_axis(figure, cell_span(sizes), room_px=METRES_ROOM_PX)
+    return figure
 
 
 def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -> list[str]:

@@ -21,8 +21,13 @@ from audit.engine.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_
 from audit.engine.schemas import GUIDE
 from audit.engine.verdicts import (CHECK_VERDICTS, CLAIM_STATUSES, ROTATION_VERDICTS,
                                    UNSAFE_VERDICTS, VERDICTS, meanings, names)
-from reports import plots
+from reports.block_metres import describe_block
+from reports.grid_figures import grid_map_figure, ratio_band_figure, verdict_map_figure
+from reports.history_figures import history_figure, lines_figure, sensitivity_figure
+from reports.outcome_words import describe_exact, describe_guideline
 from reports.palette import CHECK_COLOURS, VERDICT_COLOURS
+from reports.plots import to_json
+from reports.spectra_figures import procedure_figure, response_and_rocking_figure
 
 #: Colours of the guidelines' estimates in the time histories.
 PROCEDURE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
@@ -59,7 +64,7 @@ def _history_id(record, alpha, size) -> str:
 def _where(row, names) -> str:
     return (f"{names.get(row['record'], row['record'])}, α = {row['alpha_deg']:g}°, "
             f"2π/p = {row['size_s']:.2f} s "
-            f"({plots.describe_block(row['alpha_deg'], row['size_s'])})")
+            f"({describe_block(row['alpha_deg'], row['size_s'])})")
 
 
 def _bottom_line(procedure: dict, line: dict, names: dict, band: float) -> dict:
@@ -68,8 +73,8 @@ def _bottom_line(procedure: dict, line: dict, names: dict, band: float) -> dict:
     worst_text = ""
     if worst is not None:
         worst_text = (f"{_where(worst, names)}: the guideline gives "
-                      f"{plots.describe_guideline(worst)}, the exact response "
-                      f"{plots.describe_exact(worst)} ({worst['verdict']})")
+                      f"{describe_guideline(worst)}, the exact response "
+                      f"{describe_exact(worst)} ({worst['verdict']})")
     return {**procedure, **line, "band_pct": 100.0 * band, "worst": worst_text,
             "worst_link": (_history_id(worst["record"], worst["alpha_deg"], worst["size_s"])
                            if worst is not None else None)}
@@ -85,7 +90,7 @@ def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
         row = first.get(procedure["name"])
         if row is None:
             continue
-        words.append(f"{procedure['title']}: {plots.describe_guideline(row)} ({row['verdict']})")
+        words.append(f"{procedure['title']}: {describe_guideline(row)} ({row['verdict']})")
         if row["approx_outcome"] == "converged":
             lines.append((procedure["title"],
                           row["approx_theta_rad"] / math.radians(row["alpha_deg"]),
@@ -111,7 +116,7 @@ def _history_figure(pending, histories: dict, results: dict, meta, procedures, n
     exact = (f"overturns at t = {meta['overturn_time_s']:.2f} s" if meta.get("overturned")
              else f"peak θ/α = {meta['peak_rotation_ratio']:.3f}")
     figure = pending.add(_history_id(rid, meta["alpha_deg"], meta["size_s"]),
-                         plots.history_figure(h, meta, lines))
+                         history_figure(h, meta, lines))
     figure["caption"] = (
         f"{names.get(rid, rid)}, α = {meta['alpha_deg']:g}°, 2π/p = {meta['size_s']:.2f} s "
         f"({meta['reason']}). Exact: {exact}. " + "; ".join(words) + ". Shaded spans are full "
@@ -138,8 +143,8 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
             hits = hits[[k in drawn for k in keys]].head(WORST_ROWS)
             tables.append({"procedure": procedure, "reason": reason, "verdict": verdict,
                            "total": counts[procedure["name"]][verdict], "rows": [{
-                               "where": _where(row, names), "exact": plots.describe_exact(row),
-                               "guideline": plots.describe_guideline(row),
+                               "where": _where(row, names), "exact": describe_exact(row),
+                               "guideline": describe_guideline(row),
                                "ratio": row["ratio"], "fragile": row["exact_fragile"] is True,
                                "link": _history_id(row["record"], row["alpha_deg"],
                                                    row["size_s"]),
@@ -165,7 +170,7 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
             has_site = bool((record.get("site") or {}).get("sxs_g"))
             design = run.design_spectra[run.design_spectra["record"].isin(("", rid))]
             figure = pending.add(f"fig-5-{number}",
-                                 plots.response_and_rocking_figure(response, rocking, design))
+                                 response_and_rocking_figure(response, rocking, design))
             figure["caption"] = (
                 f"Figure 5.{number} — {record['name']}: true response spectra Sd, Sv, Sa "
                 f"(relative displacement, relative velocity, absolute acceleration; not "
@@ -182,7 +187,7 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
             pspec = spectra[spectra["procedure"] == procedure["name"]]
             series = procedure["figure_series"] or "P"
             figure = pending.add(f"fig-{series}-{number}-{procedure['name']}",
-                                 plots.procedure_figure(prows, pspec, procedure["title"]))
+                                 procedure_figure(prows, pspec, procedure["title"]))
             figure["caption"] = (
                 f"Figure {series}.{number} — {procedure['title']} on {record['name']}: the "
                 f"displacement spectrum the procedure reads at its β(α) (left), exact peak "
@@ -213,7 +218,7 @@ def _mechanics(run, pending) -> list[dict]:
             style = {"colour": laws[name.split(":")[0]], "width": 3}
         series.append({"x": rows["x"].to_numpy(), "y": rows["y"].to_numpy(), "name": name,
                        **style})
-    fig_7_1 = pending.add("fig-7-1", plots.lines_figure(
+    fig_7_1 = pending.add("fig-7-1", lines_figure(
         series, "coefficient of restitution r [-]", "equivalent damping β [%]", height=460,
         legend_below=True))
     fig_7_1["caption"] = (
@@ -227,7 +232,7 @@ def _mechanics(run, pending) -> list[dict]:
         rows = curves[curves["figure"] == figure]
         return {name: (group["x"].to_numpy(), group["y"].to_numpy())
                 for name, group in rows.groupby("series", sort=False)}
-    fig_sens = pending.add("fig-sensitivity", plots.sensitivity_figure(
+    fig_sens = pending.add("fig-sensitivity", sensitivity_figure(
         histories("4.1"), histories("7.2"),
         f"Figure 4.1: rocking block p = {spec['p']:g} rad/s, α = {spec['alpha_deg']:g}°, "
         f"one-cosine pulse T_p = {spec['pulse_period_s']:g} s",
@@ -248,9 +253,9 @@ def _suite_section(run, procedures, pending) -> dict | None:
     present = [p for p in procedures if (suite["procedure"] == p["name"]).any()]
     reds = [[0, "#ffffff"], [0.25, "#fcbba1"], [0.5, "#fb6a4a"], [1, "#67000d"]]
     if present:
-        figure = pending.add("suite-unsafe", plots.grid_map_figure(
+        figure = pending.add("suite-unsafe", grid_map_figure(
             suite, "frac_unsafe", [(p["title"], suite["procedure"] == p["name"]) for p in present],
-            lambda title: title, "{title}<br>α = %{y}°, 2π/p = %{x:.2f} s<br>"
+            lambda title: title, "{title}<br>α = %{y:~g}°, 2π/p = %{x:.2f} s: {block}<br>"
             "unsafe for %{z:.1%} of the records<extra></extra>", reds, 0, 1, "unsafe"))
         figure["caption"] = ("Share of the records for which each guideline is unsafe "
                              "(missed overturning or underestimate beyond the band), per block.")
@@ -265,7 +270,7 @@ def _suite_section(run, procedures, pending) -> dict | None:
         if pick is not None:
             sentences.append(pick["sentence"][0].upper() + pick["sentence"][1:] + ".")
         if rows[["ratio_p16", "ratio_p50", "ratio_p84"]].notna().any().any():
-            figure = pending.add(f"suite-ratio-{p['name']}", plots.ratio_band_figure(rows))
+            figure = pending.add(f"suite-ratio-{p['name']}", ratio_band_figure(rows))
             figure["caption"] = (f"{p['title']}: median approx/exact over the records where "
                                  f"both survive, with the 16–84 % band, per α.")
             maps.append(figure)
@@ -293,9 +298,10 @@ def _checks_section(run, names, pending, detail_ids) -> dict | None:
     figures = []
     for (procedure, state), rows in codes.groupby(["procedure", "limit_state"], sort=False):
         records = list(dict.fromkeys(rows["record"]))
-        figure = pending.add(f"checks-{procedure}-{state}", plots.grid_map_figure(
+        figure = pending.add(f"checks-{procedure}-{state}", grid_map_figure(
             rows, "code", [(r, rows["record"] == r) for r in records],
-            lambda r: names.get(r, r), "{title}<br>α = %{y}°, 2π/p = %{x:.2f} s<br>"
+            lambda r: names.get(r, r),
+            "{title}<br>α = %{y:~g}°, 2π/p = %{x:.2f} s: {block}<br>"
             f"{state}: " + "%{text}<extra></extra>", scale, -0.5, len(classes) - 0.5,
             labels=classes))
         figure["caption"] = (f"Limit-state check {state} of {titles.get(procedure, procedure)} "
@@ -352,7 +358,7 @@ def render_report(run, generated: datetime | None = None) -> str:
         rows = run.results[run.results["procedure"] == procedure["name"]]
         audited = [r["id"] for r in detail if (rows["record"] == r["id"]).any()]
         if audited:
-            spec = plots.verdict_map_figure(rows, audited, names, VERDICTS)
+            spec = verdict_map_figure(rows, audited, names, VERDICTS)
             present = spec.pop("present")
             figure = pending.add(f"verdict-map-{procedure['name']}", spec)
             fragile = rows[rows["exact_fragile"].eq(True) & rows["record"].isin(audited)]
@@ -375,7 +381,7 @@ def render_report(run, generated: datetime | None = None) -> str:
         verdicts=VERDICTS, verdict_meaning=VERDICT_MEANING, verdict_colours=VERDICT_COLOURS,
         unsafe_verdicts=UNSAFE_VERDICTS, records=records, g=G, band_pct=100.0 * band,
         omitted=len(records) - len(detail), guide=GUIDE["results.csv"],
-        specs={k: plots.to_json(v) for k, v in pending.specs.items()},
+        specs={k: to_json(v) for k, v in pending.specs.items()},
         plotly_js=get_plotlyjs(),
         generated=(generated or datetime.now(timezone.utc)).strftime("%Y-%m-%d %H:%M UTC"))
     return html

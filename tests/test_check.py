@@ -188,7 +188,7 @@ def test_api_names_the_argument():
 
 
 def test_a_grid_cell_is_named_as_the_object_it_is():
-    from reports.plots import describe_block
+    from reports.block_metres import describe_block
     # the 0.6 m × 1.8 m cabinet's (α, 2π/p), worked by hand above
     assert describe_block(ALPHA_DEG, SIZE_S) == "a 0.60 m × 1.80 m block"
     # α = 15°, 2π/p = 2 s: p = π rad/s, R = 3g/(4π²) = 0.7455 m; 2R sin 15° = 0.386 m,
@@ -250,7 +250,7 @@ def test_a_guideline_that_rejects_every_width_requires_none():
 
 
 def test_the_metres_axis_labels_each_size_with_its_blocks_height():
-    from reports.plots import describe_block, metres_axis
+    from reports.block_metres import describe_block, metres_axis
     axis = metres_axis(20.0, [0.5, 8.0], "x2", "y2")
     assert axis["overlaying"] == "x2" and axis["side"] == "top" and len(axis["tickvals"]) >= 3
     for size, text in zip(axis["tickvals"], axis["ticktext"]):

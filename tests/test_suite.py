@@ -122,7 +122,7 @@ def test_an_exact_rotation_of_1e_14_rad_gives_no_ratio_of_1e12():
     from audit.engine.verdicts import ROCKING_FLOOR
     from procedures import get_procedures
     from records import RecordEntry, RecordSuite, one_pulse
-    from reports.plots import describe_exact
+    from reports.outcome_words import describe_exact
     alpha = math.radians(10.0)
     edge = one_pulse("cosine", math.tan(alpha) * (1 + 1e-6), 1.0, record_id="edge")
     run = run_audit(get_procedures("priestley1978"),
