@@ -27,7 +27,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from audit.api import design_suite  # noqa: E402
 from audit.engine.check import run_check  # noqa: E402
 from audit.engine.check_objects import CheckObject  # noqa: E402
-from audit.engine.intensity import IntensityMeasure  # noqa: E402
+from audit.engine.check_settings import CheckSettings  # noqa: E402
+from audit.engine.runtime import Runtime  # noqa: E402
 from procedures import get_procedures  # noqa: E402
 from records import load_records  # noqa: E402
 
@@ -49,19 +50,20 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args()
     suite = design_suite(load_records(args.records), (1.5, 0.9), True, True)
-    im = IntensityMeasure.parse("sa:1.0")
+    settings = CheckSettings.parse(im="sa:1.0")
+    runtime = Runtime.parse(jobs=args.jobs)
     every = get_procedures("all")
     cases = {"one object, every procedure": (every, [CheckObject("0.6x1.8", 0.6, 1.8)]),
              "one object, exact only": ([], [CheckObject("0.6x1.8", 0.6, 1.8)]),
              f"{args.objects} objects, every procedure": (every, inventory(args.objects))}
     two = replace(suite, entries=tuple(list(suite)[:2]))
-    run_check(every, two, [CheckObject("warm-up", 0.5, 1.5)], im, jobs=args.jobs)
+    run_check(every, two, [CheckObject("warm-up", 0.5, 1.5)], settings, runtime)
     wall = {name: [] for name in cases}
     cpu = {name: [] for name in cases}
     for _ in range(args.repeat):
         for name, (procedures, objects) in cases.items():
             begin, begin_cpu = time.perf_counter(), time.process_time()
-            run_check(procedures, suite, objects, im, jobs=args.jobs)
+            run_check(procedures, suite, objects, settings, runtime)
             wall[name].append(time.perf_counter() - begin)
             cpu[name].append(time.process_time() - begin_cpu)
             print(f"{name}: {wall[name][-1]:.1f} s wall, {cpu[name][-1]:.1f} s CPU", flush=True)
