@@ -49,7 +49,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args()
-    suite = design_suite(load_records(args.records), (1.5, 0.9), True, True)
+    suite = design_suite(load_records(args.records), site=(1.5, 0.9), site_override=True,
+                         scale_to_site=True)
     settings = CheckSettings.parse(im="sa:1.0")
     runtime = Runtime.parse(jobs=args.jobs)
     every = get_procedures("all")
