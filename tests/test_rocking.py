@@ -191,18 +191,18 @@ def test_spectrum_threads_agree_and_grid_shape():
 def test_interpreted_and_compiled_kernels_agree(case, seed_suite, monkeypatch):
     """A short ``simulate`` runs the kernel in the interpreter; the compiled code must give the
     same response to rounding, including impacts, turning points and overturning."""
-    from audit.physics import rocking
+    from audit.physics.rocking import history, kernel
     from audit.physics.tiers import interpreted
     motion, size_s, alpha_deg = {
         "pulse-rocks": (one_pulse("cosine", 0.3, 2.0), math.pi, 15),
         "pulse-overturns": (one_pulse("cosine", 0.2, 2.0), 2.0, 10),
         "record": (seed_suite.get("pacoima_dam_1971").motion, 3.5, 20)}[case]
     block = RigidBlock.from_size(size_s, math.radians(alpha_deg))
-    monkeypatch.setattr(rocking, "tiered", lambda kernel, n: interpreted(kernel))
+    monkeypatch.setattr(history, "tiered", lambda run, n: interpreted(run))
     slow = simulate(block, motion)
-    monkeypatch.setattr(rocking, "tiered", lambda kernel, n: kernel)
+    monkeypatch.setattr(history, "tiered", lambda run, n: run)
     compiled = simulate(block, motion)
-    assert interpreted(rocking._simulate) is not rocking._simulate
+    assert interpreted(kernel._simulate) is not kernel._simulate
     assert slow.overturned == compiled.overturned == (case == "pulse-overturns")
     assert slow.n_impacts == compiled.n_impacts
     assert slow.turning_times.size == compiled.turning_times.size > 0
