@@ -10,7 +10,7 @@ from audit.physics.block import RigidBlock, coefficient_of_restitution, frequenc
 from audit.physics.damping import housner_peak_ratio, housner_period
 from audit.errors import InputError
 from audit.physics.reference import simulate_reference
-from audit.physics.rocking import rocking_spectrum, simulate
+from audit.physics.rocking import rocking_blocks, rocking_spectrum, simulate
 from records import GroundMotion, one_pulse
 
 
@@ -185,6 +185,26 @@ def test_spectrum_threads_agree_and_grid_shape():
     np.testing.assert_array_equal(one.theta_peak, two.theta_peak)
     single = simulate(RigidBlock.from_size(2.0, math.radians(20)), pulse)
     assert one.theta_peak[1, 2] == single.peak_rotation
+
+
+def test_block_peaks_are_the_single_simulations_field_by_field():
+    """Each field of ``rocking_blocks`` is the same-named number of ``simulate`` for that block
+    (a block that overturns, one that rocks and rests, one that never uplifts)."""
+    pulse = one_pulse("cosine", 0.3, 2.0)
+    sizes, alphas = [2.0, math.pi, 3.0], np.radians([10, 15, 30])
+    peaks = rocking_blocks(pulse, sizes, alphas, reactions=True, jobs=2)
+    singles = [simulate(RigidBlock.from_size(size, alpha), pulse)
+               for size, alpha in zip(sizes, alphas)]
+    assert [s.overturned for s in singles] == [True, False, False]
+    assert [s.uplifted for s in singles] == [True, True, False]
+    for name, single_name in [("theta_peak", "peak_rotation"),
+                              ("omega_peak", "peak_angular_velocity"),
+                              ("theta_after", "peak_rotation_after_excitation"),
+                              ("overturned", "overturned"), ("uplifted", "uplifted"),
+                              ("required_friction", "required_friction"),
+                              ("min_vertical_reaction", "min_vertical_reaction")]:
+        np.testing.assert_array_equal(getattr(peaks, name),
+                                      [getattr(s, single_name) for s in singles], err_msg=name)
 
 
 @pytest.mark.parametrize("case", ["pulse-rocks", "pulse-overturns", "record"])
