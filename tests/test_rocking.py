@@ -226,8 +226,8 @@ def test_interpreted_and_compiled_kernels_agree(case, seed_suite, monkeypatch):
     assert slow.overturned == compiled.overturned == (case == "pulse-overturns")
     assert slow.n_impacts == compiled.n_impacts
     assert slow.turning_times.size == compiled.turning_times.size > 0
-    for name in ("theta", "omega", "impact_times", "impact_velocities", "turning_times",
-                 "turning_rotations"):
+    for name in ("theta", "omega", "impact_times", "omega_before_impact", "omega_after_impact",
+                 "turning_times", "turning_rotations"):
         np.testing.assert_allclose(getattr(slow, name), getattr(compiled, name),
                                    rtol=1e-12, atol=1e-15, err_msg=name)
     assert slow.peak_rotation == pytest.approx(compiled.peak_rotation, rel=1e-12)

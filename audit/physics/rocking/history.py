@@ -12,7 +12,9 @@ from audit.errors import InputError
 from audit.physics.block import RigidBlock
 from audit.physics.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
                                     DEFAULT_STEPS_PER_RADIAN)
-from audit.physics.rocking.kernel import _motion_arguments, _simulate
+from audit.physics.rocking.kernel import (_IMPACT_EPISODE, _IMPACT_TIME, _OMEGA_AFTER_IMPACT,
+                                          _OMEGA_BEFORE_IMPACT, _TURN_THETA, _TURN_TIME,
+                                          _free_samples, _motion_arguments, _simulate)
 from audit.physics.rocking.rest import MIN_REST_TOLERANCE
 from audit.physics.tiers import tiered
 
@@ -39,9 +41,9 @@ class RockingHistory:
         Times of the impacts [s] (the first :data:`IMPACT_CAPACITY`).
     impact_episode : numpy.ndarray
         Rocking episode (1, 2, …; a return to rest ends one) of each impact.
-    impact_velocities : numpy.ndarray
-        θ' just before and just after each impact [rad/s], shape (n, 2) (Eq. 4.6–4.8; 0 after
-        an impact that ends in rest).
+    omega_before_impact, omega_after_impact : numpy.ndarray
+        θ' just before and just after each impact [rad/s] (Eq. 4.6–4.8; 0 after an impact
+        that ends in rest).
     turning_times, turning_rotations : numpy.ndarray
         Time [s] and θ [rad] of every turning point θ' = 0 (the first
         :data:`IMPACT_CAPACITY`), located inside the solver's steps.
@@ -73,7 +75,8 @@ class RockingHistory:
     omega: np.ndarray
     impact_times: np.ndarray
     impact_episode: np.ndarray
-    impact_velocities: np.ndarray
+    omega_before_impact: np.ndarray
+    omega_after_impact: np.ndarray
     turning_times: np.ndarray
     turning_rotations: np.ndarray
     overturned: bool
@@ -131,7 +134,7 @@ class RockingHistory:
         theta = np.concatenate((self.theta[defined], self.turning_rotations,
                                 np.zeros(2 * n_impacts)))
         omega = np.concatenate((self.omega[defined], np.zeros(n_turns),
-                                self.impact_velocities[:, 0], self.impact_velocities[:, 1]))
+                                self.omega_before_impact, self.omega_after_impact))
         # ties at one time: grid point and turning point, then before, then after an impact
         rank = np.repeat([0, 0, 1, 2], [int(defined.sum()), n_turns, n_impacts, n_impacts])
         order = np.lexsort((rank, time))
@@ -194,7 +197,7 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
         raise InputError(f"initial rotation: |θ0| must be below α = {block.alpha:g} rad, "
                          f"got {initial_rotation:g}")
     args = _motion_arguments(motion, free_motion_s, vertical)
-    n_samples = motion.acceleration.size + args[3]
+    n_samples = motion.acceleration.size + _free_samples(motion, free_motion_s)
     stride = -(-n_samples // HISTORY_CAPACITY)
     n_out = (n_samples - 1) // stride + 1
     theta = np.empty(n_out)
@@ -210,9 +213,12 @@ def simulate(block: RigidBlock, motion, free_motion_s: float = DEFAULT_FREE_MOTI
     n_turns = min(int(summary.n_turns), IMPACT_CAPACITY)
     return RockingHistory(
         time=np.arange(n_out) * (stride * motion.dt), theta=theta, omega=omega,
-        impact_times=impacts[:n_kept, 0].copy(), impact_episode=impacts[:n_kept, 1].astype(int),
-        impact_velocities=impacts[:n_kept, 2:].copy(), turning_times=turns[:n_turns, 0].copy(),
-        turning_rotations=turns[:n_turns, 1].copy(),
+        impact_times=impacts[:n_kept, _IMPACT_TIME].copy(),
+        impact_episode=impacts[:n_kept, _IMPACT_EPISODE].astype(int),
+        omega_before_impact=impacts[:n_kept, _OMEGA_BEFORE_IMPACT].copy(),
+        omega_after_impact=impacts[:n_kept, _OMEGA_AFTER_IMPACT].copy(),
+        turning_times=turns[:n_turns, _TURN_TIME].copy(),
+        turning_rotations=turns[:n_turns, _TURN_THETA].copy(),
         overturned=bool(summary.overturned), overturn_time=float(summary.overturn_time),
         peak_rotation=float(summary.peak_rotation),
         peak_rotation_signed=float(summary.peak_rotation_signed),

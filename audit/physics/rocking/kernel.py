@@ -17,6 +17,10 @@ from audit.physics.rocking.rest import _chatter_ends
 
 # The kernel's vertical ground acceleration when there is none (horizontal motion only).
 _NO_VERTICAL = np.empty(0)
+# Columns of the event buffers the kernel fills: each impact's time, rocking episode and θ' just
+# before and just after it; each turning point's time and θ.
+_IMPACT_TIME, _IMPACT_EPISODE, _OMEGA_BEFORE_IMPACT, _OMEGA_AFTER_IMPACT = range(4)
+_TURN_TIME, _TURN_THETA = range(2)
 
 
 class ResponseSummary(NamedTuple):
@@ -44,8 +48,8 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     otherwise every ``stride``-th sample is stored. ``vertical`` holds the vertical ground
     acceleration at the samples of ``acc`` [m/s²], or nothing (horizontal motion only).
 
-    ``impacts_out`` rows: time, episode, θ' just before and just after the impact;
-    ``turns_out`` rows: time and θ of each turning point (θ' = 0).
+    ``impacts_out`` holds a row per impact, ``turns_out`` a row per turning point (θ' = 0),
+    in the columns named above (``_IMPACT_TIME`` …, ``_TURN_TIME`` …).
 
     With ``reactions``, the pivot reactions (:func:`pivot_reactions`) are evaluated at the end
     of every Runge–Kutta step of the rocking motion and on both sides of every impact; at rest
@@ -158,8 +162,8 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                     h = tau
                 else:
                     if n_turns < turns_out.shape[0]:
-                        turns_out[n_turns, 0] = t + tau
-                        turns_out[n_turns, 1] = th_e
+                        turns_out[n_turns, _TURN_TIME] = t + tau
+                        turns_out[n_turns, _TURN_THETA] = th_e
                     n_turns += 1
                     if abs(th_e) > peak:
                         peak = abs(th_e)
@@ -186,8 +190,8 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                     peak_omega = abs(om_i)
                 t_imp = t + tau
                 if n_impacts < impacts_out.shape[0]:
-                    impacts_out[n_impacts, 0] = t_imp
-                    impacts_out[n_impacts, 1] = episode
+                    impacts_out[n_impacts, _IMPACT_TIME] = t_imp
+                    impacts_out[n_impacts, _IMPACT_EPISODE] = episode
                 u_imp = _ground(t_imp, seg_kind, a0, slope, t0, amp, omega_p)
                 w_imp = v0 + vslope * (t_imp - t0)
                 if reactions:  # on the old pivot just before, on the new one just after
@@ -208,8 +212,8 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                     max_ratio = max(max_ratio, _friction_ratio(hr, vr))
                     min_vertical = min(min_vertical, vr)
                 if n_impacts < impacts_out.shape[0]:
-                    impacts_out[n_impacts, 2] = om_i
-                    impacts_out[n_impacts, 3] = omega
+                    impacts_out[n_impacts, _OMEGA_BEFORE_IMPACT] = om_i
+                    impacts_out[n_impacts, _OMEGA_AFTER_IMPACT] = omega
                 n_impacts += 1
                 continue
             theta = th_n
@@ -267,12 +271,17 @@ def _spectrum(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
         out.min_vertical_reaction[i] = res.min_vertical_reaction
 
 
+def _free_samples(motion, free_motion_s) -> int:
+    """Samples of free motion simulated after the excitation ends."""
+    if free_motion_s < 0 or not math.isfinite(free_motion_s):
+        raise InputError(f"duration of free motion: must be ≥ 0 s, got {free_motion_s}")
+    return int(math.ceil(free_motion_s / motion.dt - 1e-9))
+
+
 def _motion_arguments(motion, free_motion_s, vertical: bool = False):
     """Kernel arguments describing the excitation of a GroundMotion (its vertical component
     too with ``vertical``, where it has one)."""
-    if free_motion_s < 0 or not math.isfinite(free_motion_s):
-        raise InputError(f"duration of free motion: must be ≥ 0 s, got {free_motion_s}")
-    n_tail = int(math.ceil(free_motion_s / motion.dt - 1e-9))
+    n_tail = _free_samples(motion, free_motion_s)
     up = motion.vertical if vertical and motion.vertical is not None else _NO_VERTICAL
     if motion.pulse is None:
         return motion.acceleration, up, motion.dt, n_tail, _SAMPLED, 0.0, 0.0
