@@ -525,14 +525,14 @@ def test_cost_guard_warns_between_the_limits(capsys):
 
 
 def test_long_history_is_decimated_with_exact_peaks(monkeypatch):
-    from audit.physics import rocking
     from audit.physics.block import RigidBlock
+    from audit.physics.rocking import history
     from records import one_pulse
     block = RigidBlock.from_size(1.0, math.radians(10))
     motion = one_pulse("cosine", 0.5, 0.5)
-    full = rocking.simulate(block, motion, free_motion_s=5.0)
-    monkeypatch.setattr(rocking, "HISTORY_CAPACITY", 1000)
-    small = rocking.simulate(block, motion, free_motion_s=5.0)
+    full = history.simulate(block, motion, free_motion_s=5.0)
+    monkeypatch.setattr(history, "HISTORY_CAPACITY", 1000)
+    small = history.simulate(block, motion, free_motion_s=5.0)
     stride = -(-full.theta.size // 1000)
     assert small.theta.size <= 1000 and stride > 1
     np.testing.assert_array_equal(small.theta, full.theta[::stride])

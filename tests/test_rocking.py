@@ -10,7 +10,7 @@ from audit.physics.block import RigidBlock, coefficient_of_restitution, frequenc
 from audit.physics.damping import housner_peak_ratio, housner_period
 from audit.errors import InputError
 from audit.physics.reference import simulate_reference
-from audit.physics.rocking import rocking_spectrum, simulate
+from audit.physics.rocking import rocking_blocks, rocking_spectrum, simulate
 from records import GroundMotion, one_pulse
 
 
@@ -187,27 +187,47 @@ def test_spectrum_threads_agree_and_grid_shape():
     assert one.theta_peak[1, 2] == single.peak_rotation
 
 
+def test_block_peaks_are_the_single_simulations_field_by_field():
+    """Each field of ``rocking_blocks`` is the same-named number of ``simulate`` for that block
+    (a block that overturns, one that rocks and rests, one that never uplifts)."""
+    pulse = one_pulse("cosine", 0.3, 2.0)
+    sizes, alphas = [2.0, math.pi, 3.0], np.radians([10, 15, 30])
+    peaks = rocking_blocks(pulse, sizes, alphas, reactions=True, jobs=2)
+    singles = [simulate(RigidBlock.from_size(size, alpha), pulse)
+               for size, alpha in zip(sizes, alphas)]
+    assert [s.overturned for s in singles] == [True, False, False]
+    assert [s.uplifted for s in singles] == [True, True, False]
+    for name, single_name in [("theta_peak", "peak_rotation"),
+                              ("omega_peak", "peak_angular_velocity"),
+                              ("theta_after", "peak_rotation_after_excitation"),
+                              ("overturned", "overturned"), ("uplifted", "uplifted"),
+                              ("required_friction", "required_friction"),
+                              ("min_vertical_reaction", "min_vertical_reaction")]:
+        np.testing.assert_array_equal(getattr(peaks, name),
+                                      [getattr(s, single_name) for s in singles], err_msg=name)
+
+
 @pytest.mark.parametrize("case", ["pulse-rocks", "pulse-overturns", "record"])
 def test_interpreted_and_compiled_kernels_agree(case, seed_suite, monkeypatch):
     """A short ``simulate`` runs the kernel in the interpreter; the compiled code must give the
     same response to rounding, including impacts, turning points and overturning."""
-    from audit.physics import rocking
+    from audit.physics.rocking import history, kernel
     from audit.physics.tiers import interpreted
     motion, size_s, alpha_deg = {
         "pulse-rocks": (one_pulse("cosine", 0.3, 2.0), math.pi, 15),
         "pulse-overturns": (one_pulse("cosine", 0.2, 2.0), 2.0, 10),
         "record": (seed_suite.get("pacoima_dam_1971").motion, 3.5, 20)}[case]
     block = RigidBlock.from_size(size_s, math.radians(alpha_deg))
-    monkeypatch.setattr(rocking, "tiered", lambda kernel, n: interpreted(kernel))
+    monkeypatch.setattr(history, "tiered", lambda run, n: interpreted(run))
     slow = simulate(block, motion)
-    monkeypatch.setattr(rocking, "tiered", lambda kernel, n: kernel)
+    monkeypatch.setattr(history, "tiered", lambda run, n: run)
     compiled = simulate(block, motion)
-    assert interpreted(rocking._simulate) is not rocking._simulate
+    assert interpreted(kernel._simulate) is not kernel._simulate
     assert slow.overturned == compiled.overturned == (case == "pulse-overturns")
     assert slow.n_impacts == compiled.n_impacts
     assert slow.turning_times.size == compiled.turning_times.size > 0
-    for name in ("theta", "omega", "impact_times", "impact_velocities", "turning_times",
-                 "turning_rotations"):
+    for name in ("theta", "omega", "impact_times", "omega_before_impact", "omega_after_impact",
+                 "turning_times", "turning_rotations"):
         np.testing.assert_allclose(getattr(slow, name), getattr(compiled, name),
                                    rtol=1e-12, atol=1e-15, err_msg=name)
     assert slow.peak_rotation == pytest.approx(compiled.peak_rotation, rel=1e-12)

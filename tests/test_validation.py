@@ -65,7 +65,8 @@ def _campaign(folder: Path, seed: int = 1, unknown: int = 6, periods=(0.4, 0.7, 
             motions.append(GroundMotion(test, acc * 9.81, DT))
     alpha = np.radians(TRUE_ALPHA_DEG) * np.exp(TRUE_SIGMA * rng.standard_normal(len(rows)))
     outcome = np.array([rocking_blocks(m, [2 * np.pi / TRUE_P], [a],
-                                       Restitution(factor=TRUE_FACTOR), free_motion_s=5.0)[0, 3]
+                                       Restitution(factor=TRUE_FACTOR),
+                                       free_motion_s=5.0).overturned[0]
                         for m, a in zip(motions, alpha)])
     frame = pd.DataFrame(rows)
     frame["spec_overturned"] = outcome.astype(int).astype(object)

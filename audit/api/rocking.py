@@ -12,7 +12,7 @@ from audit.engine import fields as check
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError, InputWarning
 from audit.physics.block import Restitution, RigidBlock
-from audit.physics.rocking import RockingResponse as _Response
+from audit.physics.rocking import RockingHistory
 from audit.physics.rocking import simulate
 
 #: Above this full height or width [m] a "block" is refused: no free-standing object is that
@@ -143,11 +143,11 @@ class RockingResponse:
         The base's friction coefficient μ [-] checked, if any.
     slides : bool or None
         Whether the pure-rocking response needs more friction than μ (None without μ).
-    solution : audit.physics.rocking.RockingResponse
+    solution : audit.physics.rocking.RockingHistory
         Everything the solver returned (cycles, turning points, reactions).
     """
 
-    def __init__(self, block: Block, motion, response: _Response, friction=None,
+    def __init__(self, block: Block, motion, response: RockingHistory, friction=None,
                  restitution: str = ""):
         from audit.engine.ground_truth import slides
         self.block, self.motion, self.solution = block, motion, response

@@ -69,7 +69,7 @@ def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
                                     settings.size_s, np.radians(settings.alpha_deg),
                                     r=settings.restitution, g=settings.g,
                                     free_motion_s=settings.free_motion_s,
-                                    jobs=settings.jobs)[:, 3] > 0
+                                    jobs=settings.jobs).overturned
                      for level in settings.levels])
 
 

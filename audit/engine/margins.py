@@ -511,16 +511,17 @@ def amplitude_scans(run: MarginsRun, suite, settings: MarginsSettings,
         low = levels[max(first[k] - 1, 0)]
         high = levels[min(first[k] + 2, levels.size - 1)]
         im_levels = low * SCAN_STEP ** np.arange(int(np.log(high / low) / np.log(SCAN_STEP)) + 1)
-        peaks = np.array([rocking_blocks(motions[record].scaled(float(level * factor_per_im)),
-                                         [block.size_s], [math.radians(block.alpha_deg)],
-                                         r=restitution, g=g, free_motion_s=free_motion_s,
-                                         jobs=jobs)[0] for level in im_levels])
+        peaks = [rocking_blocks(motions[record].scaled(float(level * factor_per_im)),
+                                [block.size_s], [math.radians(block.alpha_deg)], r=restitution,
+                                g=g, free_motion_s=free_motion_s, jobs=jobs)
+                 for level in im_levels]
         frames.append(pd.DataFrame({
             "record": record, "alpha_deg": block.alpha_deg, "size_s": block.size_s,
             "block_m": block.block_m,
             "scale_factor": im_levels * factor_per_im * float(first_row["site_factor"]),
-            "im_level": im_levels, "exact_overturned": peaks[:, 3] > 0,
-            "exact_theta_rad": peaks[:, 0]}))
+            "im_level": im_levels,
+            "exact_overturned": np.concatenate([one.overturned for one in peaks]),
+            "exact_theta_rad": np.concatenate([one.theta_peak for one in peaks])}))
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=SCAN_COLUMNS)
 
 

@@ -84,7 +84,7 @@ def record_blocks(entry, procedures, settings: SearchSettings) -> np.ndarray:
     """Exact overturning of the blocks of ``settings`` under one record (a bisection step)."""
     return rocking_blocks(entry.motion, settings.size_s, np.radians(settings.alpha_deg),
                           r=settings.restitution, g=settings.g,
-                          free_motion_s=settings.free_motion_s, jobs=settings.jobs)[:, 3] > 0
+                          free_motion_s=settings.free_motion_s, jobs=settings.jobs).overturned
 
 
 def last_crossing(share, limit) -> int | None:

@@ -156,7 +156,7 @@ def overturning_grid(motions, settings: ValidationSettings, progress=None) -> Ov
         for j, factor in enumerate(settings.restitution_factors):
             peaks = rocking_blocks(motion, size, grid_alpha.ravel(), Restitution(factor=factor),
                                    free_motion_s=settings.free_motion_s, jobs=settings.jobs)
-            out[i, j] = peaks[:, 3].reshape(shape[1:]) > 0.5
+            out[i, j] = peaks.overturned.reshape(shape[1:])
         if progress is not None:
             progress(i + 1, len(motions), motion.id)
     return OverturningGrid(out, len(motions) * settings.solves_per_test)

@@ -24,26 +24,40 @@ from numba.core.registry import CPUDispatcher
 INTERPRETED_BUDGET_S = 0.4
 
 _interpreted_s = 0.0
+_compiled_seen = False
 
 
 @functools.cache
 def interpreted(kernel: CPUDispatcher):
-    """``kernel`` as a plain Python function whose calls to other kernels of its module are
-    plain Python functions too: the same code, run by the interpreter."""
-    namespace = dict(kernel.py_func.__globals__)
-    for name, value in list(namespace.items()):
-        if isinstance(value, CPUDispatcher):
-            f = value.py_func
-            namespace[name] = types.FunctionType(f.__code__, namespace, f.__name__,
-                                                 f.__defaults__, f.__closure__)
-    return namespace[kernel.py_func.__name__]
+    """``kernel`` as a plain Python function whose calls to other kernels, of its module or of
+    the modules it imports them from, are plain Python functions too: the same code, run by
+    the interpreter."""
+    return _plain(kernel, {})
+
+
+def _plain(kernel: CPUDispatcher, namespaces: dict):
+    """``kernel``'s Python function run in a copy of its module's namespace in which every
+    kernel is plain too; ``namespaces`` holds the copies made so far, one per module."""
+    f = kernel.py_func
+    key = id(f.__globals__)
+    if key not in namespaces:
+        namespace = namespaces[key] = dict(f.__globals__)
+        for name, value in list(namespace.items()):
+            if isinstance(value, CPUDispatcher):
+                namespace[name] = _plain(value, namespaces)
+    return types.FunctionType(f.__code__, namespaces[key], f.__name__, f.__defaults__,
+                              f.__closure__)
 
 
 def _any_compiled() -> bool:
-    """Whether a kernel of ``audit.physics`` has compiled code in this process."""
-    return any(isinstance(value, CPUDispatcher) and value.signatures
-               for name, module in list(sys.modules.items()) if name.startswith("audit.physics.")
-               for value in list(vars(module).values()))
+    """Whether a kernel of ``audit.physics`` has compiled code in this process (remembered once
+    true: compiled code stays loaded, and the scan of the modules costs ~0.1 ms a call)."""
+    global _compiled_seen
+    _compiled_seen = _compiled_seen or any(
+        isinstance(value, CPUDispatcher) and value.signatures
+        for name, module in list(sys.modules.items()) if name.startswith("audit.physics.")
+        for value in list(vars(module).values()))
+    return _compiled_seen
 
 
 def machine_code_cached(kernel: CPUDispatcher) -> bool:

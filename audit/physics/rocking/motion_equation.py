@@ -1,0 +1,137 @@
+"""The equation of motion of a rocking block (Eq. 4.3 of Makris & Konstantinidis 2001), its
+Runge–Kutta step, the location of events inside a step, and the pivot reactions."""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+# Ground-motion kinds understood by the kernel.
+_SAMPLED, _COSINE, _SINE = 0, 1, 2
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _ground(t, kind, a0, slope, t0, amp, omega_p):
+    """üg at time t on the current smooth interval."""
+    if kind == _SAMPLED:
+        return a0 + slope * (t - t0)
+    if kind == _COSINE:
+        return amp * math.cos(omega_p * t)
+    return amp * math.sin(omega_p * t)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _theta_acc(theta, ug, uv, side, p2, alpha, g):
+    """Eq. 4.3 with sgn(θ) replaced by the side of the current pivot, and gravity g + üv under
+    a vertical ground acceleration üv (Eq. 4.3 with g → g + üv in its moment of the weight;
+    p² = 3g/(4R) keeps the nominal g). Without vertical motion üv = 0 and (1 + 0/g)·sin φ is
+    sin φ exactly, so the horizontal-only response is unchanged to the last bit."""
+    phi = side * alpha - theta
+    return -p2 * ((1.0 + uv / g) * math.sin(phi) + ug / g * math.cos(phi))
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _lifts(ug, uv, g, tan_alpha):
+    """Whether the ground lifts a block at rest: |üg| > (g + üv) tan α."""
+    return abs(ug) > (g + uv) * tan_alpha
+
+
+
+@numba.njit(cache=True, nogil=True)
+def pivot_reactions(theta, omega, ug, uv, side, p2, alpha, g):
+    """Horizontal and vertical reactions H/(mg), V/(mg) [-] at the pivot of a rocking block.
+
+    Newton's law for the centroid of the block (mass m, R = 3g/(4p²), α) rocking about a
+    corner, with s = ±1 the side of the pivot and φ = sα − θ; the centroid sits at
+    (−R sin φ, R cos φ) from the pivot, so
+
+        H / m = üg      + R (θ'' cos φ + θ'² sin φ)
+        V / m = g + üv  + R (θ'' sin φ − θ'² cos φ)
+
+    with θ'' from Eq. 4.3. Pure rocking needs V ≥ 0 (else the block jumps) and a friction
+    coefficient μ ≥ |H| / V; at uplift (θ = θ' = 0, |üg| = g tan α, θ'' = 0) that is the
+    classic μ ≥ tan α (derivation in docs/ground-truth-assumptions.md).
+
+    Parameters
+    ----------
+    theta, omega : float
+        θ [rad] and θ' [rad/s].
+    ug, uv : float
+        Horizontal and vertical ground accelerations [m/s²].
+    side : float
+        +1 rocking on the corner of θ > 0, −1 on the other.
+    p2 : float
+        p² [rad²/s²].
+    alpha, g : float
+        α [rad]; acceleration of gravity [m/s²].
+    """
+    phi = side * alpha - theta
+    theta_acc = _theta_acc(theta, ug, uv, side, p2, alpha, g)
+    radius = 0.75 * g / p2
+    horizontal = ug + radius * (theta_acc * math.cos(phi) + omega * omega * math.sin(phi))
+    vertical = g + uv + radius * (theta_acc * math.sin(phi) - omega * omega * math.cos(phi))
+    return horizontal / g, vertical / g
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _friction_ratio(horizontal, vertical):
+    """|H| / V, infinite where V ≤ 0 (no friction keeps a jumping block in place)."""
+    return abs(horizontal) / vertical if vertical > 0.0 else math.inf
+
+
+@numba.njit(cache=True, nogil=True)
+def _rk4(theta, omega, t, h, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p, v0, vslope):
+    """One classical Runge–Kutta step of length h from (θ, θ') at t; the vertical ground
+    acceleration is v0 + vslope·(t − t0) on the interval (zero without vertical motion)."""
+    u1 = _ground(t, kind, a0, slope, t0, amp, omega_p)
+    u2 = _ground(t + 0.5 * h, kind, a0, slope, t0, amp, omega_p)
+    u3 = _ground(t + h, kind, a0, slope, t0, amp, omega_p)
+    w1 = v0 + vslope * (t - t0)
+    w2 = v0 + vslope * (t + 0.5 * h - t0)
+    w3 = v0 + vslope * (t + h - t0)
+    k1t = omega
+    k1w = _theta_acc(theta, u1, w1, side, p2, alpha, g)
+    k2t = omega + 0.5 * h * k1w
+    k2w = _theta_acc(theta + 0.5 * h * k1t, u2, w2, side, p2, alpha, g)
+    k3t = omega + 0.5 * h * k2w
+    k3w = _theta_acc(theta + 0.5 * h * k2t, u2, w2, side, p2, alpha, g)
+    k4t = omega + h * k3w
+    k4w = _theta_acc(theta + h * k3t, u3, w3, side, p2, alpha, g)
+    return (theta + h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t),
+            omega + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w))
+
+
+@numba.njit(cache=True, nogil=True)
+def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
+            kind, a0, slope, t0, amp, omega_p, v0, vslope):
+    """Step length τ in [lo, hi] at which θ (which=0) or θ' (which=1) equals ``target``.
+
+    The bracket must hold a sign change of (value − target). Newton steps use the exact
+    derivative of the continuous Runge–Kutta trajectory (θ' or Eq. 4.3), with bisection
+    whenever Newton leaves the bracket. Returns (τ, θ(τ), θ'(τ)).
+    """
+    th, om = _rk4(theta, omega, t, hi, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p,
+                  v0, vslope)
+    hi_positive = ((th if which == 0 else om) - target) > 0.0
+    tau = 0.5 * (lo + hi)
+    for _ in range(100):
+        th, om = _rk4(theta, omega, t, tau, side, p2, alpha, g, kind, a0, slope, t0, amp,
+                      omega_p, v0, vslope)
+        f = (th if which == 0 else om) - target
+        if f == 0.0 or hi - lo < 1e-15 * (1.0 + t):
+            break
+        # orient on the end whose sign is known strictly, so a root at lo itself is never taken
+        if (f > 0.0) == hi_positive:
+            hi = tau
+        else:
+            lo = tau
+        if which == 0:
+            slope_f = om
+        else:
+            slope_f = _theta_acc(th, _ground(t + tau, kind, a0, slope, t0, amp, omega_p),
+                                 v0 + vslope * (t + tau - t0), side, p2, alpha, g)
+        step = tau - f / slope_f if slope_f != 0.0 else 0.5 * (lo + hi)
+        tau = step if lo < step < hi else 0.5 * (lo + hi)
+    return tau, th, om
+
