@@ -24,7 +24,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from audit.api import MarginsResult, design_suite  # noqa: E402
-from audit.engine.margins import amplitude_scans, run_margins  # noqa: E402
+from audit.engine.margins import run_margins  # noqa: E402
+from audit.engine.margins_scans import amplitude_scans  # noqa: E402
 from audit.engine.margins_settings import MarginsSettings  # noqa: E402
 from audit.engine.runtime import Runtime  # noqa: E402
 from audit.engine.required_alpha import required_alpha  # noqa: E402

@@ -13,7 +13,9 @@ from scipy.stats import norm
 from audit.cli import main
 from audit.engine.blocks import BlockList, NamedBlock
 from audit.engine.lognormal_fit import fit_lognormal
-from audit.engine.margins import IntensityMeasure, _fragility_rows, run_margins
+from audit.engine.intensity import IntensityMeasure
+from audit.engine.margins import run_margins
+from audit.engine.margins_tables import fragility_rows
 from audit.engine.margins_settings import MarginsSettings
 from audit.engine.runtime import Runtime
 from audit.engine.sites import scale_to_site, with_design_site
@@ -121,7 +123,7 @@ def test_the_cmr_is_over_the_mce_and_a_bound_beyond_the_stripes():
     levels = np.array([0.1, 0.2, 0.3])
     over = np.zeros((10, 3, 1), dtype=bool)
     over[0, 1:, 0] = over[1, 2, 0] = True
-    rows, _, _ = _fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
+    rows, _, _ = fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
                                  IntensityMeasure.parse("pga"), over, 0.6)
     row = rows.iloc[0]
     assert row["median"] > 0.3 and row["median_extrapolated"]
@@ -139,7 +141,7 @@ def test_bootstrap_bands_see_that_records_are_reused_across_stripes():
     over = np.zeros((12, 10, 1), dtype=bool)
     for record, first in enumerate([1, 2, 2, 3, 4, 4, 5, 6, 6, 7, 8, 9]):
         over[record, first:, 0] = True
-    rows, fits, _ = _fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
+    rows, fits, _ = fragility_rows(levels, BlockList.of([ALPHA_DEG], [SIZE_S]),
                                     IntensityMeasure.parse("pga"), over, 0.3)
     row = rows.iloc[0]
     assert row["median_boot_low"] < fits[0].median < row["median_boot_high"]

@@ -5,7 +5,7 @@ For every object (:mod:`audit.engine.check_objects`) and a FEMA 356 site (S_XS, 
 hazard level the user assesses), the suite's records are each scaled to the site's intensity
 (S_X1 for the default S_a(1 s); the design spectrum at the intensity measure otherwise) and to
 :data:`SITE_STRIPES` stripes either side, a factor :data:`STRIPE_STEP` apart: the design-level
-audit's unit of work (:func:`audit.engine.margins.record_stripes`) on a stripe set around the
+audit's unit of work (:func:`audit.engine.stripes.record_stripes`) on a stripe set around the
 site, not its whole grid. From it, per object:
 
 * the exact multiple-stripe fragility (:func:`~audit.engine.lognormal_fit.fit_lognormal`) and its
@@ -37,7 +37,7 @@ from audit.engine.check_widths import (Family, accepted_width, exact_required_wi
                                       overturns_at, probability_at_site)
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
 from audit.engine.lognormal_fit import fit_lognormal
-from audit.engine.margins import RecordStripes, StripeSettings, half_crossing, record_stripes
+from audit.engine.stripes import RecordStripes, StripeSettings, half_crossing, record_stripes
 from audit.engine.risk import LognormalFragility, StripeFragility
 from audit.engine.runtime import Runtime
 from audit.engine.scheduler import computed_parts, open_scheduler
@@ -66,7 +66,7 @@ class CheckWork:
 
     Attributes
     ----------
-    stripes : audit.engine.margins.StripeSettings
+    stripes : audit.engine.stripes.StripeSettings
         The stripes (the site's intensity its ``design_im``) and the objects as blocks.
     objects : tuple of audit.engine.check_objects.CheckObject
     per_record : tuple of str

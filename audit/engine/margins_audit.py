@@ -9,7 +9,8 @@ from contextlib import nullcontext
 from dataclasses import replace
 
 from audit.engine.defaults import DEFAULT_STRIPES
-from audit.engine.margins import MarginsRun, amplitude_scans, run_margins
+from audit.engine.margins import MarginsRun, run_margins
+from audit.engine.margins_scans import amplitude_scans
 from audit.engine.margins_risk import hazard_summary, hazard_table, margins_risk
 from audit.engine.margins_settings import MarginsSettings
 from audit.engine.p695_acceptance import p695_acceptance

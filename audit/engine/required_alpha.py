@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from audit.engine.margins import procedure_predictions
+from audit.engine.stripes import procedure_predictions
 from audit.engine.margins_settings import MarginsSettings
 from audit.engine.runtime import Runtime
 from audit.engine.scheduler import computed_parts

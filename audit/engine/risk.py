@@ -167,7 +167,7 @@ def annual_rate_for(probability: float, years: float = YEARS) -> float:
 
 
 def hazard_im(curve):
-    """The project's intensity measure (:class:`~audit.engine.margins.IntensityMeasure`) of a
+    """The project's intensity measure (:class:`~audit.engine.intensity.IntensityMeasure`) of a
     hazard curve: PGA → ``pga``, SA(T) → ``sa:T``."""
     from audit.engine.intensity import IntensityMeasure
     return IntensityMeasure("pga") if curve.imt == "PGA" else \
