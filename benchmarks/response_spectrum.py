@@ -3,7 +3,7 @@
 Rinaldi (``rinaldi_1994``, 6000 samples at dt = 0.005 s), 200 periods 0.05–10 s × 6 dampings,
 Sd, Sv and Sa (true spectra, not pseudo), all in one run with the default BLAS settings:
 
-- ours: :func:`audit.physics.oscillator.response_spectra`, exact peaks between samples (default)
+- ours: :func:`audit.physics.response_spectra.response_spectra`, exact peaks between samples (default)
   and peaks read at the samples (``between_samples=False``, what every peer does);
 - eqsig ``sdof.true_response_spectra`` (Nigam–Jennings recurrence vectorised over periods in
   numpy; it takes ω = 6.2831853/T and replaces Sa by the PGA for T < 6·dt);
@@ -32,7 +32,7 @@ import numpy as np
 import pyrotd
 from scipy import signal
 
-from audit.physics.oscillator import response_spectra
+from audit.physics.response_spectra import response_spectra
 from records import GroundMotion, load_records
 
 PERIODS_S = np.linspace(0.05, 10.0, 200)

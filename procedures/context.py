@@ -7,7 +7,7 @@ between, which is what the root scan of :func:`procedures.rotation_map.fixed_poi
 from __future__ import annotations
 
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
-from audit.physics.oscillator import response_spectra
+from audit.physics.response_spectra import response_spectra
 from procedures.base import SPECTRUM_PERIODS_S
 from procedures.tabulated import TabulatedDisplacement
 

@@ -228,7 +228,7 @@ def test_first_run_compile_is_announced_only_without_cached_machine_code(tmp_pat
     """An empty numba cache (a fresh install) means the first record waits for the compiler,
     and run says so; with the machine code cached it says nothing."""
     from audit.engine.suite_run import compiles_first
-    from audit.physics.oscillator import response_spectra
+    from audit.physics.response_spectra import response_spectra
     from audit.physics.rocking import rocking_spectrum
     from records import one_pulse
     pulse = one_pulse("cosine", 0.3, 1.0)

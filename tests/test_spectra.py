@@ -12,7 +12,8 @@ from audit.physics.damping import (damping_fema356, damping_free_rocking, dampin
                            housner_period, housner_rotation_ratio)
 from audit.physics.design_spectra import FEMA356_TABLE_1_6, FEMA356Spectrum, UBC97Spectrum, \
     fema356_damping_coefficients
-from audit.physics.oscillator import oscillator_history, response_spectra
+from audit.physics.oscillator import oscillator_history
+from audit.physics.response_spectra import response_spectra
 from records import GroundMotion
 
 DT = 0.001

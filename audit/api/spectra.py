@@ -53,13 +53,13 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
 def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
                      free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False):
     """True response spectra of ``motion`` at periods [s] and damping ratios [%]: a DataFrame
-    (``audit.physics.oscillator.ResponseSpectra.to_frame``)."""
+    (``audit.physics.response_spectra.ResponseSpectra.to_frame``)."""
     import numpy as np
 
     from audit.api.inputs import motion_of
     from audit.engine import guards
     from audit.engine.grid import size_grid
-    from audit.physics.oscillator import response_spectra as spectra
+    from audit.physics.response_spectra import response_spectra as spectra
     motion = motion_of(motion)
     periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
     damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,

@@ -20,7 +20,7 @@ from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution, radius_from_p
 from audit.physics.damping import (damping_fema356, damping_free_rocking, damping_priestley,
                                    housner_peak_ratio, housner_period)
-from audit.physics.oscillator import response_spectra
+from audit.physics.response_spectra import response_spectra
 from audit.physics.rocking import simulate
 from procedures.base import CONVERGED, NO_UPLIFT, OVERTURN
 from procedures.registry import available_procedures

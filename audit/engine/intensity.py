@@ -56,7 +56,7 @@ class IntensityMeasure:
             return motion.pgv
         import numpy as np
 
-        from audit.physics.oscillator import response_spectra
+        from audit.physics.response_spectra import response_spectra
         spectra = response_spectra(motion, np.array([self.period_s]), [IM_DAMPING],
                                    free_motion_s)
         return float(spectra.sa[0, 0]) / G

@@ -97,7 +97,7 @@ def scale_to_site(suite: RecordSuite, sxs_g: float, sx1_g: float,
 
     so the median 5 %-damped spectral acceleration of the normalised suite equals the design
     spectrum at the anchor period T_a. Sa_i is the true absolute acceleration spectrum
-    max|ü + üg| of the record over its duration (:func:`audit.physics.oscillator.response_spectra`);
+    max|ü + üg| of the record over its duration (:func:`audit.physics.response_spectra.response_spectra`);
     the median of an even count is the mean of the two middle values. Records without a motion
     are kept as they are.
 
@@ -118,7 +118,7 @@ def scale_to_site(suite: RecordSuite, sxs_g: float, sx1_g: float,
         target, the median, the suite factor and per record ``normalisation_factor``,
         ``normalised_sa_g`` and ``scale_factor`` = n_i·s.
     """
-    from audit.physics.oscillator import response_spectra  # numba: only when scaling
+    from audit.physics.response_spectra import response_spectra  # numba: only when scaling
     spectrum = FEMA356Spectrum(sxs_g, sx1_g)
     if not (math.isfinite(anchor_period_s) and anchor_period_s > 0):
         raise InputError(f"anchor period: must be a positive number of seconds, got {anchor_period_s}")
