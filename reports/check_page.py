@@ -23,7 +23,7 @@ from scipy.special import ndtr
 from audit.engine.check_risk import quiet_risk
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
-from reports.margins_page import fragility_axes, vertical_line
+from reports.margins_figures import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
 from reports.plots import _axis, _layout, to_json
 from reports.risk_figure import risk_figure

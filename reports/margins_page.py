@@ -16,33 +16,25 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from scipy.special import ndtr
 
 from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
+from reports.block_metres import describe_block
+from reports.margins_figures import (cmr_figure, fragility_figure, procedure_colour,
+                                     required_figure, scan_figure)
 from reports.margins_risk_section import risk_section
-from reports.palette import _EXTRA_COLOURS
-from reports.block_metres import (METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m,
-                                   describe_block)
-from reports.plots import _axis, _layout, cell_span, padded_span, required_alpha_layout
 
 MARGINS_HTML = "margins.html"
 #: Grid blocks whose fragility curves are drawn when no block is named: per α, these sizes [s].
 CURVE_SIZES_S = (1.0, 2.0, 4.0)
-#: Tick labels of a logarithmic intensity axis.
-LOG_TICKS = (0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 1, 2, 3, 5, 10, 20)
 #: Rows of the worst-blocks table per procedure.
 WORST_ROWS = 5
-_EXACT_COLOURS = {"exact@0.10": "#000000", "exact@0.50": "#7f7f7f"}
 _CSS = ("body{font-family:DejaVu Sans,Helvetica,Arial,sans-serif;max-width:1100px;margin:2em auto;"
         "padding:0 1em;color:#222}table{border-collapse:collapse;font-size:13px;margin:1em 0}"
         "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#f2f2f2}"
         ".quote{background:#f7f7f0;border-left:4px solid #b58900;padding:.6em 1em;margin:.6em 0}"
         ".note{color:#555;font-size:13px}")
 
-
-def _procedure_colour(names: list, name: str) -> str:
-    return _EXTRA_COLOURS[names.index(name) % len(_EXTRA_COLOURS)] if name in names else "#000"
 
 
 def _keys(frame: pd.DataFrame) -> pd.Series:
@@ -51,12 +43,6 @@ def _keys(frame: pd.DataFrame) -> pd.Series:
     grid = frame["alpha_deg"].map("{:.6g}".format) + "|" + frame["size_s"].map("{:.6g}".format)
     return frame["block_m"].where(frame["block_m"] != "", grid)
 
-
-def _label(row) -> str:
-    if isinstance(row.get("block_m"), str) and row["block_m"]:
-        return f"{row['block_m']} m (α = {row['alpha_deg']:.3g}°, 2π/p = {row['size_s']:.3g} s)"
-    return (f"α = {row['alpha_deg']:g}°, 2π/p = {row['size_s']:g} s "
-            f"({describe_block(row['alpha_deg'], row['size_s'])})")
 
 
 def _site_words(summary) -> str:
@@ -87,135 +73,7 @@ def _sentences(required: pd.DataFrame, summary, titles) -> list[str]:
     return out
 
 
-def _required_figure(required: pd.DataFrame, names: list, titles) -> dict:
-    data = []
-    for name, rows in required.groupby("procedure", sort=False):
-        exact = name.startswith("exact@")
-        colour = _EXACT_COLOURS.get(name) or _procedure_colour(names, name)
-        label = (f"exact: ≤ {float(name[6:]):.0%} of records overturn" if exact
-                 else titles.get(name, name))
-        data.append({"type": "scatter", "mode": "lines+markers", "x": rows["size_s"],
-                     "y": rows["required_alpha_deg"], "name": label,
-                     "customdata": rows["exact_overturning_share"],
-                     "line": {"color": colour, "width": 2.5 if exact else 1.5,
-                              "dash": "solid" if name == "exact@0.10" else
-                              "dot" if exact else "dash"},
-                     "marker": {"size": 4},
-                     # the object each point is: the most slender block accepted at that size
-                     "text": [describe_block(a, s) if math.isfinite(a) else ""
-                              for a, s in zip(rows["required_alpha_deg"], rows["size_s"])],
-                     "hovertemplate": f"{label}<br>2π/p = %{{x:.3g}} s: α ≥ %{{y:.3g}}° "
-                                      "(%{text})<br>"
-                                      "exact share overturning there: %{customdata:.0%}"
-                                      "<extra></extra>"})
-    figure = {"data": data, "layout": required_alpha_layout()}
-    add_metres_axis(figure, padded_span(required["size_s"]), room_px=METRES_ROOM_PX)
-    return figure
 
-
-def _cmr_figure(fragility: pd.DataFrame) -> dict:
-    grid = fragility[fragility["block_m"].fillna("") == ""]
-    pivot = grid.pivot_table(index="alpha_deg", columns="size_s", values="cmr", aggfunc="first")
-    bounds = grid.assign(bound=grid["cmr_bound"].map(
-        {"": "", "at least": " (at least: median above the stripes)",
-         "at most": " (at most: median below the stripes)"})).pivot(
-        index="alpha_deg", columns="size_s", values="bound")
-    alphas = pivot.index.to_numpy(dtype=float)
-    sizes = pivot.columns.to_numpy(dtype=float)
-    data = [{"type": "heatmap", "x": sizes, "y": alphas,
-             "z": pivot.to_numpy(dtype=float), "zmin": 0, "zmid": 1, "zmax": 4,
-             "colorscale": [[0, "#b2182b"], [0.25, "#f7f7f7"], [1, "#2166ac"]], "ygap": 2,
-             "colorbar": {"title": {"text": "CMR"}, "thickness": 12},
-             "customdata": [[[*block_size_m(a, s), bound] for s, bound in zip(sizes, row)]
-                            for a, row in zip(alphas, bounds.to_numpy(dtype=object))],
-             "hovertemplate": f"α = %{{y:~g}}°, 2π/p = %{{x:~g}} s: {block_hover(0)}<br>"
-                              "CMR = %{z:.3g}%{customdata[2]}<extra></extra>"}]
-    layout = _layout(120 + 50 * max(len(alphas), 1))
-    layout["margin"]["t"] = 20
-    layout["xaxis"] = _axis("block size 2π/p [s]")
-    layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
-    figure = {"data": data, "layout": layout}
-    add_metres_axis(figure, cell_span(sizes), room_px=METRES_ROOM_PX)
-    return figure
-
-
-def _fragility_figure(block, stripes, capacity, names, titles, summary) -> dict:
-    im, unit = summary["im"], summary["im_unit"]
-    rows = stripes.groupby("im_level")["exact_overturned"].mean()
-    levels = rows.index.to_numpy(dtype=float)
-    x = np.geomspace(levels.min(), levels.max(), 200)
-    data = [{"type": "scatter", "mode": "markers", "x": levels, "y": rows.to_numpy(),
-             "name": "exact, share of records", "marker": {"color": "#000", "size": 7},
-             "hovertemplate": f"{im} = %{{x:.3g}} {unit}: %{{y:.0%}} overturn<extra></extra>"}]
-    if math.isfinite(block["median"]):
-        z = np.log(x / block["median"]) / block["beta"]
-        data.append({"type": "scatter", "mode": "lines", "x": x, "y": ndtr(z),
-                     "name": f"exact, lognormal fit (median {block['median']:.3g} {unit}, "
-                             f"β {block['beta']:.2f})", "line": {"color": "#000", "width": 2}})
-    shapes, notes = [], []
-    if summary.get("design_im"):
-        shapes.append(vertical_line(summary["design_im"], "#b58900", "dot"))
-        notes.append(_top_note(summary["design_im"], "design", "#b58900"))
-    for row in capacity.itertuples():
-        if not math.isfinite(row.guideline_im):
-            continue
-        colour = _procedure_colour(names, row.procedure)
-        shapes.append(vertical_line(row.guideline_im, colour, "dash"))
-        data.append({"type": "scatter", "mode": "markers", "x": [row.guideline_im],
-                     "y": [row.achieved_p_fit], "name": f"{titles.get(row.procedure, row.procedure)}"
-                     f": line at {row.guideline_im:.3g} {unit}, exact P there "
-                     f"{row.achieved_p_fit:.0%}",
-                     "marker": {"color": colour, "size": 11, "symbol": "diamond"}})
-    layout = _layout(380, shapes=shapes, annotations=notes)
-    layout["title"] = {"text": _label(block), "font": {"size": 13}}
-    fragility_axes(layout, f"{im} [{unit}]", levels.min() / 1.5, levels.max() * 1.5, 150, 480)
-    return {"data": data, "layout": layout}
-
-
-def fragility_axes(layout: dict, title: str, low: float, high: float, legend_room: int,
-                   height: int) -> None:
-    """A fragility figure's axes: intensity on a log axis with whole labels between ``low`` and
-    ``high`` (plotly's minor labels read "2" for 0.2), P(overturn) in %, the legend below."""
-    ticks = [t for t in LOG_TICKS if low <= t <= high]
-    layout["xaxis"] = _axis(title, type="log", tickvals=ticks, ticktext=[f"{t:g}" for t in ticks])
-    layout["yaxis"] = _axis("P(overturn)", range=[-0.02, 1.02], tickformat=".0%")
-    layout["legend"] = {"orientation": "h", "x": 0, "y": -0.2, "yanchor": "top",
-                        "font": {"size": 11}}
-    layout["margin"]["b"] = legend_room
-    layout["height"] = height
-
-
-def vertical_line(x, colour, dash) -> dict:
-    """A vertical line at ``x`` across the plot (a plotly shape)."""
-    return {"type": "line", "xref": "x", "x0": x, "x1": x, "yref": "y domain", "y0": 0, "y1": 1,
-            "line": {"color": colour, "dash": dash, "width": 1.5}}
-
-
-def _top_note(x, text, colour) -> dict:
-    return {"text": text, "x": math.log10(x), "xref": "x", "yref": "y domain", "y": 1.0,
-            "yanchor": "bottom", "showarrow": False, "font": {"size": 11, "color": colour}}
-
-
-def _scan_figure(scan: pd.DataFrame, summary) -> dict:
-    unit = summary["im_unit"]
-    first = scan.loc[scan["exact_overturned"], "im_level"].min()
-    survives = scan[~scan["exact_overturned"] & (scan["im_level"] > first)]
-    theta_ratio = scan["exact_theta_rad"] / np.radians(scan["alpha_deg"])
-    data = [{"type": "scatter", "mode": "markers", "x": scan["im_level"], "y": theta_ratio,
-             "marker": {"size": 5, "color": np.where(scan["exact_overturned"], "#d62728",
-                                                     "#1f77b4").tolist()},
-             "name": "each scaled record (red: overturns)",
-             "hovertemplate": f"{summary['im']} = %{{x:.5g}} {unit}<br>peak θ/α = %{{y:.3f}}"
-                              "<extra></extra>"}]
-    row = scan.iloc[0]
-    layout = _layout(330, shapes=[vertical_line(first, "#d62728", "dot")])
-    layout["title"] = {"text": f"{row['record']}, {_label(row)}: overturns first at "
-                               f"{first:.4g} {unit}; survives {len(survives)} higher levels "
-                               "of the scan", "font": {"size": 12}}
-    layout["xaxis"] = _axis(f"{summary['im']} of the scaled record [{unit}] (0.2 % steps)")
-    layout["yaxis"] = _axis("peak θ/α [-]", range=[0, 1.05])
-    layout["showlegend"] = False
-    return {"data": data, "layout": layout}
 
 
 def _margins_table(fragility, capacity, required, titles) -> pd.DataFrame:
@@ -279,7 +137,7 @@ def render_margins_page(folder) -> str:
                      "The share is not monotonic in α, so each exact curve is the smallest α "
                      "above which it stays within the target on a 2° search, the last crossing "
                      "bisected to 0.125°.</p>")
-        parts.append(_plot("required", _required_figure(required, names, titles)))
+        parts.append(_plot("required", required_figure(required, names, titles)))
         parts.append("<h2>Margins per procedure</h2><p>Each guideline's line is where the share "
                      "of records for which it predicts overturning first reaches one half; the "
                      "achieved probability is the exact P(overturn) there. Medians over the "
@@ -299,7 +157,7 @@ def render_margins_page(folder) -> str:
         f"<li><b>{html.escape(p['title'])}</b>: {html.escape(p['reads'])}</li>"
         for p in summary["procedures"]) + "</ul>")
     parts += risk_section(folder, summary, fragility, stripes, _keys, titles,
-                          lambda name: _procedure_colour(names, name))
+                          lambda name: procedure_colour(names, name))
     if summary.get("design_im") and (fragility["block_m"] == "").any():
         extrapolated = int(fragility["median_extrapolated"].sum())
         parts.append("<h2>Collapse margin ratio over the grid</h2><p>CMR = median of the exact "
@@ -312,7 +170,7 @@ def render_margins_page(folder) -> str:
                      f"MCE. {extrapolated} of {len(fragility)} medians lie beyond the stripes: "
                      "the fit extrapolates there, and the CMR shown is only a bound (the "
                      "outermost stripe / the MCE intensity, flagged in fragility.csv).</p>")
-        parts.append(_plot("cmr", _cmr_figure(fragility)))
+        parts.append(_plot("cmr", cmr_figure(fragility)))
     parts.append("<h2>Fragility curves</h2><p>Dots: the share of records that overturn the "
                  "block at each stripe (not monotonic: islands); line: the lognormal of "
                  "greatest binomial likelihood; dashed verticals: where each guideline draws its "
@@ -320,7 +178,7 @@ def render_margins_page(folder) -> str:
     stripe_keys, capacity_keys = _keys(stripes), _keys(capacity)
     chosen = _chosen_blocks(fragility)
     for i, (key, (_, block)) in enumerate(zip(_keys(chosen), chosen.iterrows())):
-        parts.append(_plot(f"fragility{i}", _fragility_figure(
+        parts.append(_plot(f"fragility{i}", fragility_figure(
             block, stripes[stripe_keys == key], capacity[capacity_keys == key], names, titles,
             summary)))
     if scan is not None and len(scan):
@@ -331,7 +189,7 @@ def render_margins_page(folder) -> str:
                      "that overturn at an intensity is the number to build on.</p>")
         for i, (_, rows) in enumerate(scan.groupby(["alpha_deg", "size_s", "block_m"],
                                                    sort=False)):
-            parts.append(_plot(f"scan{i}", _scan_figure(rows.reset_index(drop=True), summary)))
+            parts.append(_plot(f"scan{i}", scan_figure(rows.reset_index(drop=True), summary)))
     parts.append("<h2>Worst blocks</h2><p>Per procedure, the blocks with the largest exact "
                  "probability of overturning where the guideline draws its line.</p>")
     worst = (capacity.dropna(subset=["achieved_p_fit"])

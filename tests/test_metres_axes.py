@@ -14,7 +14,7 @@ import pytest
 import audit.api
 from audit import G
 from reports.block_metres import DIAGONAL_TITLE, metres_axis
-from reports.margins_page import _cmr_figure, _required_figure
+from reports.margins_figures import cmr_figure, required_figure
 from reports.margins_risk_section import _alpha_figure, _map_figure
 
 SIZES_S = np.round(np.arange(0.5, 8.01, 0.5), 2)
@@ -173,7 +173,7 @@ def test_the_margins_charts_over_size_have_a_metres_axis():
     fragility = grid.assign(block_m="", cmr=np.linspace(0.5, 3, len(grid)), cmr_bound="")
     risk = grid.assign(block_m="", annual_rate_fit=np.geomspace(1e-5, 1e-2, len(grid)))
     risk_alpha = required.assign(procedure="exact@risk", p50=0.01)
-    figures = {"required": _required_figure(required, [], {}), "cmr": _cmr_figure(fragility),
+    figures = {"required": required_figure(required, [], {}), "cmr": cmr_figure(fragility),
                "risk-alpha": _alpha_figure(risk_alpha, {}, lambda name: "#000", 0.01),
                "risk-map": _map_figure(risk, 2e-4)}
     for name, figure in figures.items():
