@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from audit.cli import options
+from audit.cli import options, outputs
 from audit.engine.defaults import DEFAULT_DESIGN_DAMPING_PCT, DEFAULT_DESIGN_PERIODS, sizes_text
 
 
@@ -35,7 +35,7 @@ def add_parser(sub):
 
 def run(args) -> int:
     from audit.api import design_spectrum
-    csv = options.output_file(args.csv, "--csv")
+    csv = outputs.output_file(args.csv, "--csv")
     damping = options.damping_pct(args.damping)
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
     spectrum, columns = design_spectrum(
@@ -45,5 +45,5 @@ def run(args) -> int:
     if args.code == "ubc97":
         print(f"UBC 97: seismic zone 4, soil profile S_D, N_a = {args.na:g}, N_v = {args.nv:g} "
               f"(C_a = {spectrum.ca:.3f}, C_v = {spectrum.cv:.3f})", file=sys.stderr)
-    options.write_csv(columns, csv)  # a dict of columns: no pandas for this command
+    outputs.write_csv(columns, csv)  # a dict of columns: no pandas for this command
     return 0

@@ -1,4 +1,5 @@
-"""Parsing and checking of the options shared by several commands, and writing their outputs.
+"""Parsing and checking of the options shared by several commands (their outputs are written by
+:mod:`audit.cli.outputs`).
 
 Light on purpose: importing this module loads the project's error type and nothing else (numpy
 only when a grid is parsed), so ``--help`` and option errors cost no scientific import.
@@ -295,48 +296,6 @@ def add_excitation_options(parser):
     parser.add_argument("--pulse", choices=("cosine", "sine"), help="analytic one-cycle pulse")
     parser.add_argument("--amplitude", type=POSITIVE, metavar="G", help="pulse amplitude a_p [g]")
     parser.add_argument("--pulse-period", type=POSITIVE, metavar="S", help="pulse period T_p [s]")
-
-
-def output_file(path: str | None, option: str) -> Path | None:
-    """The file of an output option, checked before any work; None for standard output."""
-    if path in (None, "-"):
-        return None
-    from audit.files import check_output_file
-    return check_output_file(path, option)
-
-
-def figure_png(draw, height: float = 6.0) -> bytes:
-    """A PNG of the matplotlib figure drawn by ``draw(fig)``."""
-    from reports.figures import new_figure, png_bytes
-    fig = new_figure(10.0, height)
-    draw(fig)
-    return png_bytes(fig)
-
-
-def csv_text(table) -> tuple[str, int]:
-    """CSV text and row count of ``table``: a pandas DataFrame or, for commands that need no
-    pandas, a dict of equal-length numeric columns; numbers written with ``%.8g`` either way."""
-    if isinstance(table, dict):
-        columns = list(table.values())
-        text = "".join([",".join(table) + "\n"] + [",".join(f"{value:.8g}" for value in row) + "\n"
-                                                  for row in zip(*columns)])
-        return text, len(columns[0]) if columns else 0
-    return table.to_csv(index=False, float_format="%.8g"), len(table)
-
-
-def write_csv(table, path: Path | None, extra: dict[Path, bytes] | None = None) -> None:
-    """``table`` (see :func:`csv_text`) as CSV to ``path`` or standard output (None), with the
-    ``extra`` files, all or nothing."""
-    text, rows = csv_text(table)
-    files = dict(extra or {})
-    if path is not None:
-        files[path] = text.encode()
-    from audit.files import write_atomically
-    write_atomically(files)
-    if path is None:
-        sys.stdout.write(text)
-    else:
-        print(f"Wrote {rows} rows to {path}", file=sys.stderr)
 
 
 #: ``type`` of ``--risk-target``: a probability in 50 years, strictly between 0 and 1.

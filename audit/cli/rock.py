@@ -6,7 +6,7 @@ import json
 import math
 import sys
 
-from audit.cli import options
+from audit.cli import options, outputs
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_RESTITUTION
 from audit.errors import InputError
 
@@ -44,8 +44,8 @@ def add_parser(sub):
 
 def run(args) -> int:
     import audit.api as api
-    plot = options.output_file(args.plot, "--plot")
-    history = options.output_file(args.history, "--history")
+    plot = outputs.output_file(args.plot, "--plot")
+    history = outputs.output_file(args.history, "--history")
     if args.r is not None and args.restitution != DEFAULT_RESTITUTION:
         raise InputError("give the impact model once: --r or --restitution, not both")
     restitution = args.r if args.r is not None else args.restitution
@@ -69,14 +69,14 @@ def run(args) -> int:
     result = {**response.as_dict(),
               "block_m": args.block and f"{block.width_m:g}x{block.height_m:g}",
               "vertical": args.vertical}
-    outputs = {}
+    files = {}
     if history:
-        outputs[history] = response.history_csv()
+        files[history] = response.history_csv()
     if plot:
         from reports.figures import png_bytes
-        outputs[plot] = png_bytes(response.plot(height_in=3.9))
+        files[plot] = png_bytes(response.plot(height_in=3.9))
     from audit.files import write_atomically
-    write_atomically(outputs)  # all or nothing
+    write_atomically(files)  # all or nothing
     if history:
         print(f"History written to {args.history}", file=sys.stderr)
     if args.json:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from audit.cli import options
+from audit.cli import options, outputs
 from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_PERIODS, DEFAULT_RESPONSE_FREE_MOTION_S, alpha_text,
                                    sizes_text)
@@ -35,8 +35,8 @@ def add_parser(sub):
 
 def run(args) -> int:
     import audit.api as api
-    csv = options.output_file(args.csv, "--csv")
-    plot = options.output_file(args.plot, "--plot")
+    csv = outputs.output_file(args.csv, "--csv")
+    plot = outputs.output_file(args.plot, "--plot")
     if args.free_motion is None:
         args.free_motion = (DEFAULT_FREE_MOTION_S if args.kind == "rocking"
                             else DEFAULT_RESPONSE_FREE_MOTION_S)
@@ -54,7 +54,7 @@ def run(args) -> int:
                                      vertical=args.vertical, jobs=args.jobs, force=args.force)
         from reports.figures import draw_rocking_spectra as draw
     record_id = frame.attrs.get("record", "")
-    figure = ({plot: options.figure_png(lambda fig: draw(fig, frame, record_id))}
+    figure = ({plot: outputs.figure_png(lambda fig: draw(fig, frame, record_id))}
               if plot else {})
-    options.write_csv(frame, csv, figure)
+    outputs.write_csv(frame, csv, figure)
     return 0
