@@ -50,7 +50,7 @@ class CheckResult:
 
     def summary(self) -> str:
         """The paragraph and per-object table ``audit check`` prints."""
-        from audit.engine.check_summary import summary_text
+        from audit.engine.check_words import summary_text
         return summary_text(self.document)
 
     def files(self) -> dict[str, bytes]:

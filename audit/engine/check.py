@@ -136,7 +136,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     runtime : audit.engine.runtime.Runtime
         ``jobs``, ``scheduler`` and ``progress`` (a check keeps no parts to resume).
     """
-    from audit.engine.check_summary import object_answer, run_summary
+    from audit.engine.check_summary import (CheckFrame, ObjectFindings, object_answer,
+                                            run_summary)
     entries = [entry for entry in suite if entry.motion is not None]
     if not entries:
         raise InputError(f"records: no record of {suite.description} has a file", "records")
@@ -188,6 +189,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                    for proc in procedures] for b, obj in enumerate(objects)]
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
                          else {})
+    frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0])
     answers = []
     for b, obj in enumerate(objects):
         over = exact_over[:, :, b]  # (record, stripe)
@@ -204,9 +206,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             width = widths[b][len(TARGETS)]
             risk = object_risk(fitted, counted, curve, settings.risk_target,
                                float(width) if math.isfinite(width) else None)
-        answers.append(object_answer(obj, b, levels, site_im, im, fit, boot, over,
-                                     [e.id for e in entries], widths[b], judged[b],
-                                     entries[0], risk, guideline_p50.get(b, {})))
+        answers.append(object_answer(
+            ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
+                           guideline_p50.get(b, {})), frame))
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)

@@ -1,6 +1,6 @@
-"""The answer of ``audit check`` in words and files: per object the fields of ``check.json``,
-one sentence for a calculation note, the table of ``check.csv`` (one row per object ×
-procedure) and the summary printed on standard output.
+"""The answer of ``audit check`` as files: per object the fields of ``check.json`` (with its
+sentence, :mod:`audit.engine.check_words`) and the table of ``check.csv`` (one row per object ×
+procedure).
 
 Every probability is conditional on the site's intensity at the hazard level of the S_XS, S_X1
 given, except ``risk`` (per object: the annual rate of overturning from the site's hazard curve,
@@ -12,10 +12,12 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
+from audit.engine.check_words import sentence
 from audit.engine.csv_text import csv_bytes
 from audit.engine.schemas import GUIDE
 
@@ -23,8 +25,6 @@ from audit.engine.schemas import GUIDE
 HAZARD_LEVEL = ("the hazard level of the S_XS, S_X1 given (e.g. ASCE 41's BSE-1E or BSE-2E): "
                 "every verdict and probability is at the site's intensity at that level")
 CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
-#: Share of an annual rate from outside the stripes above which the sentence warns of it.
-EXTRAPOLATED_SHARE = 0.10
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 
@@ -32,14 +32,6 @@ CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 def _number(value) -> float | None:
     """A finite float, else None (JSON null)."""
     return float(value) if value is not None and math.isfinite(value) else None
-
-
-def im_words(im, site_im: float) -> str:
-    """The site's intensity in words, e.g. ``S_a(1 s) = S_X1 = 0.9 g``."""
-    if im.kind == "sa":
-        design = " = S_X1" if im.period_s == 1.0 else " of the design spectrum"
-        return f"S_a({im.period_s:g} s){design} = {site_im:.3g} g"
-    return f"PGA = 0.4 S_XS = {site_im:.3g} g"
 
 
 def _procedure_answer(proc, judgements, line, width, b: int, first_entry,
@@ -75,12 +67,59 @@ def _procedure_answer(proc, judgements, line, width, b: int, first_entry,
     return answer
 
 
-def object_answer(obj, b: int, levels, site_im: float, im, fit, boot, overturned, record_ids,
-                  widths, judged, first_entry, risk: dict | None = None,
-                  guideline_p50: dict | None = None) -> dict:
-    """The entry of ``check.json`` for one object (see the module): ``risk`` its entry of
-    :func:`~audit.engine.check_risk.object_risk`, ``guideline_p50`` P in 50 years at each
-    guideline's width by procedure name (both with a hazard curve)."""
+@dataclass(frozen=True)
+class CheckFrame:
+    """What every object of a check shares: the stripes [unit of ``im``], the site's intensity,
+    the intensity measure, the records' ids, and the first record (whose unmet requirements
+    say why a procedure judged none)."""
+
+    levels: np.ndarray
+    site_im: float
+    im: object
+    record_ids: list
+    first_entry: object
+
+
+@dataclass
+class ObjectFindings:
+    """What a check found for one object.
+
+    Attributes
+    ----------
+    obj : audit.engine.check_objects.CheckObject
+    index : int
+        Its column in the stripes' outcomes and the judgements.
+    fit : audit.engine.lognormal_fit.LognormalFit or None
+        Its exact fragility (None where no lognormal fits).
+    boot : audit.engine.fragility_bootstrap.BootstrapFits
+    overturned : numpy.ndarray
+        Exact outcomes, shaped (record, stripe).
+    widths : numpy.ndarray
+        Exact widths for P(overturn) ≤ 10 % and ≤ 50 % at the site [m], then for the risk target
+        with a hazard curve.
+    judged : list
+        Per procedure, (procedure, its judgements, its line on the stripes, its required width).
+    risk : dict or None
+        :func:`~audit.engine.check_risk.object_risk`, with a hazard curve.
+    guideline_p50 : dict
+        P in 50 years at each guideline's width, by procedure name (with a hazard curve).
+    """
+
+    obj: object
+    index: int
+    fit: object
+    boot: object
+    overturned: np.ndarray
+    widths: np.ndarray
+    judged: list
+    risk: dict | None = None
+    guideline_p50: dict = field(default_factory=dict)
+
+
+def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
+    """The entry of ``check.json`` for one object (see the module)."""
+    obj, b, fit, boot, overturned = found.obj, found.index, found.fit, found.boot, found.overturned
+    levels, site_im, im = frame.levels, frame.site_im, frame.im
     site = int(np.argmin(np.abs(levels - site_im)))
     if fit is not None:
         p_site = float(fit.probability(site_im))
@@ -98,67 +137,23 @@ def object_answer(obj, b: int, levels, site_im: float, im, fit, boot, overturned
                   "p_band_method": f"bootstrap over records, {len(boot.medians)} resamples, "
                                    f"{boot.confidence:.0%} percentile band",
                   "site_im_g": site_im,
-                  "required_width_m_10pct": _number(widths[0]),
-                  "required_width_m_50pct": _number(widths[1]),
-                  "records_overturning_at_site": [r for r, o in zip(record_ids,
+                  "required_width_m_10pct": _number(found.widths[0]),
+                  "required_width_m_50pct": _number(found.widths[1]),
+                  "records_overturning_at_site": [r for r, o in zip(frame.record_ids,
                                                                     overturned[:, site]) if o],
                   "stripes": {"im": levels.tolist(),
                               "overturned": overturned.sum(axis=0).tolist(),
                               "records": int(overturned.shape[0])},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
                                  "high": curve_high.tolist()}},
-        "procedures": [_procedure_answer(proc, mine, line, width, b, first_entry,
-                                         (guideline_p50 or {}).get(proc.name))
-                       for proc, mine, line, width in judged],
-        "risk": risk}
+        "procedures": [_procedure_answer(proc, mine, line, width, b, frame.first_entry,
+                                         found.guideline_p50.get(proc.name))
+                       for proc, mine, line, width in found.judged],
+        "risk": found.risk}
     answer["sentence"] = sentence(answer, im)
     return answer
 
 
-def _names(titles) -> str:
-    return titles[0] if len(titles) == 1 else ", ".join(titles[:-1]) + " and " + titles[-1]
-
-
-def sentence(answer: dict, im) -> str:
-    """One sentence for a calculation note: the guidelines' verdicts, the exact P(overturn) at
-    the site with its band, the exact widths."""
-    by = {v: [p["title"] for p in answer["procedures"] if p["verdict"] == v]
-          for v in ("passes", "fails", None)}
-    parts = []
-    if by["passes"]:
-        parts.append(f"{_names(by['passes'])} accept{'s' if len(by['passes']) == 1 else ''} it")
-    if by["fails"]:
-        parts.append(f"{_names(by['fails'])} reject{'s' if len(by['fails']) == 1 else ''} it")
-    if by[None]:
-        parts.append(f"{_names(by[None])} cannot judge it")
-    exact = answer["exact"]
-    low, high = exact["p_band"]
-    text = (f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m "
-            f"tall): " + "; ".join(parts) + f"; the exact P(overturn) at "
-            f"{im_words(im, exact['site_im_g'])} is {100 * exact['p_overturn_at_site']:.0f} % "
-            f"[{100 * low:.0f}–{100 * high:.0f} %]")
-    w10, w50 = exact["required_width_m_10pct"], exact["required_width_m_50pct"]
-    if w10 is None:
-        text += "; no width up to 0.95 × its height brings it to 10 % (restrain it)"
-    else:
-        text += (f"; it needs {w10:.2f} m of base width for 10 %"
-                 + (f" ({w50:.2f} m for 50 %)" if w50 is not None else ""))
-    risk = answer["risk"]
-    if risk is None:
-        return text + "."
-    width = risk["required_width_m"]
-    rate = risk["annual_rate"]
-    outside = risk["share_below_stripes"] + risk["share_above_stripes"]
-    return (text + f". From the site's hazard curve it overturns at {rate:.2g}/yr"
-            + (f" (once in {1 / rate:,.0f} years)" if rate > 0 else "")
-            + f", P = {100 * risk['p50']:.2g} % in 50 years "
-            f"({'within' if risk['meets_target'] else 'above'} the "
-            f"{100 * risk['target_p50']:g} % target"
-            + (f"; {width:.2f} m of base width meets it)" if width is not None else
-               "; no width up to 0.95 × its height meets it)")
-            + (f"; {100 * outside:.0f} % of that rate comes from intensities outside the stripes, "
-               "where the fitted fragility is extrapolated." if outside > EXTRAPOLATED_SHARE
-               else "."))
 
 
 def run_summary(suite, entries, im, levels, site_im, procedures, restitution, where) -> dict:
@@ -211,71 +206,6 @@ def check_data_files(run) -> dict[str, bytes]:
             CHECK_CSV: csv_bytes(check_table(run.objects), "%.6g")}
 
 
-def _compared(proc: dict) -> str:
-    if proc["verdict"] is None:
-        return proc["reason"] or ""
-    unit = proc["unit"]
-    demand = "≥ α" if proc["demand"] is None and unit == "deg" else (
-        "—" if proc["demand"] is None else f"{proc['demand']:.3g}")
-    if unit == "deg":
-        return f"θ {demand}{'°' if proc['demand'] is not None else ''} vs α {proc['capacity']:.3g}°"
-    return f"demand {demand} vs capacity {proc['capacity']:.3g} {unit}"
-
-
-def _percent(p: float | None) -> str:
-    return "—" if p is None else f"{100 * p:.2g} %"
-
-
-def _intensity(name: str):
-    from audit.engine.intensity import IntensityMeasure
-    return IntensityMeasure.parse(name)
-
-
-def summary_text(document: dict) -> str:
-    """The summary on standard output: one paragraph, then per object its sentence and table."""
-    site = document["site"]
-    lines = [f"Site S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g, at the hazard level "
-             f"these values are for (as given); {len(document['records'])} records of "
-             f"{document['records_source'].split(':')[0]}, each scaled "
-             f"to {im_words(_intensity(document['im']), document['site_im'])} and to "
-             f"{len(document['levels'])} stripes {min(document['levels']):.3g}–"
-             f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility.", ""]
-    hazard = document.get("hazard")
-    if hazard:
-        lines[-1:-1] = [f"Risk from the hazard curve {hazard['source']}: target P ≤ "
-                        f"{100 * hazard['target_p50']:g} % of overturning in 50 years; "
-                        "'P in 50 yr' is of the object at the width each row requires."]
-    for obj in document["objects"]:
-        lines += [obj["sentence"], ""]
-        rows = [("procedure", "verdict", "compares", "width needed")
-                + (("P in 50 yr",) if hazard else ())]
-        for proc in obj["procedures"]:
-            width = proc["required_width_m"]
-            rows.append((proc["title"], proc["verdict"] or "—",
-                         _compared(proc) if proc["verdict"] else "cannot judge",
-                         f"{width:.2f} m" if width is not None else "—")
-                        + ((_percent(proc["risk_p50"]),) if hazard else ()))
-        exact = obj["exact"]
-        for target in ("10", "50"):
-            width = exact[f"required_width_m_{target}pct"]
-            rows.append((f"exact, P(overturn) ≤ {target} %", "", "",
-                         f"{width:.2f} m" if width is not None else "none ≤ 0.95 h")
-                        + (("",) if hazard else ()))
-        if hazard:
-            width = obj["risk"]["required_width_m"]
-            rows.append((f"exact, P in 50 years ≤ {100 * hazard['target_p50']:g} %", "", "",
-                         f"{width:.2f} m" if width is not None else "none ≤ 0.95 h",
-                         f"≤ {_percent(hazard['target_p50'])}" if width is not None else ""))
-        sizes = [max(len(row[k]) for row in rows) for k in range(len(rows[0]))]
-        lines += ["  " + "  ".join(cell.ljust(size) for cell, size in zip(row, sizes)).rstrip()
-                  for row in rows]
-        lines += [f"  (object width {obj['width_m']:.3g} m; exact fragility: median "
-                  + (f"{exact['median_g']:.3g}" if exact["median_g"] else "—")
-                  + f" {exact['im_unit']}, β = "
-                  + (f"{exact['beta']:.2f}" if exact["beta"] else "—") + ")", ""]
-    return "\n".join(lines).rstrip() + "\n"
-
-
-__all__ = ["object_answer", "run_summary", "sentence", "check_table", "check_data_files",
-           "summary_text", "im_words", "HAZARD_LEVEL", "CHECK_JSON", "CHECK_CSV", "CHECK_HTML",
+__all__ = ["object_answer", "ObjectFindings", "CheckFrame", "run_summary", "check_table",
+           "check_data_files", "HAZARD_LEVEL", "CHECK_JSON", "CHECK_CSV", "CHECK_HTML",
            "CSV_COLUMNS"]

@@ -146,10 +146,10 @@ def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> Au
 def compiles_first() -> bool:
     """Whether the rocking solver and the oscillator kernels the audit runs lack cached machine
     code, so that the first record waits for numba to compile them (once after installing)."""
-    from audit.physics import oscillator
+    from audit.physics.peaks_between_samples import spectrum_peaks
     from audit.physics.rocking import kernel
     from audit.physics.tiers import machine_code_cached
-    return not (machine_code_cached(kernel._spectrum) and machine_code_cached(oscillator._peaks))
+    return not (machine_code_cached(kernel._spectrum) and machine_code_cached(spectrum_peaks))
 
 
 __all__ = ["compute_suite", "write_suite", "ComputedSuite", "run_audit", "AuditRun",
