@@ -112,8 +112,8 @@ def test_prefetched_spectra_are_the_record_spectra_computed_once(monkeypatch):
     from concurrent.futures import ThreadPoolExecutor
 
     import procedures.context
-    from audit.physics.oscillator import response_spectra
     from procedures.base import SPECTRUM_PERIODS_S
+    response_spectra = procedures.context.response_spectra  # the kernel, called directly
     motion = one_pulse("sine", 0.5, 0.8)
     direct = response_spectra(motion, SPECTRUM_PERIODS_S, [0.05], 2.0)
     calls = []
