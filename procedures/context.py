@@ -6,6 +6,8 @@ between, which is what the root scan of :func:`procedures.rotation_map.fixed_poi
 
 from __future__ import annotations
 
+from concurrent.futures import Future
+
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.response_spectra import response_spectra
 from procedures.base import SPECTRUM_PERIODS_S
@@ -42,11 +44,22 @@ class RecordContext:
         other._spectra = self._spectra
         return other
 
+    def prefetch(self, damping: float, pool) -> None:
+        """Start computing the full spectra at damping β [-] on ``pool`` (an executor), unless
+        cached: :meth:`true_spectra` waits for them when first asked, so the kernel runs
+        beside whatever the caller does meanwhile."""
+        key = round(float(damping), 12)
+        if key not in self._spectra:
+            self._spectra[key] = (pool.submit(response_spectra, self._motion, SPECTRUM_PERIODS_S,
+                                              [key], self.free_motion_s, jobs=self.jobs), False)
+
     def true_spectra(self, damping: float, displacement_only: bool = False):
         """True response spectra of the record at damping β [-] on :data:`SPECTRUM_PERIODS_S`;
         Sd alone (Sv, Sa NaN) when ``displacement_only`` and no full spectra are cached."""
         key = round(float(damping), 12)
         cached = self._spectra.get(key)
+        if cached is not None and isinstance(cached[0], Future):  # prefetched
+            cached = self._spectra[key] = (cached[0].result(), cached[1])
         if cached is None or (cached[1] and not displacement_only):
             self._spectra[key] = (response_spectra(
                 self._motion, SPECTRUM_PERIODS_S, [key], self.free_motion_s, jobs=self.jobs,

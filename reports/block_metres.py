@@ -7,6 +7,7 @@ full width is 2R sin α and its full height 2R cos α.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -22,12 +23,18 @@ def describe_block(alpha_deg: float, size_s: float) -> str:
     return f"a {2 * block.half_width:.2f} m × {2 * block.half_height:.2f} m block"
 
 
-def block_size_m(alpha_deg: float, size_s: float) -> list[float]:
-    """[full width, full height] [m] of the block of slenderness α and size 2π/p, to the
+def block_size_m(alpha_deg: float, size_s: float) -> tuple[float, float]:
+    """(full width, full height) [m] of the block of slenderness α and size 2π/p, to the
     centimetre: a map's hover data per cell (:func:`block_hover`), two short numbers where
     :func:`describe_block` would be a string, so that a page of many maps stays light."""
-    block = RigidBlock.from_size(float(size_s), math.radians(float(alpha_deg)))
-    return [round(2 * block.half_width, 2), round(2 * block.half_height, 2)]
+    return _block_size_m(float(alpha_deg), float(size_s))
+
+
+@functools.lru_cache(maxsize=4096)
+def _block_size_m(alpha_deg: float, size_s: float) -> tuple[float, float]:
+    # the page's maps ask for the same few hundred cells of the grid tens of thousands of times
+    block = RigidBlock.from_size(size_s, math.radians(alpha_deg))
+    return round(2 * block.half_width, 2), round(2 * block.half_height, 2)
 
 
 def block_hover(first: int) -> str:

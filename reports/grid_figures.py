@@ -119,7 +119,9 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
         drawn.append(sizes)
         title = title_of(key)
         data.append({"type": "heatmap", "x": sizes, "y": alphas, "z": z,
-                     "customdata": [[block_size_m(a, s) for s in sizes] for a in alphas],
+                     # one float array: its numbers are rounded for the page all at once
+                     "customdata": np.array([[block_size_m(a, s) for s in sizes]
+                                             for a in alphas], dtype=float),
                      "colorscale": colourscale, "zmin": zmin, "zmax": zmax,
                      "showscale": bool(colourbar) and n == 1, "ygap": 1,
                      "colorbar": {"title": {"text": colourbar or ""}, "len": 1, "x": 1.01,

@@ -106,6 +106,31 @@ def test_no_uplift_below_the_uplift_acceleration():
     assert list(estimate.outcome) == ["no-uplift"] * 2 and np.all(estimate.theta == 0.0)
 
 
+def test_prefetched_spectra_are_the_record_spectra_computed_once(monkeypatch):
+    """Spectra started on a pool ahead of use (as the audit does for Figures 5.x) are the
+    record's spectra computed directly, and a later displacement-only read is served by them."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    import procedures.context
+    from procedures.base import SPECTRUM_PERIODS_S
+    response_spectra = procedures.context.response_spectra  # the kernel, called directly
+    motion = one_pulse("sine", 0.5, 0.8)
+    direct = response_spectra(motion, SPECTRUM_PERIODS_S, [0.05], 2.0)
+    calls = []
+    monkeypatch.setattr(procedures.context, "response_spectra",
+                        lambda *args, **kwargs: calls.append(kwargs) or response_spectra(
+                            *args, **kwargs))
+    context = RecordContext(RecordEntry("pulse", motion), 2.0, jobs=2)
+    with ThreadPoolExecutor(1) as pool:
+        context.prefetch(0.05, pool)
+        spectra = context.true_spectra(0.05)
+    for name in ("sd", "sv", "sa"):
+        np.testing.assert_array_equal(getattr(spectra, name), getattr(direct, name))
+    sd = context.true_displacement(0.05)(SPECTRUM_PERIODS_S)
+    np.testing.assert_array_equal(sd, direct.sd[0])
+    assert len(calls) == 1
+
+
 def test_registry():
     found = available_procedures()
     assert list(found)[:2] == ["priestley1978", "fema356"]

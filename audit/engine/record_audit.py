@@ -126,15 +126,14 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     spectra, unauditable = [], []
     exact_job = None
     if motion is not None:
-        for damping in FIGURE_5_DAMPING:
-            spectra.append(context.true_spectra(damping).to_frame()
-                           .assign(record=entry.id, procedure="", alpha_deg=np.nan)
-                           [SPECTRA_COLUMNS])
-        # the exact solver releases the GIL: it runs beside the procedures, whose fixed-point
-        # iterations hold it and would leave the second core idle
-        pool = ThreadPoolExecutor(1)
+        # the exact solver and the oscillator kernels of the figures' spectra release the GIL:
+        # they run beside the procedures, whose fixed-point iterations hold it and would leave
+        # the second core idle
+        pool = ThreadPoolExecutor(2)
         exact_job = pool.submit(_exact_response, motion, settings)
-        pool.shutdown(wait=False)  # its one thread ends with the job; an interrupt waits for none
+        for damping in FIGURE_5_DAMPING:
+            context.prefetch(damping, pool)
+        pool.shutdown(wait=False)  # its threads end with the jobs; an interrupt waits for none
     evaluations = []  # (procedure name, α index, Evaluation)
     for procedure in procedures:
         reason = procedure.unmet_requirements(entry)
@@ -156,6 +155,10 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                     "damping_pct": 100.0 * evaluation.estimate.damping,
                     "period_s": STORED_SPECTRUM_PERIODS_S, "sd_m": evaluation.spectrum_sd_m,
                     "sv_m_s": np.nan, "sa_g": np.nan}))
+    if motion is not None:  # the figures' spectra lead the record's rows, as they always have
+        spectra[:0] = [context.true_spectra(damping).to_frame()
+                       .assign(record=entry.id, procedure="", alpha_deg=np.nan)[SPECTRA_COLUMNS]
+                       for damping in FIGURE_5_DAMPING]
     exact, fragile, others = (exact_job.result() if exact_job is not None
                               else (None, None, []))
     results, estimates_only, checks = [], [], []

@@ -107,9 +107,15 @@ class FEMA356Spectrum(DesignSpectrum):
         period = np.asarray(period_s, dtype=float)
         b_s, b_1 = fema356_damping_coefficients(damping)
         t_0, t_s = self.corner_periods(damping)
+        # each branch computed only where it holds (the same operations per element), not all
+        # three over every period: the fixed-point scan asks for ~10⁶ periods at once
+        short, plateau = period < t_0, period <= t_s
+        sa = np.full(period.shape, self.sxs_g / b_s)
+        sa[short] = self.sxs_g * ((5.0 / b_s - 2.0) * period[short] / t_s + 0.4)
+        long = ~plateau  # T > T_S, and a NaN period (whose Sa is NaN)
         with np.errstate(divide="ignore"):
-            return np.where(period < t_0, self.sxs_g * ((5.0 / b_s - 2.0) * period / t_s + 0.4),
-                            np.where(period <= t_s, self.sxs_g / b_s, self.sx1_g / (b_1 * period)))
+            sa[long] = self.sx1_g / (b_1 * period[long])
+        return sa
 
 
 @dataclass(frozen=True)
