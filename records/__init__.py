@@ -7,7 +7,8 @@ from records.motion import GroundMotion, Pulse, pulse_acceleration
 from records.p695 import SUITES as P695_SUITES
 from records.p695 import p695_suite, shipped_seed_suite
 from records.pulses import one_pulse
-from records.readers import read_at2, read_columns
+from records.at2_reader import read_at2
+from records.column_reader import read_columns
 from records.sources import (ENV_VARIABLE, PULSE_SUITE, load_path, load_records, pulse_suite,
                              resolve_motion)
 from records.sources import load_records as load  # the public name, for notebooks

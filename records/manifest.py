@@ -3,7 +3,7 @@
 One ``[[record]]`` per record: ``id`` (a catalogue id gets the Table 5.1 facts and the FEMA 356
 site of Table 3.1), ``file`` relative to the manifest, ``format`` (``peer-at2`` or
 ``columns``), for text files ``column`` (default 2 after a time column, else 1: see
-:func:`records.readers.read_columns`), ``dt`` [s] and ``units`` (default: as the file states
+:func:`records.column_reader.read_columns`), ``dt`` [s] and ``units`` (default: as the file states
 them), a ``component`` in words, site fields, or ``missing = true`` for a record without a
 file. A record's vertical component,
 where it has one: ``vertical_file`` (same format, dt and units as ``file``; ``vertical_column``
@@ -22,7 +22,9 @@ from records.catalogue import SEED_CATALOGUE
 from records.motion import GroundMotion
 from records.sites import NTC2018_SOILS, NTC2018_TOPOGRAPHIES
 from records.suite import SITE_FIELDS, RecordEntry, RecordSuite, site_of
-from records.readers import MAX_DT_S, MIN_DT_S, UNIT_FACTORS, read_at2, read_columns
+from records.at2_reader import read_at2
+from records.column_reader import read_columns
+from records.readers import MAX_DT_S, MIN_DT_S, UNIT_FACTORS
 
 #: Name of the built-in pulse-idealised suite.
 FORMATS = ("peer-at2", "columns")

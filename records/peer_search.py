@@ -22,7 +22,7 @@ from pathlib import Path
 
 from audit.errors import InputError
 from records.manifest import collect
-from records.readers import read_at2
+from records.at2_reader import read_at2
 from records.suite import RecordEntry, RecordSuite
 
 #: Name of the file PEER writes beside the records of a search.

@@ -20,7 +20,8 @@ from records.catalogue import DEFAULT_PULSE_PERIOD_S, SEED_CATALOGUE
 from records.manifest import collect, load_manifest
 from records.peer_search import search_folder, search_results_file
 from records.pulses import one_pulse
-from records.readers import read_at2, read_columns
+from records.at2_reader import read_at2
+from records.column_reader import read_columns
 from records.suite import RecordEntry, RecordSuite, site_of
 
 ENV_VARIABLE = "ROCKING_AUDIT_RECORDS"
@@ -60,7 +61,7 @@ def load_path(path: str | Path, skip_bad: bool = False, dt: float | None = None,
     an audit writes name the records wherever they are read from.
 
     ``dt`` [s] and ``units`` ("g", "m/s2", "cm/s2") are those of a text record file that
-    does not state them (:func:`records.readers.read_columns`); any other source states its
+    does not state them (:func:`records.column_reader.read_columns`); any other source states its
     own, and giving them for one is an error.
 
     A folder with a PEER ``_SearchResults.csv`` is read as that search's download
