@@ -115,14 +115,9 @@ class MarginsSettings:
                              f"{value['site_level']!r}", "site_level")
         hazard = value["hazard"]
         if hazard is not None:  # read and checked before any work
-            from audit.engine.risk import annual_rate_for, check_same_im, hazard_im
-            from records.hazard import HazardCurve, read_hazard
-            if not isinstance(hazard, HazardCurve):
-                hazard = read_hazard(hazard, value["site_location"])
-            if "im" in values:
-                check_same_im(hazard, im if isinstance(im, str) else im.name, "im")
-            im = hazard_im(hazard)
-            annual_rate_for(value["risk_target"])
+            from audit.engine.risk import site_hazard
+            hazard, im = site_hazard(hazard, value["site_location"], value["risk_target"],
+                                     im if "im" in values else None)
         return cls(
             im=im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im),
             stripes=stripes,

@@ -189,6 +189,19 @@ def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
                          f"{theirs.name} for both", "hazard", what)
 
 
+def site_hazard(hazard, site_location, risk_target: float, im=None):
+    """(curve, intensity measure) of a settings object's ``hazard`` field: the curve read from
+    its file (at ``site_location``) unless given, ``im`` (when the user gave one) held to the
+    curve's IMT, which sets the intensity measure, and the risk target checked."""
+    from records.hazard import HazardCurve, read_hazard
+    if not isinstance(hazard, HazardCurve):
+        hazard = read_hazard(hazard, site_location)
+    if im is not None:
+        check_same_im(hazard, im if isinstance(im, str) else im.name, "im")
+    annual_rate_for(risk_target)
+    return hazard, hazard_im(hazard)
+
+
 def risk_integral(fragility, curve) -> OverturningRisk:
     """λ_ov = ∫ P(overturn | im) |dλ/d im| d im of a fragility and a hazard curve (see the
     module for the interpolation and what the curve's ends count).
@@ -267,7 +280,7 @@ def _central_range(x, density, tail, top, total) -> tuple:
     return tuple(out)
 
 
-__all__ = ["risk_integral", "OverturningRisk", "LognormalFragility", "StripeFragility",
+__all__ = ["risk_integral", "site_hazard", "OverturningRisk", "LognormalFragility", "StripeFragility",
            "block_fragilities",
            "annual_rate_for", "hazard_im", "check_same_im", "POINTS_PER_INTERVAL",
            "RANGE_SHARE", "YEARS"]
