@@ -5,6 +5,7 @@ loaded; the commands' own output goes to a file so it cannot be mistaken for the
 """
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -63,3 +64,18 @@ def test_design_spectrum_csv_without_pandas(tmp_path):
     period, damping, sa_g, _ = map(float, lines[1].split(","))
     assert (period, damping, sa_g) == (0.2, 5.0, 1.59)
     assert float(lines[2].split(",")[2]) == pytest.approx(0.50 / 2.0)
+
+
+def test_spectrum_csv_loads_no_figures_and_no_procedures(tmp_path):
+    """A CSV of rocking spectra needs pandas (the table) but neither matplotlib (no --plot) nor
+    the procedures' registry (scipy.optimize): half of the command's start-up. Independent
+    fact (SPEC §2): a block of p = 2 rad/s (2π/p = π s), α = 15° rocks and survives a 0.30 g,
+    2 s cosine pulse (a_p < 0.310 g)."""
+    modules, _ = loaded_modules(tmp_path, "spectrum", "--pulse", "cosine", "--amplitude", "0.3",
+                                "--pulse-period", "2", "--alpha", "15", "--sizes", str(math.pi),
+                                "--csv", "spectrum.csv")
+    loaded = [m for m in modules if m.startswith(("matplotlib", "scipy.optimize", "procedures"))]
+    assert loaded == []
+    header, row = (tmp_path / "spectrum.csv").read_text().splitlines()[:2]
+    values = dict(zip(header.split(","), row.split(",")))
+    assert values["overturned"] == "False" and 0.0 < float(values["theta_ratio"]) < 1.0

@@ -7,9 +7,12 @@ from __future__ import annotations
 
 import math
 from numbers import Real
+from typing import TYPE_CHECKING
 
 from audit.errors import InputError
-from procedures.base import Procedure
+
+if TYPE_CHECKING:  # loaded where procedures are asked for: a spectrum needs no scipy.optimize
+    from procedures.base import Procedure
 
 #: Coefficient of restitution a plug-in's damping is probed with: Eq. 4.8 at α = 15° [-].
 PROBE_R = (1.0 - 1.5 * math.sin(math.radians(15.0)) ** 2) ** 2
@@ -20,6 +23,7 @@ def procedures_of(procedures) -> list[Procedure]:
     a plug-in (an instance or class given here) is checked: a name of its own, and a damping
     ratio from :meth:`~procedures.base.Procedure.damping`."""
     from procedures import get_procedures
+    from procedures.base import Procedure
     from procedures.registry import available_procedures
     if isinstance(procedures, (str, Procedure, type)):
         procedures = [procedures]

@@ -46,15 +46,17 @@ def run(args) -> int:
         frame = api.response_spectra(options.motion(args), periods_s=periods,
                                      damping_pct=100.0 * damping, free_motion_s=args.free_motion,
                                      force=args.force)
-        from reports.figures import draw_response_spectra as draw
     else:
         alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args.sizes)
         frame = api.rocking_spectrum(options.motion(args), sizes_s=sizes, alpha_deg=alphas,
                                      restitution=args.restitution, free_motion_s=args.free_motion,
                                      vertical=args.vertical, jobs=args.jobs, force=args.force)
-        from reports.figures import draw_rocking_spectra as draw
-    record_id = frame.attrs.get("record", "")
-    figure = ({plot: outputs.figure_png(lambda fig: draw(fig, frame, record_id))}
-              if plot else {})
+    figure = {}
+    if plot:  # matplotlib is loaded only for a figure
+        from reports import figures
+        draw = (figures.draw_response_spectra if args.kind == "response"
+                else figures.draw_rocking_spectra)
+        record_id = frame.attrs.get("record", "")
+        figure = {plot: outputs.figure_png(lambda fig: draw(fig, frame, record_id))}
     outputs.write_csv(frame, csv, figure)
     return 0
