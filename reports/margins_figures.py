@@ -14,7 +14,7 @@ from scipy.special import ndtr
 from reports.block_metres import (METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m,
                                    describe_block)
 from reports.palette import _EXTRA_COLOURS
-from reports.plots import _axis, _layout, cell_span, padded_span, required_alpha_layout
+from reports.plots import _axis, _layout, alpha_size_map, padded_span, required_alpha_layout
 
 #: Tick labels of a logarithmic intensity axis.
 LOG_TICKS = (0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 1, 2, 3, 5, 10, 20)
@@ -75,13 +75,7 @@ def cmr_figure(fragility: pd.DataFrame) -> dict:
                             for a, row in zip(alphas, bounds.to_numpy(dtype=object))],
              "hovertemplate": f"α = %{{y:~g}}°, 2π/p = %{{x:~g}} s: {block_hover(0)}<br>"
                               "CMR = %{z:.3g}%{customdata[2]}<extra></extra>"}]
-    layout = _layout(120 + 50 * max(len(alphas), 1))
-    layout["margin"]["t"] = 20
-    layout["xaxis"] = _axis("block size 2π/p [s]")
-    layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
-    figure = {"data": data, "layout": layout}
-    add_metres_axis(figure, cell_span(sizes), room_px=METRES_ROOM_PX)
-    return figure
+    return alpha_size_map(data, alphas, sizes)
 
 
 def fragility_figure(block, stripes, capacity, names, titles, summary) -> dict:

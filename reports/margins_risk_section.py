@@ -17,7 +17,7 @@ from audit.engine.risk import block_fragilities, risk_integral
 from records.hazard import HazardCurve
 from reports.html_parts import html_table, plot_div
 from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m
-from reports.plots import _axis, _layout, cell_span, padded_span, required_alpha_layout
+from reports.plots import alpha_size_map, padded_span, required_alpha_layout
 from reports.risk_figure import risk_figure
 
 _EXACT_RISK = "exact@risk"
@@ -78,13 +78,7 @@ def _map_figure(risk: pd.DataFrame, target_rate: float) -> dict:
                           "tickvals": ticks, "ticktext": [f"1e{t}" for t in ticks]},
              "hovertemplate": f"α = %{{y:~g}}°, 2π/p = %{{x:~g}} s: {block_hover(1)}<br>"
                               "λ_ov = %{customdata[0]:.3g}/yr<extra></extra>"}]
-    layout = _layout(120 + 50 * max(len(alphas), 1))
-    layout["margin"]["t"] = 20
-    layout["xaxis"] = _axis("block size 2π/p [s]")
-    layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
-    figure = {"data": data, "layout": layout}
-    add_metres_axis(figure, cell_span(sizes), room_px=METRES_ROOM_PX)
-    return figure
+    return alpha_size_map(data, alphas, sizes)
 
 
 def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -> list[str]:

@@ -17,6 +17,8 @@ import numpy as np
 import orjson
 import pandas as pd
 
+from reports.block_metres import METRES_ROOM_PX, add_metres_axis
+
 
 #: Significant digits of the numbers embedded in the page.
 SIGNIFICANT_DIGITS = 4
@@ -141,6 +143,18 @@ def cell_span(centres) -> list[float]:
     if x.size == 1:
         return [float(x[0]) - 0.5, float(x[0]) + 0.5]
     return [float(x[0] - (x[1] - x[0]) / 2), float(x[-1] + (x[-1] - x[-2]) / 2)]
+
+
+def alpha_size_map(data: list, alphas, sizes) -> dict:
+    """A heatmap figure over α (rows, one tick per α) and 2π/p (columns) of ``data``, with the
+    blocks' diagonal in metres on a top axis."""
+    layout = _layout(120 + 50 * max(len(alphas), 1))
+    layout["margin"]["t"] = 20
+    layout["xaxis"] = _axis("block size 2π/p [s]")
+    layout["yaxis"] = _axis("α [°]", tickvals=alphas, ticktext=[f"{a:g}°" for a in alphas])
+    figure = {"data": data, "layout": layout}
+    add_metres_axis(figure, cell_span(sizes), room_px=METRES_ROOM_PX)
+    return figure
 
 
 def padded_span(values, fraction: float = 0.03) -> list[float]:
