@@ -68,11 +68,13 @@ def _rounded_scalar(value: float):
 
 def _json_numbers(values: np.ndarray):
     """Rounded floats as JSON-ready nested lists: an int where integral (a lighter page), None
-    for NaN."""
-    if values.ndim > 1:
-        return [_json_numbers(row) for row in values]
-    return [None if v != v else int(v) if v.is_integer() and abs(v) < 1e15 else v
-            for v in values.tolist()]
+    for NaN; sorted by masks, not value by value."""
+    out = values.astype(object)
+    with np.errstate(invalid="ignore"):
+        whole = (values == np.trunc(values)) & (np.abs(values) < 1e15)
+    out[whole] = values[whole].astype(np.int64)
+    out[np.isnan(values)] = None
+    return out.tolist()
 
 
 def to_json(spec) -> str:
