@@ -20,7 +20,7 @@ import numpy as np
 from audit import G
 from audit.physics.damping import housner_period
 from procedures.rotation_map import fixed_points, map_scale, ratios_text, rotation_map
-from procedures.tabulated import TabulatedDisplacement
+from procedures.tabulated import TabulatedDisplacement, TabulatedOnDemand
 
 #: Initial guess θ₀/α of the iteration: a small rotation, so the iteration climbs to the
 #: smallest non-trivial fixed point (θ = 0 is always one, and unstable when the block uplifts).
@@ -152,6 +152,14 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
                                  np.zeros(p.size, dtype=np.int64), p,
                                  map_scale(p, alpha_rad, g), initial_ratio, tolerance,
                                  max_iterations)
+    if isinstance(displacement, TabulatedOnDemand):
+        from procedures import iteration_kernels as kernels  # compiled: numba loads only here
+        return _outcomes(*kernels.iterate_on_demand(
+            displacement.period_s, displacement.sd_m, displacement.kernel_arguments(),
+            np.ascontiguousarray(p),
+            np.ascontiguousarray(map_scale(p, alpha_rad, g), dtype=float), float(initial_ratio),
+            float(tolerance), CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO,
+            MAX_CYCLE_LENGTH, int(max_iterations)), initial_ratio, max_iterations)
     from procedures.iteration_kernels import advance  # compiled: numba loads only here
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
@@ -236,6 +244,12 @@ def iterate_tabulated(period_s, sd_m, rows, p, scale,
         np.ascontiguousarray(rows, dtype=np.int64), np.ascontiguousarray(p, dtype=float),
         np.ascontiguousarray(scale, dtype=float), float(initial_ratio), float(tolerance),
         CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH, int(max_iterations))
+    return _outcomes(code, iterations, length, recent, initial_ratio, max_iterations)
+
+
+def _outcomes(code, iterations, length, recent, initial_ratio: float, max_iterations: int):
+    """What :func:`iterate_rotation` returns, from the compiled iteration's codes."""
+    from procedures import iteration_kernels as kernels
     outcome = np.full(code.shape, NOT_CONVERGED, dtype=object)
     outcome[code == kernels.CONVERGED] = CONVERGED
     outcome[code == kernels.OVERTURNED] = OVERTURN

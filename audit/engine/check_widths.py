@@ -29,7 +29,7 @@ from scipy.stats import norm
 from audit.engine.lognormal_fit import lognormal_fits
 from audit.engine.scheduler import computed_parts
 from audit.physics.rocking import rocking_blocks
-from procedures.overturning import predicts_overturning
+from procedures.overturning import overturning_predictions
 
 #: Widths scanned, as fractions of the height: the first and last, and how many in between.
 SCAN_FRACTIONS = (0.03, 0.95)
@@ -195,9 +195,11 @@ def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g:
     ``entry`` (a record scaled to the site, ``context`` its spectra)."""
     block = obj.with_width(width_m)
     alpha = math.radians(block.alpha_deg)
-    return bool(predicts_overturning(procedure.evaluate(
-        entry, np.array([2.0 * math.pi / block.size_s]), alpha, float(restitution.r(alpha)),
-        context, g))[0])
+    # the verdict alone: the iteration reads the record's spectrum at this α's damping only
+    # where it goes (a new damping at every width tried)
+    return bool(overturning_predictions(
+        procedure, [(entry, context.on_demand())], np.array([2.0 * math.pi / block.size_s]),
+        [(alpha, np.array([0]), float(restitution.r(alpha)))], g)[0, 0])
 
 
 def guideline_bracket(overturns, obj, object_overturns: bool) -> tuple[float, float]:

@@ -226,4 +226,16 @@ def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacemen
         out[i, 2] = math.nan if displacement_only else sa
 
 
-__all__ = ["spectrum_peaks"]
+@numba.njit(cache=True, nogil=True)
+def fill_displacement(acc, dt, coeffs, omega, damping, sd, known, j):
+    """sd[j] = max|u| of oscillator j (:func:`spectrum_peaks` with ``displacement_only``, on
+    that oscillator alone: the same number as among all of them), unless ``known[j]``."""
+    if not known[j]:
+        out = np.empty((1, 3))
+        spectrum_peaks(acc, dt, coeffs[j:j + 1], omega[j:j + 1], damping[j:j + 1], True, True,
+                       out)
+        sd[j] = out[0, 0]
+        known[j] = True
+
+
+__all__ = ["fill_displacement", "spectrum_peaks"]
