@@ -18,7 +18,7 @@ from audit.physics.peaks_between_samples import fill_displacement
 @numba.njit(cache=True, nogil=True)
 def may_repeat(window: np.ndarray, cycle_tolerance: float, max_length: int) -> bool:
     """Whether the iterates ``window`` (newest last) may hold a settled cycle (see
-    :func:`procedures.iteration._cycle_length`).
+    :func:`procedures.iteration_cycles.cycle_length`).
 
     A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
     L before it, for some L ≤ ``max_length``, to ``cycle_tolerance`` of the whole window's
@@ -99,7 +99,8 @@ def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
 @numba.njit(cache=True, nogil=True)
 def cycle_length(window: np.ndarray, cycle_tolerance: float, subcycle_tolerance: float,
                  max_length: int) -> int:
-    """:func:`procedures.iteration._cycle_length` of one window of iterates (newest last)."""
+    """:func:`procedures.iteration_cycles.cycle_length` of one window of iterates (newest
+    last)."""
     width = window.size
     length = 0
     for size in range(2, max_length + 1):
