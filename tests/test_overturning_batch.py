@@ -133,6 +133,36 @@ def test_batched_predictions_are_the_evaluations_case_by_case(pacoima_cases, pac
             assert 0 < batch.sum() < batch.size
 
 
+def test_evaluation_for_a_verdict_is_the_evaluation_without_its_report(pacoima_cases,
+                                                                       pacoima_on_demand):
+    """``evaluate_for_verdict`` on spectra read on demand: every field of ``evaluate``'s
+    estimate and checks but the fixed points (empty) and the stored spectrum (None)."""
+    p = 2.0 * np.pi / np.linspace(0.5, 9.0, 12)
+    alpha = math.radians(11.0)
+    r = float(coefficient_of_restitution(alpha))
+    for procedure in get_procedures("all"):
+        for (entry, context), (_, on_demand) in zip(pacoima_cases, pacoima_on_demand):
+            if procedure.unmet_requirements(entry) is not None:
+                continue
+            full = procedure.evaluate(entry, p, alpha, r, context, 9.81)
+            verdict = procedure.evaluate_for_verdict(entry, p, alpha, r, on_demand, 9.81)
+            assert len(verdict.checks) == len(full.checks)
+            for got, expected in zip(verdict.checks, full.checks):
+                np.testing.assert_array_equal(got.passes, expected.passes)
+                np.testing.assert_array_equal(got.demand_m, expected.demand_m)
+            if full.estimate is None:
+                assert verdict.estimate is None
+                continue
+            for field in ("theta", "period_s", "iterations", "outcome", "detail", "cycle"):
+                np.testing.assert_array_equal(getattr(verdict.estimate, field),
+                                              getattr(full.estimate, field),
+                                              err_msg=f"{procedure.name} {field}")
+            if procedure.name == "priestley1978":
+                assert verdict.spectrum_sd_m is None
+                assert not any(verdict.estimate.fixed_points)
+                assert any(full.estimate.fixed_points)
+
+
 def test_compiled_iteration_on_a_record_cycles_and_chaos_included(pacoima_cases,
                                                                   pacoima_on_demand):
     """Pacoima Dam as recorded, α = 10°: fixed points, overturning, a 2-cycle (2π/p = 6 s,
