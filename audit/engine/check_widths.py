@@ -21,6 +21,7 @@ depends on α (Priestley's β(r(α))) reads a new spectrum of the record.
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -63,14 +64,22 @@ class FamilySettings:
 
 def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
     """Exact overturning of the blocks of ``settings`` under one record scaled to each stripe,
-    shaped (stripe, block)."""
+    shaped (stripe, block). The stripes share ``settings.jobs`` threads as the blocks of each
+    do: a bisection solves one or two blocks, which alone would leave all threads but one
+    idle (every block is solved alone, so the values do not depend on it)."""
     intensity = dict(settings.intensity)[entry.id]
-    return np.stack([rocking_blocks(entry.motion.scaled(float(level / intensity)),
-                                    settings.size_s, np.radians(settings.alpha_deg),
-                                    r=settings.restitution, g=settings.g,
-                                    free_motion_s=settings.free_motion_s,
-                                    jobs=settings.jobs).overturned
-                     for level in settings.levels])
+
+    def overturned(level):
+        return rocking_blocks(entry.motion.scaled(float(level / intensity)), settings.size_s,
+                              np.radians(settings.alpha_deg), r=settings.restitution,
+                              g=settings.g, free_motion_s=settings.free_motion_s,
+                              jobs=settings.jobs).overturned
+
+    pool = ThreadPoolExecutor(max(1, settings.jobs))
+    try:
+        return np.stack(list(pool.map(overturned, settings.levels)))
+    finally:  # on an interrupt nothing waits for the stripes not started
+        pool.shutdown(wait=False, cancel_futures=True)
 
 
 def probability_at_site(overturned, levels, site_im: float) -> np.ndarray:
