@@ -186,34 +186,39 @@ class DisplacementOnDemand:
     """
 
     def __init__(self, motion, period_s, damping: float, free_motion_s: float = 0.0):
+        self.motion, self.free_motion_s = motion, free_motion_s
         self.period_s = np.asarray(period_s, dtype=float)
+        self.damping = float(damping)
         positive = self.period_s > 0
         self.sd_m = np.where(positive, np.nan, 0.0)
         self.known = ~positive
-        self.dt = motion.dt
-        self.acc = _with_free_motion(motion, free_motion_s)
-        self.damping = np.full(self.period_s.size, float(damping))
-        # rows at T = 0 are never computed (known): placeholders keep indices those of the table
-        self.coeffs = np.zeros((self.period_s.size, 2, 4))
-        self.omega = np.ones(self.period_s.size)
-        self.coeffs[positive], self.omega[positive] = _oscillators(
-            self.period_s[positive], self.damping[positive], self.dt)
 
     def fill(self, index) -> None:
         """Compute Sd at the table's indices ``index`` where not known yet."""
         index = np.asarray(index, dtype=np.intp)
         missing = np.unique(index[~self.known[index]])
         if missing.size:
+            acc, dt, coeffs, omega, damping, _, _ = self.kernel_arguments()
             out = np.empty((missing.size, 3))
-            spectrum_peaks(self.acc, self.dt, self.coeffs[missing], self.omega[missing],
-                           self.damping[missing], True, True, out)
+            spectrum_peaks(acc, dt, coeffs[missing], omega[missing], damping[missing], True,
+                           True, out)
             self.sd_m[missing] = out[:, 0]
             self.known[missing] = True
 
     def kernel_arguments(self) -> tuple:
         """What :func:`~audit.physics.peaks_between_samples.fill_displacement` needs, for a
-        compiled reader: (acc, dt, coeffs, omega, damping, sd_m, known)."""
-        return (self.acc, self.dt, self.coeffs, self.omega, self.damping, self.sd_m, self.known)
+        compiled reader: (acc, dt, coeffs, omega, damping, sd_m, known), the oscillators of
+        every period of the table. Made at each call and not kept: a check holds one of these
+        per record and damping tried, and they would be ten times the values."""
+        positive = self.period_s > 0
+        damping = np.full(self.period_s.size, self.damping)
+        # rows at T = 0 are never computed (known): placeholders keep indices those of the table
+        coeffs = np.zeros((self.period_s.size, 2, 4))
+        omega = np.ones(self.period_s.size)
+        coeffs[positive], omega[positive] = _oscillators(self.period_s[positive],
+                                                         damping[positive], self.motion.dt)
+        return (_with_free_motion(self.motion, self.free_motion_s), self.motion.dt, coeffs,
+                omega, damping, self.sd_m, self.known)
 
 
 __all__ = ["DisplacementOnDemand", "ResponseSpectra", "response_spectra"]
