@@ -111,14 +111,32 @@ class Procedure:
         g : float
             Acceleration of gravity [m/s²].
         """
+        return self._evaluation(entry, p, alpha_rad, r, context, g, for_report=True)
+
+    def evaluate_for_verdict(self, entry, p, alpha_rad: float, r: float, context,
+                             g: float = G) -> Evaluation:
+        """:meth:`evaluate` without what only a report shows: the same checks and estimate
+        (θ, outcome, iterations, cycle), with no fixed points (empty) and no stored spectrum
+        (None), so the iteration reads the spectrum only where it goes (a context's
+        :meth:`~procedures.context.RecordContext.on_demand` spectra then compute a few dozen
+        periods, not all). A procedure that overrides :meth:`evaluate` is evaluated.
+
+        Same arguments as :meth:`evaluate`.
+        """
+        if type(self).evaluate is not Procedure.evaluate:
+            return self.evaluate(entry, p, alpha_rad, r, context, g)
+        return self._evaluation(entry, p, alpha_rad, r, context, g, for_report=False)
+
+    def _evaluation(self, entry, p, alpha_rad, r, context, g, for_report: bool) -> Evaluation:
         checks = self.checks(entry, p, alpha_rad, r, context, g)
         if not self.estimates_rotation:
             return Evaluation(None, None, checks)
         beta = float(self.damping(r))
         spectrum = self.displacement_spectrum(entry, beta, context)
         estimate = estimate_rotation(spectrum, self.peak_ground_acceleration(entry, context), p,
-                                     alpha_rad, beta, g)
-        return Evaluation(estimate, spectrum(STORED_SPECTRUM_PERIODS_S), checks)
+                                     alpha_rad, beta, g, with_fixed_points=for_report)
+        return Evaluation(estimate,
+                          spectrum(STORED_SPECTRUM_PERIODS_S) if for_report else None, checks)
 
     def checks(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> list[Check]:
         """Limit-state checks of blocks (p [rad/s], α [rad], r) under the record ``entry``.

@@ -9,9 +9,9 @@ from __future__ import annotations
 from concurrent.futures import Future
 
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
-from audit.physics.response_spectra import response_spectra
+from audit.physics.response_spectra import DisplacementOnDemand, response_spectra
 from procedures.base import SPECTRUM_PERIODS_S
-from procedures.tabulated import TabulatedDisplacement
+from procedures.tabulated import TabulatedDisplacement, TabulatedOnDemand
 
 
 class RecordContext:
@@ -32,8 +32,10 @@ class RecordContext:
         self.entry = entry
         self.free_motion_s = free_motion_s
         self.jobs = jobs
-        # the spectra are those of ``_motion`` × ``_factor``: scaled contexts share them
+        # the spectra are those of ``_motion`` × ``_factor``: scaled contexts share them, and
+        # the displacement spectra computed where read (``_on_demand``, by damping) too
         self._motion, self._factor, self._spectra = entry.motion, 1.0, {}
+        self._on_demand, self._partial = False, {}
 
     def scaled(self, entry, factor: float) -> RecordContext:
         """The context of ``entry``, this context's record scaled by ``factor``: it reads the
@@ -41,7 +43,17 @@ class RecordContext:
         motion), so scaling a record to many levels computes its spectra once."""
         other = RecordContext(entry, self.free_motion_s, self.jobs)
         other._motion, other._factor = self._motion, self._factor * factor
-        other._spectra = self._spectra
+        other._spectra, other._partial = self._spectra, self._partial
+        other._on_demand = self._on_demand
+        return other
+
+    def on_demand(self) -> RecordContext:
+        """This context, its displacement spectra not yet cached computed only at the periods
+        read (:class:`~procedures.tabulated.TabulatedOnDemand`), with the same values: for a
+        verdict alone, whose iteration reads a few dozen of the 801 periods at a damping read
+        nowhere else (not for fixed points or a stored spectrum, which read them all)."""
+        other = self.scaled(self.entry, 1.0)
+        other._on_demand = True
         return other
 
     def prefetch(self, damping: float, pool) -> None:
@@ -69,6 +81,12 @@ class RecordContext:
 
     def true_displacement(self, damping: float):
         """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""
+        key = round(float(damping), 12)
+        if self._on_demand and key not in self._spectra:
+            if key not in self._partial:
+                self._partial[key] = DisplacementOnDemand(self._motion, SPECTRUM_PERIODS_S, key,
+                                                          self.free_motion_s)
+            return TabulatedOnDemand(self._partial[key], self._factor)
         spectra = self.true_spectra(damping, displacement_only=True)
         return TabulatedDisplacement(spectra.period_s, spectra.sd[0])
 

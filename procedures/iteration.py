@@ -1,5 +1,6 @@
 """The fixed-point iteration of Priestley, Evison & Carr (1978), Eqs. 8.1–8.2, common to the
-procedures that estimate a rotation, and the cycles it may settle in:
+procedures that estimate a rotation (the cycles it may settle in:
+:mod:`procedures.iteration_cycles`):
 
 1. no rocking when PGA ≤ g tan α;
 2. guess θ, T(θ) = (4/p) acosh(1/(1 − θ/α)) (Eq. 8.1);
@@ -19,24 +20,17 @@ import numpy as np
 
 from audit import G
 from audit.physics.damping import housner_period
-from procedures.rotation_map import fixed_points, map_scale, ratios_text, rotation_map
-from procedures.tabulated import TabulatedDisplacement
+from procedures.iteration_cycles import (CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH,
+                                         SUBCYCLE_TOLERANCE_RATIO, cycle_length, cycle_text,
+                                         unsettled_text)
+from procedures.rotation_map import fixed_points, map_scale, rotation_map
+from procedures.tabulated import TabulatedDisplacement, TabulatedOnDemand
 
 #: Initial guess θ₀/α of the iteration: a small rotation, so the iteration climbs to the
 #: smallest non-trivial fixed point (θ = 0 is always one, and unstable when the block uplifts).
 INITIAL_ROTATION_RATIO = 0.1
 #: Convergence when successive iterates differ by at most this much in θ/α.
 TOLERANCE_RATIO = 1e-6
-#: Longest cycle of the iteration that is recognised as such.
-MAX_CYCLE_LENGTH = 8
-#: A cycle of length L has settled when the last L iterates repeat the L before them to this
-#: fraction of the cycle's spread (max − min). Relative, because cycles settle geometrically at
-#: their own rate and amplitude; a contracting alternation towards a fixed point (slope −0.99)
-#: differs by ~1 % of its spread between every other iterate, far above this.
-CYCLE_TOLERANCE_RATIO = 1e-6
-#: A settled cycle of length L is read as one of length d | L when its iterates repeat after d
-#: steps to this fraction of its spread (see :func:`_cycle_length`).
-SUBCYCLE_TOLERANCE_RATIO = 1e-3
 #: Iterations allowed: enough for slowly alternating iterations (slope near −1 at the fixed
 #: point) to converge, which on the seed records take up to ~300.
 MAX_ITERATIONS = 2000
@@ -88,37 +82,6 @@ class Estimate:
 
 
 
-# All cycle lengths L are tested at once: row L − 2 of _PERIOD_INDEX picks the last L iterates
-# of ``recent`` (its oldest repeated up to MAX_CYCLE_LENGTH columns, harmless for max, min and
-# the comparison), and _PERIOD_INDEX − L the L iterates before them.
-_CYCLE_SIZES = np.arange(2, MAX_CYCLE_LENGTH + 1)[:, None]
-_PERIOD_INDEX = -1 - np.minimum(np.arange(MAX_CYCLE_LENGTH), _CYCLE_SIZES - 1)
-
-
-def _cycle_length(recent: np.ndarray) -> np.ndarray:
-    """Length L ≤ :data:`MAX_CYCLE_LENGTH` of the cycle the rows of ``recent`` settled in, or 0.
-
-    ``recent`` holds the last 2·MAX_CYCLE_LENGTH iterates θ/α of each block, newest last (NaN
-    before the first). A cycle of length L has settled when a whole period, the last L iterates,
-    repeats the L before it to :data:`CYCLE_TOLERANCE_RATIO` of its spread; the shortest such L
-    counts. A cycle that settles from alternate sides (multiplier of F∘F near −1) repeats at 2L
-    before it does at L, so the period found is reduced to its shortest divisor whose iterates
-    already repeat to :data:`SUBCYCLE_TOLERANCE_RATIO` of the spread.
-    """
-    period, before = recent[:, _PERIOD_INDEX], recent[:, _PERIOD_INDEX - _CYCLE_SIZES]
-    spread = period.max(axis=2) - period.min(axis=2)
-    repeats = (np.all(np.abs(period - before) <= CYCLE_TOLERANCE_RATIO * spread[..., None], axis=2)
-               & (spread > 0.0))
-    length = np.where(repeats.any(axis=1), _CYCLE_SIZES[np.argmax(repeats, axis=1), 0], 0)
-    for row in np.flatnonzero(length):
-        window = recent[row, -length[row]:]
-        bound = SUBCYCLE_TOLERANCE_RATIO * np.ptp(window)
-        length[row] = next(size for size in range(2, length[row] + 1)
-                           if length[row] % size == 0
-                           and np.all(np.abs(window[size:] - window[:-size]) <= bound))
-    return length
-
-
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
                      g: float = G, initial_ratio: float = INITIAL_ROTATION_RATIO,
                      tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
@@ -152,6 +115,14 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
                                  np.zeros(p.size, dtype=np.int64), p,
                                  map_scale(p, alpha_rad, g), initial_ratio, tolerance,
                                  max_iterations)
+    if isinstance(displacement, TabulatedOnDemand):
+        from procedures import iteration_kernels as kernels  # compiled: numba loads only here
+        return _outcomes(*kernels.iterate_on_demand(
+            displacement.period_s, displacement.sd_m, displacement.kernel_arguments(),
+            np.ascontiguousarray(p),
+            np.ascontiguousarray(map_scale(p, alpha_rad, g), dtype=float), float(initial_ratio),
+            float(tolerance), CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO,
+            MAX_CYCLE_LENGTH, int(max_iterations)), initial_ratio, max_iterations)
     from procedures.iteration_kernels import advance  # compiled: numba loads only here
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
@@ -173,9 +144,9 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         settled = over | done
         if maybe.any():
             length = np.zeros(live.size, dtype=int)
-            length[maybe] = _cycle_length(recent[maybe])
+            length[maybe] = cycle_length(recent[maybe])
             for k in np.flatnonzero(length):
-                cycle[live[k]], detail[live[k]] = _cycle_text(recent[k], length[k],
+                cycle[live[k]], detail[live[k]] = cycle_text(recent[k], length[k],
                                                               initial_ratio)
             settled |= length > 0
         if settled.any():
@@ -187,21 +158,9 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
             live, live_p, live_scale, recent = live[keep], live_p[keep], live_scale[keep], recent[keep]
     final[live] = recent[:, -1]
     for k, j in enumerate(live):
-        detail[j] = _unsettled_text(recent[k], max_iterations)
+        detail[j] = unsettled_text(recent[k], max_iterations)
     return final, outcome, iterations, detail, cycle
 
-
-def _cycle_text(recent, length: int, initial_ratio: float) -> tuple[str, str]:
-    """The cycle of the last ``length`` iterates of ``recent`` and what the iteration did."""
-    values = np.sort(recent[-length:])
-    return ratios_text(values), (
-        f"iterates settle in a {length}-cycle between θ/α = {values[0]:.4f} and "
-        f"{values[-1]:.4f} (no fixed point reached from θ₀/α = {initial_ratio:g})")
-
-
-def _unsettled_text(recent, max_iterations: int) -> str:
-    return (f"no settled value or cycle after {max_iterations} iterations "
-            f"(last iterates θ/α = {recent[-2]:.4f}, {recent[-1]:.4f})")
 
 
 def iterate_tabulated(period_s, sd_m, rows, p, scale,
@@ -236,20 +195,27 @@ def iterate_tabulated(period_s, sd_m, rows, p, scale,
         np.ascontiguousarray(rows, dtype=np.int64), np.ascontiguousarray(p, dtype=float),
         np.ascontiguousarray(scale, dtype=float), float(initial_ratio), float(tolerance),
         CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH, int(max_iterations))
+    return _outcomes(code, iterations, length, recent, initial_ratio, max_iterations)
+
+
+def _outcomes(code, iterations, length, recent, initial_ratio: float, max_iterations: int):
+    """What :func:`iterate_rotation` returns, from the compiled iteration's codes."""
+    from procedures import iteration_kernels as kernels
     outcome = np.full(code.shape, NOT_CONVERGED, dtype=object)
     outcome[code == kernels.CONVERGED] = CONVERGED
     outcome[code == kernels.OVERTURNED] = OVERTURN
     detail = np.full(code.shape, "", dtype=object)
     cycle = np.full(code.shape, "", dtype=object)
     for k in np.flatnonzero(code == kernels.CYCLING):
-        cycle[k], detail[k] = _cycle_text(recent[k], int(length[k]), initial_ratio)
+        cycle[k], detail[k] = cycle_text(recent[k], int(length[k]), initial_ratio)
     for k in np.flatnonzero(code == kernels.NOT_SETTLED):
-        detail[k] = _unsettled_text(recent[k], max_iterations)
+        detail[k] = unsettled_text(recent[k], max_iterations)
     return recent[:, -1].copy(), outcome, iterations, detail, cycle
 
 
 def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2: float, p,
-                      alpha_rad: float, damping: float, g: float = G) -> Estimate:
+                      alpha_rad: float, damping: float, g: float = G,
+                      with_fixed_points: bool = True) -> Estimate:
     """Peak rotation of blocks by the iteration of Priestley et al. (1978), Eqs. 8.1–8.2.
 
     Step 1 (no uplift when PGA ≤ g tan α), then :func:`iterate_rotation` from
@@ -269,6 +235,8 @@ def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2
         β the spectrum is at [-] (recorded on the estimate).
     g : float
         Acceleration of gravity [m/s²].
+    with_fixed_points : bool
+        False leaves ``fixed_points`` empty: their scan reads Sd at every period.
     """
     p = np.asarray(p, dtype=float)
     theta = np.zeros(p.shape)
@@ -280,7 +248,8 @@ def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2
     roots = np.full(p.shape, "", dtype=object)
     if pga_m_s2 > g * np.tan(alpha_rad):
         ratio, outcome, iterations, detail, cycle = iterate_rotation(displacement, p, alpha_rad, g)
-        roots = fixed_points(displacement, p, alpha_rad, g).text(p.size)
+        if with_fixed_points:
+            roots = fixed_points(displacement, p, alpha_rad, g).text(p.size)
         # no single rotation to report when overturning is predicted or nothing converged
         undefined = outcome != CONVERGED
         theta = np.where(undefined, np.nan, ratio * alpha_rad)

@@ -12,11 +12,13 @@ import math
 import numba
 import numpy as np
 
+from audit.physics.peaks_between_samples import fill_displacement
+
 
 @numba.njit(cache=True, nogil=True)
 def may_repeat(window: np.ndarray, cycle_tolerance: float, max_length: int) -> bool:
     """Whether the iterates ``window`` (newest last) may hold a settled cycle (see
-    :func:`procedures.iteration._cycle_length`).
+    :func:`procedures.iteration_cycles.cycle_length`).
 
     A necessary condition, cheap enough for every iteration: the newest iterate repeats the one
     L before it, for some L ≤ ``max_length``, to ``cycle_tolerance`` of the whole window's
@@ -97,7 +99,8 @@ def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
 @numba.njit(cache=True, nogil=True)
 def cycle_length(window: np.ndarray, cycle_tolerance: float, subcycle_tolerance: float,
                  max_length: int) -> int:
-    """:func:`procedures.iteration._cycle_length` of one window of iterates (newest last)."""
+    """:func:`procedures.iteration_cycles.cycle_length` of one window of iterates (newest
+    last)."""
     width = window.size
     length = 0
     for size in range(2, max_length + 1):
@@ -145,6 +148,82 @@ NOT_SETTLED, CONVERGED, OVERTURNED, CYCLING = 0, 1, 2, 3
 
 
 @numba.njit(cache=True, nogil=True)
+def _read_on_demand(period, period_s, table, source):
+    """Make ``table`` known at the nodes :func:`interp` reads for ``period``: each computed by
+    :func:`~audit.physics.peaks_between_samples.fill_displacement` where unknown, × the factor
+    (``source`` as :meth:`procedures.tabulated.TabulatedOnDemand.kernel_arguments`)."""
+    known, factor, acc, dt, coeffs, omega, damping, raw, raw_known = source
+    n = period_s.size
+    if period != period:
+        return
+    if period < period_s[0]:
+        low, high = 0, 0
+    elif period >= period_s[n - 1]:
+        low, high = n - 1, n - 1
+    else:
+        low, high = 0, n - 1
+        while high - low > 1:
+            middle = (low + high) // 2
+            if period_s[middle] <= period:
+                low = middle
+            else:
+                high = middle
+    for j in (low, high):
+        if not known[j]:
+            fill_displacement(acc, dt, coeffs, omega, damping, raw, raw_known, j)
+            table[j] = raw[j] * factor
+            known[j] = True
+
+
+@numba.njit(cache=True, nogil=True)
+def _iterate_block(period_s, table, p, scale, initial_ratio, tolerance, cycle_tolerance,
+                   subcycle_tolerance, max_length, max_iterations, recent, source):
+    """One block of :func:`iterate_tabulated`, its window of iterates in ``recent``; ``source``
+    None, or how to compute the table where it is read (:func:`_read_on_demand`).
+
+    Returns
+    -------
+    outcome, iterations, cycle : int
+    """
+    width = recent.size
+    recent[:] = np.nan
+    recent[width - 1] = initial_ratio
+    for i in range(1, max_iterations + 1):
+        ratio = recent[width - 1]
+        period = 4.0 / p * math.acosh(1.0 / (1.0 - ratio))
+        if source is not None:
+            _read_on_demand(period, period_s, table, source)
+        new = interp(period, period_s, table) * scale
+        over = new >= 1.0
+        done = not over and abs(new - ratio) <= tolerance
+        recent[:width - 1] = recent[1:].copy()
+        recent[width - 1] = 1.0 if over else new
+        if over or done:
+            return (OVERTURNED if over else CONVERGED), i, 0
+        if may_repeat(recent, cycle_tolerance, max_length):
+            length = cycle_length(recent, cycle_tolerance, subcycle_tolerance, max_length)
+            if length:
+                return CYCLING, i, length
+    return NOT_SETTLED, max_iterations, 0
+
+
+@numba.njit(cache=True, nogil=True)
+def _iterate_blocks(period_s, sd_m, rows, p, scale, initial_ratio, tolerance, cycle_tolerance,
+                    subcycle_tolerance, max_length, max_iterations, source):
+    """:func:`iterate_tabulated`, the tables computed where read when ``source`` is not None."""
+    n = p.size
+    outcome = np.zeros(n, dtype=np.int8)
+    iterations = np.zeros(n, dtype=np.int64)
+    cycle = np.zeros(n, dtype=np.int64)
+    windows = np.empty((n, 2 * max_length))
+    for b in range(n):
+        outcome[b], iterations[b], cycle[b] = _iterate_block(
+            period_s, sd_m[rows[b]], p[b], scale[b], initial_ratio, tolerance, cycle_tolerance,
+            subcycle_tolerance, max_length, max_iterations, windows[b], source)
+    return outcome, iterations, cycle, windows
+
+
+@numba.njit(cache=True, nogil=True)
 def iterate_tabulated(period_s, sd_m, rows, p, scale, initial_ratio, tolerance,
                       cycle_tolerance, subcycle_tolerance, max_length, max_iterations):
     """The iteration of :func:`procedures.iteration.iterate_rotation`, compiled, each block
@@ -160,33 +239,21 @@ def iterate_tabulated(period_s, sd_m, rows, p, scale, initial_ratio, tolerance,
         :data:`NOT_SETTLED`), iterations used, the cycle's length (0 unless cycling), and the
         last 2·``max_length`` iterates θ/α of each block, newest last.
     """
-    n, width = p.size, 2 * max_length
-    outcome = np.zeros(n, dtype=np.int8)
-    iterations = np.full(n, max_iterations, dtype=np.int64)
-    cycle = np.zeros(n, dtype=np.int64)
-    windows = np.empty((n, width))
-    for b in range(n):
-        recent = np.full(width, np.nan)
-        recent[width - 1] = initial_ratio
-        table = sd_m[rows[b]]
-        for i in range(1, max_iterations + 1):
-            ratio = recent[width - 1]
-            period = 4.0 / p[b] * math.acosh(1.0 / (1.0 - ratio))
-            new = interp(period, period_s, table) * scale[b]
-            over = new >= 1.0
-            done = not over and abs(new - ratio) <= tolerance
-            recent[:width - 1] = recent[1:].copy()
-            recent[width - 1] = 1.0 if over else new
-            if over or done:
-                outcome[b], iterations[b] = (OVERTURNED if over else CONVERGED), i
-                break
-            if may_repeat(recent, cycle_tolerance, max_length):
-                length = cycle_length(recent, cycle_tolerance, subcycle_tolerance, max_length)
-                if length:
-                    outcome[b], iterations[b], cycle[b] = CYCLING, i, length
-                    break
-        windows[b] = recent
-    return outcome, iterations, cycle, windows
+    return _iterate_blocks(period_s, sd_m, rows, p, scale, initial_ratio, tolerance,
+                           cycle_tolerance, subcycle_tolerance, max_length, max_iterations, None)
 
 
-__all__ = ["advance", "cycle_length", "interp", "iterate_tabulated", "may_repeat"]
+@numba.njit(cache=True, nogil=True)
+def iterate_on_demand(period_s, table, source, p, scale, initial_ratio, tolerance,
+                      cycle_tolerance, subcycle_tolerance, max_length, max_iterations):
+    """:func:`iterate_tabulated` of blocks that all read one table computed where it is read
+    (``table`` and ``source`` of a :class:`procedures.tabulated.TabulatedOnDemand`, filled in
+    place): the same iterates, the values read being those the whole table holds."""
+    return _iterate_blocks(period_s, table.reshape((1, table.size)),
+                           np.zeros(p.size, dtype=np.int64), p, scale, initial_ratio, tolerance,
+                           cycle_tolerance, subcycle_tolerance, max_length, max_iterations,
+                           source)
+
+
+__all__ = ["advance", "cycle_length", "interp", "iterate_on_demand", "iterate_tabulated",
+           "may_repeat"]

@@ -5,7 +5,9 @@ The compiled ``interp`` is checked against ``numpy.interp`` bit for bit (nodes, 
 beyond both ends); the compiled iteration against the array one on spectra that are not
 tabulated (a lambda); the batched predictions against ``Procedure.evaluate`` called case by case on a
 real record scaled to several levels, where chaotic and cycling iterations make any difference
-in the last bit of an iterate show.
+in the last bit of an iterate show. The same holds for spectra computed only where the
+iteration reads them (``RecordContext.on_demand``), against the whole spectra of
+``response_spectra``.
 """
 
 import math
@@ -18,7 +20,10 @@ from hypothesis import strategies as st
 
 from audit.physics.block import coefficient_of_restitution
 from procedures import get_procedures
+from audit.physics.response_spectra import response_spectra
+from procedures.base import SPECTRUM_PERIODS_S
 from procedures.context import RecordContext
+from procedures.tabulated import TabulatedOnDemand
 from procedures.iteration import iterate_rotation, iterate_tabulated
 from procedures.overturning import overturning_predictions, predicts_overturning
 from procedures.rotation_map import map_scale
@@ -26,6 +31,8 @@ from procedures.iteration_kernels import interp
 from records.sites import scaled_site
 
 PERIODS = np.concatenate(([0.0], np.geomspace(0.01, 100.0, 60)))
+#: Levels a record is scaled to: where it overturns some blocks and not others.
+FACTORS = (0.3, 0.55, 0.8, 1.0, 1.4)
 
 
 @settings(max_examples=40, deadline=None)
@@ -58,19 +65,50 @@ def test_tabulated_iteration_is_one_iteration_per_spectrum():
     assert {"converged", "overturn"} <= set(together[1])
 
 
-@pytest.fixture(scope="module")
-def pacoima_cases(seed_suite):
-    entry = seed_suite.get("pacoima_dam_1971")
-    base = RecordContext(entry, 10.0)
+def scaled_cases(entry, base):
     cases = []
-    for factor in (0.3, 0.55, 0.8, 1.0, 1.4):
+    for factor in FACTORS:
         scaled = replace(entry, motion=entry.motion.scaled(factor),
                          site=scaled_site(entry.site, factor))
         cases.append((scaled, base.scaled(scaled, factor)))
     return cases
 
 
-def test_batched_predictions_are_the_evaluations_case_by_case(pacoima_cases):
+@pytest.fixture(scope="module")
+def pacoima_cases(seed_suite):
+    return scaled_cases(seed_suite.get("pacoima_dam_1971"),
+                        RecordContext(seed_suite.get("pacoima_dam_1971"), 10.0))
+
+
+@pytest.fixture
+def pacoima_on_demand(seed_suite):
+    """The cases of ``pacoima_cases`` on a new context (no spectrum cached) read on demand."""
+    entry = seed_suite.get("pacoima_dam_1971")
+    return [(scaled, context.on_demand())
+            for scaled, context in scaled_cases(entry, RecordContext(entry, 10.0))]
+
+
+@pytest.mark.parametrize("damping", [0.02, 0.1])
+def test_spectrum_on_demand_is_the_whole_spectrum_bit_for_bit(seed_suite, pacoima_on_demand,
+                                                              damping):
+    """Each value read on demand, of the record scaled or not, is the whole spectrum's (scaled
+    as a scaled context scales it), and only the values read are computed."""
+    whole = response_spectra(seed_suite.get("pacoima_dam_1971").motion, SPECTRUM_PERIODS_S,
+                             [damping], 10.0, displacement_only=True)
+    periods = np.array([0.0, 0.004, 0.05, 0.5, 0.5012, 3.0, 40.0, 150.0])
+    for factor_index in (0, 3, 4):
+        context = pacoima_on_demand[factor_index][1]
+        spectrum = context.true_displacement(damping)
+        assert isinstance(spectrum, TabulatedOnDemand)
+        expected = whole.scaled(FACTORS[factor_index]).sd[0]
+        np.testing.assert_array_equal(spectrum(periods),
+                                      np.interp(periods, SPECTRUM_PERIODS_S, expected))
+        known = spectrum.known
+        np.testing.assert_array_equal(spectrum.sd_m[known], expected[known])
+        assert known.sum() <= 2 * periods.size
+
+
+def test_batched_predictions_are_the_evaluations_case_by_case(pacoima_cases, pacoima_on_demand):
     sizes = np.linspace(0.5, 9.0, 18)
     alphas = np.radians([8.0, 14.0, 20.0])
     p = np.tile(2.0 * np.pi / sizes, alphas.size)
@@ -79,6 +117,11 @@ def test_batched_predictions_are_the_evaluations_case_by_case(pacoima_cases):
     for procedure in get_procedures("all"):
         usable = [case for case in pacoima_cases if procedure.unmet_requirements(case[0]) is None]
         batch = overturning_predictions(procedure, usable, p, groups, 9.81)
+        on_demand = [case for case in pacoima_on_demand
+                     if procedure.unmet_requirements(case[0]) is None]
+        np.testing.assert_array_equal(
+            overturning_predictions(procedure, on_demand, p, groups, 9.81), batch,
+            err_msg=procedure.name)
         slow = np.zeros_like(batch)
         for c, (entry, context) in enumerate(usable):
             for alpha, index, r in groups:
@@ -90,9 +133,41 @@ def test_batched_predictions_are_the_evaluations_case_by_case(pacoima_cases):
             assert 0 < batch.sum() < batch.size
 
 
-def test_compiled_iteration_on_a_record_cycles_and_chaos_included(pacoima_cases):
+def test_evaluation_for_a_verdict_is_the_evaluation_without_its_report(pacoima_cases,
+                                                                       pacoima_on_demand):
+    """``evaluate_for_verdict`` on spectra read on demand: every field of ``evaluate``'s
+    estimate and checks but the fixed points (empty) and the stored spectrum (None)."""
+    p = 2.0 * np.pi / np.linspace(0.5, 9.0, 12)
+    alpha = math.radians(11.0)
+    r = float(coefficient_of_restitution(alpha))
+    for procedure in get_procedures("all"):
+        for (entry, context), (_, on_demand) in zip(pacoima_cases, pacoima_on_demand):
+            if procedure.unmet_requirements(entry) is not None:
+                continue
+            full = procedure.evaluate(entry, p, alpha, r, context, 9.81)
+            verdict = procedure.evaluate_for_verdict(entry, p, alpha, r, on_demand, 9.81)
+            assert len(verdict.checks) == len(full.checks)
+            for got, expected in zip(verdict.checks, full.checks):
+                np.testing.assert_array_equal(got.passes, expected.passes)
+                np.testing.assert_array_equal(got.demand_m, expected.demand_m)
+            if full.estimate is None:
+                assert verdict.estimate is None
+                continue
+            for field in ("theta", "period_s", "iterations", "outcome", "detail", "cycle"):
+                np.testing.assert_array_equal(getattr(verdict.estimate, field),
+                                              getattr(full.estimate, field),
+                                              err_msg=f"{procedure.name} {field}")
+            if procedure.name == "priestley1978":
+                assert verdict.spectrum_sd_m is None
+                assert not any(verdict.estimate.fixed_points)
+                assert any(full.estimate.fixed_points)
+
+
+def test_compiled_iteration_on_a_record_cycles_and_chaos_included(pacoima_cases,
+                                                                  pacoima_on_demand):
     """Pacoima Dam as recorded, α = 10°: fixed points, overturning, a 2-cycle (2π/p = 6 s,
-    tests/test_fixed_points.py) and unsettled iterations, compiled and by arrays."""
+    tests/test_fixed_points.py) and unsettled iterations, compiled (on the whole table and on
+    demand) and by arrays."""
     entry, context = pacoima_cases[3]
     alpha = math.radians(10.0)
     beta = float(get_procedures("priestley1978")[0].damping(coefficient_of_restitution(alpha)))
@@ -100,7 +175,9 @@ def test_compiled_iteration_on_a_record_cycles_and_chaos_included(pacoima_cases)
     p = 2.0 * np.pi / np.concatenate(([6.0], np.linspace(0.3, 12.0, 80)))
     compiled = iterate_rotation(spectrum, p, alpha)
     by_arrays = iterate_rotation(lambda period: spectrum(period), p, alpha)
-    for got, expected in zip(compiled, by_arrays):
+    on_demand = iterate_rotation(pacoima_on_demand[3][1].true_displacement(beta), p, alpha)
+    for got, on_demand_got, expected in zip(compiled, on_demand, by_arrays):
         np.testing.assert_array_equal(got, expected)
+        np.testing.assert_array_equal(on_demand_got, expected)
     assert compiled[4][0] and "2-cycle" in compiled[3][0]
     assert {"converged", "overturn", "not-converged"} <= set(compiled[1])

@@ -12,7 +12,8 @@ from audit.physics.damping import (damping_fema356, damping_free_rocking, dampin
                            housner_period, housner_rotation_ratio)
 from audit.physics.design_spectra import FEMA356_TABLE_1_6, FEMA356Spectrum, UBC97Spectrum, \
     fema356_damping_coefficients
-from audit.physics.oscillator import oscillator_history
+from audit.physics.oscillator import oscillator_history, oscillator_step, recurrence_coefficients
+from audit.physics.peaks_between_samples import _step_peaks, spectrum_peaks
 from audit.physics.response_spectra import response_spectra
 from records import GroundMotion
 
@@ -140,6 +141,40 @@ def test_step_peaks_between_samples(period, dt, damping):
     np.testing.assert_allclose([spectra.sd[0, 0], spectra.sv[0, 0]], [sd, sv], rtol=1e-10)
     if damping == 0.0:
         assert spectra.sa[0, 0] == pytest.approx(2 * a0, rel=1e-10)
+
+
+@pytest.mark.parametrize("displacement_only", [True, False])
+def test_steps_left_unexamined_change_no_peak(seed_suite, displacement_only):
+    """The steps the search between samples passes over (the record's bounds, then each step's
+    own) hold no extremum above the running peaks: examining every step gives the same spectra,
+    bit for bit. Pacoima (dt = 0.01 s) at short periods, one to three segments a step, where
+    nearly every step holds an extremum of u, u' or ü + üg."""
+    motion = seed_suite.get("pacoima_dam_1971").motion
+    acc, dt = motion.acceleration[:1500], motion.dt
+    periods = np.array([0.008, 0.012, 0.02, 0.035, 0.06, 0.1])
+    for damping in (0.0, 0.05, 0.2):
+        dampings = np.full(periods.size, damping)
+        coeffs = recurrence_coefficients(periods, dampings, dt)
+        omega = 2.0 * np.pi / periods
+        searched = np.empty((periods.size, 3))
+        spectrum_peaks(acc, dt, coeffs, omega, dampings, True, displacement_only, searched)
+        at_samples = np.empty((periods.size, 3))
+        spectrum_peaks(acc, dt, coeffs, omega, dampings, False, displacement_only, at_samples)
+        for i, period in enumerate(periods):
+            xi_omega = damping * omega[i]
+            omega_d = omega[i] * math.sqrt(1.0 - damping * damping)
+            u, v = np.zeros(acc.size), np.zeros(acc.size)
+            for k in range(acc.size - 1):
+                u[k + 1], v[k + 1] = oscillator_step(coeffs[i], u[k], v[k], acc[k], acc[k + 1])
+            peaks = tuple(np.nan_to_num(at_samples[i]))
+            for k in range(acc.size - 1):
+                peaks = _step_peaks(u[k], v[k], u[k + 1], v[k + 1], acc[k],
+                                    (acc[k + 1] - acc[k]) / dt, int(omega_d * dt / 3.0) + 1,
+                                    xi_omega, omega_d, omega[i] * omega[i], dt, *peaks,
+                                    displacement_only)
+            expected = peaks[:1] + (np.nan, np.nan) if displacement_only else peaks
+            np.testing.assert_array_equal(searched[i], expected, err_msg=f"T = {period} s")
+        assert np.all(searched[:, 0] > at_samples[:, 0])  # peaks between samples were found
 
 
 def test_overdamped_oscillators_are_refused():

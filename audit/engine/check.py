@@ -99,9 +99,11 @@ class CheckRecord:
 
 def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
     """The unit of work of a check: one record's stripes, then each record-reading procedure's
-    judgement at the site, on the same cached spectra."""
+    judgement at the site, on the same cached spectra. A check reads only verdicts, so its
+    displacement spectra are computed only where the iterations read them (at each object's
+    damping and, in the width search, at each width's)."""
     margins = settings.stripes
-    context = RecordContext(entry, margins.free_motion_s, margins.jobs)
+    context = RecordContext(entry, margins.free_motion_s, margins.jobs).on_demand()
     stripes = record_stripes(entry, procedures, margins, context)
     scaled, scaled_context = at_site(entry, context, stripes.intensity, margins.design_im)
     judged = {}

@@ -69,8 +69,9 @@ def judge(procedure, entry, context, objects, restitution: Restitution, g: float
                     [], [])
     for i, obj in enumerate(objects):
         alpha = math.radians(obj.alpha_deg)
-        evaluation = procedure.evaluate(entry, np.array([2.0 * math.pi / obj.size_s]), alpha,
-                                        float(restitution.r(alpha)), context, g)
+        evaluation = procedure.evaluate_for_verdict(
+            entry, np.array([2.0 * math.pi / obj.size_s]), alpha, float(restitution.r(alpha)),
+            context.on_demand(), g)
         out.overturns[i] = predicts_overturning(evaluation)[0]
         quantity, unit, out.demand[i], out.capacity[i] = compared_numbers(evaluation, alpha)
         out.quantity.append(quantity)

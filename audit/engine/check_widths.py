@@ -21,6 +21,7 @@ depends on α (Priestley's β(r(α))) reads a new spectrum of the record.
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +30,7 @@ from scipy.stats import norm
 from audit.engine.lognormal_fit import lognormal_fits
 from audit.engine.scheduler import computed_parts
 from audit.physics.rocking import rocking_blocks
-from procedures.overturning import predicts_overturning
+from procedures.overturning import overturning_predictions
 
 #: Widths scanned, as fractions of the height: the first and last, and how many in between.
 SCAN_FRACTIONS = (0.03, 0.95)
@@ -63,14 +64,22 @@ class FamilySettings:
 
 def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
     """Exact overturning of the blocks of ``settings`` under one record scaled to each stripe,
-    shaped (stripe, block)."""
+    shaped (stripe, block). The stripes share ``settings.jobs`` threads as the blocks of each
+    do: a bisection solves one or two blocks, which alone would leave all threads but one
+    idle (every block is solved alone, so the values do not depend on it)."""
     intensity = dict(settings.intensity)[entry.id]
-    return np.stack([rocking_blocks(entry.motion.scaled(float(level / intensity)),
-                                    settings.size_s, np.radians(settings.alpha_deg),
-                                    r=settings.restitution, g=settings.g,
-                                    free_motion_s=settings.free_motion_s,
-                                    jobs=settings.jobs).overturned
-                     for level in settings.levels])
+
+    def overturned(level):
+        return rocking_blocks(entry.motion.scaled(float(level / intensity)), settings.size_s,
+                              np.radians(settings.alpha_deg), r=settings.restitution,
+                              g=settings.g, free_motion_s=settings.free_motion_s,
+                              jobs=settings.jobs).overturned
+
+    pool = ThreadPoolExecutor(max(1, settings.jobs))
+    try:
+        return np.stack(list(pool.map(overturned, settings.levels)))
+    finally:  # on an interrupt nothing waits for the stripes not started
+        pool.shutdown(wait=False, cancel_futures=True)
 
 
 def probability_at_site(overturned, levels, site_im: float) -> np.ndarray:
@@ -195,9 +204,11 @@ def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g:
     ``entry`` (a record scaled to the site, ``context`` its spectra)."""
     block = obj.with_width(width_m)
     alpha = math.radians(block.alpha_deg)
-    return bool(predicts_overturning(procedure.evaluate(
-        entry, np.array([2.0 * math.pi / block.size_s]), alpha, float(restitution.r(alpha)),
-        context, g))[0])
+    # the verdict alone: the iteration reads the record's spectrum at this α's damping only
+    # where it goes (a new damping at every width tried)
+    return bool(overturning_predictions(
+        procedure, [(entry, context.on_demand())], np.array([2.0 * math.pi / block.size_s]),
+        [(alpha, np.array([0]), float(restitution.r(alpha)))], g)[0, 0])
 
 
 def guideline_bracket(overturns, obj, object_overturns: bool) -> tuple[float, float]:

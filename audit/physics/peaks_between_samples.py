@@ -85,10 +85,51 @@ def _may_peak_inside(f0, g0, f2, f3, f1, g1, f2_end, reach, xi_omega, inv_omega_
     (``reach`` = L²/8, ``inv_omega_d`` = 1/ω_d: no division in this hot test).
     """
     # the bound first: once the peak is established it almost always rules the step out
-    amplitude = abs(f2) + abs((f3 + xi_omega * f2) * inv_omega_d)
-    if max(abs(f0), abs(f1)) + amplitude * reach <= peak:
+    if not _may_exceed(f0, f1, f2, f3, reach, xi_omega, inv_omega_d, peak):
         return False
     return g0 * g1 < 0.0 or (g0 * f2 < 0.0 and f2 * f2_end < 0.0)
+
+
+@numba.njit(cache=True, nogil=True)
+def _may_exceed(f0, f1, f2, f3, reach, xi_omega, inv_omega_d, peak):
+    """Whether the bound of :func:`_may_peak_inside` on |f| at an extremum inside a stretch of
+    length L (``reach`` = L²/8) exceeds ``peak``; it holds over a whole step, since |f''| ≤
+    |P| + |Q| wherever the free oscillation of f'' runs from its start."""
+    amplitude = abs(f2) + abs((f3 + xi_omega * f2) * inv_omega_d)
+    return not max(abs(f0), abs(f1)) + amplitude * reach <= peak
+
+
+@numba.njit(cache=True, nogil=True)
+def _step_may_peak(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega2, dt,
+                   inv_omega_d, sd, sv, sa, displacement_only):
+    """Whether :func:`_step_peaks` may raise (sd, sv, sa) inside this step: the tests of
+    :func:`_may_peak_inside` on the step's own derivatives at both ends (not the record's
+    bounds of the first test), in the same operations. With one segment the step is then
+    examined exactly where one of the tests inside it passes; with several, where the bound
+    over the whole step does (f' may change sign more than once in it)."""
+    two_xi_omega = 2.0 * xi_omega
+    reach = dt * dt / 8.0
+    acc_end = acc_k + slope * dt
+    start = _derivatives(u, v, acc_k, slope, two_xi_omega, omega2)
+    end = _derivatives(u_next, v_next, acc_end, slope, two_xi_omega, omega2)
+    one = n_segments == 1
+    if one:
+        if _may_peak_inside(start[0], start[1], start[2], start[3], end[0], end[1], end[2],
+                            reach, xi_omega, inv_omega_d, sd):
+            return True
+    elif _may_exceed(start[0], end[0], start[2], start[3], reach, xi_omega, inv_omega_d, sd):
+        return True
+    if displacement_only:
+        return False
+    if one:
+        return (_may_peak_inside(start[1], start[2], start[3], start[4], end[1], end[2], end[3],
+                                 reach, xi_omega, inv_omega_d, sv)
+                or _may_peak_inside(start[2] + acc_k, start[3] + slope, start[4], start[5],
+                                    end[2] + acc_end, end[3] + slope, end[4], reach, xi_omega,
+                                    inv_omega_d, sa))
+    return (_may_exceed(start[1], end[1], start[3], start[4], reach, xi_omega, inv_omega_d, sv)
+            or _may_exceed(start[2] + acc_k, end[2] + acc_end, start[4], start[5], reach,
+                           xi_omega, inv_omega_d, sa))
 
 
 @numba.njit(cache=True, nogil=True)
@@ -210,13 +251,18 @@ def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacemen
             margin_v = (d3 + (d4 + xi_omega * d3) / omega_d) * reach
             margin_a = (d4 + (d5 + xi_omega * d4) / omega_d) * reach
             n_segments = int(omega_d * dt / 3.0) + 1
+            inv_omega_d = 1.0 / omega_d
             sa_k = 0.0
             for k in range(n - 1):
                 sa_next = abs(two_xi_omega * v_at[k + 1] + omega2 * u_at[k + 1])
-                if (max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd
-                        or not displacement_only
-                        and (max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv
-                             or max(sa_k, sa_next) + margin_a > sa)):
+                if ((max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd
+                     or not displacement_only
+                     and (max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv
+                          or max(sa_k, sa_next) + margin_a > sa))
+                        and _step_may_peak(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
+                                           (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega,
+                                           omega2, dt, inv_omega_d, sd, sv, sa,
+                                           displacement_only)):
                     sd, sv, sa = _step_peaks(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
                                              (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega,
                                              omega_d, omega2, dt, sd, sv, sa, displacement_only)
@@ -226,4 +272,16 @@ def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacemen
         out[i, 2] = math.nan if displacement_only else sa
 
 
-__all__ = ["spectrum_peaks"]
+@numba.njit(cache=True, nogil=True)
+def fill_displacement(acc, dt, coeffs, omega, damping, sd, known, j):
+    """sd[j] = max|u| of oscillator j (:func:`spectrum_peaks` with ``displacement_only``, on
+    that oscillator alone: the same number as among all of them), unless ``known[j]``."""
+    if not known[j]:
+        out = np.empty((1, 3))
+        spectrum_peaks(acc, dt, coeffs[j:j + 1], omega[j:j + 1], damping[j:j + 1], True, True,
+                       out)
+        sd[j] = out[0, 0]
+        known[j] = True
+
+
+__all__ = ["fill_displacement", "spectrum_peaks"]

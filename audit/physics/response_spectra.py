@@ -76,6 +76,19 @@ class ResponseSpectra:
         return np.interp(period_s, self.period_s, self.sd[damping_index])
 
 
+def _with_free_motion(motion, free_motion_s: float) -> np.ndarray:
+    """The record's acceleration [m/s²] followed by ``free_motion_s`` of zeros."""
+    n_tail = int(np.ceil(free_motion_s / motion.dt - 1e-9))
+    if n_tail:
+        return np.concatenate((motion.acceleration, np.zeros(n_tail)))
+    return motion.acceleration
+
+
+def _oscillators(period_s, damping, dt):
+    """Recurrence coefficients and ω [rad/s] of the oscillators (T > 0, ξ) [s, -], 1-D."""
+    return recurrence_coefficients(period_s, damping, dt), 2.0 * np.pi / period_s
+
+
 def response_spectra(motion, period_s, damping, free_motion_s: float = 0.0,
                      between_samples: bool = True, jobs: int = 1,
                      displacement_only: bool = False) -> ResponseSpectra:
@@ -119,18 +132,14 @@ def response_spectra(motion, period_s, damping, free_motion_s: float = 0.0,
         raise InputError("periods: every T must be a number of seconds ≥ 0")
     if not (np.isfinite(free_motion_s) and free_motion_s >= 0):
         raise InputError(f"free motion: must be ≥ 0 s, got {free_motion_s}")
-    acc = motion.acceleration
-    n_tail = int(np.ceil(free_motion_s / motion.dt - 1e-9))
-    if n_tail:
-        acc = np.concatenate((acc, np.zeros(n_tail)))
+    acc = _with_free_motion(motion, free_motion_s)
     grid_xi, grid_t = np.meshgrid(damping, period_s, indexing="ij")
     positive = grid_t > 0
     peaks = np.zeros(grid_t.shape + (3,))
     peaks[~positive, 2] = np.max(np.abs(motion.acceleration))
     periods, dampings = grid_t[positive], grid_xi[positive]
     out = np.empty((periods.size, 3))
-    coeffs = recurrence_coefficients(periods, dampings, motion.dt)
-    omega = 2.0 * np.pi / periods
+    coeffs, omega = _oscillators(periods, dampings, motion.dt)
     # interleaved chunks: short periods (costly peaks between samples) spread over the threads
     chunks = [np.arange(i, periods.size, max(1, jobs)) for i in range(max(1, min(jobs, periods.size)))]
 
@@ -150,4 +159,66 @@ def response_spectra(motion, period_s, damping, free_motion_s: float = 0.0,
     return ResponseSpectra(period_s, damping, peaks[..., 0], peaks[..., 1], peaks[..., 2])
 
 
-__all__ = ["ResponseSpectra", "response_spectra"]
+class DisplacementOnDemand:
+    """The displacement spectrum of a record at one damping on a table of periods, each value
+    computed when first asked for and kept: for a reader of a few periods of a long table (the
+    iteration behind a guideline's verdict reads a few dozen of 801). The values are those of
+    :func:`response_spectra` with ``displacement_only``, bit for bit: the same coefficients,
+    every oscillator computed alone by the same kernel.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+        Ground acceleration [m/s²], linear between samples.
+    period_s : array
+        Periods T ≥ 0 [s] (Sd = 0 at T = 0).
+    damping : float
+        Damping ratio 0 ≤ ξ < 1 [-].
+    free_motion_s : float
+        Free vibration included after the record ends [s].
+
+    Attributes
+    ----------
+    period_s : numpy.ndarray
+    sd_m : numpy.ndarray
+        Sd [m] where ``known``, NaN elsewhere.
+    known : numpy.ndarray of bool
+    """
+
+    def __init__(self, motion, period_s, damping: float, free_motion_s: float = 0.0):
+        self.motion, self.free_motion_s = motion, free_motion_s
+        self.period_s = np.asarray(period_s, dtype=float)
+        self.damping = float(damping)
+        positive = self.period_s > 0
+        self.sd_m = np.where(positive, np.nan, 0.0)
+        self.known = ~positive
+
+    def fill(self, index) -> None:
+        """Compute Sd at the table's indices ``index`` where not known yet."""
+        index = np.asarray(index, dtype=np.intp)
+        missing = np.unique(index[~self.known[index]])
+        if missing.size:
+            acc, dt, coeffs, omega, damping, _, _ = self.kernel_arguments()
+            out = np.empty((missing.size, 3))
+            spectrum_peaks(acc, dt, coeffs[missing], omega[missing], damping[missing], True,
+                           True, out)
+            self.sd_m[missing] = out[:, 0]
+            self.known[missing] = True
+
+    def kernel_arguments(self) -> tuple:
+        """What :func:`~audit.physics.peaks_between_samples.fill_displacement` needs, for a
+        compiled reader: (acc, dt, coeffs, omega, damping, sd_m, known), the oscillators of
+        every period of the table. Made at each call and not kept: a check holds one of these
+        per record and damping tried, and they would be ten times the values."""
+        positive = self.period_s > 0
+        damping = np.full(self.period_s.size, self.damping)
+        # rows at T = 0 are never computed (known): placeholders keep indices those of the table
+        coeffs = np.zeros((self.period_s.size, 2, 4))
+        omega = np.ones(self.period_s.size)
+        coeffs[positive], omega[positive] = _oscillators(self.period_s[positive],
+                                                         damping[positive], self.motion.dt)
+        return (_with_free_motion(self.motion, self.free_motion_s), self.motion.dt, coeffs,
+                omega, damping, self.sd_m, self.known)
+
+
+__all__ = ["DisplacementOnDemand", "ResponseSpectra", "response_spectra"]
