@@ -22,7 +22,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+# appended, not inserted: a PYTHONPATH (compare.py's baseline tree) comes first, then this tree
+sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit.api import design_suite  # noqa: E402
 from audit.engine.check import run_check  # noqa: E402
