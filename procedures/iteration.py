@@ -121,13 +121,16 @@ def _cycle_length(recent: np.ndarray) -> np.ndarray:
 
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
                      g: float = G, initial_ratio: float = INITIAL_ROTATION_RATIO,
-                     tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
+                     tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS,
+                     blockwise: bool = False):
     """Fixed-point iteration θ ← Sd(T(θ)) / (R cos α) of Eqs. 8.1–8.2, for many blocks at once.
 
     Parameters
     ----------
     displacement : callable
-        Sd [m] as a function of the period T [s] (array in, array out).
+        Sd [m] as a function of the period T [s] (array in, array out); with ``blockwise``,
+        ``displacement(period_s, blocks)``, each period read on the spectrum of its own block
+        (``blocks``: their indices into ``p``), for blocks under spectra of their own.
     p : array
         Frequency parameters of the blocks [rad/s], 1-D.
     alpha_rad : float
@@ -136,6 +139,9 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         Acceleration of gravity [m/s²] (R = 3g/(4p²)).
     initial_ratio, tolerance, max_iterations :
         Initial guess θ₀/α, tolerance on |Δθ|/α, iteration cap.
+    blockwise : bool
+        Whether ``displacement`` takes the blocks too. Each block's iterates depend on its own
+        spectrum alone, so they are those of an iteration of that block by itself.
 
     Returns
     -------
@@ -167,7 +173,8 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     for i in range(1, max_iterations + 1):
         if not live.size:
             break
-        new = rotation_map(displacement, recent[:, -1], live_p, live_scale)
+        spectrum = (lambda period_s: displacement(period_s, live)) if blockwise else displacement
+        new = rotation_map(spectrum, recent[:, -1], live_p, live_scale)
         over, done, maybe = advance(recent, np.ascontiguousarray(new, dtype=float), tolerance,
                                     CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH)
         settled = over | done

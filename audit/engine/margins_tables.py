@@ -14,7 +14,7 @@ from audit.engine.blocks import BlockList
 from audit.engine.fragility import overturning_pattern
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
 from audit.engine.lognormal_fit import fit_lognormal
-from audit.engine.stripes import StripeSettings, half_crossing, step_level
+from audit.engine.stripes import StripeSettings, half_crossing, locate_steps
 
 
 #: How a procedure meets the stripes, by whether it reads the records (the report says it).
@@ -128,12 +128,13 @@ def step_levels(procedures, entries, settings: StripeSettings, predicted, evalua
         if not mine or any(proc.reads_record(e) for e in mine):
             continue
         answer = predicted[proc.name][np.asarray(evaluated[proc.name])][0]  # (stripe, block)
+        brackets = {}
         for b in range(answer.shape[1]):
             switch = np.flatnonzero(answer[1:, b] & ~answer[:-1, b])
             if switch.size:
-                j = int(switch[0])
-                steps[proc.name, b] = step_level(proc, mine[0], settings, b, levels[j],
-                                                 levels[j + 1])
+                brackets[b] = levels[int(switch[0])], levels[int(switch[0]) + 1]
+        steps.update(((proc.name, b), level) for b, level
+                     in locate_steps(proc, mine[0], settings, brackets).items())
     return steps
 
 
