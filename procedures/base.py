@@ -143,7 +143,7 @@ class Procedure:
 
     def site_displacements(self, entries, damping: float):
         """For a procedure that reads only the site: the Sd of many records' sites at once, as
-        ``displacement(period_s, index)`` reading each period on the design spectrum of
+        ``of(index)``, the function of the periods that reads each on the design spectrum of
         ``entries[index]`` at damping β [-] with the operations of
         :meth:`displacement_spectrum`; None (the default) where it has no such form, and each
         site is then evaluated on its own."""

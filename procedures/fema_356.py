@@ -50,6 +50,8 @@ class FEMA356(Procedure):
     def site_displacements(self, entries, damping):
         spectra = FEMA356Spectrum(np.array([e.site["sxs_g"] for e in entries], dtype=float),
                                   np.array([e.site["sx1_g"] for e in entries], dtype=float))
-        return lambda period_s, index: replace(spectra, sxs_g=spectra.sxs_g[index],
-                                               sx1_g=spectra.sx1_g[index]).displacement(
-            period_s, damping)
+
+        def of(index):
+            mine = replace(spectra, sxs_g=spectra.sxs_g[index], sx1_g=spectra.sx1_g[index])
+            return lambda period_s: mine.displacement(period_s, damping)
+        return of

@@ -136,8 +136,8 @@ def site_predictions(procedure, cases, p, alpha_rad: float, r: float, g: float) 
     pga = np.array([procedure.peak_ground_acceleration(entry, context) for entry, context in cases])
     uplift = np.flatnonzero(pga > g * np.tan(alpha_rad))  # step 1 of the iteration
     if uplift.size:
-        outcome = iterate_rotation(lambda period_s, index: spectra(period_s, uplift[index]),
-                                   p[uplift], alpha_rad, g, blockwise=True)[1]
+        outcome = iterate_rotation(lambda index: spectra(uplift[index]), p[uplift], alpha_rad,
+                                   g, blockwise=True)[1]
         over[uplift] |= outcome == OVERTURN
     return over
 
