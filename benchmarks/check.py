@@ -22,6 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
+# appended, not inserted: a PYTHONPATH (compare.py's baseline tree) comes first, then this tree
 sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit.api import design_suite  # noqa: E402

@@ -4,10 +4,10 @@ the site, 3 α × 31 sizes (0.5:8:0.25), default stripes, every procedure.
     python benchmarks/margins.py [--records p695-far-field] [--jobs 2] [--first N]
 
 Prints the split of the audit as ``python -m audit margins`` runs it: the stripes with every
-procedure evaluated at them, the required-α searches, the fine amplitude scans, and the files
-with margins.html; the exact stripes alone are timed once more on their own so that the
-guideline evaluation is the difference. Target: the whole audit within 5 minutes on a 2-core
-machine.
+procedure evaluated at them, the required-α searches, FEMA P695's acceptance of the blocks each
+guideline sizes, the fine amplitude scans, and the files with margins.html; the exact stripes
+alone are timed once more on their own so that the guideline evaluation is the difference.
+Target: the whole audit within 5 minutes on a 2-core machine.
 """
 
 from __future__ import annotations
@@ -21,12 +21,14 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+# appended, not inserted: a PYTHONPATH (compare.py's baseline tree) comes first, then this tree
+sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit.api import MarginsResult, design_suite  # noqa: E402
 from audit.engine.margins import run_margins  # noqa: E402
 from audit.engine.margins_scans import amplitude_scans  # noqa: E402
 from audit.engine.margins_settings import MarginsSettings  # noqa: E402
+from audit.engine.p695_acceptance import p695_acceptance  # noqa: E402
 from audit.engine.runtime import Runtime  # noqa: E402
 from audit.engine.required_alpha import required_alpha  # noqa: E402
 from audit.files import write_files_atomically  # noqa: E402
@@ -62,6 +64,8 @@ def main() -> None:
     full = timing("stripes", lambda: run_margins(procedures, suite, settings, runtime))
     full.required_alpha = timing("required α", lambda: required_alpha(
         procedures, suite, settings, runtime))
+    full.acceptance, full.summary["acceptance"] = timing(
+        "P695 acceptance", lambda: p695_acceptance(suite, settings, runtime, full.required_alpha))
     full.scan = timing("scans", lambda: amplitude_scans(full, suite, settings, runtime))
     with tempfile.TemporaryDirectory() as folder:
         timing("files and report", lambda: write_files_atomically(
@@ -74,7 +78,8 @@ def main() -> None:
           f"({solves / timed['exact stripes alone']:.0f} solves/s)")
     print(f"stripes with every procedure: {timed['stripes']:.1f} s (guideline evaluation "
           f"{timed['stripes'] - timed['exact stripes alone']:.1f} s); required α "
-          f"{timed['required α']:.1f} s; scans {timed['scans']:.1f} s; files and report "
+          f"{timed['required α']:.1f} s; P695 acceptance {timed['P695 acceptance']:.1f} s; "
+          f"scans {timed['scans']:.1f} s; files and report "
           f"{timed['files and report']:.1f} s")
     print(f"the audit in all: {audit_s:.1f} s (target ≤ 300 s)")
 

@@ -24,7 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+# appended, not inserted: a PYTHONPATH (compare.py's baseline tree) comes first, then this tree
+sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit import G  # noqa: E402
 from audit.engine.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES  # noqa: E402

@@ -159,6 +159,14 @@ class Procedure:
         """Sd(T) [m] at damping β for the record ``entry``; ``context`` caches record spectra."""
         raise NotImplementedError
 
+    def site_displacements(self, entries, damping: float):
+        """For a procedure that reads only the site: the Sd of many records' sites at once, as
+        ``of(index)``, the function of the periods that reads each on the design spectrum of
+        ``entries[index]`` at damping β [-] with the operations of
+        :meth:`displacement_spectrum`; None (the default) where it has no such form, and each
+        site is then evaluated on its own."""
+        return None
+
 
 # ---------------------------------------------------------------------------------------------
 # Limit-state checks: procedures that verify a block rather than (or besides) estimating θ.

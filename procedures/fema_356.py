@@ -8,6 +8,10 @@ block only, not on the recorded motion.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import numpy as np
+
 from audit import G
 from audit.physics.damping import damping_fema356
 from audit.physics.design_spectra import FEMA356Spectrum
@@ -42,3 +46,12 @@ class FEMA356(Procedure):
     def displacement_spectrum(self, entry, damping, context):
         spectrum = self.design_spectrum(entry)
         return lambda period_s: spectrum.displacement(period_s, damping)
+
+    def site_displacements(self, entries, damping):
+        spectra = FEMA356Spectrum(np.array([e.site["sxs_g"] for e in entries], dtype=float),
+                                  np.array([e.site["sx1_g"] for e in entries], dtype=float))
+
+        def of(index):
+            mine = replace(spectra, sxs_g=spectra.sxs_g[index], sx1_g=spectra.sx1_g[index])
+            return lambda period_s: mine.displacement(period_s, damping)
+        return of

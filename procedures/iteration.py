@@ -84,13 +84,16 @@ class Estimate:
 
 def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
                      g: float = G, initial_ratio: float = INITIAL_ROTATION_RATIO,
-                     tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS):
+                     tolerance: float = TOLERANCE_RATIO, max_iterations: int = MAX_ITERATIONS,
+                     blockwise: bool = False):
     """Fixed-point iteration θ ← Sd(T(θ)) / (R cos α) of Eqs. 8.1–8.2, for many blocks at once.
 
     Parameters
     ----------
     displacement : callable
-        Sd [m] as a function of the period T [s] (array in, array out).
+        Sd [m] as a function of the period T [s] (array in, array out); with ``blockwise``,
+        ``displacement(blocks)`` gives that function for the blocks ``blocks`` (indices into
+        ``p``), each period it is given read on the spectrum of its own block.
     p : array
         Frequency parameters of the blocks [rad/s], 1-D.
     alpha_rad : float
@@ -99,6 +102,9 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
         Acceleration of gravity [m/s²] (R = 3g/(4p²)).
     initial_ratio, tolerance, max_iterations :
         Initial guess θ₀/α, tolerance on |Δθ|/α, iteration cap.
+    blockwise : bool
+        Whether each block has a spectrum of its own. A block's iterates depend on its own
+        spectrum alone, so they are those of an iteration of that block by itself.
 
     Returns
     -------
@@ -133,12 +139,13 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     # of array operations on them alone
     live = np.arange(p.size)
     live_p, live_scale = p, map_scale(p, alpha_rad, g)
+    spectrum = displacement(live) if blockwise else displacement
     recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
     recent[:, -1] = initial_ratio
     for i in range(1, max_iterations + 1):
         if not live.size:
             break
-        new = rotation_map(displacement, recent[:, -1], live_p, live_scale)
+        new = rotation_map(spectrum, recent[:, -1], live_p, live_scale)
         over, done, maybe = advance(recent, np.ascontiguousarray(new, dtype=float), tolerance,
                                     CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH)
         settled = over | done
@@ -156,6 +163,7 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
             final[live[settled]] = recent[settled, -1]
             keep = ~settled
             live, live_p, live_scale, recent = live[keep], live_p[keep], live_scale[keep], recent[keep]
+            spectrum = displacement(live) if blockwise and live.size else spectrum
     final[live] = recent[:, -1]
     for k, j in enumerate(live):
         detail[j] = unsettled_text(recent[k], max_iterations)

@@ -100,4 +100,46 @@ def overturning_predictions(procedure, cases, p, groups, g: float) -> np.ndarray
     return out
 
 
-__all__ = ["overturning_predictions", "predicts_overturning"]
+def site_predictions(procedure, cases, p, alpha_rad: float, r: float, g: float) -> np.ndarray:
+    """Whether ``procedure``, one that reads only the site, predicts overturning of block k
+    (frequency parameter ``p[k]``, all of slenderness α) under case k, each case with its own
+    (scaled) site.
+
+    With the contract's :meth:`~procedures.base.Procedure.evaluate` and
+    :meth:`~procedures.base.Procedure.site_displacements`, every block is iterated at once,
+    each on its own site's spectrum (the iterates of an evaluation of that block alone, bit for
+    bit); otherwise each case is evaluated on its own.
+
+    Parameters
+    ----------
+    procedure : procedures.base.Procedure
+    cases : sequence of (records.RecordEntry, procedures.context.RecordContext)
+    p : numpy.ndarray
+        Frequency parameter of each case's block [rad/s].
+    alpha_rad, r, g : float
+        Slenderness [rad], coefficient of restitution [-], gravity [m/s²].
+
+    Returns
+    -------
+    numpy.ndarray of bool, one per case
+    """
+    beta = float(procedure.damping(r)) if procedure.estimates_rotation else None
+    spectra = (procedure.site_displacements([entry for entry, _ in cases], beta)
+               if type(procedure).evaluate is Procedure.evaluate and beta is not None else None)
+    if spectra is None:
+        return np.array([predicts_overturning(procedure.evaluate(entry, p[[k]], alpha_rad, r,
+                                                                 context, g))[0]
+                         for k, (entry, context) in enumerate(cases)], dtype=bool)
+    over = np.array([_checks_overturn(procedure.checks(entry, p[[k]], alpha_rad, r, context, g),
+                                      1)[0] for k, (entry, context) in enumerate(cases)],
+                    dtype=bool)
+    pga = np.array([procedure.peak_ground_acceleration(entry, context) for entry, context in cases])
+    uplift = np.flatnonzero(pga > g * np.tan(alpha_rad))  # step 1 of the iteration
+    if uplift.size:
+        outcome = iterate_rotation(lambda index: spectra(uplift[index]), p[uplift], alpha_rad,
+                                   g, blockwise=True)[1]
+        over[uplift] |= outcome == OVERTURN
+    return over
+
+
+__all__ = ["overturning_predictions", "predicts_overturning", "site_predictions"]

@@ -82,7 +82,7 @@ def bootstrap_lognormal(levels, overturned, resamples: int = BOOTSTRAP_RESAMPLES
     overturned = np.asarray(overturned, dtype=bool)
     records = overturned.shape[0]
     rows = np.random.default_rng(seed).integers(0, records, size=(resamples, records))
-    counts = np.stack([overturned[chosen].sum(axis=0) for chosen in rows])
+    counts = overturned[rows].sum(axis=1)  # (resample, stripe)
     medians, betas = lognormal_fits(levels, records, counts)
     return BootstrapFits(medians, betas, confidence)
 

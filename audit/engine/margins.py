@@ -71,27 +71,49 @@ class MarginsRun:
     acceptance: pd.DataFrame | None = None
 
 
-def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
-    """Multiple-stripe exact fragility of every block and each procedure's line against it.
+@dataclass
+class MarginsStripes:
+    """Every record's part of the design-level audit together (:func:`margins_stripes`):
+    arrays shaped (record, stripe, block).
 
-    Parameters
+    Attributes
     ----------
-    procedures : list of procedures.Procedure
-    suite : records.RecordSuite
-        Its ``design_site`` gives the design intensity.
-    settings : MarginsSettings
-        The intensity measure, the stripes (default
-        :func:`~audit.engine.fragility.stripe_levels` around the design intensity, else the
-        suite's median intensity), the grid and the named blocks, the impact model, gravity
-        and the free motion.
-    runtime : Runtime
-        Solver threads (worker processes of ``scheduler="dask"``), where records are computed,
-        the folder of parts kept as they complete and whether to reuse them, progress.
+    entries : list of records.RecordEntry
+        The records with a file, in the suite's order.
+    settings : audit.engine.stripes.StripeSettings
+        The stripes (ascending), the blocks, and how they were solved.
+    mce_im : float or None
+        The site's MCE intensity (the CMR's denominator) [unit of the intensity measure].
+    intensities : numpy.ndarray
+        Each record's intensity as given.
+    exact_overturned, exact_theta_rad : numpy.ndarray
+    predicted, evaluated : dict
+        Per procedure name, as in :class:`~audit.engine.stripes.RecordStripes`, stacked.
+    resumed : list of str
+    where : str
+        The records' parts reused, and where the others were computed.
     """
+
+    entries: list
+    settings: StripeSettings
+    mce_im: float | None
+    intensities: np.ndarray
+    exact_overturned: np.ndarray
+    exact_theta_rad: np.ndarray
+    predicted: dict
+    evaluated: dict
+    resumed: list
+    where: str
+
+
+def margins_stripes(procedures, suite, settings: MarginsSettings,
+                    runtime: Runtime) -> MarginsStripes:
+    """Every record of ``suite`` scaled to the stripes, with the exact response of every block
+    and each procedure's prediction there (the arguments of :func:`run_margins`)."""
     im, levels, alpha_deg = settings.im, settings.stripes, settings.alpha_deg
     size_s, named_blocks, g = settings.size_s, settings.blocks, settings.g
     restitution, free_motion_s, jobs = settings.restitution, settings.free_motion_s, runtime.jobs
-    partial_dir, resume, site_level = runtime.partial_dir, runtime.resume, settings.site_level
+    partial_dir, resume = runtime.partial_dir, runtime.resume
     entries = [entry for entry in suite if entry.motion is not None]
     if not entries:
         raise InputError(f"records: no record of {suite.description} has a file", "records")
@@ -110,39 +132,66 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
     if not len(blocks):
         raise InputError("sizes_s, alpha_deg, blocks: no block to audit", "sizes_s",
                          "alpha_deg", "blocks")
-    settings = StripeSettings(im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()),
-                              design, blocks, restitution, float(g), float(free_motion_s),
-                              int(jobs))
-    store = PartialStore(partial_dir, procedures, settings, resume) if partial_dir else None
-    parts, resumed, where = computed_parts(record_stripes, entries, procedures, settings,
-                                           runtime.scheduler, store, resume, runtime.progress)
-    levels = np.asarray(settings.levels)
-    intensities = np.array([part.intensity for part in parts])
-    exact_over = np.stack([part.exact_overturned for part in parts])  # (record, stripe, block)
-    exact_theta = np.stack([part.exact_theta_rad for part in parts])
-    predicted = {proc.name: np.stack([part.predicted[proc.name] for part in parts])
-                 for proc in procedures}
-    evaluated = {proc.name: np.array([part.evaluated[proc.name] for part in parts])
-                 for proc in procedures}
+    settings_of_stripes = StripeSettings(
+        im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()), design, blocks,
+        restitution, float(g), float(free_motion_s), int(jobs))
+    store = (PartialStore(partial_dir, procedures, settings_of_stripes, resume) if partial_dir
+             else None)
+    parts, resumed, where = computed_parts(record_stripes, entries, procedures,
+                                           settings_of_stripes, runtime.scheduler, store,
+                                           resume, runtime.progress)
+    return MarginsStripes(
+        entries, settings_of_stripes,
+        design * SITE_LEVELS[settings.site_level] if design else None,
+        np.array([part.intensity for part in parts]),
+        np.stack([part.exact_overturned for part in parts]),
+        np.stack([part.exact_theta_rad for part in parts]),
+        {proc.name: np.stack([part.predicted[proc.name] for part in parts])
+         for proc in procedures},
+        {proc.name: np.array([part.evaluated[proc.name] for part in parts])
+         for proc in procedures},
+        resumed, where)
+
+
+def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
+    """Multiple-stripe exact fragility of every block and each procedure's line against it.
+
+    Parameters
+    ----------
+    procedures : list of procedures.Procedure
+    suite : records.RecordSuite
+        Its ``design_site`` gives the design intensity.
+    settings : MarginsSettings
+        The intensity measure, the stripes (default
+        :func:`~audit.engine.fragility.stripe_levels` around the design intensity, else the
+        suite's median intensity), the grid and the named blocks, the impact model, gravity
+        and the free motion.
+    runtime : Runtime
+        Solver threads (worker processes of ``scheduler="dask"``), where records are computed,
+        the folder of parts kept as they complete and whether to reuse them, progress.
+    """
+    run = margins_stripes(procedures, suite, settings, runtime)
+    entries, im, blocks = run.entries, settings.im, run.settings.blocks
+    levels, exact_over = np.asarray(run.settings.levels), run.exact_overturned
     site_factors = np.array([site_factor(suite, e.id) for e in entries])
-    stripes = stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_over,
-                           exact_theta, predicted)
-    mce = design * SITE_LEVELS[site_level] if design else None
-    fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, mce)
-    steps = step_levels(procedures, entries, settings, predicted, evaluated)
-    capacity = capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits,
-                              boots, steps)
+    stripes = stripe_rows(entries, levels, run.intensities, site_factors, blocks, im,
+                          exact_over, run.exact_theta_rad, run.predicted)
+    fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, run.mce_im)
+    steps = step_levels(procedures, entries, run.settings, run.predicted, run.evaluated)
+    capacity = capacity_rows(procedures, levels, blocks, exact_over, run.predicted,
+                             run.evaluated, fits, boots, steps)
+    named_blocks = settings.blocks
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
-               "design_im": design, "site_level": site_level, "mce_im": mce,
-               "records": [e.id for e in entries],
+               "design_im": run.settings.design_im, "site_level": settings.site_level,
+               "mce_im": run.mce_im, "records": [e.id for e in entries],
                "records_source": suite.description, "design_site": suite.design_site,
-               "scaling": suite.scaling, "restitution": str(settings.restitution),
-               "scheduler": where, "resumed": resumed,
+               "scaling": suite.scaling, "restitution": str(run.settings.restitution),
+               "scheduler": run.where, "resumed": run.resumed,
                "procedures": [{"name": proc.name, "title": proc.title,
                                "reads": reading(proc, entries)} for proc in procedures],
-               "grid": {"alpha_deg": [float(a) for a in alpha_deg],
-                        "size_s": np.asarray(size_s if size_s is not None else (),
-                                             dtype=float).tolist()},
+               "grid": {"alpha_deg": [float(a) for a in settings.alpha_deg],
+                        "size_s": np.asarray(settings.size_s if settings.size_s is not None
+                                             else (), dtype=float).tolist()},
                "blocks": [{"block_m": b.label, "width_m": b.width_m, "height_m": b.height_m,
                            "alpha_deg": b.alpha_deg, "size_s": b.size_s}
                           for b in named_blocks]}
@@ -178,4 +227,4 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
             "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
 
 
-__all__ = ["run_margins", "MarginsRun", "margins_files"]
+__all__ = ["run_margins", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]

@@ -14,7 +14,7 @@ from audit.engine.blocks import BlockList
 from audit.engine.fragility import overturning_pattern
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
 from audit.engine.lognormal_fit import fit_lognormal
-from audit.engine.stripes import StripeSettings, half_crossing, step_level
+from audit.engine.stripes import StripeSettings, half_crossing, locate_steps
 
 
 #: How a procedure meets the stripes, by whether it reads the records (the report says it).
@@ -59,7 +59,17 @@ def stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_ov
     return frame
 
 
-def _cmr(fit, levels, mce) -> tuple[float, str]:
+def exact_fit(levels, overturned):
+    """The lognormal fragility of one block's exact outcomes (record, stripe), None where the
+    counts fix no median (no overturning, or every record at every stripe)."""
+    try:
+        return fit_lognormal(levels, np.full(levels.size, overturned.shape[0]),
+                             overturned.sum(axis=0))
+    except ValueError:
+        return None
+
+
+def collapse_margin(fit, levels, mce) -> tuple[float, str]:
     """The collapse margin ratio and how far it is known: a median beyond the stripes is an
     extrapolation of the fit, so the CMR is only bounded by the outermost stripe there."""
     if fit is None or not mce:
@@ -86,16 +96,12 @@ def fragility_rows(levels, blocks, im, exact_over, mce):
     n_records = exact_over.shape[0]
     nan = math.nan
     for b in range(len(blocks)):
-        counts = exact_over[:, :, b].sum(axis=0)
         pattern = overturning_pattern(exact_over[:, :, b])
-        try:
-            fit = fit_lognormal(levels, np.full(levels.size, n_records), counts)
-        except ValueError:
-            fit = None
+        fit = exact_fit(levels, exact_over[:, :, b])
         boot = bootstrap_lognormal(levels, exact_over[:, :, b]) if fit else None
         fits.append(fit)
         boots.append(boot)
-        cmr, bound = _cmr(fit, levels, mce)
+        cmr, bound = collapse_margin(fit, levels, mce)
         median_band = _percentile_band(boot.medians) if boot else (nan, nan)
         beta_band = _percentile_band(boot.betas[np.isfinite(boot.betas)]) \
             if boot and np.isfinite(boot.betas).any() else (nan, nan)
@@ -128,12 +134,13 @@ def step_levels(procedures, entries, settings: StripeSettings, predicted, evalua
         if not mine or any(proc.reads_record(e) for e in mine):
             continue
         answer = predicted[proc.name][np.asarray(evaluated[proc.name])][0]  # (stripe, block)
+        brackets = {}
         for b in range(answer.shape[1]):
             switch = np.flatnonzero(answer[1:, b] & ~answer[:-1, b])
             if switch.size:
-                j = int(switch[0])
-                steps[proc.name, b] = step_level(proc, mine[0], settings, b, levels[j],
-                                                 levels[j + 1])
+                brackets[b] = levels[int(switch[0])], levels[int(switch[0]) + 1]
+        steps.update(((proc.name, b), level) for b, level
+                     in locate_steps(proc, mine[0], settings, brackets).items())
     return steps
 
 
@@ -163,5 +170,5 @@ def capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, 
     return pd.DataFrame(rows)
 
 
-__all__ = ["stripe_rows", "fragility_rows", "step_levels", "capacity_rows", "reading",
-           "site_factor", "READINGS"]
+__all__ = ["stripe_rows", "fragility_rows", "exact_fit", "collapse_margin", "step_levels",
+           "capacity_rows", "reading", "site_factor", "READINGS"]

