@@ -168,3 +168,26 @@ def test_cli_refuses_bad_scheduler_and_detail_before_writing(seed_manifest, tmp_
     assert main(["run", "all", "--records", str(seed_manifest), "--out", str(out), *option]) == 2
     assert message in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_local_scheduler_overlaps_two_records_and_yields_in_order():
+    # each task waits until a second one has started: run one at a time they would time out
+    import threading
+    from audit.engine.scheduler import RECORDS_IN_FLIGHT, LocalScheduler
+    both = threading.Barrier(RECORDS_IN_FLIGHT, timeout=60)
+    lock, running, most = threading.Lock(), [0], [0]
+
+    def task(item, factor):
+        with lock:
+            running[0] += 1
+            most[0] = max(most[0], running[0])
+        if item.value < 2:
+            both.wait()
+        with lock:
+            running[0] -= 1
+        return item.value * factor
+
+    items = [_Item(f"r{i}", i) for i in range(7)]
+    yielded = [(index, value) for index, value, _ in LocalScheduler().map(task, items, 3)]
+    assert yielded == [(i, 3 * i) for i in range(7)]
+    assert most[0] == RECORDS_IN_FLIGHT

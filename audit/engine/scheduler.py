@@ -18,6 +18,8 @@ package records, the record travels by value.
 from __future__ import annotations
 
 import time
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager, nullcontext
 from dataclasses import dataclass, fields, replace
 from pathlib import Path
@@ -86,8 +88,15 @@ def timed(task, item, *args):
     return part, time.perf_counter() - start
 
 
+#: Records a local run computes at once: the next one starts while the last is finished, so
+#: that one record's Python work (guidelines' iterations, rows, files), which holds the GIL,
+#: runs beside the other's compiled kernels, which release it.
+RECORDS_IN_FLIGHT = 2
+
+
 class LocalScheduler:
-    """Records one after the other in this process; the solver uses ``settings.jobs`` threads."""
+    """Records in this process, two at a time and handed back in order; the solver uses
+    ``settings.jobs`` threads."""
 
     description = "this process"
     #: Solver threads of a task: None keeps the settings' ``jobs``.
@@ -95,8 +104,18 @@ class LocalScheduler:
 
     def map(self, task, entries, *args):
         """Yield ``(index, task(entry, *args), seconds)`` for each entry, in order."""
-        for index, entry in enumerate(entries):
-            yield (index, *timed(task, entry, *args))
+        pool = ThreadPoolExecutor(RECORDS_IN_FLIGHT)
+        try:
+            futures = deque(pool.submit(timed, task, entry, *args)
+                            for entry in entries[:RECORDS_IN_FLIGHT])
+            for index in range(len(entries)):
+                done = futures.popleft().result()
+                if index + RECORDS_IN_FLIGHT < len(entries):
+                    futures.append(pool.submit(timed, task, entries[index + RECORDS_IN_FLIGHT],
+                                               *args))
+                yield (index, *done)
+        finally:  # on an interrupt or an error nothing waits for the records still queued
+            pool.shutdown(wait=False, cancel_futures=True)
 
     def audit(self, entries, procedures, settings):
         """Yield ``(index, RecordAudit, seconds)`` for each entry, in order."""
