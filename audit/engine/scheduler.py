@@ -3,8 +3,8 @@
 The unit of work is one record: :func:`~audit.engine.record_audit.audit_record` for an audit
 (every procedure, the whole grid), a record's stripes for the design-level audit
 (:mod:`audit.engine.margins`); records are independent, so a suite spreads over workers with no other
-communication. ``local`` runs them one after the other in this process (the exact solver
-uses ``jobs`` threads); ``dask`` starts a ``dask.distributed`` LocalCluster of ``jobs``
+communication. ``local`` runs them in this process, two at a time, handed back in order (the
+exact solver uses ``jobs`` threads); ``dask`` starts a ``dask.distributed`` LocalCluster of ``jobs``
 single-threaded worker processes; ``tcp://HOST:PORT`` uses an existing Dask cluster. The
 result of a record does not depend on where it was computed (the solver's threads only split
 the grid), so every scheduler gives the same values.
