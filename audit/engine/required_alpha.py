@@ -65,7 +65,8 @@ def record_grid(entry, procedures, settings: SearchSettings) -> RecordGrid:
     exact = rocking_spectrum(entry.motion, size_s, alpha_rad, r=settings.restitution,
                              g=settings.g, free_motion_s=settings.free_motion_s,
                              jobs=settings.jobs, reactions=False).overturned
-    context = RecordContext(entry, settings.free_motion_s, settings.jobs)
+    # verdicts alone: the iterations read the spectra only where they go, at ~20 dampings
+    context = RecordContext(entry, settings.free_motion_s, settings.jobs).on_demand()
     # every slenderness of the grid at once, each with all the sizes: blocks (α, size) flat
     p = np.tile(2.0 * np.pi / size_s, alpha_rad.size)
     groups = [(alpha, np.arange(i * size_s.size, (i + 1) * size_s.size),
