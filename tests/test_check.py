@@ -257,3 +257,14 @@ def test_the_metres_axis_labels_each_size_with_its_blocks_height():
         height = float(text.removesuffix(" m"))
         # the block of that size at α = 20° is that tall (h = 2R cos α, R = 3g/(4p²))
         assert describe_block(20.0, size).endswith(f"× {height:.2f} m block")
+
+
+def test_a_dask_cluster_gives_the_same_answers(result):
+    """The check's records on a Dask LocalCluster of two worker processes: every object's
+    answer as in this process (the width search sends its records with no procedure, and the
+    check's work sets its stripes' solver threads)."""
+    dask = audit.check(["0.6x1.8", CheckObject.from_slenderness("by-alpha", ALPHA_DEG, SIZE_S)],
+                       SITE, procedures=["fema356", "housner1963"], records=_pulses(), im="pga",
+                       free_motion_s=5.0, scheduler="dask", jobs=2)
+    assert "LocalCluster of 2" in dask.document["scheduler"]
+    assert dask.document["objects"] == result.document["objects"]

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -81,6 +81,10 @@ class CheckWork:
     @property
     def jobs(self) -> int:
         return self.stripes.jobs
+
+    def with_jobs(self, jobs: int) -> CheckWork:
+        """This work with ``jobs`` solver threads (a Dask worker's one)."""
+        return replace(self, stripes=replace(self.stripes, jobs=jobs))
 
     def as_dict(self) -> dict:
         return {**self.stripes.as_dict(), "kind": "check", "per_record": list(self.per_record)}

@@ -158,7 +158,9 @@ class DaskScheduler:
         record raises again (tests/test_dask_cluster.py).
         """
         from distributed import as_completed
-        args = [self.client.scatter(arg, broadcast=True) for arg in args]
+        # an empty list (the check's width search has no procedures) has nothing to scatter
+        args = [arg if isinstance(arg, list) and not arg
+                else self.client.scatter(arg, broadcast=True) for arg in args]
         waiting = iter(enumerate(entries))
         index_of = {}
         pending = as_completed()
@@ -232,6 +234,13 @@ def open_scheduler(spec: str, jobs: int):
         yield DaskScheduler(client, f"the Dask cluster at {spec} ({workers} workers)")
 
 
+def _with_jobs(settings, jobs: int):
+    """``settings`` with ``jobs`` solver threads: a dataclass with a ``jobs`` field, or one that
+    says how (:meth:`~audit.engine.check.CheckWork.with_jobs`, whose threads are its stripes')."""
+    with_jobs = getattr(settings, "with_jobs", None)
+    return with_jobs(jobs) if with_jobs is not None else replace(settings, jobs=jobs)
+
+
 def computed_parts(task, entries, procedures, settings, scheduler: str, store=None,
                    resume: bool = False, progress=None, keep: bool = True):
     """``task(entry, procedures, settings)`` of every entry, where ``scheduler`` says, each part
@@ -278,7 +287,7 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
     with (open_scheduler(scheduler, settings.jobs) if isinstance(scheduler, str)
           else nullcontext(scheduler)) as executor:
         threads = executor.solver_threads
-        task_settings = settings if threads is None else replace(settings, jobs=threads)
+        task_settings = settings if threads is None else _with_jobs(settings, threads)
         for count, (k, part, seconds) in enumerate(
                 executor.map(task, [entries[i] for i in todo], list(procedures), task_settings),
                 start=len(resumed) + 1):
