@@ -191,3 +191,24 @@ def test_local_scheduler_overlaps_two_records_and_yields_in_order():
     yielded = [(index, value) for index, value, _ in LocalScheduler().map(task, items, 3)]
     assert yielded == [(i, 3 * i) for i in range(7)]
     assert most[0] == RECORDS_IN_FLIGHT
+
+
+def _tripled_with(item, procedures, factor):
+    return item.value * factor
+
+
+def test_dask_maps_one_after_another_with_the_same_arguments():
+    # a design-level audit maps several times on one cluster with the same procedures (the
+    # stripes, then the required α and its bisections): each map's arguments must outlive the
+    # release of the last map's. Scattered under one key (hash=True) they did not, at random:
+    # "lost dependencies" within a few maps on two worker processes.
+    from distributed import Client, LocalCluster
+    from audit.engine.scheduler import DaskScheduler
+    items = [_Item(f"r{i}", i) for i in range(6)]
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        scheduler = DaskScheduler(client, "two processes")
+        for _ in range(30):
+            done = {index: value for index, value, _ in
+                    scheduler.map(_tripled_with, items, get_procedures("all"), 3)}
+            assert done == {i: 3 * i for i in range(6)}

@@ -158,9 +158,11 @@ class DaskScheduler:
         record raises again (tests/test_dask_cluster.py).
         """
         from distributed import as_completed
-        # an empty list (the check's width search has no procedures) has nothing to scatter
+        # an empty list (the check's width search has no procedures) has nothing to scatter;
+        # keys of their own (hash=False): the same procedures scattered by an earlier call
+        # would share its key, and its release lose them under this call's tasks
         args = [arg if isinstance(arg, list) and not arg
-                else self.client.scatter(arg, broadcast=True) for arg in args]
+                else self.client.scatter(arg, broadcast=True, hash=False) for arg in args]
         waiting = iter(enumerate(entries))
         index_of = {}
         pending = as_completed()
