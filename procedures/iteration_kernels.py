@@ -67,25 +67,33 @@ def advance(recent: np.ndarray, new: np.ndarray, tolerance: float, cycle_toleran
 
 
 @numba.njit(cache=True, nogil=True)
-def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
-    """``numpy.interp(x, xp, fp)`` for one x, with its arithmetic: slope·(x − xpⱼ) + fpⱼ
-    between nodes (retried from the right node where that is NaN), the node's value at a node,
-    the end values held beyond both ends."""
+def nodes_read(x: float, xp: np.ndarray):
+    """The nodes (low, high) ``numpy.interp`` reads for x (not NaN): xp[low] ≤ x < xp[high]
+    inside the table, the end node twice beyond either end."""
     n = xp.size
-    if x != x:
-        return x
     if x < xp[0]:
-        return fp[0]
+        return 0, 0
     if x >= xp[n - 1]:
-        return fp[n - 1]
-    low, high = 0, n - 1  # xp[low] ≤ x < xp[high]
+        return n - 1, n - 1
+    low, high = 0, n - 1
     while high - low > 1:
         middle = (low + high) // 2
         if xp[middle] <= x:
             low = middle
         else:
             high = middle
-    if xp[low] == x:
+    return low, high
+
+
+@numba.njit(cache=True, nogil=True)
+def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
+    """``numpy.interp(x, xp, fp)`` for one x, with its arithmetic: slope·(x − xpⱼ) + fpⱼ
+    between nodes (retried from the right node where that is NaN), the node's value at a node,
+    the end values held beyond both ends."""
+    if x != x:
+        return x
+    low, high = nodes_read(x, xp)
+    if low == high or xp[low] == x:
         return fp[low]
     slope = (fp[low + 1] - fp[low]) / (xp[low + 1] - xp[low])
     value = slope * (x - xp[low]) + fp[low]
@@ -153,22 +161,9 @@ def _read_on_demand(period, period_s, table, source):
     :func:`~audit.physics.peaks_between_samples.fill_displacement` where unknown, × the factor
     (``source`` as :meth:`procedures.tabulated.TabulatedOnDemand.kernel_arguments`)."""
     known, factor, acc, dt, coeffs, omega, damping, raw, raw_known = source
-    n = period_s.size
     if period != period:
         return
-    if period < period_s[0]:
-        low, high = 0, 0
-    elif period >= period_s[n - 1]:
-        low, high = n - 1, n - 1
-    else:
-        low, high = 0, n - 1
-        while high - low > 1:
-            middle = (low + high) // 2
-            if period_s[middle] <= period:
-                low = middle
-            else:
-                high = middle
-    for j in (low, high):
+    for j in nodes_read(period, period_s):
         if not known[j]:
             fill_displacement(acc, dt, coeffs, omega, damping, raw, raw_known, j)
             table[j] = raw[j] * factor
