@@ -67,9 +67,9 @@ class DesignSpectrum:
 
 
 def _positive(value, field):
+    """Refuse ``value`` (a number of g, or one per period) unless every element is > 0."""
     if not (value is not None and np.all(np.isfinite(value)) and np.all(np.asarray(value) > 0)):
         raise InputError(f"{field}: must be a positive number of g, got {value}")
-    return value
 
 
 def _where(value, mask):
