@@ -1,5 +1,6 @@
 """Schedulers: the same values whatever computes the records; records by reference or by value."""
 
+import json
 import sys
 from dataclasses import dataclass, replace
 
@@ -212,3 +213,42 @@ def test_dask_maps_one_after_another_with_the_same_arguments():
             done = {index: value for index, value, _ in
                     scheduler.map(_tripled_with, items, get_procedures("all"), 3)}
             assert done == {i: 3 * i for i in range(6)}
+
+
+def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_records, tmp_path,
+                                                                        monkeypatch):
+    """A Dask cluster hands records back as they complete: the files are the local run's byte
+    for byte, and each part ahead of its turn waits on disk, not in memory."""
+    from audit.engine import suite_run
+    from audit.engine.runtime import Runtime
+    from audit.engine.scheduler import LocalScheduler
+
+    class LastFirst(LocalScheduler):
+        description = "last first"
+
+        def map(self, task, entries, *args):
+            yield from reversed(list(super().map(task, entries, *args)))
+
+    saved = []
+    save = suite_run.PartialStore.save
+    monkeypatch.setattr(suite_run.PartialStore, "save",
+                        lambda store, entry, part: saved.append(entry.id) or save(store, entry,
+                                                                                  part))
+    procedures, settings = get_procedures("all"), AuditSettings.parse(**GRID)
+    folders = {}
+    for name, scheduler in (("local", "local"), ("last-first", LastFirst())):
+        folders[name] = tmp_path / name
+        folders[name].mkdir()
+        suite_run.audit_suite(procedures, three_records, settings,
+                              Runtime.parse(jobs=2, scheduler=scheduler), folders[name])
+    ids = [entry.id for entry in three_records]
+    assert saved == ids[:0:-1]  # all but the first waited, last first
+    names = sorted(path.name for path in folders["local"].iterdir())
+    assert names == sorted(path.name for path in folders["last-first"].iterdir())
+    for name in names:
+        local, other = ((folders[k] / name).read_bytes() for k in ("local", "last-first"))
+        if name == "summary.json":
+            local, other = (json.loads(text) for text in (local, other))
+            assert (local.pop("scheduler"), other.pop("scheduler")) == ("this process",
+                                                                        "last first")
+        assert local == other, name

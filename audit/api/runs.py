@@ -180,7 +180,7 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
     from audit.engine.costs import audit_cost
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML
-    from audit.engine.suite_run import compiles_first, compute_suite, write_suite
+    from audit.engine.suite_run import audit_suite, compiles_first
     from audit.files import staged_folder
     values, site, how, shown = split(options, AUDIT_FIELDS, SITE_FIELDS, RUNTIME_FIELDS,
                                      ("detail",))
@@ -202,19 +202,14 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
             stage.stage("compiling the rocking solver and the oscillator kernels for this "
                         "machine (first run only: 5–10 s)")
     stage = stage if hasattr(stage, "stage") else None
-    try:
-        computed = compute_suite(chosen, suite, settings, runtime, detail)
-    finally:
-        if bar:
-            stage.done()
     if out_dir is None:
         scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
-        write_suite(computed, scratch.name, stage)
+        audit_suite(chosen, suite, settings, runtime, scratch.name, detail, progress=stage)
         return AuditResult(scratch.name, scratch)
     # the summary is read back when asked: the report is drawn without a second copy in memory
     with staged_folder(out_dir) as staging:  # files appear only when all are written
-        write_suite(computed, staging, stage)
-        del computed, suite  # the motions go too, unless the caller holds them
+        audit_suite(chosen, suite, settings, runtime, staging, detail, progress=stage)
+        del suite  # the motions go too, unless the caller holds them
         if stage is not None:
             stage.stage(f"writing the report to {out_dir}")
         AuditResult(staging).report(staging / REPORT_HTML)

@@ -25,7 +25,7 @@ def _motions(suite) -> list:
 
 
 def audit_cost(procedures, suite, settings: AuditSettings, runtime: Runtime) -> guards.Estimate:
-    """The work of :func:`audit.engine.suite_run.compute_suite`: every block solved once, twice
+    """The work of :func:`audit.engine.suite_run.audit_suite`: every block solved once, twice
     more for the fragility flag (record × (1 ± ε)), once more per alternative model; the
     record's spectra and each procedure's at each slenderness."""
     sizes, alphas = len(settings.size_s), len(settings.alpha_deg)

@@ -48,7 +48,7 @@ class Runtime:
         scheduler already open (:func:`~audit.engine.scheduler.open_scheduler`).
     partial_dir : Path or None
         Folder for per-record results as they complete (:mod:`audit.engine.partial`), kept
-        for a resumed run; None: a scratch folder, removed once the run is written.
+        for a resumed run; None: none kept.
     resume : bool
         Reuse the matching per-record results already in ``partial_dir``.
     progress : callable or None

@@ -244,7 +244,7 @@ def _with_jobs(settings, jobs: int):
 
 
 def computed_parts(task, entries, procedures, settings, scheduler: str, store=None,
-                   resume: bool = False, progress=None, keep: bool = True):
+                   resume: bool = False, progress=None, consume=None):
     """``task(entry, procedures, settings)`` of every entry, where ``scheduler`` says, each part
     stored as it completes and reused from ``store`` when resuming.
 
@@ -264,9 +264,10 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
         Reuse the matching parts already in ``store``.
     progress : callable, optional
         ``progress(done, total, record_id, how)`` after each record.
-    keep : bool
-        Return the parts; if false, each part is dropped once in ``store`` (a suite of
-        thousands of records is never held whole) and ``parts`` is None.
+    consume : callable, optional
+        ``consume(index, part)`` of each part as it completes or is reused (not in order on a
+        Dask cluster; reused ones first), which is then dropped: a suite of thousands of
+        records is never held whole, and ``parts`` is None. Default: return the parts.
 
     Returns
     -------
@@ -279,9 +280,15 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
     """
     progress = progress or (lambda done, total, record_id, how: None)
     parts = [None] * len(entries)
+
+    def take(index, part):
+        if consume is not None:
+            consume(index, part)
+        parts[index] = part if consume is None else True  # True: done, not held
+
     for i, entry in enumerate(entries):
         if store and resume and (part := store.load(entry)) is not None:
-            parts[i] = part if keep else True
+            take(i, part)
     resumed = [entry.id for entry, part in zip(entries, parts) if part is not None]
     for count, record_id in enumerate(resumed, start=1):
         progress(count, len(entries), record_id, "reused from an interrupted run")
@@ -293,11 +300,11 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
         for count, (k, part, seconds) in enumerate(
                 executor.map(task, [entries[i] for i in todo], list(procedures), task_settings),
                 start=len(resumed) + 1):
-            parts[todo[k]] = part if keep else True
             if store:
                 store.save(entries[todo[k]], part)
             progress(count, len(entries), entries[todo[k]].id, f"computed in {seconds:.1f} s")
-    return (parts if keep else None), resumed, executor.description
+            take(todo[k], part)
+    return (parts if consume is None else None), resumed, executor.description
 
 
 __all__ = ["computed_parts", "open_scheduler", "check_scheduler", "LocalScheduler", "DaskScheduler",

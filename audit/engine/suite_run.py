@@ -1,17 +1,17 @@
 """An audit over a suite of records: every record's part, the suite statistics, the bottom line,
 the reproduction checklist and the figure data — everything the report is drawn from.
 
-:func:`compute_suite` then :func:`write_suite` is the pipeline the command line and the Python
-API (:mod:`audit.api`) both run: each record's part is stored on disk as it completes, then the
-run's data files are written record by record (:mod:`audit.engine.run_writer`), in memory
-that does not grow with the suite beyond a small term per record. :func:`run_audit` writes
-them into a scratch folder and reads the whole run back as an :class:`AuditRun`.
+:func:`audit_suite` is the pipeline the command line and the Python API (:mod:`audit.api`) both
+run: each record's rows are written to the run's data files (:mod:`audit.engine.run_writer`) as
+soon as its part is computed, while the next records are, in memory that does not grow with the
+suite beyond a small term per record. :func:`run_audit` writes them into a scratch folder and
+reads the whole run back as an :class:`AuditRun`.
 """
 
 from __future__ import annotations
 
 import tempfile
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
 
 import pandas as pd
@@ -31,27 +31,51 @@ from audit.engine.settings import AUDIT_FIELDS, AuditSettings
 from audit.errors import InputError
 
 
-@dataclass
-class ComputedSuite:
-    """Every record's part of an audit, kept on disk in ``store`` (not in memory) until
-    :func:`write_suite` writes the run's files from them."""
+class _InOrder:
+    """Hands each record's part to ``add(entry, part)`` in the suite's order.
 
-    procedures: list
-    suite: object
-    settings: AuditSettings
-    store: PartialStore
-    resumed: list
-    where: str
-    detail: list
-    claims: bool
-    #: The store is this run's scratch (no ``partial_dir``): removed once written.
-    scratch: bool
+    A local run computes the records in order; a Dask cluster hands them back as they complete,
+    and a resumed run's reused parts come first. A part ahead of its turn waits on disk, so
+    that memory holds one part at a time: in the run's kept parts (``kept``, where it is saved
+    already), else in a scratch :class:`PartialStore` made when first needed.
+    """
+
+    def __init__(self, entries, add, kept, procedures, settings):
+        self.entries, self.add, self.kept = entries, add, kept
+        self.procedures, self.settings = procedures, settings
+        self.next = 0
+        self.waiting = set()
+        self.scratch = None
+
+    def __call__(self, index: int, part) -> None:
+        if index != self.next:
+            if self.kept is None:
+                if self.scratch is None:
+                    self.scratch = PartialStore(tempfile.mkdtemp(prefix="rocking-audit-parts-"),
+                                                self.procedures, self.settings, resume=True)
+                self.scratch.save(self.entries[index], part)
+            self.waiting.add(index)
+            return
+        self.add(self.entries[index], part)
+        self.next += 1
+        while self.next in self.waiting:
+            self.waiting.remove(self.next)
+            entry = self.entries[self.next]
+            self.add(entry, (self.kept or self.scratch).load(entry))
+            self.next += 1
+
+    def remove(self) -> None:
+        """Delete the scratch folder, if any."""
+        if self.scratch is not None:
+            self.scratch.remove()
 
 
-def compute_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, detail=(),
-                  claims: bool = True) -> ComputedSuite:
-    """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid, each record's
-    part stored on disk as it completes (:func:`write_suite` then writes the run's files).
+def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, folder, detail=(),
+                claims: bool = True, progress=None) -> dict:
+    """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid and write the
+    run's data files into ``folder``, each record's rows as soon as its part is computed (while
+    the next records are), in memory that does not grow with the suite beyond a small term per
+    record.
 
     Parameters
     ----------
@@ -61,15 +85,21 @@ def compute_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, 
         What is computed (:meth:`AuditSettings.parse`).
     runtime : Runtime
         How: threads or worker processes, the scheduler, the folder of parts kept as they
-        complete (default a scratch folder removed by :func:`write_suite`), resuming, progress.
+        complete for a resumed run (``partial_dir``), resuming, progress.
+    folder : str or Path
+        An existing folder (a staging folder, moved into place by the caller).
     detail : sequence of str
         Record ids whose per-record detail the report should show (``summary["detail"]``).
     claims : bool
         Check the claims of the reference report (``AuditRun.claims``).
+    progress : audit.engine.progress.Progress, optional
+        Its bar closed when the records are done, then told that the suite's files are being
+        written.
 
     Returns
     -------
-    ComputedSuite
+    dict
+        ``summary.json``; ``summary["resumed"]`` lists the records taken from ``partial_dir``.
     """
     return_freed_memory_promptly()  # the driver streams thousands of parts (heap.py)
     settings = replace(settings, jobs=runtime.jobs)
@@ -80,66 +110,37 @@ def compute_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, 
     if unknown:
         raise InputError(f"detail: unknown record(s) {', '.join(unknown)} in "
                          f"{suite.description}", "detail")
-    scratch = runtime.partial_dir is None
-    store = PartialStore(tempfile.mkdtemp(prefix="rocking-audit-parts-") if scratch
-                         else runtime.partial_dir, procedures, settings, runtime.resume)
+    kept = (None if runtime.partial_dir is None
+            else PartialStore(runtime.partial_dir, procedures, settings, runtime.resume))
+    writer = RunWriter(Path(folder), procedures, claimed_records() if claims else ())
+    in_order = _InOrder(entries, writer.add, kept, procedures, settings)
     try:
         _, resumed, where = computed_parts(audit_record, entries, procedures, settings,
-                                           runtime.scheduler, store, runtime.resume,
-                                           runtime.progress, keep=False)
-    except BaseException:
-        if scratch:
-            store.remove()
-        raise
-    return ComputedSuite(list(procedures), suite, settings, store, resumed, where, detail,
-                         claims, scratch)
-
-
-def write_suite(computed: ComputedSuite, folder, progress=None) -> dict:
-    """Write the data files of a computed audit into ``folder``, record by record, in memory
-    that does not grow with the suite beyond a small term per record.
-
-    Parameters
-    ----------
-    computed : ComputedSuite
-    folder : str or Path
-        An existing folder (a staging folder, moved into place by the caller).
-    progress : audit.engine.progress.Progress, optional
-        Told that the files are being written.
-
-    Returns
-    -------
-    dict
-        ``summary.json``; ``summary["resumed"]`` lists the records taken from ``partial_dir``.
-    """
-    entries = list(computed.suite)
-    if progress is not None:
-        progress.stage(f"writing the results of {len(entries)} records")
-    writer = RunWriter(Path(folder), computed.procedures,
-                       claimed_records() if computed.claims else ())
-    try:
-        for entry in entries:
-            writer.add(entry, computed.store.load(entry))
+                                           runtime.scheduler, kept, runtime.resume,
+                                           runtime.progress, consume=in_order)
     finally:
         writer.close()
-    if computed.scratch:
-        computed.store.remove()
-    summary = writer.summary(computed.suite, computed.settings, computed.detail)
-    summary.update(scheduler=computed.where, resumed=computed.resumed)
-    writer.finish(summary, evaluate_claims(writer.kept_run(summary), computed.suite)
-                  if computed.claims else pd.DataFrame(columns=CLAIM_COLUMNS))
+        in_order.remove()
+        if progress is not None:
+            progress.done()
+    if progress is not None:
+        progress.stage(f"writing the results of {len(entries)} records: the suite's "
+                       f"statistics and the claims")
+    summary = writer.summary(suite, settings, detail)
+    summary.update(scheduler=where, resumed=resumed)
+    writer.finish(summary, evaluate_claims(writer.kept_run(summary), suite)
+                  if claims else pd.DataFrame(columns=CLAIM_COLUMNS))
     return summary
 
 
 def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> AuditRun:
-    """The whole run of :func:`compute_suite`, its settings and runtime given by their fields
+    """The whole run of :func:`audit_suite`, its settings and runtime given by their fields
     (``alpha_deg=…, sizes_s=…, jobs=…``), written and read back from its files into memory:
     for a test or a script, not for a suite of thousands of records."""
     settings = AuditSettings.parse(**{k: v for k, v in values.items() if k in AUDIT_FIELDS})
     runtime = Runtime.parse(**{k: v for k, v in values.items() if k not in AUDIT_FIELDS})
-    computed = compute_suite(procedures, suite, settings, runtime, detail, claims)
     with tempfile.TemporaryDirectory(prefix="rocking-audit-") as folder:
-        write_suite(computed, folder)
+        audit_suite(procedures, suite, settings, runtime, folder, detail, claims)
         return load_run(folder)
 
 
@@ -152,5 +153,5 @@ def compiles_first() -> bool:
     return not (machine_code_cached(kernel._spectrum) and machine_code_cached(spectrum_peaks))
 
 
-__all__ = ["compute_suite", "write_suite", "ComputedSuite", "run_audit", "AuditRun",
+__all__ = ["audit_suite", "run_audit", "AuditRun",
            "compiles_first"]
