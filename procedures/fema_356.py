@@ -14,7 +14,7 @@ import numpy as np
 
 from audit import G
 from audit.physics.damping import damping_fema356
-from audit.physics.design_spectra import FEMA356Spectrum
+from audit.physics.design_spectra import DesignDisplacement, FEMA356Spectrum
 from procedures.base import Procedure
 
 
@@ -45,7 +45,7 @@ class FEMA356(Procedure):
 
     def displacement_spectrum(self, entry, damping, context):
         spectrum = self.design_spectrum(entry)
-        return lambda period_s: spectrum.displacement(period_s, damping)
+        return DesignDisplacement(spectrum, damping)
 
     def site_displacements(self, entries, damping):
         spectra = FEMA356Spectrum(np.array([e.site["sxs_g"] for e in entries], dtype=float),
@@ -53,5 +53,5 @@ class FEMA356(Procedure):
 
         def of(index):
             mine = replace(spectra, sxs_g=spectra.sxs_g[index], sx1_g=spectra.sx1_g[index])
-            return lambda period_s: mine.displacement(period_s, damping)
+            return DesignDisplacement(mine, damping)
         return of

@@ -86,13 +86,10 @@ def nodes_read(x: float, xp: np.ndarray):
 
 
 @numba.njit(cache=True, nogil=True)
-def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
-    """``numpy.interp(x, xp, fp)`` for one x, with its arithmetic: slope·(x − xpⱼ) + fpⱼ
-    between nodes (retried from the right node where that is NaN), the node's value at a node,
-    the end values held beyond both ends."""
-    if x != x:
-        return x
-    low, high = nodes_read(x, xp)
+def interp_between(x: float, xp: np.ndarray, fp: np.ndarray, low: int, high: int) -> float:
+    """``numpy.interp``'s value at x (not NaN) from the nodes it reads (:func:`nodes_read`), with
+    its arithmetic: slope·(x − xpⱼ) + fpⱼ between nodes (retried from the right node where that
+    is NaN), the node's value at a node, the end values held beyond both ends."""
     if low == high or xp[low] == x:
         return fp[low]
     slope = (fp[low + 1] - fp[low]) / (xp[low + 1] - xp[low])
@@ -102,6 +99,15 @@ def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
         if value != value and fp[low] == fp[low + 1]:
             value = fp[low]
     return value
+
+
+@numba.njit(cache=True, nogil=True)
+def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
+    """``numpy.interp(x, xp, fp)`` for one x (:func:`interp_between`)."""
+    if x != x:
+        return x
+    low, high = nodes_read(x, xp)
+    return interp_between(x, xp, fp, low, high)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -250,5 +256,5 @@ def iterate_on_demand(period_s, table, source, p, scale, initial_ratio, toleranc
                            source)
 
 
-__all__ = ["advance", "cycle_length", "interp", "iterate_on_demand", "iterate_tabulated",
-           "may_repeat"]
+__all__ = ["advance", "cycle_length", "interp", "interp_between", "iterate_on_demand",
+           "iterate_tabulated", "may_repeat", "nodes_read"]

@@ -16,6 +16,7 @@ import numpy as np
 from audit import G
 from audit.physics.block import radius_from_p
 from audit.physics.damping import housner_period
+from procedures.tabulated import TabulatedDisplacement
 
 #: Fixed points are scanned on a grid uniform in ln v, v = pT/4 = acosh(1/(1 − θ/α)) (Eq. 8.1),
 #: with this step: successive periods 0.25 % apart. The record spectra are linear in T between
@@ -29,6 +30,10 @@ SCAN_STEP_LOG_PERIOD = 0.0025
 SCAN_V_RANGE = (1e-4, 25.0)
 #: Fixed points are polished to this absolute tolerance in θ/α.
 ROOT_TOLERANCE_RATIO = 1e-10
+#: Grid points whose signs are settled together where Sd's range over them decides them all.
+SCAN_CHUNK = 32
+#: Relative room a chunk's bounds leave for the rounding of the values inside it (a few ulps).
+ROUNDING_ROOM = 1e-9
 #: Step of the central difference for F'(θ*) in θ/α, well inside one linear piece of a spectrum.
 SLOPE_STEP_RATIO = 1e-6
 
@@ -82,6 +87,40 @@ class FixedPoints:
         return out
 
 
+def _excess_positive(displacement, v, grid, p, scale) -> np.ndarray:
+    """F(θ) > θ at every grid point (v, θ/α = ``grid``) of every block: Sd(4v/p)·scale > θ/α.
+
+    Each value is that of the array expression ``displacement(4v/p)·scale − grid > 0``; a
+    tabulated spectrum's are found compiled (:mod:`procedures.fixed_point_scan`), and a
+    nondecreasing Sd's (``displacement.nondecreasing``) only in the chunks of
+    :data:`SCAN_CHUNK` grid points where Sd at the chunk's ends leaves a sign open: the others
+    lie wholly above or below the chunk's θ/α. The array expression read ~10⁶ periods a call.
+    """
+    if isinstance(displacement, TabulatedDisplacement):
+        from procedures.fixed_point_scan import tabulated_excess  # numba loads only here
+        return tabulated_excess(v, grid, p, scale, displacement.period_s, displacement.sd_m,
+                                SCAN_CHUNK, ROUNDING_ROOM)
+    if not getattr(displacement, "nondecreasing", False):
+        return (displacement(4.0 * v / p[:, None]) * scale[:, None] - grid) > 0.0
+    period = 4.0 * v
+    first = np.arange(0, v.size, SCAN_CHUNK)
+    last = np.minimum(first + SCAN_CHUNK, v.size) - 1
+    lowest, highest = np.minimum.reduceat(grid, first), np.maximum.reduceat(grid, first)
+    bottom = displacement(period[first] / p[:, None]) * scale[:, None]
+    top = displacement(period[last] / p[:, None]) * scale[:, None]
+    above = bottom - ROUNDING_ROOM * np.abs(bottom) > highest
+    below = top + ROUNDING_ROOM * np.abs(top) < lowest
+    out = np.repeat(above, SCAN_CHUNK, axis=1)[:, :v.size]
+    blocks, chunks = np.nonzero(~(above | below))
+    points = (first[chunks][:, None] + np.arange(SCAN_CHUNK)).ravel()
+    blocks = np.repeat(blocks, SCAN_CHUNK)
+    inside = points < v.size
+    points, blocks = points[inside], blocks[inside]
+    out[blocks, points] = (displacement(period[points] / p[blocks]) * scale[blocks]
+                           - grid[points]) > 0.0
+    return out
+
+
 def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad: float,
                  g: float = G) -> FixedPoints:
     """Every fixed point θ* = F(θ*) on (0, α) of the map of Eqs. 8.1–8.2, with its stability.
@@ -114,7 +153,7 @@ def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad:
     low, high = SCAN_V_RANGE
     v = np.exp(np.arange(np.log(low), np.log(high), SCAN_STEP_LOG_PERIOD))
     grid = 1.0 - 1.0 / np.cosh(v)  # θ/α at v (inverse of Eq. 8.1)
-    excess = (displacement(4.0 * v / p[:, None]) * scale[:, None] - grid) > 0.0
+    excess = _excess_positive(displacement, v, grid, p, scale)
     blocks, left = np.nonzero(excess[:, :-1] != excess[:, 1:])
 
     def excess_of(ratio, p_block, scale_block):

@@ -56,6 +56,10 @@ class DesignSpectrum:
     """A code design spectrum: ``acceleration`` [g] by code, displacement by Eq. 3.5."""
 
     name = ""
+    #: Whether Sd(T) never falls as T grows, whatever the site and damping: the fixed-point scan
+    #: (:func:`procedures.rotation_map.fixed_points`) then bounds Sd over a range of periods by
+    #: its values at the range's ends.
+    displacement_nondecreasing = False
 
     def acceleration(self, period_s, damping):
         """Spectral acceleration Sa [g] at periods T [s] and effective damping β [-]."""
@@ -64,6 +68,23 @@ class DesignSpectrum:
     def displacement(self, period_s, damping, g=G):
         """Spectral displacement Sd [m] (Eq. 3.5)."""
         return displacement_from_acceleration(self.acceleration(period_s, damping), period_s, g)
+
+
+@dataclass(frozen=True, eq=False)
+class DesignDisplacement:
+    """Sd(T) [m] of a design spectrum at one effective damping β [-], as a function of the
+    period T [s] (array in, array out, elementwise)."""
+
+    spectrum: DesignSpectrum
+    damping: float
+
+    @property
+    def nondecreasing(self) -> bool:
+        """Whether Sd never falls as T grows (:attr:`DesignSpectrum.displacement_nondecreasing`)."""
+        return self.spectrum.displacement_nondecreasing
+
+    def __call__(self, period_s):
+        return self.spectrum.displacement(period_s, self.damping)
 
 
 def _positive(value, field):
@@ -94,6 +115,10 @@ class FEMA356Spectrum(DesignSpectrum):
     sxs_g: float
     sx1_g: float
     name = "FEMA 356"
+    # Sa·T² is continuous and grows on each branch: S_X1·T/B_1 beyond T_S, S_XS·T²/B_S on the
+    # plateau, and below T_0 = 0.2·T_S d(Sa·T²)/dT = S_XS·T·[3(5/B_S − 2)·T/T_S + 0.8] > 0
+    # whenever B_S < 7.5 (Table 1-6's largest is 3.0)
+    displacement_nondecreasing = True
 
     def __post_init__(self):
         _positive(self.sxs_g, "S_XS")
