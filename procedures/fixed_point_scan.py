@@ -14,36 +14,17 @@ from procedures.iteration_kernels import interp_between
 
 
 @numba.njit(cache=True, nogil=True)
-def _exact(v, grid, p, scale, period_s, sd_m, first, stop, low, out):
-    """The signs of grid points ``first`` … ``stop − 1``, each in the array expression's
-    operations; ``low`` is the node the first period reads, or before it. Returns the node the
-    last one reads."""
-    last = period_s.size - 1
-    for i in range(first, stop):
-        period = 4.0 * v[i] / p
-        if period < period_s[0]:
-            sd = sd_m[0]
-        elif period >= period_s[last]:
-            sd = sd_m[last]
-        else:
-            while period_s[low + 1] <= period:  # period_s[low] ≤ period < period_s[low + 1]
-                low += 1
-            sd = interp_between(period, period_s, sd_m, low, low + 1)
-        out[i] = sd * scale - grid[i] > 0.0
-    return low
-
-
-@numba.njit(cache=True, nogil=True)
-def _node_after(period, period_s, low):
-    """The highest node numpy.interp reads for ``period``, walking up from node ``low``."""
+def _read(period, period_s, sd_m, low):
+    """``numpy.interp(period, period_s, sd_m)``, the node it reads found by walking up from node
+    ``low`` (at or before it: periods are read in ascending order). Returns (Sd, that node)."""
     last = period_s.size - 1
     if period < period_s[0]:
-        return 0
+        return sd_m[0], low
     if period >= period_s[last]:
-        return last
-    while period_s[low + 1] <= period:
+        return sd_m[last], last
+    while period_s[low + 1] <= period:  # period_s[low] ≤ period < period_s[low + 1]
         low += 1
-    return low + 1
+    return interp_between(period, period_s, sd_m, low, low + 1), low
 
 
 @numba.njit(cache=True, nogil=True)
@@ -52,12 +33,13 @@ def tabulated_excess(v, grid, p, scale, period_s, sd_m, chunk, room):
     grid > 0``, Sd read as ``numpy.interp(T, period_s, sd_m)`` reads it: the values of the
     array expression it replaces (:func:`procedures.rotation_map.fixed_points`).
 
-    T grows along the grid (v ascending, p > 0), and Sd between two periods lies within the
-    tabulated values of the nodes read between them. A chunk of ``chunk`` grid points whose
-    θ/α all lie above that range's top, or all below its bottom, by more than the rounding of
-    the values inside (``room``, relative), takes its sign without reading a value;
-    only the chunks that hold a crossing are evaluated, each element in the array expression's
-    operations. numpy's array expression read all ~10⁶ periods of a call.
+    T grows along the grid (v ascending, p > 0), and Sd, linear between nodes, lies between its
+    values at two periods and at the nodes between them. A chunk of ``chunk`` grid points
+    whose θ/α all lie above that range's top, or all below its bottom, by more than the
+    rounding of the values inside (``room``, relative), takes its sign from the two ends; only
+    the chunks that hold a crossing are read point by point, each element in the array
+    expression's operations, the nodes found by walking up with the periods rather than by a
+    binary search. numpy's array expression read all ~10⁶ periods of a call.
 
     Parameters
     ----------
@@ -84,25 +66,31 @@ def tabulated_excess(v, grid, p, scale, period_s, sd_m, chunk, room):
         lowest[c], highest[c] = part.min(), part.max()
     out = np.empty((p.size, size), dtype=np.bool_)
     for b in range(p.size):
-        low = 0  # the node the chunk's first period reads
+        low = 0  # the node the chunk's first period reads, or one before it
         for c in range(chunks):
             first, stop = c * chunk, min(size, (c + 1) * chunk)
-            while low < period_s.size - 1 and period_s[low + 1] <= 4.0 * v[first] / p[b]:
-                low += 1
-            high = _node_after(4.0 * v[stop - 1] / p[b], period_s, low)
-            top, bottom = -np.inf, np.inf
-            for j in range(low, high + 1):
-                if sd_m[j] != sd_m[j]:  # NaN: no bound, every value read
-                    top, bottom = np.inf, -np.inf
-                    break
+            # Sd is linear between nodes: over the chunk's periods it lies between its values
+            # at both ends and at the nodes inside
+            start_sd, low = _read(4.0 * v[first] / p[b], period_s, sd_m, low)
+            end_period = 4.0 * v[stop - 1] / p[b]
+            end_sd, _ = _read(end_period, period_s, sd_m, low)
+            top, bottom = max(start_sd, end_sd), min(start_sd, end_sd)
+            unknown = start_sd != start_sd or end_sd != end_sd  # NaN: every value is read
+            j = low + 1
+            while j < period_s.size and period_s[j] < end_period:
                 top, bottom = max(top, sd_m[j]), min(bottom, sd_m[j])
+                unknown = unknown or sd_m[j] != sd_m[j]
+                j += 1
             top, bottom = top * scale[b], bottom * scale[b]
-            if top + room * abs(top) < lowest[c]:
+            if not unknown and top + room * abs(top) < lowest[c]:
                 out[b, first:stop] = False
-            elif bottom - room * abs(bottom) > highest[c]:
+            elif not unknown and bottom - room * abs(bottom) > highest[c]:
                 out[b, first:stop] = True
             else:
-                _exact(v, grid, p[b], scale[b], period_s, sd_m, first, stop, low, out[b])
+                inner = low
+                for i in range(first, stop):
+                    sd, inner = _read(4.0 * v[i] / p[b], period_s, sd_m, inner)
+                    out[b, i] = sd * scale[b] - grid[i] > 0.0
     return out
 
 
