@@ -8,6 +8,7 @@ subclass.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -42,9 +43,18 @@ def fema356_damping_coefficients(damping):
     damping : float or array
         Effective damping β [-] (0.05 for 5 %).
     """
+    return _table_1_6_at(float(damping)) if np.ndim(damping) == 0 else _table_1_6(damping)
+
+
+def _table_1_6(damping):
     table = FEMA356_TABLE_1_6
     return (np.interp(damping, table[:, 0], table[:, 1]),
             np.interp(damping, table[:, 0], table[:, 2]))
+
+
+# one damping's (B_S, B_1), kept: a guideline's iteration reads the spectrum at one damping
+# thousands of times, and the two interpolations cost as much as the rest of the spectrum
+_table_1_6_at = functools.lru_cache(maxsize=256)(_table_1_6)
 
 
 def displacement_from_acceleration(sa_g, period_s, g=G):
