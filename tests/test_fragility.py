@@ -97,3 +97,26 @@ def test_one_cosine_pulse_stripes_in_pga():
     assert pattern.first_stripe[0] == 1 and pattern.islands[0]
     assert theta[0, 0, 0] < math.radians(15.0) and theta[1, 0, 0] == pytest.approx(
         math.radians(15.0))
+
+
+def test_fits_of_many_count_sets_equal_those_of_every_row_scored_together():
+    """lognormal_fits scores each distinct row once: the numbers of scoring every row of a
+    bootstrap together (from the same pooled start), bit for bit, step fits included."""
+    from audit.engine import lognormal_fit as lf
+    rng = np.random.default_rng(7)
+    levels = np.geomspace(0.2, 3.6, 24)
+    for records in (3, 8, 44):
+        capacity = np.exp(rng.normal(0.0, 0.5, records))
+        over = (levels[None, :] >= capacity[:, None]) ^ (rng.random((records, 24)) < 0.05)
+        counts = over[rng.integers(0, records, size=(1000, records))].sum(axis=1).astype(float)
+        medians, betas = lf.lognormal_fits(levels, records, counts)
+        total = counts.sum(axis=1)
+        fitted = (total > 0) & (total < records * 24)
+        rows = counts[fitted]
+        if records == 3:  # three records' resamples repeat: fits to share
+            assert len(np.unique(rows, axis=0)) < len(rows) / 2
+        every = lf._steps_where_unsettled(levels, records, rows, *lf._probit_fits(
+            np.log(levels), records, rows, rows.sum(axis=0) / (records * len(rows))))
+        np.testing.assert_array_equal(medians[fitted], every[0])
+        np.testing.assert_array_equal(betas[fitted], every[1])
+        assert np.all(np.isinf(medians[total == 0])) and np.all(medians[total == records * 24] == 0)

@@ -155,9 +155,24 @@ def lognormal_fits(levels, trials: int, counts) -> tuple[np.ndarray, np.ndarray]
     medians = np.where(none, np.inf, 0.0)
     betas = np.full(len(counts), np.nan)
     if fitted.any():
-        medians[fitted], betas[fitted] = _probit_fits(np.log(levels), trials, counts[fitted])
+        rows = counts[fitted]
+        # equal rows fit alike, and a bootstrap draws many: each distinct row is fitted once,
+        # from the start every row's pooled shares give (the scoring of a row depends on its
+        # start and its own counts only)
+        distinct, inverse = np.unique(rows, axis=0, return_inverse=True)
+        fits = _probit_fits(np.log(levels), trials, distinct,
+                            rows.sum(axis=0) / (trials * len(rows)))
+        medians[fitted], betas[fitted] = (values[inverse.ravel()]
+                                          for values in _steps_where_unsettled(
+                                              levels, trials, distinct, *fits))
+    return medians, betas
+
+
+def _steps_where_unsettled(levels, trials: int, counts, medians, betas):
+    """The fits of ``counts`` with a step (or the slow fit) where the scoring gave no finite
+    θ and positive β (the likelihood's supremum at β → 0)."""
     levels = np.asarray(levels, dtype=float)
-    for k in np.flatnonzero(fitted & ~(np.isfinite(medians) & (betas > 0))):
+    for k in np.flatnonzero(~(np.isfinite(medians) & (betas > 0))):
         step = _step_fit(levels, trials, counts[k])
         if step is None:  # a row the scoring did not settle: the slow fit of its own
             _, best = _most_likely(levels, np.full(counts.shape[1], trials), counts[k])
@@ -190,17 +205,18 @@ def _step_fit(levels, trials: int, counts):
 SCORING_STEPS = 60
 
 
-def _probit_fits(log_levels, trials: int, counts):
+def _probit_fits(log_levels, trials: int, counts, share):
     """Maximum-likelihood (θ, β) of many sets of stripe counts at once.
 
     P = Φ(a + b ln x) is a probit regression on ln x, θ = exp(−a/b), β = 1/b: Fisher scoring
     (score Σ (k − nΦ) φ/(Φ(1 − Φ)) (1, ln x), information Σ n φ²/(Φ(1 − Φ)) (1, ln x)⊗(1, ln x))
-    for every row of ``counts`` together, from the probit line of their pooled shares. The same
-    maximum as :func:`fit_lognormal`'s, reached in milliseconds for hundreds of resamples.
+    for every row of ``counts`` together, from the probit line of the pooled shares ``share``
+    (per stripe). The same maximum as :func:`fit_lognormal`'s, reached in milliseconds for
+    hundreds of resamples.
     """
     x = np.asarray(log_levels, dtype=float)[None, :]
     # start: the probit line through the pooled shares, Φ⁻¹(share) = a + b ln x by least squares
-    share = np.clip(counts.sum(axis=0) / (trials * len(counts)), 0.02, 0.98)
+    share = np.clip(share, 0.02, 0.98)
     slope, intercept = np.polyfit(x[0], norm.ppf(share), 1)
     if not slope > 0:  # shares that do not rise: a median at the middle stripe, β = 0.4
         slope, intercept = 2.5, -2.5 * float(np.median(x))
