@@ -23,7 +23,6 @@ from audit.physics.damping import (damping_fema356, damping_free_rocking, dampin
 from audit.physics.response_spectra import response_spectra
 from audit.physics.rocking import simulate
 from procedures.base import CONVERGED, NO_UPLIFT, OVERTURN
-from procedures.registry import available_procedures
 from records import GroundMotion, one_pulse
 
 #: The claims these evaluators serve, beside this module (named in their errors).
@@ -210,9 +209,10 @@ def procedure_block(ctx, quantity: str, procedure: str, record: str, alpha_deg: 
         outcome, theta = row["approx_outcome"], row["approx_theta_rad"]
         detail, cycle = row["approx_detail"], row["approx_cycle"]
     else:
-        estimate = available_procedures()[procedure]().evaluate(
+        # the verdict's evaluation: the iteration reads the spectrum only where it goes
+        estimate = ctx.procedure(procedure).evaluate_for_verdict(
             entry, np.array([p]), alpha, float(coefficient_of_restitution(alpha)),
-            ctx.record_context(entry), ctx.g).estimate
+            ctx.record_context(entry).on_demand(), ctx.g).estimate
         outcome, theta = estimate.outcome[0], estimate.theta[0]
         detail, cycle = estimate.detail[0], estimate.cycle[0]
     if outcome == OVERTURN:

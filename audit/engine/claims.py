@@ -21,6 +21,7 @@ from audit.engine.verdicts import CLAIM_STATUSES, names
 from audit.errors import InputError
 from audit.physics.rocking import DEFAULT_FREE_MOTION_S
 from procedures.context import RecordContext
+from procedures.registry import available_procedures
 
 CLAIM_FIELDS = ("id", "section", "claim", "reference_value", "records", "method", "tolerance",
                 "note")
@@ -107,6 +108,7 @@ class ClaimContext:
         self.records = {item["id"]: item for item in run.summary.get("records", [])}
         self.scaling = run.summary.get("scaling")
         self._contexts = {}
+        self._procedures = None
 
     def require(self, record_id: str) -> None:
         """CannotCheck unless the run holds ``record_id`` with a file, as recorded."""
@@ -136,6 +138,13 @@ class ClaimContext:
         if entry.id not in self._contexts:
             self._contexts[entry.id] = RecordContext(entry, self.free_motion_s)
         return self._contexts[entry.id]
+
+    def procedure(self, name: str):
+        """An instance of the registered procedure ``name`` (the registry, whose plug-ins are
+        found by scanning the installed distributions, read once for all the claims)."""
+        if self._procedures is None:
+            self._procedures = available_procedures()
+        return self._procedures[name]()
 
 
 # ------------------------------------------------------------------------------ checklist
