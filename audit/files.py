@@ -75,7 +75,8 @@ def check_output_file(path: str | Path, what: str) -> Path:
 
 
 def clean_stale_staging(out_dir: Path) -> None:
-    """Remove staging folders of ``out_dir`` left by a run that was killed while saving.
+    """Remove staging folders of ``out_dir`` left by a run that was killed (a run writes its
+    files there as its records complete).
 
     Only folders named with this tool's staging prefix, older than the current run, whose
     process is no longer alive.

@@ -11,6 +11,7 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
+from audit.physics.kernel_threads import run_chunks
 from audit.physics.oscillator import recurrence_coefficients
 from audit.physics.peaks_between_samples import spectrum_peaks
 
@@ -152,9 +153,7 @@ def response_spectra(motion, period_s, damping, free_motion_s: float = 0.0,
     if len(chunks) == 1:
         run(chunks[0])
     else:
-        from concurrent.futures import ThreadPoolExecutor
-        with ThreadPoolExecutor(len(chunks)) as pool:
-            list(pool.map(run, chunks))
+        run_chunks(run, chunks)
     peaks[positive] = out
     return ResponseSpectra(period_s, damping, peaks[..., 0], peaks[..., 1], peaks[..., 2])
 

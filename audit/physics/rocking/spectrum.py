@@ -3,7 +3,6 @@ spectra over a grid of blocks (:func:`rocking_spectrum`, Section 5)."""
 
 from __future__ import annotations
 
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -13,6 +12,7 @@ from audit.errors import InputError
 from audit.physics.block import RigidBlock
 from audit.physics.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANCE,
                                     DEFAULT_STEPS_PER_RADIAN)
+from audit.physics.kernel_threads import run_chunks
 from audit.physics.rocking.kernel import _motion_arguments, _spectrum
 
 
@@ -155,11 +155,7 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
 
     # even one chunk runs in a worker thread, so that Ctrl-C reaches the main thread at once
     # instead of after the compiled kernel returns; on an interrupt nothing waits for the rest
-    pool = ThreadPoolExecutor(len(chunks))
-    try:
-        list(pool.map(run, chunks))
-    finally:
-        pool.shutdown(wait=False, cancel_futures=True)
+    run_chunks(run, chunks)
     return out
 
 
