@@ -11,7 +11,8 @@ import pandas as pd
 
 from audit.engine.margins import run_margins
 from audit.engine.margins_settings import MarginsSettings
-from audit.engine.p695_acceptance import p695_acceptance, sized_blocks
+from audit.engine.margins_tables import exact_fit
+from audit.engine.p695_acceptance import counted_fit, p695_acceptance, sized_blocks
 from audit.engine.blocks import NamedBlock
 from audit.engine.runtime import Runtime
 from audit.physics.block import Restitution
@@ -59,3 +60,27 @@ def test_blocks_sized_alike_share_their_fit_and_every_value_is_the_full_audits()
                          for v in ("x0.9", "x0.8")])
     assert list(table["beta_mdl"]) == list(np.sqrt(np.mean(log_ratios ** 2, axis=0)))
     assert table.loc[0, "median"] == table.loc[1, "median"] != table.loc[2, "median"]
+
+
+def test_a_blocks_counts_are_fitted_once_and_the_fit_is_the_slow_paths():
+    """counted_fit against exact_fit with its bands, block by block: equal numbers, a fit
+    reused only for the same counts (the same per stripe, however the records fall), and
+    no fit where the counts fix no median."""
+    levels = np.geomspace(0.2, 2.0, 6)
+    rng = np.random.default_rng(7)
+    # 12 records × 6 stripes × 5 blocks; block 1 shuffles block 0's records within each
+    # stripe (same counts), block 3 one more overturning at one stripe, block 4 none at all
+    over = rng.random((12, 6, 5)) < np.linspace(0.05, 0.95, 6)[None, :, None]
+    over[:, :, 1] = rng.permuted(over[:, :, 0], axis=0)
+    over[:, :, 3] = over[:, :, 0]
+    over[np.flatnonzero(~over[:, 2, 0])[0], 2, 3] = True
+    over[:, :, 4] = False
+    known = {}
+    fits = [counted_fit(levels, over[:, :, b], known) for b in range(5)]
+    for b in range(4):
+        slow = exact_fit(levels, over[:, :, b])
+        assert (fits[b].median, fits[b].beta) == (slow.median, slow.beta)
+    assert fits[1] is fits[0] and fits[3] is not fits[0]
+    assert fits[3].median != fits[0].median
+    assert fits[4] is None and exact_fit(levels, over[:, :, 4]) is None
+    assert len(known) == 4  # blocks 0 (and 1), 2, 3 and 4

@@ -13,7 +13,7 @@ import pandas as pd
 from audit.engine.blocks import BlockList
 from audit.engine.fragility import overturning_pattern
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
-from audit.engine.lognormal_fit import fit_lognormal
+from audit.engine.lognormal_fit import fit_lognormal, lognormal_estimate
 from audit.engine.stripes import StripeSettings, half_crossing, locate_steps
 
 
@@ -59,12 +59,13 @@ def stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_ov
     return frame
 
 
-def exact_fit(levels, overturned):
+def exact_fit(levels, overturned, bands: bool = True):
     """The lognormal fragility of one block's exact outcomes (record, stripe), None where the
-    counts fix no median (no overturning, or every record at every stripe)."""
+    counts fix no median (no overturning, or every record at every stripe); without ``bands``
+    only its θ and β (:class:`~audit.engine.lognormal_fit.LognormalEstimate`)."""
+    fit = fit_lognormal if bands else lognormal_estimate
     try:
-        return fit_lognormal(levels, np.full(levels.size, overturned.shape[0]),
-                             overturned.sum(axis=0))
+        return fit(levels, np.full(levels.size, overturned.shape[0]), overturned.sum(axis=0))
     except ValueError:
         return None
 

@@ -21,6 +21,7 @@ FEMA P695's Section 7 test (FEMA P695, 2009, §7.3–7.4):
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
@@ -48,6 +49,16 @@ def sized_blocks(required: pd.DataFrame, g: float) -> pd.DataFrame:
     return rows.assign(width_m=2.0 * radius * np.sin(alpha), height_m=2.0 * radius * np.cos(alpha))
 
 
+def counted_fit(levels, overturned, known: dict):
+    """:func:`~audit.engine.margins_tables.exact_fit`'s θ and β of one block's outcomes
+    (record, stripe), the same fit as before for the same counts at the same ``levels`` and
+    number of records: ``known`` holds the fits by counts."""
+    key = (np.asarray(levels).tobytes(), overturned.shape[0], overturned.sum(axis=0).tobytes())
+    if key not in known:
+        known[key] = exact_fit(levels, overturned, bands=False)
+    return known[key]
+
+
 def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[pd.DataFrame,
                                                                               list[dict]]:
     """``acceptance.csv`` (one row per guideline-sized block) and, per guideline, P695's
@@ -60,16 +71,13 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
                                      return_inverse=True)
     blocks = tuple(NamedBlock(float(w), float(h), settings.g) for w, h in dimensions)
     alone = replace(runtime, partial_dir=None, resume=False)
+    known = {}  # the fit of each block's counts (blocks and impact models that count alike)
 
-    def fragility(restitution) -> pd.DataFrame:
+    def fragility(levels, overturned, mce_im) -> pd.DataFrame:
         """The exact fit and CMR of every sized block (``fragility.csv``'s columns; the
         bootstrap bands, which the test does not read, left out)."""
-        on = replace(settings, alpha_deg=(), size_s=(), blocks=blocks, restitution=restitution,
-                     required=False, hazard=None)
-        stripes = margins_stripes([], suite, on, alone)
-        levels = np.asarray(stripes.settings.levels)
-        fits = [exact_fit(levels, stripes.exact_overturned[:, :, b]) for b in range(len(blocks))]
-        margins = [collapse_margin(fit, levels, stripes.mce_im) for fit in fits]
+        fits = [counted_fit(levels, overturned[:, :, b], known) for b in range(len(blocks))]
+        margins = [collapse_margin(fit, levels, mce_im) for fit in fits]
         return pd.DataFrame({
             "median": [fit.median if fit else math.nan for fit in fits],
             "beta": [fit.beta if fit else math.nan for fit in fits],
@@ -77,9 +85,20 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
             "cmr_bound": [bound for _, bound in margins]}).iloc[block_of.ravel()].reset_index(
                 drop=True)
 
-    base = fragility(settings.restitution)
-    log_ratios = np.array([np.log(fragility(Restitution.parse(v))["median"].to_numpy()
-                                  / base["median"].to_numpy()) for v in MODEL_VARIANTS])
+    # the fits (Python, holding the GIL) of one impact model run on a thread of their own
+    # beside the next model's stripes (compiled solves, which release it), not after them
+    # with a core idle
+    with ThreadPoolExecutor(1) as fitting:
+        models = []
+        for restitution in (settings.restitution, *map(Restitution.parse, MODEL_VARIANTS)):
+            on = replace(settings, alpha_deg=(), size_s=(), blocks=blocks,
+                         restitution=restitution, required=False, hazard=None)
+            stripes = margins_stripes([], suite, on, alone)
+            models.append(fitting.submit(fragility, np.asarray(stripes.settings.levels),
+                                         stripes.exact_overturned, stripes.mce_im))
+        base, *variants = (model.result() for model in models)
+    log_ratios = np.array([np.log(variant["median"].to_numpy() / base["median"].to_numpy())
+                           for variant in variants])
     beta_mdl = np.sqrt(np.mean(log_ratios ** 2, axis=0))
     beta_total = np.sqrt(base["beta"].to_numpy() ** 2 + beta_mdl ** 2)
     acmr20 = acmrxx(beta_total, ACCEPTED_SINGLE_P)
