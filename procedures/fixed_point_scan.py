@@ -36,7 +36,8 @@ def tabulated_excess(v, grid, p, scale, period_s, sd_m, chunk, room):
     T grows along the grid (v ascending, p > 0), and Sd, linear between nodes, lies between its
     values at two periods and at the nodes between them. A chunk of ``chunk`` grid points
     whose θ/α all lie above that range's top, or all below its bottom, by more than the
-    rounding of the values inside (``room``, relative), takes its sign from the two ends; only
+    rounding of the values inside (``room`` of the range's largest magnitude), takes its sign
+    from the two ends; only
     the chunks that hold a crossing are read point by point, each element in the array
     expression's operations, the nodes found by walking up with the periods rather than by a
     binary search. numpy's array expression read all ~10⁶ periods of a call.
@@ -82,9 +83,12 @@ def tabulated_excess(v, grid, p, scale, period_s, sd_m, chunk, room):
                 unknown = unknown or sd_m[j] != sd_m[j]
                 j += 1
             top, bottom = top * scale[b], bottom * scale[b]
-            if not unknown and top + room * abs(top) < lowest[c]:
+            # a value between two nodes is rounded to a few ulps of the larger node, whichever
+            # bound it is compared with
+            margin = room * max(abs(top), abs(bottom))
+            if not unknown and top + margin < lowest[c]:
                 out[b, first:stop] = False
-            elif not unknown and bottom - room * abs(bottom) > highest[c]:
+            elif not unknown and bottom - margin > highest[c]:
                 out[b, first:stop] = True
             else:
                 inner = low

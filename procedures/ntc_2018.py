@@ -19,7 +19,7 @@ d = R [sin α − sin(α − θ)], and instability is at d₀ = b. The procedure
 The demand comes in two variants, chosen per record (:meth:`NTC2018.demand_variant`):
 
 * *code-spectrum* when the record's site carries NTC parameters (:data:`SITE_KEYS`, all five
-  then required): S_De(T_LS, ξ) of NTC §3.2.3.2 (:class:`~audit.physics.design_spectra.
+  then required): S_De(T_LS, ξ) of NTC §3.2.3.2 (:class:`~audit.physics.ntc2018_spectrum.
   NTC2018Spectrum`), PGA = a_g S;
 * *record-based* otherwise (the recorded motion is then required): the largest Sd of the
   record's true spectrum at ξ over [T₀, T_LS] (the Circolare's rule for accelerograms), PGA of
@@ -38,7 +38,7 @@ import numpy as np
 from audit import G
 from audit.errors import InputError
 from audit.physics.block import radius_from_p, rotation_at_displacement
-from audit.physics.design_spectra import NTC2018Spectrum
+from audit.physics.ntc2018_spectrum import NTC2018Spectrum
 from records.sites import NTC2018_SITE_KEYS as SITE_KEYS
 from procedures.base import (CONVERGED, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, OVERTURN,
                              STORED_SPECTRUM_PERIODS_S, Check, Estimate, Evaluation, Procedure)

@@ -32,7 +32,8 @@ SCAN_V_RANGE = (1e-4, 25.0)
 ROOT_TOLERANCE_RATIO = 1e-10
 #: Grid points whose signs are settled together where Sd's range over them decides them all.
 SCAN_CHUNK = 32
-#: Relative room a chunk's bounds leave for the rounding of the values inside it (a few ulps).
+#: Room a chunk's bounds leave for the rounding of the values inside it, relative to the
+#: bounds' largest magnitude: ~4.5·10⁶ ulps, where a value is rounded to a few.
 ROUNDING_ROOM = 1e-9
 #: Step of the central difference for F'(θ*) in θ/α, well inside one linear piece of a spectrum.
 SLOPE_STEP_RATIO = 1e-6
@@ -108,8 +109,9 @@ def _excess_positive(displacement, v, grid, p, scale) -> np.ndarray:
     lowest, highest = np.minimum.reduceat(grid, first), np.maximum.reduceat(grid, first)
     bottom = displacement(period[first] / p[:, None]) * scale[:, None]
     top = displacement(period[last] / p[:, None]) * scale[:, None]
-    above = bottom - ROUNDING_ROOM * np.abs(bottom) > highest
-    below = top + ROUNDING_ROOM * np.abs(top) < lowest
+    margin = ROUNDING_ROOM * np.maximum(np.abs(top), np.abs(bottom))
+    above = bottom - margin > highest
+    below = top + margin < lowest
     out = np.repeat(above, SCAN_CHUNK, axis=1)[:, :v.size]
     blocks, chunks = np.nonzero(~(above | below))
     points = (first[chunks][:, None] + np.arange(SCAN_CHUNK)).ravel()
@@ -125,16 +127,20 @@ def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad:
                  g: float = G) -> FixedPoints:
     """Every fixed point θ* = F(θ*) on (0, α) of the map of Eqs. 8.1–8.2, with its stability.
 
-    F(θ) = Sd(T(θ)) / (R cos α), T(θ) = (4/p) acosh(1/(1 − θ/α)). F(θ) − θ is evaluated for
-    all blocks at once on a grid uniform in ln(pT/4) (:data:`SCAN_STEP_LOG_PERIOD` explains the
-    step), every sign change is polished to :data:`ROOT_TOLERANCE_RATIO` in θ/α by Chandrupatla's
+    F(θ) = Sd(T(θ)) / (R cos α), T(θ) = (4/p) acosh(1/(1 − θ/α)). The sign of F(θ) − θ is
+    found for all blocks on a grid uniform in ln(pT/4) (:data:`SCAN_STEP_LOG_PERIOD` explains
+    the step; :func:`_excess_positive` reads Sd only where a sign can change), every sign
+    change is polished to :data:`ROOT_TOLERANCE_RATIO` in θ/α by Chandrupatla's
     bracketing method, all roots at once (``scipy.optimize.elementwise.find_root``), and F'(θ*)
     is taken by a central difference. The trivial fixed point θ = 0 is left out.
 
     Parameters
     ----------
     displacement : callable
-        Sd [m] as a function of the period T [s] (array in, array out, elementwise).
+        Sd [m] as a function of the period T [s] (array in, array out, elementwise): a
+        :class:`~procedures.tabulated.TabulatedDisplacement`, or a callable whose true
+        ``nondecreasing`` attribute promises that Sd never falls as T grows, which the scan
+        then trusts (:class:`~audit.physics.design_spectra.DesignDisplacement`), or any other.
     p : array
         Frequency parameters of the blocks [rad/s], 1-D.
     alpha_rad : float

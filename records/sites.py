@@ -4,7 +4,7 @@ the categories, defined here once; the spectra built from them live in
 
 #: FEMA 356 site: class (Table 3.1) and the design parameters S_XS, S_X1 [g] (§1.6).
 FEMA356_SITE_KEYS = ("site_class", "sxs_g", "sx1_g")
-#: NTC 2018 site, in the order of :class:`audit.physics.design_spectra.NTC2018Spectrum`'s
+#: NTC 2018 site, in the order of :class:`audit.physics.ntc2018_spectrum.NTC2018Spectrum`'s
 #: fields: a_g [g], F₀ [-], T_C* [s], soil category, topographic category.
 NTC2018_SITE_KEYS = ("ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil", "ntc_topography")
 #: NTC 2018 soil categories (§3.2.2, Tab. 3.2.II).

@@ -84,3 +84,17 @@ def test_fema_356_displacement_never_falls(sxs_g, sx1_g):
     for damping in (0.01, 0.02, 0.05, 0.1, 0.25, 0.4, 0.5, 0.6):
         sd = spectrum.displacement(period, damping)
         assert np.all(np.diff(sd) >= -1e-13 * sd[1:]), damping
+
+
+@pytest.mark.parametrize("period_s, sd_m", [
+    ([2.0], [0.03]),  # one node: Sd held everywhere
+    ([0.0, 0.5, 1.0, 3.0], [0.0, 0.01, np.nan, 0.04]),  # a NaN node: every value read
+    ([0.0, 1.0, 1.0, 2.0, 6.0], [0.0, 0.02, 0.05, 0.01, 0.08]),  # a repeated period
+    ([0.0, 0.3, 0.31, 9.0], [0.0, 1e-9, 0.06, 0.06]),  # a jump of ~10⁷ between two nodes
+])
+def test_tabulated_signs_on_edge_tables(period_s, sd_m):
+    displacement = TabulatedDisplacement(np.array(period_s), np.array(sd_m))
+    p = 2 * np.pi / np.array([0.7, 2.0, 5.5])
+    scale = 1.0 / (3 * 9.80665 / (4 * p ** 2) * np.cos(0.25) * 0.25)
+    np.testing.assert_array_equal(_excess_positive(displacement, V, GRID, p, scale),
+                                  _array_expression(displacement, p, scale))

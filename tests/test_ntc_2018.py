@@ -15,7 +15,7 @@ from audit.engine.suite_run import run_audit
 from audit.engine.verdicts import check_verdicts, exact_exceeded
 from procedures.context import RecordContext
 from audit.errors import InputError
-from audit.physics.design_spectra import NTC2018Spectrum
+from audit.physics.ntc2018_spectrum import NTC2018Spectrum
 from audit.physics.response_spectra import response_spectra
 from audit.physics.rocking import DEFAULT_FREE_MOTION_S, rocking_spectrum
 from procedures import available_procedures, get_procedures

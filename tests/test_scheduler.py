@@ -1,6 +1,7 @@
 """Schedulers: the same values whatever computes the records; records by reference or by value."""
 
 import json
+import pickle
 import sys
 from dataclasses import dataclass, replace
 
@@ -217,8 +218,9 @@ def test_dask_maps_one_after_another_with_the_same_arguments():
 
 def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_records, tmp_path,
                                                                         monkeypatch):
-    """A Dask cluster hands records back as they complete: the files are the local run's byte
-    for byte, and each part ahead of its turn waits on disk, not in memory."""
+    """A Dask cluster hands records back as they complete, and a resumed run's reused parts
+    come first: the files are the local run's byte for byte, and each part ahead of its turn
+    waits on disk, not in memory (in a scratch folder, or among the parts kept to resume)."""
     from audit.engine import suite_run
     from audit.engine.runtime import Runtime
     from audit.engine.scheduler import LocalScheduler
@@ -232,23 +234,40 @@ def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_re
     saved = []
     save = suite_run.PartialStore.save
     monkeypatch.setattr(suite_run.PartialStore, "save",
-                        lambda store, entry, part: saved.append(entry.id) or save(store, entry,
-                                                                                  part))
+                        lambda store, entry, part: saved.append((store.directory, entry.id))
+                        or save(store, entry, part))
     procedures, settings = get_procedures("all"), AuditSettings.parse(**GRID)
-    folders = {}
-    for name, scheduler in (("local", "local"), ("last-first", LastFirst())):
+    ids = [entry.id for entry in three_records]
+    kept = tmp_path / "kept-parts"
+    runs = (("local", dict(scheduler="local")),
+            ("scratch", dict(scheduler=LastFirst())),
+            ("kept", dict(scheduler=LastFirst(), partial_dir=kept)),
+            # the first record's part lost: the others, reused, wait for it to be computed
+            ("resumed", dict(scheduler="local", partial_dir=kept, resume=True)))
+    summaries, folders = {}, {}
+    for name, how in runs:
+        if name == "resumed":
+            for path in kept.glob("*.pkl"):
+                if pickle.loads(path.read_bytes())["record"] == ids[0]:
+                    path.unlink()
+        saved.clear()
         folders[name] = tmp_path / name
         folders[name].mkdir()
-        suite_run.audit_suite(procedures, three_records, settings,
-                              Runtime.parse(jobs=2, scheduler=scheduler), folders[name])
-    ids = [entry.id for entry in three_records]
-    assert saved == ids[:0:-1]  # all but the first waited, last first
+        summaries[name] = suite_run.audit_suite(procedures, three_records, settings,
+                                                Runtime.parse(jobs=2, **how), folders[name])
+        if name == "scratch":  # all but the first waited in a scratch folder, last first
+            assert [record for _, record in saved] == ids[:0:-1]
+            assert all(folder != kept for folder, _ in saved)
+        if name == "kept":  # every part kept to resume, none saved twice
+            assert saved == [(kept, record) for record in reversed(ids)]
+    assert summaries["resumed"]["resumed"] == ids[1:]
     names = sorted(path.name for path in folders["local"].iterdir())
-    assert names == sorted(path.name for path in folders["last-first"].iterdir())
-    for name in names:
-        local, other = ((folders[k] / name).read_bytes() for k in ("local", "last-first"))
-        if name == "summary.json":
-            local, other = (json.loads(text) for text in (local, other))
-            assert (local.pop("scheduler"), other.pop("scheduler")) == ("this process",
-                                                                        "last first")
-        assert local == other, name
+    for other in ("scratch", "kept", "resumed"):
+        assert names == sorted(path.name for path in folders[other].iterdir())
+        for name in names:
+            local, theirs = ((folders[k] / name).read_bytes() for k in ("local", other))
+            if name == "summary.json":
+                local, theirs = (json.loads(text) for text in (local, theirs))
+                for summary in (local, theirs):
+                    del summary["scheduler"], summary["resumed"]
+            assert local == theirs, (other, name)

@@ -85,7 +85,8 @@ def design_spectrum(code: str, periods_s, damping_pct=DEFAULT_DESIGN_DAMPING_PCT
     """
     import numpy as np
 
-    from audit.physics.design_spectra import FEMA356Spectrum, NTC2018Spectrum, UBC97Spectrum
+    from audit.physics.design_spectra import FEMA356Spectrum, UBC97Spectrum
+    from audit.physics.ntc2018_spectrum import NTC2018Spectrum
     periods = np.asarray(check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0))
     damping = np.asarray(check.numbers("damping_pct", damping_pct,
                                        "damping ratios in [0, 100) %", 0, 100,

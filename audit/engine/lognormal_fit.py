@@ -267,4 +267,5 @@ def _scoring_step(a, b, x, trials, counts):
     return a + step_a, b + step_b, bool(np.all(np.abs(step_a) + np.abs(step_b) < 1e-10))
 
 
-__all__ = ["fit_lognormal", "LognormalFit", "lognormal_estimate", "LognormalEstimate", "lognormal_fits", "STEP_BETA"]
+__all__ = ["fit_lognormal", "LognormalFit", "lognormal_estimate", "LognormalEstimate",
+           "lognormal_fits", "STEP_BETA"]

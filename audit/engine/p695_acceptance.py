@@ -51,8 +51,8 @@ def sized_blocks(required: pd.DataFrame, g: float) -> pd.DataFrame:
 
 def counted_fit(levels, overturned, known: dict):
     """:func:`~audit.engine.margins_tables.exact_fit`'s θ and β of one block's outcomes
-    (record, stripe), the same fit as before for the same counts at the same ``levels`` and
-    number of records: ``known`` holds the fits by counts."""
+    (record, stripe), the fit ``exact_fit`` gives for the same counts at the same ``levels``
+    and number of records: ``known`` holds the fits by counts."""
     key = (np.asarray(levels).tobytes(), overturned.shape[0], overturned.sum(axis=0).tobytes())
     if key not in known:
         known[key] = exact_fit(levels, overturned, bands=False)
@@ -88,7 +88,8 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
     # the fits (Python, holding the GIL) of one impact model run on a thread of their own
     # beside the next model's stripes (compiled solves, which release it), not after them
     # with a core idle
-    with ThreadPoolExecutor(1) as fitting:
+    fitting = ThreadPoolExecutor(1)
+    try:
         models = []
         for restitution in (settings.restitution, *map(Restitution.parse, MODEL_VARIANTS)):
             on = replace(settings, alpha_deg=(), size_s=(), blocks=blocks,
@@ -97,6 +98,8 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
             models.append(fitting.submit(fragility, np.asarray(stripes.settings.levels),
                                          stripes.exact_overturned, stripes.mce_im))
         base, *variants = (model.result() for model in models)
+    finally:  # after Ctrl-C or an error the fits still queued are dropped, not waited for
+        fitting.shutdown(wait=False, cancel_futures=True)
     log_ratios = np.array([np.log(variant["median"].to_numpy() / base["median"].to_numpy())
                            for variant in variants])
     beta_mdl = np.sqrt(np.mean(log_ratios ** 2, axis=0))

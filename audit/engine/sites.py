@@ -16,7 +16,8 @@ import numpy as np
 
 from audit import G
 from audit.errors import InputError
-from audit.physics.design_spectra import FEMA356Spectrum, NTC2018Spectrum
+from audit.physics.design_spectra import FEMA356Spectrum
+from audit.physics.ntc2018_spectrum import NTC2018Spectrum
 from records import RecordSuite
 
 #: Damping of the spectra the suite is scaled on, 5 % as in FEMA P695 and FEMA 356 [-].

@@ -61,7 +61,7 @@ class _InOrder:
         while self.next in self.waiting:
             self.waiting.remove(self.next)
             entry = self.entries[self.next]
-            self.add(entry, (self.kept or self.scratch).load(entry))
+            self.add(entry, (self.scratch if self.kept is None else self.kept).load(entry))
             self.next += 1
 
     def remove(self) -> None:
@@ -93,8 +93,8 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
     claims : bool
         Check the claims of the reference report (``AuditRun.claims``).
     progress : audit.engine.progress.Progress, optional
-        Its bar closed when the records are done, then told that the suite's files are being
-        written.
+        Its bar (``done()``, where it has one) closed when the records are done, then told
+        (``stage``) that the suite's files are being written.
 
     Returns
     -------
@@ -121,7 +121,7 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
     finally:
         writer.close()
         in_order.remove()
-        if progress is not None:
+        if getattr(progress, "done", None) is not None:  # a bar: finished with the records
             progress.done()
     if progress is not None:
         progress.stage(f"writing the results of {len(entries)} records: the suite's "
@@ -145,12 +145,15 @@ def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> Au
 
 
 def compiles_first() -> bool:
-    """Whether the rocking solver and the oscillator kernels the audit runs lack cached machine
-    code, so that the first record waits for numba to compile them (once after installing)."""
+    """Whether the rocking solver, the oscillator and the fixed-point scan kernels the audit
+    runs lack cached machine code, so that the first record waits for numba to compile them
+    (once after installing)."""
     from audit.physics.peaks_between_samples import spectrum_peaks
     from audit.physics.rocking import kernel
     from audit.physics.tiers import machine_code_cached
-    return not (machine_code_cached(kernel._spectrum) and machine_code_cached(spectrum_peaks))
+    from procedures.fixed_point_scan import tabulated_excess
+    return not all(map(machine_code_cached, (kernel._spectrum, spectrum_peaks,
+                                             tabulated_excess)))
 
 
 __all__ = ["audit_suite", "run_audit", "AuditRun",
