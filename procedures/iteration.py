@@ -221,6 +221,12 @@ def _outcomes(code, iterations, length, recent, initial_ratio: float, max_iterat
     return recent[:, -1].copy(), outcome, iterations, detail, cycle
 
 
+def uplifts(pga_m_s2, alpha_rad: float, g: float = G):
+    """Step 1 of the iteration: whether the block uplifts, PGA > g tan α (array in, array out
+    for the PGAs)."""
+    return pga_m_s2 > g * np.tan(alpha_rad)
+
+
 def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2: float, p,
                       alpha_rad: float, damping: float, g: float = G,
                       with_fixed_points: bool = True) -> Estimate:
@@ -254,7 +260,7 @@ def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2
     detail = np.full(p.shape, "", dtype=object)
     cycle = np.full(p.shape, "", dtype=object)
     roots = np.full(p.shape, "", dtype=object)
-    if pga_m_s2 > g * np.tan(alpha_rad):
+    if uplifts(pga_m_s2, alpha_rad, g):
         ratio, outcome, iterations, detail, cycle = iterate_rotation(displacement, p, alpha_rad, g)
         if with_fixed_points:
             roots = fixed_points(displacement, p, alpha_rad, g).text(p.size)
@@ -267,4 +273,4 @@ def estimate_rotation(displacement: Callable[[np.ndarray], np.ndarray], pga_m_s2
 
 
 __all__ = ["CONVERGED", "NOT_CONVERGED", "NO_UPLIFT", "OVERTURN", "Estimate", "estimate_rotation",
-           "iterate_rotation", "iterate_tabulated"]
+           "iterate_rotation", "iterate_tabulated", "uplifts"]

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from procedures.base import EXACT_OVERTURNING, OVERTURN, Procedure
-from procedures.iteration import iterate_rotation, iterate_tabulated
+from procedures.iteration import iterate_rotation, iterate_tabulated, uplifts
 from procedures.rotation_map import map_scale
 from procedures.tabulated import TabulatedDisplacement
 
@@ -74,7 +74,7 @@ def overturning_predictions(procedure, cases, p, groups, g: float) -> np.ndarray
         for alpha, index, r in groups:
             out[c, index] = _checks_overturn(
                 procedure.checks(entry, p[index], alpha, r, context, g), index.size)
-            if not pga > g * np.tan(alpha):  # no uplift (step 1 of the iteration)
+            if not uplifts(pga, alpha, g):
                 continue
             spectrum = procedure.displacement_spectrum(entry, float(procedure.damping(r)),
                                                        context)
@@ -134,7 +134,7 @@ def site_predictions(procedure, cases, p, alpha_rad: float, r: float, g: float) 
                                       1)[0] for k, (entry, context) in enumerate(cases)],
                     dtype=bool)
     pga = np.array([procedure.peak_ground_acceleration(entry, context) for entry, context in cases])
-    uplift = np.flatnonzero(pga > g * np.tan(alpha_rad))  # step 1 of the iteration
+    uplift = np.flatnonzero(uplifts(pga, alpha_rad, g))
     if uplift.size:
         outcome = iterate_rotation(lambda index: spectra(uplift[index]), p[uplift], alpha_rad,
                                    g, blockwise=True)[1]
