@@ -494,7 +494,8 @@ def test_mechanics_figures_are_drawn_from_the_saved_files():
 
 def test_csv_text_is_the_bytes_pandas_writes(seed_report):
     """The fast CSV writer against pandas' own ``to_csv`` on every table of a real run, and on
-    the cells that need care: quotes, commas, line breaks, NaN, None, ±inf, booleans, ints."""
+    the cells that need care: quotes, commas, line breaks, NaN, None, ±inf, booleans, ints,
+    repeated values and -0.0 beside 0.0."""
     from audit.engine.csv_text import csv_bytes
     tricky = pd.DataFrame({
         "text": ['plain', 'a,b', 'say "x"', "two\nlines", None, ""],
@@ -502,6 +503,7 @@ def test_csv_text_is_the_bytes_pandas_writes(seed_report):
         "flag": [True, False, True, False, True, False],
         "count": [0, 1, -2, 3, 40, 500],
         "mixed": [True, "", 0.25, None, float("nan"), "x"],
+        "repeated": [0.0, -0.0, 0.1, -0.0, float("nan"), 0.1],
     })
     for frame in [tricky] + [pd.read_csv(path, keep_default_na=False, na_values=[""])
                              for path in sorted(seed_report.glob("*.csv"))]:

@@ -3,6 +3,8 @@
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from audit.engine.schemas import SUITE_COLUMNS, verdict_column
 from audit.engine.suite import suite_statistics, suite_summary
@@ -135,3 +137,21 @@ def test_an_exact_rotation_of_1e_14_rad_gives_no_ratio_of_1e12():
     assert row["verdict"] == "conservative" and np.isnan(row["ratio"])
     assert np.isnan(run.suite.iloc[0]["ratio_p50"])
     assert describe_exact(row).startswith("no rocking (θ/α = ")
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from([0.5, 1.0, 2.0, -0.0, 0.0, np.inf, np.nan]),
+                          st.sampled_from([True, False, np.nan])), max_size=12),
+       st.sampled_from(["ratio", "approx_theta_rad"]), st.booleans())
+def test_ranking_is_pandas_stable_sort_robust_first_nan_last(rows, column, largest):
+    """The worst-first ranking equals pandas' stable two-key sort it replaced (robust blocks
+    before fragile ones, then the column, NaN last, ties in the rows' order), index and all."""
+    from audit.engine.ranking import rank_worst
+    frame = pd.DataFrame({column: [value for value, _ in rows],
+                          "exact_fragile": pd.Series([fragile for _, fragile in rows],
+                                                     dtype=object),
+                          "label": range(len(rows))}, index=np.arange(len(rows))[::-1] * 10)
+    expected = frame.assign(_fragile=frame["exact_fragile"].eq(True)).sort_values(
+        ["_fragile", column], ascending=[True, not largest], kind="stable").drop(
+        columns="_fragile")
+    pd.testing.assert_frame_equal(rank_worst(frame, column, largest), expected)

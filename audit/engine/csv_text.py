@@ -33,7 +33,14 @@ def _cell(value, float_format: str) -> str:
 def _column(values, float_format: str) -> list[str]:
     kind = values.dtype.kind
     if kind == "f":
-        return ["" if x != x else float_format % x for x in values.tolist()]
+        # the tables repeat their values (grid coordinates, one exact response under every
+        # procedure, rest and overturning fills): each distinct one is formatted once, told
+        # apart by its bits so that -0.0 stays "-0"
+        codes, distinct = pd.factorize(np.ascontiguousarray(values, dtype=np.float64)
+                                       .view(np.int64))
+        texts = ["" if x != x else float_format % x
+                 for x in distinct.view(np.float64).tolist()]
+        return np.asarray(texts, dtype=object)[codes].tolist()
     if kind in "iu":
         return list(map(str, values.tolist()))
     if kind == "b":

@@ -65,11 +65,13 @@ def summary_bytes(summary: dict) -> bytes:
 
 def _with_booleans(frame):
     """True/False in the boolean columns, empty only where undefined (NaN)."""
-    frame = frame.copy()
+    columns = {}
     for column in BOOLEAN_COLUMNS:
-        frame[column] = frame[column].map(
-            lambda v: "" if v is None or (isinstance(v, float) and math.isnan(v)) else bool(v))
-    return frame
+        values = frame[column].to_numpy()
+        if values.dtype.kind != "b":  # True/False and NaN or None (not checked)
+            values = np.where(pd.isna(values), "", values.astype(bool)).astype(object)
+        columns[column] = values
+    return frame.assign(**columns)
 
 
 #: The tables of a run with a row per record × something: file → (:class:`AuditRun` attribute,

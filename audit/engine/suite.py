@@ -153,26 +153,32 @@ class BottomLine:
 
     def add(self, results: pd.DataFrame, checks: pd.DataFrame) -> "BottomLine":
         """Fold ``results.csv`` and ``checks.csv`` rows."""
+        # each table split by procedure once, not masked once per procedure
+        results_of = dict(tuple(results.groupby("procedure", sort=False)))
+        checks_of = dict(tuple(checks.groupby("procedure", sort=False)))
         for name, line in self._lines.items():
-            rows = results[results["procedure"] == name]
-            mine = checks[checks["procedure"] == name]
-            for verdict, n in rows["verdict"].value_counts().items():
-                line["count"][verdict] += int(n)
+            rows = results_of.get(name, results.iloc[:0])
+            mine = checks_of.get(name, checks.iloc[:0])
+            verdict = rows["verdict"]
+            for value, n in verdict.value_counts(sort=False).items():
+                line["count"][value] += int(n)
             ratios = rows["ratio"].to_numpy(dtype=float)
             line["ratios"].append(ratios[np.isfinite(ratios)])
-            line["records"].update(rows["record"])
-            line["records"].update(mine["record"])
+            line["records"].update(rows["record"].unique())
+            line["records"].update(mine["record"].unique())
             worst = worst_case(rows)
             if worst is not None:  # the worst of (the worst so far, this part's): the same
                 # block as ranking them all, since the ranking is a stable sort
                 line["worst"] = worst if line["worst"] is None else worst_case(
                     pd.DataFrame([line["worst"], worst]))
-            for state, group in mine.groupby("limit_state", sort=False):
+            # (limit state, verdict) pairs come in order of first appearance, so the limit
+            # states do too
+            for (state, value), n in mine.groupby(["limit_state", "verdict"],
+                                                  sort=False).size().items():
                 tally = line["checks"].setdefault(state, dict.fromkeys(names(CHECK_VERDICTS), 0))
-                for verdict, n in group["verdict"].value_counts().items():
-                    tally[verdict] += int(n)
+                tally[value] += int(n)
             line["jumps"] += int(rows["exact_jumps"].eq(True).sum())
-            unsafe = rows["verdict"].isin(UNSAFE_VERDICTS)
+            unsafe = verdict.isin(UNSAFE_VERDICTS)
             for column, flag in _FLAGS.items():
                 flagged = rows[column].eq(True)
                 tally = line["flags"][flag]
