@@ -59,7 +59,7 @@ def csv_bytes(frame: pd.DataFrame, float_format: str, header: bool = True) -> by
     empty cells for NaN and None, fields quoted only where they hold a comma, quote or line
     break), UTF-8."""
     columns = [_column(frame[name].to_numpy(), float_format) for name in frame.columns]
-    rows = "".join(",".join(row) + "\n" for row in zip(*columns))
+    rows = "\n".join(map(",".join, zip(*columns))) + "\n" if columns and len(frame) else ""
     if header:
         rows = ",".join(_cell(str(name), float_format) for name in frame.columns) + "\n" + rows
     return rows.encode()
