@@ -160,7 +160,9 @@ def fixed_points(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_rad:
     v = np.exp(np.arange(np.log(low), np.log(high), SCAN_STEP_LOG_PERIOD))
     grid = 1.0 - 1.0 / np.cosh(v)  # θ/α at v (inverse of Eq. 8.1)
     excess = _excess_positive(displacement, v, grid, p, scale)
-    blocks, left = np.nonzero(excess[:, :-1] != excess[:, 1:])
+    changes = excess[:, :-1] != excess[:, 1:]
+    # numpy's 1-D search of a boolean array is ~10x faster than its 2-D one; same indices
+    blocks, left = np.divmod(np.flatnonzero(changes), changes.shape[1])
 
     def excess_of(ratio, p_block, scale_block):
         return rotation_map(displacement, ratio, p_block, scale_block) - ratio
