@@ -15,7 +15,8 @@ from importlib import resources
 import pandas as pd
 
 from audit import G
-from audit.engine.claim_evaluators import (CLAIMS_FILE, EVALUATORS, CannotCheck, evaluate_method)
+from audit.engine.claim_evaluators import EVALUATORS, evaluate_method
+from audit.engine.claim_value import CLAIMS_FILE, CannotCheck
 from audit.engine.schemas import CLAIM_COLUMNS
 from audit.engine.verdicts import CLAIM_STATUSES, names
 from audit.errors import InputError
