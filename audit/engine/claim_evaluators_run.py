@@ -83,9 +83,8 @@ def procedure_block(ctx, quantity: str, procedure: str, record: str, alpha_deg: 
     alpha = math.radians(alpha_deg)
     p = 2.0 * math.pi / size_s
     if entry is None:
-        row = _grid_row(pd.concat([ctx.run.results, ctx.run.estimates_only]), size_s,
-                        f"the {procedure} estimate", procedure=procedure, record=record,
-                        alpha_deg=alpha_deg)
+        row = _grid_row(ctx.estimates, size_s, f"the {procedure} estimate",
+                        procedure=procedure, record=record, alpha_deg=alpha_deg)
         outcome, theta = row["approx_outcome"], row["approx_theta_rad"]
         detail, cycle = row["approx_detail"], row["approx_cycle"]
     else:
@@ -189,9 +188,8 @@ def procedure_region(ctx, quantity: str, procedure: str, records: list[str],
     ``fraction_gross_overestimate`` (of the exact survivors: overturning predicted or approx
     ≥ 2× exact). ``fraction_approx_overturned`` counts every block, with or without a file.
     """
-    # records without a file still have the procedure's estimates, kept apart from the verdicts
-    results = pd.concat([ctx.run.results, ctx.run.estimates_only], ignore_index=True)
-    if results.empty or procedure not in set(results["procedure"]):
+    results = ctx.estimates
+    if results.empty or not (results["procedure"] == procedure).any():
         raise CannotCheck(f"procedure {procedure} is not part of this run")
     rows = _window(results[(results["procedure"] == procedure) & results["record"].isin(records)
                            & results["alpha_deg"].isin(alpha_deg)], size_min, size_max)
