@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import math
 import tomllib
+from functools import cached_property
 from importlib import resources
 
 import pandas as pd
 
 from audit import G
-from audit.engine.claim_evaluators import (CLAIMS_FILE, EVALUATORS, CannotCheck, evaluate_method)
+from audit.engine.claim_evaluators import EVALUATORS, evaluate_method
+from audit.engine.claim_value import CLAIMS_FILE, CannotCheck
 from audit.engine.schemas import CLAIM_COLUMNS
 from audit.engine.verdicts import CLAIM_STATUSES, names
 from audit.errors import InputError
@@ -138,6 +140,12 @@ class ClaimContext:
         if entry.id not in self._contexts:
             self._contexts[entry.id] = RecordContext(entry, self.free_motion_s)
         return self._contexts[entry.id]
+
+    @cached_property
+    def estimates(self) -> pd.DataFrame:
+        """Every procedure estimate of the run: ``results`` and, for the records without a file
+        (kept apart from the verdicts), ``estimates_only``; joined once for all the claims."""
+        return pd.concat([self.run.results, self.run.estimates_only], ignore_index=True)
 
     def procedure(self, name: str):
         """An instance of the registered procedure ``name`` (the registry, whose plug-ins are
