@@ -20,6 +20,7 @@ import numpy as np
 
 from audit import G
 from audit.physics.damping import housner_period
+from audit.physics.design_spectra import DesignDisplacement, FEMA356Spectrum
 from procedures.iteration_cycles import (CYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH,
                                          SUBCYCLE_TOLERANCE_RATIO, cycle_length, cycle_text,
                                          unsettled_text)
@@ -129,6 +130,11 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
             np.ascontiguousarray(map_scale(p, alpha_rad, g), dtype=float), float(initial_ratio),
             float(tolerance), CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO,
             MAX_CYCLE_LENGTH, int(max_iterations)), initial_ratio, max_iterations)
+    spectrum = displacement(np.arange(p.size)) if blockwise else displacement
+    if isinstance(spectrum, DesignDisplacement) and isinstance(spectrum.spectrum,
+                                                               FEMA356Spectrum):
+        return _iterate_fema356(spectrum, p, alpha_rad, g, initial_ratio, tolerance,
+                                max_iterations)
     from procedures.iteration_kernels import advance  # compiled: numba loads only here
     outcome = np.full(p.shape, NOT_CONVERGED, dtype=object)
     iterations = np.full(p.shape, max_iterations)
@@ -139,7 +145,6 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
     # of array operations on them alone
     live = np.arange(p.size)
     live_p, live_scale = p, map_scale(p, alpha_rad, g)
-    spectrum = displacement(live) if blockwise else displacement
     recent = np.full((p.size, 2 * MAX_CYCLE_LENGTH), np.nan)  # last iterates, newest last
     recent[:, -1] = initial_ratio
     for i in range(1, max_iterations + 1):
@@ -204,6 +209,20 @@ def iterate_tabulated(period_s, sd_m, rows, p, scale,
         np.ascontiguousarray(scale, dtype=float), float(initial_ratio), float(tolerance),
         CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH, int(max_iterations))
     return _outcomes(code, iterations, length, recent, initial_ratio, max_iterations)
+
+
+def _iterate_fema356(displacement: DesignDisplacement, p, alpha_rad: float, g: float,
+                     initial_ratio: float, tolerance: float, max_iterations: int):
+    """:func:`iterate_rotation` on FEMA 356 spectra (a site, or a site per block), compiled
+    (:func:`procedures.design_spectrum_kernels.iterate_fema356`): each block's iterates those
+    of the array loop, bit for bit."""
+    from procedures.design_spectrum_kernels import iterate_fema356  # numba loads only here
+    site = displacement.spectrum.branch_constants(displacement.damping, p.size)
+    return _outcomes(*iterate_fema356(
+        np.ascontiguousarray(p), np.ascontiguousarray(map_scale(p, alpha_rad, g), dtype=float),
+        site, G, float(initial_ratio), float(tolerance), CYCLE_TOLERANCE_RATIO,
+        SUBCYCLE_TOLERANCE_RATIO, MAX_CYCLE_LENGTH, int(max_iterations)),
+        initial_ratio, max_iterations)
 
 
 def _outcomes(code, iterations, length, recent, initial_ratio: float, max_iterations: int):

@@ -161,6 +161,39 @@ def cycle_length(window: np.ndarray, cycle_tolerance: float, subcycle_tolerance:
 NOT_SETTLED, CONVERGED, OVERTURNED, CYCLING = 0, 1, 2, 3
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def rocking_period(ratio, p):
+    """T = (4/p) acosh(1/(1 − θ/α)) of Eq. 8.1 at one θ/α [s], in the operations of
+    :func:`audit.physics.damping.housner_period`."""
+    return 4.0 / p * math.acosh(1.0 / (1.0 - ratio))
+
+
+@numba.njit(cache=True, nogil=True)
+def push_iterate(recent, new, tolerance, cycle_tolerance, subcycle_tolerance, max_length):
+    """One block's step of :func:`advance` and :func:`cycle_length`: push the iterate ``new``
+    into its window ``recent`` (newest last; 1 for an overturning one) and say how the
+    iteration stands.
+
+    Returns
+    -------
+    outcome, cycle : int
+        Outcome code (:data:`NOT_SETTLED` while it goes on) and the cycle's length (0 unless
+        cycling).
+    """
+    width = recent.size
+    over = new >= 1.0
+    done = not over and abs(new - recent[width - 1]) <= tolerance
+    recent[:width - 1] = recent[1:].copy()
+    recent[width - 1] = 1.0 if over else new
+    if over or done:
+        return (OVERTURNED if over else CONVERGED), 0
+    if may_repeat(recent, cycle_tolerance, max_length):
+        length = cycle_length(recent, cycle_tolerance, subcycle_tolerance, max_length)
+        if length:
+            return CYCLING, length
+    return NOT_SETTLED, 0
+
+
 @numba.njit(cache=True, nogil=True)
 def _read_on_demand(period, period_s, table, source):
     """Make ``table`` known at the nodes :func:`interp` reads for ``period``: each computed by
@@ -190,21 +223,13 @@ def _iterate_block(period_s, table, p, scale, initial_ratio, tolerance, cycle_to
     recent[:] = np.nan
     recent[width - 1] = initial_ratio
     for i in range(1, max_iterations + 1):
-        ratio = recent[width - 1]
-        period = 4.0 / p * math.acosh(1.0 / (1.0 - ratio))
+        period = rocking_period(recent[width - 1], p)
         if source is not None:
             _read_on_demand(period, period_s, table, source)
-        new = interp(period, period_s, table) * scale
-        over = new >= 1.0
-        done = not over and abs(new - ratio) <= tolerance
-        recent[:width - 1] = recent[1:].copy()
-        recent[width - 1] = 1.0 if over else new
-        if over or done:
-            return (OVERTURNED if over else CONVERGED), i, 0
-        if may_repeat(recent, cycle_tolerance, max_length):
-            length = cycle_length(recent, cycle_tolerance, subcycle_tolerance, max_length)
-            if length:
-                return CYCLING, i, length
+        code, length = push_iterate(recent, interp(period, period_s, table) * scale, tolerance,
+                                    cycle_tolerance, subcycle_tolerance, max_length)
+        if code != NOT_SETTLED:
+            return code, i, length
     return NOT_SETTLED, max_iterations, 0
 
 
@@ -257,4 +282,4 @@ def iterate_on_demand(period_s, table, source, p, scale, initial_ratio, toleranc
 
 
 __all__ = ["advance", "cycle_length", "interp", "interp_between", "iterate_on_demand",
-           "iterate_tabulated", "may_repeat", "nodes_read"]
+           "iterate_tabulated", "may_repeat", "nodes_read", "push_iterate", "rocking_period"]

@@ -19,12 +19,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from audit.physics.block import coefficient_of_restitution
+from audit.physics.design_spectra import DesignDisplacement, FEMA356Spectrum
 from procedures import get_procedures
 from audit.physics.response_spectra import response_spectra
 from procedures.base import SPECTRUM_PERIODS_S
 from procedures.context import RecordContext
 from procedures.tabulated import TabulatedOnDemand
-from procedures.iteration import iterate_rotation, iterate_tabulated
+from procedures.iteration import (MAX_ITERATIONS, OVERTURN, iterate_rotation,
+                                  iterate_tabulated)
 from procedures.overturning import overturning_predictions, predicts_overturning
 from procedures.rotation_map import map_scale
 from procedures.iteration_kernels import interp
@@ -63,6 +65,72 @@ def test_tabulated_iteration_is_one_iteration_per_spectrum():
         for got, expected in zip(together, apart):
             np.testing.assert_array_equal(got[mine], expected)
     assert {"converged", "overturn"} <= set(together[1])
+
+
+def _same_bits(got, expected):
+    for a, b in zip(got, expected):
+        if a.dtype.kind == "f":
+            np.testing.assert_array_equal(a.view(np.int64), b.view(np.int64))
+        else:
+            np.testing.assert_array_equal(a, b)
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_fema_356_iteration_compiled_is_the_array_iteration(seed):
+    """FEMA 356's spectrum iterated compiled, on one site and on a site per block, against the
+    array iteration (a lambda, which it cannot read as FEMA 356's), bit for bit; the blocks'
+    sites spread about the step to overturning, where the iteration is slowest and may not
+    settle."""
+    rng = np.random.default_rng(seed)
+    alpha, beta = math.radians(rng.uniform(4.0, 30.0)), rng.uniform(0.0, 0.4)
+    p = 2.0 * np.pi / np.geomspace(0.3, 8.0, 12)
+    one = DesignDisplacement(FEMA356Spectrum(rng.uniform(0.2, 3.0), rng.uniform(0.1, 2.0)), beta)
+    _same_bits(iterate_rotation(one, p, alpha), iterate_rotation(lambda t: one(t), p, alpha))
+    # each block's site scaled in a geometric spread across 0.05-20: some converge slowly, some
+    # overturn after many iterations, some reach the cap
+    scale = np.geomspace(0.05, 20.0, 400)
+    sites = FEMA356Spectrum(one.spectrum.sxs_g * scale, one.spectrum.sx1_g * scale)
+    blocks = np.resize(p, scale.size)
+
+    def of(index):
+        return DesignDisplacement(replace(sites, sxs_g=sites.sxs_g[index],
+                                          sx1_g=sites.sx1_g[index]), beta)
+    compiled = iterate_rotation(of, blocks, alpha, blockwise=True)
+    _same_bits(compiled, iterate_rotation(lambda index: (lambda t, spectrum=of(index):
+                                                         spectrum(t)),
+                                          blocks, alpha, blockwise=True))
+    assert {"converged", "overturn"} <= set(compiled[1])
+
+
+def test_fema_356_iteration_reaches_its_cap_near_the_step():
+    """At the step to overturning the map is nearly tangent to θ: iterations run to the cap
+    and are reported so, the same compiled as in the array iteration."""
+    alpha, beta = math.radians(15.0), 0.1
+    p = 2.0 * np.pi / np.array([0.5, 2.0, 7.0])
+
+    def over(factor):
+        spectrum = DesignDisplacement(FEMA356Spectrum(1.5 * factor, 0.9 * factor), beta)
+        return iterate_rotation(spectrum, p, alpha)[1] == OVERTURN
+    low, high = np.full(p.size, 0.01), np.full(p.size, 20.0)
+    for _ in range(45):
+        middle = np.sqrt(low * high)
+        for k in range(p.size):
+            high[k], low[k] = ((middle[k], low[k]) if over(middle[k])[k]
+                               else (high[k], middle[k]))
+    factor = np.concatenate([low * (1.0 - 10.0 ** -np.arange(4, 12)[:, None]),
+                             high * (1.0 + 10.0 ** -np.arange(4, 12)[:, None])]).ravel()
+    sites = FEMA356Spectrum(1.5 * factor, 0.9 * factor)
+
+    def of(index):
+        return DesignDisplacement(replace(sites, sxs_g=sites.sxs_g[index],
+                                          sx1_g=sites.sx1_g[index]), beta)
+    blocks = np.tile(p, factor.size // p.size)
+    compiled = iterate_rotation(of, blocks, alpha, blockwise=True)
+    _same_bits(compiled, iterate_rotation(lambda index: (lambda t, spectrum=of(index):
+                                                         spectrum(t)),
+                                          blocks, alpha, blockwise=True))
+    assert "not-converged" in set(compiled[1]) and compiled[2].max() == MAX_ITERATIONS
 
 
 def scaled_cases(entry, base):

@@ -140,6 +140,16 @@ class FEMA356Spectrum(DesignSpectrum):
         t_s = self.sx1_g * b_s / (self.sxs_g * b_1)
         return 0.2 * t_s, t_s
 
+    def branch_constants(self, damping, blocks: int) -> np.ndarray:
+        """(S_XS, S_X1, B_S, B_1, T_0, T_S) of the spectrum at β [-], a row for each of
+        ``blocks`` blocks (the site's, or each block's own where the site is given per block):
+        what :func:`procedures.design_spectrum_kernels.fema356_displacement` reads."""
+        b_s, b_1 = fema356_damping_coefficients(damping)
+        columns = np.broadcast_arrays(self.sxs_g, self.sx1_g, b_s, b_1,
+                                      *self.corner_periods(damping))
+        return np.ascontiguousarray(np.broadcast_to(np.stack(columns, axis=-1), (blocks, 6)),
+                                    dtype=float)
+
     def acceleration(self, period_s, damping):
         """Sa [g] in its three branches, with B_S, B_1 of Table 1-6 for β [-].
 
