@@ -21,6 +21,7 @@ from audit.engine.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_
 from audit.engine.schemas import GUIDE
 from audit.engine.verdicts import ROTATION_VERDICTS, UNSAFE_VERDICTS, VERDICTS, meanings
 from reports.block_metres import describe_block
+from reports.frame_rows import row_dicts
 from reports.grid_figures import verdict_map_figure
 from reports.history_figures import history_figure
 from reports.outcome_words import describe_exact, describe_guideline
@@ -34,6 +35,9 @@ from reports.suite_sections import (CHECK_MEANING, checks_section, claims_sectio
 PROCEDURE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
 
 VERDICT_MEANING = meanings(ROTATION_VERDICTS)
+#: What the words of a guideline's estimate are made of (``describe_guideline``).
+ESTIMATE_COLUMNS = ("procedure", "verdict", "alpha_deg", "approx_outcome", "approx_theta_rad",
+                    "approx_period_s", "approx_cycle")
 
 
 def _environment() -> Environment:
@@ -83,7 +87,7 @@ def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
     """The guidelines' estimates for one block: lines to draw and words for the caption."""
     lines, words = [], []
     first = {}  # each procedure's row, in one pass over the block's few rows
-    for row in match.to_dict("records"):
+    for row in row_dicts(match, ESTIMATE_COLUMNS):
         first.setdefault(row["procedure"], row)
     for colour, procedure in zip(PROCEDURE_COLOURS, procedures):
         row = first.get(procedure["name"])
@@ -132,14 +136,16 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     whole suite's, from the bottom line)."""
     drawn = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
     counts = {line["name"]: line["count"] for line in run.summary["bottom_line"]}
+    results = run.results
+    # only drawn blocks can be listed: ranked after this cut, they keep their order (the
+    # ranking is a stable sort) and the sort handles a few rows, not the whole suite
+    results = results[[block_key(r, a, s) in drawn for r, a, s in
+                       zip(results["record"], results["alpha_deg"], results["size_s"])]]
     tables = []
     for procedure in procedures:
-        rows = run.results[run.results["procedure"] == procedure["name"]]
+        rows = results[results["procedure"] == procedure["name"]]
         for verdict, column, largest, reason in WORST_CLASSES:
-            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest)
-            keys = [block_key(r, a, s) for r, a, s in
-                    zip(hits["record"], hits["alpha_deg"], hits["size_s"])]
-            hits = hits[[k in drawn for k in keys]].head(WORST_ROWS)
+            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest).head(WORST_ROWS)
             tables.append({"procedure": procedure, "reason": reason, "verdict": verdict,
                            "total": counts[procedure["name"]][verdict], "rows": [{
                                "where": _where(row, names), "exact": describe_exact(row),
