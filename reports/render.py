@@ -38,6 +38,9 @@ VERDICT_MEANING = meanings(ROTATION_VERDICTS)
 #: What the words of a guideline's estimate are made of (``describe_guideline``).
 ESTIMATE_COLUMNS = ("procedure", "verdict", "alpha_deg", "approx_outcome", "approx_theta_rad",
                     "approx_period_s", "approx_cycle")
+#: What a row of the worst-cases table is made of, and ranked by (``WORST_CLASSES``).
+WORST_COLUMNS = (*ESTIMATE_COLUMNS, "record", "size_s", "exact_overturned", "exact_fragile",
+                 "exact_theta_rad", "ratio")
 
 
 def _environment() -> Environment:
@@ -107,14 +110,19 @@ def _by_record(frame: pd.DataFrame) -> dict:
     return defaultdict(lambda: frame.iloc[:0], list(frame.groupby("record", sort=False)))
 
 
+def _at(frame: pd.DataFrame, meta: dict) -> np.ndarray:
+    """Which rows of ``frame`` are the block of ``meta`` (its α and size as saved)."""
+    return (np.isclose(frame["size_s"].to_numpy(), meta["size_s"])
+            & np.isclose(frame["alpha_deg"].to_numpy(), meta["alpha_deg"]))
+
+
 def _history_figure(pending, histories: dict, results: dict, meta, procedures, names) -> dict:
     """Figure of one drawn time history; ``histories`` and ``results`` by record."""
     rid = meta["record"]
     h = histories[rid]
-    h = h[np.isclose(h["size_s"], meta["size_s"]) & np.isclose(h["alpha_deg"], meta["alpha_deg"])]
+    h = h[_at(h, meta)]
     match = results[rid]
-    match = match[np.isclose(match["size_s"], meta["size_s"])
-                  & np.isclose(match["alpha_deg"], meta["alpha_deg"])]
+    match = match[_at(match, meta)]
     lines, words = _estimates(match, procedures)
     exact = (f"overturns at t = {meta['overturn_time_s']:.2f} s" if meta.get("overturned")
              else f"peak θ/α = {meta['peak_rotation_ratio']:.3f}")
@@ -139,13 +147,16 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     results = run.results
     # only drawn blocks can be listed: ranked after this cut, they keep their order (the
     # ranking is a stable sort) and the sort handles a few rows, not the whole suite
-    results = results[[block_key(r, a, s) in drawn for r, a, s in
-                       zip(results["record"], results["alpha_deg"], results["size_s"])]]
+    results = results.loc[[block_key(r, a, s) in drawn for r, a, s in
+                           zip(results["record"], results["alpha_deg"], results["size_s"])],
+                          list(WORST_COLUMNS)]
     tables = []
     for procedure in procedures:
         rows = results[results["procedure"] == procedure["name"]]
         for verdict, column, largest, reason in WORST_CLASSES:
-            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest).head(WORST_ROWS)
+            hits = rows[rows["verdict"] == verdict]
+            if len(hits):
+                hits = rank_worst(hits, column, largest).head(WORST_ROWS)
             tables.append({"procedure": procedure, "reason": reason, "verdict": verdict,
                            "total": counts[procedure["name"]][verdict], "rows": [{
                                "where": _where(row, names), "exact": describe_exact(row),
@@ -154,7 +165,7 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
                                "link": _history_id(row["record"], row["alpha_deg"],
                                                    row["size_s"]),
                                "key": block_key(row["record"], row["alpha_deg"], row["size_s"])}
-                               for _, row in hits.iterrows()]})
+                               for row in row_dicts(hits, WORST_COLUMNS)]})
     return tables
 
 
