@@ -43,6 +43,7 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
     domains = _domains(len(records), gap)
     data, layout = [], _layout(height, margin={"l": 60, "r": 20, "t": 20, "b": 50})
     present = set()
+    results = results[["record", *CELL_COLUMNS]]  # each selection below copies these only
     for n, record in enumerate(records, start=1):
         rows = results[results["record"] == record].sort_values(["alpha_deg", "size_s"])
         alphas = sorted(rows["alpha_deg"].unique())
@@ -51,11 +52,11 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
         cells_i = np.searchsorted(np.array(alphas), rows["alpha_deg"].to_numpy())
         cells_j = np.searchsorted(sizes, rows["size_s"].to_numpy())
         z = np.full((len(alphas), sizes.size), np.nan)
-        z[cells_i, cells_j] = rows["verdict"].map(codes).to_numpy(dtype=float)
-        present.update(rows["verdict"].unique())
         custom = [[None] * sizes.size for _ in alphas]
         fragile_x, fragile_y = [], []
         for i, j, row in zip(cells_i.tolist(), cells_j.tolist(), row_dicts(rows, CELL_COLUMNS)):
+            z[i, j] = codes[row["verdict"]]
+            present.add(row["verdict"])
             custom[i][j] = [describe_exact(row), describe_guideline(row), row["verdict"],
                             *block_size_m(row["alpha_deg"], row["size_s"])]
             if row["exact_fragile"] is True:
