@@ -51,13 +51,20 @@ def response_and_rocking_figure(response: pd.DataFrame, rocking: pd.DataFrame, d
                              "hovertemplate": f"{name}<br>T = %{{x:.3f}} s<br>%{{y:.4g}}"
                                               "<extra></extra>"})
     alphas = sorted(rocking["alpha_deg"].unique())
+    # the columns drawn, as arrays once; each α takes its rows by position (one per size)
+    rocking_alpha = rocking["alpha_deg"].to_numpy()
+    rocking_size = rocking["size_s"].to_numpy()
+    rocking_over = rocking["overturned"].eq(True).to_numpy()
+    rocking_ratio = rocking["theta_ratio"].to_numpy(dtype=float)
+    rocking_omega = rocking["omega_peak_rad_s"].to_numpy(dtype=float)
     for k, alpha in enumerate(alphas):
-        group = rocking[rocking["alpha_deg"] == alpha].sort_values("size_s")
+        at = np.flatnonzero(rocking_alpha == alpha)
+        at = at[np.argsort(rocking_size[at])]
         colour = alpha_colour(alpha)
-        over = group["overturned"].eq(True).to_numpy()
-        size = group["size_s"].to_numpy()
-        ratio = np.where(over, np.nan, group["theta_ratio"].to_numpy(dtype=float))
-        omega = np.where(over, np.nan, group["omega_peak_rad_s"].to_numpy(dtype=float))
+        over = rocking_over[at]
+        size = rocking_size[at]
+        ratio = np.where(over, np.nan, rocking_ratio[at])
+        omega = np.where(over, np.nan, rocking_omega[at])
         data.append({"type": "scatter", "mode": "lines", "x": size, "y": ratio, "xaxis": "x4",
                      "yaxis": "y4", "line": {"color": colour, "width": 1.4},
                      "name": f"α = {alpha:g}°", "legendgroup": f"a{alpha}",
@@ -114,7 +121,9 @@ def _placeholder(size, axes) -> dict:
 def _split(text):
     """``'0.24s;0.25u'`` → [(0.24, 's'), (0.25, 'u')]; ``'0.57;0.88'`` → [(0.57, ''), …]."""
     items = []
-    for part in str(text or "").split(";"):
+    if not text:  # most rows: no cycle, no fixed point
+        return items
+    for part in str(text).split(";"):
         part = part.strip()
         if part:
             kind = part[-1] if part[-1] in "su" else ""
