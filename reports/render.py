@@ -147,8 +147,8 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     results = run.results
     # only drawn blocks can be listed: ranked after this cut, they keep their order (the
     # ranking is a stable sort) and the sort handles a few rows, not the whole suite
-    results = results.loc[[block_key(r, a, s) in drawn for r, a, s in
-                           zip(results["record"], results["alpha_deg"], results["size_s"])],
+    results = results.loc[[block_key(r, a, s) in drawn for r, a, s in zip(
+        results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())],
                           list(WORST_COLUMNS)]
     tables = []
     for procedure in procedures:
