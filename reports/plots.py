@@ -11,8 +11,6 @@ axis; the same colour for the same slenderness α, damping ratio and verdict eve
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import orjson
 import pandas as pd

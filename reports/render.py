@@ -144,15 +144,15 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     whole suite's, from the bottom line)."""
     drawn = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
     counts = {line["name"]: line["count"] for line in run.summary["bottom_line"]}
-    results = run.results
     # only drawn blocks can be listed: ranked after this cut, they keep their order (the
     # ranking is a stable sort) and the sort handles a few rows, not the whole suite
-    results = results.loc[[block_key(r, a, s) in drawn for r, a, s in zip(
-        results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())],
-                          list(WORST_COLUMNS)]
+    results = run.results
+    is_drawn = [block_key(r, a, s) in drawn for r, a, s in zip(
+        results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())]
+    drawn_rows = results.loc[is_drawn, list(WORST_COLUMNS)]
     tables = []
     for procedure in procedures:
-        rows = results[results["procedure"] == procedure["name"]]
+        rows = drawn_rows[drawn_rows["procedure"] == procedure["name"]]
         for verdict, column, largest, reason in WORST_CLASSES:
             hits = rows[rows["verdict"] == verdict]
             if len(hits):
