@@ -37,6 +37,20 @@ def _block_size_m(alpha_deg: float, size_s: float) -> tuple[float, float]:
     return round(2 * block.half_width, 2), round(2 * block.half_height, 2)
 
 
+def block_sizes_m(alphas_deg, sizes_s) -> np.ndarray:
+    """:func:`block_size_m` of every cell of a grid, α down and 2π/p across [m] (shape
+    ``(len(alphas_deg), len(sizes_s), 2)``; read-only: shared by the maps of the same grid)."""
+    return _block_sizes_m(tuple(float(a) for a in alphas_deg), tuple(float(s) for s in sizes_s))
+
+
+@functools.lru_cache(maxsize=64)
+def _block_sizes_m(alphas_deg: tuple, sizes_s: tuple) -> np.ndarray:
+    # the checks' maps repeat one grid tens of times
+    grid = np.array([[_block_size_m(a, s) for s in sizes_s] for a in alphas_deg], dtype=float)
+    grid.flags.writeable = False
+    return grid
+
+
 def block_hover(first: int) -> str:
     """The words of :func:`describe_block` in a hover template, from a cell's
     :func:`block_size_m` at ``customdata[first]`` and ``customdata[first + 1]``."""

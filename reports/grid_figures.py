@@ -6,11 +6,18 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m
+from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m, \
+    block_sizes_m
+from reports.frame_rows import row_dicts
 from reports.outcome_words import describe_exact, describe_guideline
 from reports.palette import VERDICT_COLOURS, alpha_colour
 from reports.plots import _axis, _domains, _layout, _literal, _ref, _stacked, cell_span, \
     padded_span
+
+#: What a cell of a verdict map says on hover (``describe_exact``, ``describe_guideline``).
+CELL_COLUMNS = ("alpha_deg", "size_s", "verdict", "exact_overturned", "exact_fragile",
+                "exact_theta_rad", "approx_outcome", "approx_theta_rad", "approx_period_s",
+                "approx_cycle")
 
 
 def _metres_on_top(figure: dict, sizes) -> dict:
@@ -36,16 +43,18 @@ def verdict_map_figure(results: pd.DataFrame, records: list, names: dict, verdic
     domains = _domains(len(records), gap)
     data, layout = [], _layout(height, margin={"l": 60, "r": 20, "t": 20, "b": 50})
     present = set()
+    results = results[["record", *CELL_COLUMNS]]  # each selection below copies these only
     for n, record in enumerate(records, start=1):
         rows = results[results["record"] == record].sort_values(["alpha_deg", "size_s"])
         alphas = sorted(rows["alpha_deg"].unique())
         sizes = np.sort(rows["size_s"].unique())
+        # each row's cell: the α and sizes are the rows' own, so each is found exactly
+        cells_i = np.searchsorted(np.array(alphas), rows["alpha_deg"].to_numpy())
+        cells_j = np.searchsorted(sizes, rows["size_s"].to_numpy())
         z = np.full((len(alphas), sizes.size), np.nan)
         custom = [[None] * sizes.size for _ in alphas]
         fragile_x, fragile_y = [], []
-        for row in rows.to_dict("records"):
-            i = alphas.index(row["alpha_deg"])
-            j = int(np.searchsorted(sizes, row["size_s"]))
+        for i, j, row in zip(cells_i.tolist(), cells_j.tolist(), row_dicts(rows, CELL_COLUMNS)):
             z[i, j] = codes[row["verdict"]]
             present.add(row["verdict"])
             custom[i][j] = [describe_exact(row), describe_guideline(row), row["verdict"],
@@ -120,8 +129,7 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
         title = title_of(key)
         data.append({"type": "heatmap", "x": sizes, "y": alphas, "z": z,
                      # one float array: its numbers are rounded for the page all at once
-                     "customdata": np.array([[block_size_m(a, s) for s in sizes]
-                                             for a in alphas], dtype=float),
+                     "customdata": block_sizes_m(alphas, sizes),
                      "colorscale": colourscale, "zmin": zmin, "zmax": zmax,
                      "showscale": bool(colourbar) and n == 1, "ygap": 1,
                      "colorbar": {"title": {"text": colourbar or ""}, "len": 1, "x": 1.01,
@@ -129,9 +137,9 @@ def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hov
                      "xaxis": f"x{_ref(n)}", "yaxis": f"y{_ref(n)}",
                      "hovertemplate": hover.replace("{title}", _literal(title)).replace(
                          "{block}", block_hover(0))})
-        if labels is not None:
-            data[-1]["text"] = [[labels[int(v)] if np.isfinite(v) else "" for v in row]
-                                for row in z]
+        if labels is not None:  # "" where no value: the index past the labels
+            words = np.array([*labels, ""], dtype=object)
+            data[-1]["text"] = words[np.where(np.isfinite(z), z, len(labels)).astype(int)].tolist()
         layout[f"xaxis{_ref(n)}"] = _axis("2π/p [s]" if n == len(panels) else "",
                                           anchor=f"y{_ref(n)}", showticklabels=n == len(panels))
         if n > 1:

@@ -25,19 +25,20 @@ def history_figure(history: pd.DataFrame, meta: dict, estimates: list) -> dict:
         stop = min(stop, meta["last_impact_s"] + 3.0)
     if meta.get("overturn_time_s") is not None:
         stop = min(time[-1], meta["overturn_time_s"] + 1.0)
-    window = history[(history["time_s"] >= start) & (history["time_s"] <= stop)]
-    stride = max(1, len(window) // HISTORY_SAMPLES)
-    window = window.iloc[::stride]
-    theta = window["theta_ratio"].to_numpy(dtype=float)
+    window = np.flatnonzero((time >= start) & (time <= stop))
+    window = window[::max(1, window.size // HISTORY_SAMPLES)]
+    time_s = time[window]
+    theta = history["theta_ratio"].to_numpy(dtype=float)[window]
+    omega = history["omega_rad_s"].to_numpy(dtype=float)[window]
     peak = np.nanmax(np.abs(theta)) if np.isfinite(theta).any() else 1.0
     drawn = [abs(ratio) for _, ratio, _, _ in estimates if ratio is not None]
     limit = 1.1 if meta.get("overturned") else min(1.1, max(0.25, 1.3 * peak,
                                                              1.15 * max(drawn, default=0)))
-    data = [{"type": "scatter", "mode": "lines", "x": window["time_s"], "y": theta,
+    data = [{"type": "scatter", "mode": "lines", "x": time_s, "y": theta,
              "line": {"color": "#333333", "width": 1.2}, "name": "exact θ/α",
              "hovertemplate": "t = %{x:.3f} s<br>θ/α = %{y:.4f}<extra></extra>"},
-            {"type": "scatter", "mode": "lines", "x": window["time_s"],
-             "y": window["omega_rad_s"], "xaxis": "x2", "yaxis": "y2",
+            {"type": "scatter", "mode": "lines", "x": time_s,
+             "y": omega, "xaxis": "x2", "yaxis": "y2",
              "line": {"color": "#666666", "width": 1}, "name": "exact θ'", "showlegend": False,
              "hovertemplate": "t = %{x:.3f} s<br>θ' = %{y:.4g} rad/s<extra></extra>"}]
     shapes, mid_x, mid_text = [], [], []

@@ -11,8 +11,6 @@ axis; the same colour for the same slenderness α, damping ratio and verdict eve
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import orjson
 import pandas as pd
@@ -51,57 +49,98 @@ def rounded(values) -> np.ndarray:
     return values
 
 
-def _rounded_scalar(value: float):
-    """One float as :func:`rounded` and :func:`_json_numbers` give it inside an array (the same
-    rint(x·10^k)/10^k in IEEE doubles), without numpy's per-call cost: figures carry thousands
-    of lone floats in their hover data."""
-    magnitude = abs(value)
-    if not 1e-18 <= magnitude < 1e24:
-        return _json_numbers(rounded([value]))[0]
-    k = SIGNIFICANT_DIGITS - 1 - math.floor(math.log10(magnitude))
-    n = float(round(value * 10.0 ** k))
-    x = n / 10.0 ** k if k >= 0 else n * 10.0 ** -k
-    if x != x or x in (math.inf, -math.inf):
-        return None
-    return int(x) if x.is_integer() and abs(x) < 1e15 else x
-
-
-def _json_numbers(values: np.ndarray):
-    """Rounded floats as JSON-ready nested lists: an int where integral (a lighter page), None
-    for NaN; sorted by masks, not value by value."""
+def _json_objects(values: np.ndarray) -> np.ndarray:
+    """Rounded floats as JSON-ready objects: an int where integral (a lighter page), None for
+    NaN; sorted by masks, not value by value."""
     out = values.astype(object)
     with np.errstate(invalid="ignore"):
         whole = (values == np.trunc(values)) & (np.abs(values) < 1e15)
     out[whole] = values[whole].astype(np.int64)
     out[np.isnan(values)] = None
-    return out.tolist()
+    return out
+
+
+#: Types orjson writes as they are (no rounding).
+_AS_IS = frozenset((str, int, bool, type(None)))
+#: Types of a list that is numbers to round, None written as null.
+_NUMBERS = frozenset((float, np.float64, type(None)))
+
+
+class _Numbers:
+    """The floats of one spec, rounded together once the spec has been walked: one numpy pass
+    per figure, not one per array or per lone float (a figure holds hundreds of short arrays
+    and thousands of hover numbers, where numpy's per-call cost would be most of the work)."""
+
+    def __init__(self):
+        self.arrays = []  # (list to fill, the float array it stands for)
+        self.places = []  # (dict or list, key) of a lone float
+        self.alone = []  # the lone floats, in the order of places
+
+    def place(self, container, key, item):
+        """Put ``item`` JSON-ready at ``container[key]`` (a lone float: once rounded)."""
+        if type(item) is float or isinstance(item, np.floating) or (
+                isinstance(item, np.ndarray) and item.ndim == 0 and item.dtype.kind == "f"):
+            container[key] = None  # holds the key's place in a dict's order
+            self.places.append((container, key))
+            self.alone.append(item)
+        else:
+            container[key] = self.clean(item)
+
+    def clean(self, value):
+        """``value`` (not a lone float) JSON-ready, its floats left for :meth:`fill`."""
+        kind = type(value)
+        if kind is dict:
+            out = dict(value)
+            for key, item in value.items():
+                if type(item) not in _AS_IS:
+                    self.place(out, key, item)
+            return out
+        if kind is list or kind is tuple:
+            kinds = set(map(type, value))
+            if kinds <= _AS_IS:
+                return value
+            if kinds <= _NUMBERS:  # None becomes NaN, written as null as a lone None is
+                return self._later(np.array(value, dtype=float))
+            out = list(value)
+            for i, item in enumerate(value):
+                if type(item) not in _AS_IS:
+                    self.place(out, i, item)
+            return out
+        if isinstance(value, (np.ndarray, pd.Series, pd.Index)):
+            value = np.asarray(value)
+            if value.dtype.kind == "f":
+                return self._later(value)
+            return value if value.dtype.kind in "biu" else self.clean(value.tolist())
+        return value
+
+    def _later(self, values: np.ndarray) -> list:
+        slot = []
+        self.arrays.append((slot, values))
+        return slot
+
+    def fill(self):
+        """Round every float at once and put each where it belongs."""
+        flat = _json_objects(rounded(np.concatenate(
+            [values.ravel() for _, values in self.arrays] + [np.array(self.alone, dtype=float)])))
+        start = 0
+        for slot, values in self.arrays:
+            slot.extend(flat[start:start + values.size].reshape(values.shape).tolist())
+            start += values.size
+        for (container, key), number in zip(self.places, flat[start:].tolist()):
+            container[key] = number
 
 
 def to_json(spec) -> str:
     """The spec as compact JSON, numbers rounded, NaN/inf as null, safe inside ``<script>``.
 
-    Arrays and lists of numbers (the bulk of every figure) are rounded in one vectorised step
-    and serialised by orjson.
+    Every float of the spec (arrays, lists and lone hover numbers) is rounded in one vectorised
+    step, and the result serialised by orjson; lists of text pass untouched.
     """
-    def clean(value):
-        kind = type(value)
-        if kind is dict:
-            return {k: clean(v) for k, v in value.items()}
-        if kind in (list, tuple):
-            if value and all(type(v) is float for v in value):
-                return _json_numbers(rounded(value))
-            return [clean(v) for v in value]
-        if kind in (str, int, bool) or value is None:
-            return value
-        if isinstance(value, (np.ndarray, pd.Series, pd.Index)):
-            value = np.asarray(value)
-            if value.dtype.kind == "f":
-                return _json_numbers(rounded(value))
-            return value if value.dtype.kind in "biu" else clean(value.tolist())
-        if isinstance(value, (float, np.floating)):
-            return _rounded_scalar(float(value))
-        return value
-    text = orjson.dumps(clean(spec), option=orjson.OPT_SERIALIZE_NUMPY).decode()
+    numbers = _Numbers()
+    holder = [None]
+    numbers.place(holder, 0, spec)
+    numbers.fill()
+    text = orjson.dumps(holder[0], option=orjson.OPT_SERIALIZE_NUMPY).decode()
     return text.replace("</", "<\\/")
 
 

@@ -21,6 +21,7 @@ from audit.engine.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_
 from audit.engine.schemas import GUIDE
 from audit.engine.verdicts import ROTATION_VERDICTS, UNSAFE_VERDICTS, VERDICTS, meanings
 from reports.block_metres import describe_block
+from reports.frame_rows import row_dicts
 from reports.grid_figures import verdict_map_figure
 from reports.history_figures import history_figure
 from reports.outcome_words import describe_exact, describe_guideline
@@ -34,6 +35,12 @@ from reports.suite_sections import (CHECK_MEANING, checks_section, claims_sectio
 PROCEDURE_COLOURS = ("#d62728", "#1f77b4", "#2ca02c", "#9467bd")
 
 VERDICT_MEANING = meanings(ROTATION_VERDICTS)
+#: What the words of a guideline's estimate are made of (``describe_guideline``).
+ESTIMATE_COLUMNS = ("procedure", "verdict", "alpha_deg", "approx_outcome", "approx_theta_rad",
+                    "approx_period_s", "approx_cycle")
+#: What a row of the worst-cases table is made of, and ranked by (``WORST_CLASSES``).
+WORST_COLUMNS = (*ESTIMATE_COLUMNS, "record", "size_s", "exact_overturned", "exact_fragile",
+                 "exact_theta_rad", "ratio")
 
 
 def _environment() -> Environment:
@@ -83,7 +90,7 @@ def _estimates(match: pd.DataFrame, procedures) -> tuple[list, list]:
     """The guidelines' estimates for one block: lines to draw and words for the caption."""
     lines, words = [], []
     first = {}  # each procedure's row, in one pass over the block's few rows
-    for row in match.to_dict("records"):
+    for row in row_dicts(match, ESTIMATE_COLUMNS):
         first.setdefault(row["procedure"], row)
     for colour, procedure in zip(PROCEDURE_COLOURS, procedures):
         row = first.get(procedure["name"])
@@ -103,14 +110,19 @@ def _by_record(frame: pd.DataFrame) -> dict:
     return defaultdict(lambda: frame.iloc[:0], list(frame.groupby("record", sort=False)))
 
 
+def _at(frame: pd.DataFrame, meta: dict) -> np.ndarray:
+    """Which rows of ``frame`` are the block of ``meta`` (its α and size as saved)."""
+    return (np.isclose(frame["size_s"].to_numpy(), meta["size_s"])
+            & np.isclose(frame["alpha_deg"].to_numpy(), meta["alpha_deg"]))
+
+
 def _history_figure(pending, histories: dict, results: dict, meta, procedures, names) -> dict:
     """Figure of one drawn time history; ``histories`` and ``results`` by record."""
     rid = meta["record"]
     h = histories[rid]
-    h = h[np.isclose(h["size_s"], meta["size_s"]) & np.isclose(h["alpha_deg"], meta["alpha_deg"])]
+    h = h[_at(h, meta)]
     match = results[rid]
-    match = match[np.isclose(match["size_s"], meta["size_s"])
-                  & np.isclose(match["alpha_deg"], meta["alpha_deg"])]
+    match = match[_at(match, meta)]
     lines, words = _estimates(match, procedures)
     exact = (f"overturns at t = {meta['overturn_time_s']:.2f} s" if meta.get("overturned")
              else f"peak θ/α = {meta['peak_rotation_ratio']:.3f}")
@@ -132,14 +144,19 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     whole suite's, from the bottom line)."""
     drawn = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
     counts = {line["name"]: line["count"] for line in run.summary["bottom_line"]}
+    # only drawn blocks can be listed: ranked after this cut, they keep their order (the
+    # ranking is a stable sort) and the sort handles a few rows, not the whole suite
+    results = run.results
+    is_drawn = [block_key(r, a, s) in drawn for r, a, s in zip(
+        results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())]
+    drawn_rows = results.loc[is_drawn, list(WORST_COLUMNS)]
     tables = []
     for procedure in procedures:
-        rows = run.results[run.results["procedure"] == procedure["name"]]
+        rows = drawn_rows[drawn_rows["procedure"] == procedure["name"]]
         for verdict, column, largest, reason in WORST_CLASSES:
-            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest)
-            keys = [block_key(r, a, s) for r, a, s in
-                    zip(hits["record"], hits["alpha_deg"], hits["size_s"])]
-            hits = hits[[k in drawn for k in keys]].head(WORST_ROWS)
+            hits = rows[rows["verdict"] == verdict]
+            if len(hits):
+                hits = rank_worst(hits, column, largest).head(WORST_ROWS)
             tables.append({"procedure": procedure, "reason": reason, "verdict": verdict,
                            "total": counts[procedure["name"]][verdict], "rows": [{
                                "where": _where(row, names), "exact": describe_exact(row),
@@ -148,7 +165,7 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
                                "link": _history_id(row["record"], row["alpha_deg"],
                                                    row["size_s"]),
                                "key": block_key(row["record"], row["alpha_deg"], row["size_s"])}
-                               for _, row in hits.iterrows()]})
+                               for row in row_dicts(hits, WORST_COLUMNS)]})
     return tables
 
 

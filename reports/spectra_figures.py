@@ -51,13 +51,20 @@ def response_and_rocking_figure(response: pd.DataFrame, rocking: pd.DataFrame, d
                              "hovertemplate": f"{name}<br>T = %{{x:.3f}} s<br>%{{y:.4g}}"
                                               "<extra></extra>"})
     alphas = sorted(rocking["alpha_deg"].unique())
+    # the columns drawn, as arrays once; each α takes its rows by position (one per size)
+    rocking_alpha = rocking["alpha_deg"].to_numpy()
+    rocking_size = rocking["size_s"].to_numpy()
+    rocking_over = rocking["overturned"].eq(True).to_numpy()
+    rocking_ratio = rocking["theta_ratio"].to_numpy(dtype=float)
+    rocking_omega = rocking["omega_peak_rad_s"].to_numpy(dtype=float)
     for k, alpha in enumerate(alphas):
-        group = rocking[rocking["alpha_deg"] == alpha].sort_values("size_s")
+        at = np.flatnonzero(rocking_alpha == alpha)
+        at = at[np.argsort(rocking_size[at])]
         colour = alpha_colour(alpha)
-        over = group["overturned"].eq(True).to_numpy()
-        size = group["size_s"].to_numpy()
-        ratio = np.where(over, np.nan, group["theta_ratio"].to_numpy(dtype=float))
-        omega = np.where(over, np.nan, group["omega_peak_rad_s"].to_numpy(dtype=float))
+        over = rocking_over[at]
+        size = rocking_size[at]
+        ratio = np.where(over, np.nan, rocking_ratio[at])
+        omega = np.where(over, np.nan, rocking_omega[at])
         data.append({"type": "scatter", "mode": "lines", "x": size, "y": ratio, "xaxis": "x4",
                      "yaxis": "y4", "line": {"color": colour, "width": 1.4},
                      "name": f"α = {alpha:g}°", "legendgroup": f"a{alpha}",
@@ -114,7 +121,9 @@ def _placeholder(size, axes) -> dict:
 def _split(text):
     """``'0.24s;0.25u'`` → [(0.24, 's'), (0.25, 'u')]; ``'0.57;0.88'`` → [(0.57, ''), …]."""
     items = []
-    for part in str(text or "").split(";"):
+    if not text:  # most rows: no cycle, no fixed point
+        return items
+    for part in str(text).split(";"):
         part = part.strip()
         if part:
             kind = part[-1] if part[-1] in "su" else ""
@@ -128,6 +137,20 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
     fixed points ○, overturning marked) | the converged T(θ) of Eq. 8.1."""
     alphas = sorted(results["alpha_deg"].unique())
     rows_dom = _domains(len(alphas), 0.22 / max(1, len(alphas)))
+    # the columns drawn, as arrays once: each α takes its rows by position, not by a pandas
+    # selection (the rows of a record and procedure have one size each per α)
+    row_alpha = results["alpha_deg"].to_numpy()
+    row_size = results["size_s"].to_numpy(dtype=float)
+    row_beta = results["beta_pct"].to_numpy()
+    row_exact = results["exact_theta_rad"].to_numpy(dtype=float)
+    row_approx = results["approx_theta_rad"].to_numpy(dtype=float)
+    row_period = results["approx_period_s"].to_numpy(dtype=float)
+    row_exact_over = results["exact_overturned"].eq(True).to_numpy()
+    row_approx_over = results["approx_overturned"].eq(True).to_numpy()
+    row_cycle = results["approx_cycle"].to_numpy(dtype=object)
+    row_points = results["approx_fixed_points"].to_numpy(dtype=object)
+    spectra = spectra[["alpha_deg", "period_s", "sd_m"]]
+    spectrum_alpha = spectra["alpha_deg"].to_numpy()
     data, annotations = [], []
     layout = _layout(120 + 230 * len(alphas), margin={"l": 70, "r": 20, "t": 30, "b": 120})
     shown, metres = set(), []
@@ -140,22 +163,21 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
     for r, alpha in enumerate(alphas):
         colour = alpha_colour(alpha)
         a, b, c = 3 * r + 1, 3 * r + 2, 3 * r + 3
-        rows = results[results["alpha_deg"] == alpha].sort_values("size_s")
-        beta = rows["beta_pct"].iloc[0]
-        spec = spectra[spectra["alpha_deg"] == alpha].iloc[::SPECTRUM_STRIDE]
+        at = np.flatnonzero(row_alpha == alpha)
+        at = at[np.argsort(row_size[at])]
+        beta = row_beta[at[0]]
+        spec = spectra.iloc[np.flatnonzero(spectrum_alpha == alpha)[::SPECTRUM_STRIDE]]
         data.append({"type": "scatter", "mode": "lines", "x": spec["period_s"], "y": spec["sd_m"],
                      "xaxis": f"x{_ref(a)}", "yaxis": f"y{_ref(a)}",
                      "line": {"color": colour, "width": 1.3}, **legend(f"α = {alpha:g}°"),
                      "hovertemplate": f"Sd at β = {beta:.2f} %<br>T = %{{x:.3f}} s<br>"
                                       "Sd = %{y:.4g} m<extra></extra>"})
-        size = rows["size_s"].to_numpy()
+        size = row_size[at]
         alpha_rad = math.radians(alpha)
-        exact_over = rows["exact_overturned"].eq(True).to_numpy()
-        approx_over = rows["approx_overturned"].eq(True).to_numpy()
-        exact = np.where(exact_over, np.nan, rows["exact_theta_rad"].to_numpy(dtype=float)
-                         / alpha_rad)
-        approx = rows["approx_theta_rad"].to_numpy(dtype=float) / alpha_rad
-        no_file = rows["exact_theta_rad"].isna().all()
+        exact_over, approx_over = row_exact_over[at], row_approx_over[at]
+        exact = np.where(exact_over, np.nan, row_exact[at] / alpha_rad)
+        approx = row_approx[at] / alpha_rad
+        no_file = np.isnan(row_exact[at]).all()
         axes = {"xaxis": f"x{_ref(b)}", "yaxis": f"y{_ref(b)}"}
         if no_file and not np.isfinite(approx).any():
             data.append(_placeholder(size, axes))
@@ -188,7 +210,7 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
                          "hovertemplate": "guideline: overturns at 2π/p = %{x:.2f} s"
                                           "<extra></extra>"})
         band_x, band_y, branch_x, branch_y, rep_x, rep_y = [], [], [], [], [], []
-        for s, cycle, points in zip(size, rows["approx_cycle"], rows["approx_fixed_points"]):
+        for s, cycle, points in zip(size, row_cycle[at], row_points[at]):
             values = [v for v, _ in _split(cycle)]
             if len(values) > 1:
                 band_x += [s, s, None]
@@ -214,7 +236,7 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
                          **legend("repelling fixed point (○)"),
                          "hovertemplate": "repelling fixed point θ/α = %{y:.4f}<br>"
                                           "2π/p = %{x:.2f} s<extra></extra>"})
-        period = rows["approx_period_s"].to_numpy(dtype=float)
+        period = row_period[at]
         if np.isfinite(period).any():
             data.append({"type": "scatter", "mode": "lines", "x": size, "y": period,
                          "xaxis": f"x{_ref(c)}", "yaxis": f"y{_ref(c)}",

@@ -5,6 +5,8 @@ page's figure list."""
 
 from __future__ import annotations
 
+from collections import Counter, defaultdict
+
 import numpy as np
 
 from audit.engine.verdicts import CHECK_VERDICTS, CLAIM_STATUSES, meanings, names
@@ -91,18 +93,22 @@ def suite_section(run, procedures, pending) -> dict | None:
 
 
 def checks_section(run, names, pending, detail_ids) -> dict | None:
-    checks = run.checks[run.checks["record"].isin(detail_ids)]
+    # the columns drawn and counted only: every selection below copies fewer
+    checks = run.checks.loc[run.checks["record"].isin(detail_ids),
+                            ["procedure", "limit_state", "record", "verdict", "alpha_deg",
+                             "size_s"]]
     if checks.empty:
         return None
     titles = {p["name"]: p["title"] for p in run.summary["procedures"]}
     classes = list(CHECK_MEANING)
-    confusion = []
-    for (procedure, state, record), rows in checks.groupby(
-            ["procedure", "limit_state", "record"], sort=False):
-        counts = rows["verdict"].value_counts()
-        confusion.append({"procedure": titles.get(procedure, procedure), "limit_state": state,
-                          "record": names.get(record, record),
-                          "counts": {c: int(counts.get(c, 0)) for c in classes}})
+    tallies = defaultdict(Counter)  # per procedure, limit state and record, in order of rows
+    for procedure, state, record, verdict in zip(*(checks[c].tolist() for c in (
+            "procedure", "limit_state", "record", "verdict"))):
+        tallies[procedure, state, record][verdict] += 1
+    confusion = [{"procedure": titles.get(procedure, procedure), "limit_state": state,
+                  "record": names.get(record, record),
+                  "counts": {c: counts[c] for c in classes}}
+                 for (procedure, state, record), counts in tallies.items()]
     codes = checks.assign(code=checks["verdict"].map({c: i for i, c in enumerate(classes)}))
     scale = []
     for i, c in enumerate(classes):
@@ -110,7 +116,7 @@ def checks_section(run, names, pending, detail_ids) -> dict | None:
                   [(i + 1) / len(classes), CHECK_COLOURS[c]]]
     figures = []
     for (procedure, state), rows in codes.groupby(["procedure", "limit_state"], sort=False):
-        records = list(dict.fromkeys(rows["record"]))
+        records = rows["record"].unique().tolist()
         figure = pending.add(f"checks-{procedure}-{state}", grid_map_figure(
             rows, "code", [(r, rows["record"] == r) for r in records],
             lambda r: names.get(r, r),

@@ -441,10 +441,12 @@ def test_embedded_numbers_keep_four_significant_digits(values):
     NaN, and a value next to the largest double rounds to inf."""
     from reports.plots import to_json
     embedded = json.loads(to_json({"y": np.array(values), "z": np.array([values, values]),
-                                   "alone": [[v, "text"] for v in values]}))
+                                   "alone": [[v, "text"] for v in values],
+                                   "listed": [*values, None]}))
     assert embedded["z"] == [embedded["y"], embedded["y"]]
-    # a float alone (hover data beside text) takes the scalar path: the same digits
+    # a float alone (hover data beside text) and a list of floats: the same digits
     assert [alone for alone, _ in embedded["alone"]] == embedded["y"]
+    assert embedded["listed"] == [*embedded["y"], None]
     for value, got in zip(values, embedded["y"]):
         if not math.isfinite(value) or abs(value) > 1.7976e308:  # 1.798e308 overflows
             assert got is None
