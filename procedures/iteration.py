@@ -131,8 +131,8 @@ def iterate_rotation(displacement: Callable[[np.ndarray], np.ndarray], p, alpha_
             float(tolerance), CYCLE_TOLERANCE_RATIO, SUBCYCLE_TOLERANCE_RATIO,
             MAX_CYCLE_LENGTH, int(max_iterations)), initial_ratio, max_iterations)
     spectrum = displacement(np.arange(p.size)) if blockwise else displacement
-    if isinstance(spectrum, DesignDisplacement) and isinstance(spectrum.spectrum,
-                                                               FEMA356Spectrum):
+    # exactly these types: a subclass may read Sd otherwise than the compiled formula
+    if type(spectrum) is DesignDisplacement and type(spectrum.spectrum) is FEMA356Spectrum:
         return _iterate_fema356(spectrum, p, alpha_rad, g, initial_ratio, tolerance,
                                 max_iterations)
     from procedures.iteration_kernels import advance  # compiled: numba loads only here
@@ -218,6 +218,8 @@ def _iterate_fema356(displacement: DesignDisplacement, p, alpha_rad: float, g: f
     of the array loop, bit for bit."""
     from procedures.design_spectrum_kernels import iterate_fema356  # numba loads only here
     site = displacement.spectrum.branch_constants(displacement.damping, p.size)
+    # G: a DesignDisplacement reads Sd at the default gravity (DesignSpectrum.displacement's);
+    # the caller's g sizes the blocks (map_scale) only
     return _outcomes(*iterate_fema356(
         np.ascontiguousarray(p), np.ascontiguousarray(map_scale(p, alpha_rad, g), dtype=float),
         site, G, float(initial_ratio), float(tolerance), CYCLE_TOLERANCE_RATIO,

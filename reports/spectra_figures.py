@@ -59,7 +59,7 @@ def response_and_rocking_figure(response: pd.DataFrame, rocking: pd.DataFrame, d
     rocking_omega = rocking["omega_peak_rad_s"].to_numpy(dtype=float)
     for k, alpha in enumerate(alphas):
         at = np.flatnonzero(rocking_alpha == alpha)
-        at = at[np.argsort(rocking_size[at])]
+        at = at[np.argsort(rocking_size[at], kind="stable")]
         colour = alpha_colour(alpha)
         over = rocking_over[at]
         size = rocking_size[at]
@@ -164,7 +164,7 @@ def procedure_figure(results: pd.DataFrame, spectra: pd.DataFrame, procedure_tit
         colour = alpha_colour(alpha)
         a, b, c = 3 * r + 1, 3 * r + 2, 3 * r + 3
         at = np.flatnonzero(row_alpha == alpha)
-        at = at[np.argsort(row_size[at])]
+        at = at[np.argsort(row_size[at], kind="stable")]
         beta = row_beta[at[0]]
         spec = spectra.iloc[np.flatnonzero(spectrum_alpha == alpha)[::SPECTRUM_STRIDE]]
         data.append({"type": "scatter", "mode": "lines", "x": spec["period_s"], "y": spec["sd_m"],

@@ -102,7 +102,8 @@ def checks_section(run, names, pending, detail_ids) -> dict | None:
     titles = {p["name"]: p["title"] for p in run.summary["procedures"]}
     classes = list(CHECK_MEANING)
     tallies = defaultdict(Counter)  # per procedure, limit state and record, in order of rows
-    for procedure, state, record, verdict in zip(*(checks[c].tolist() for c in (
+    keyed = checks[checks[["procedure", "limit_state", "record"]].notna().all(axis=1)]
+    for procedure, state, record, verdict in zip(*(keyed[c].tolist() for c in (
             "procedure", "limit_state", "record", "verdict"))):
         tallies[procedure, state, record][verdict] += 1
     confusion = [{"procedure": titles.get(procedure, procedure), "limit_state": state,

@@ -64,7 +64,8 @@ def summary_bytes(summary: dict) -> bytes:
 
 
 def _with_booleans(frame):
-    """True/False in the boolean columns, empty only where undefined (NaN)."""
+    """The texts True/False in the boolean columns, empty only where undefined (NaN, None);
+    a column of bools is left as it is (written True/False)."""
     columns = {}
     for column in BOOLEAN_COLUMNS:
         values = frame[column].to_numpy()
