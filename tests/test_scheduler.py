@@ -13,8 +13,8 @@ from audit.engine.record_audit import audit_record
 from audit.engine.schemas import SUITE_COLUMNS
 from audit.engine.settings import AuditSettings
 from audit.engine.suite_run import run_audit
-from audit.engine.scheduler import (RecordReference, by_reference, check_scheduler,
-                                    open_scheduler, resolve)
+from audit.engine.record_references import RecordReference, by_reference, resolve
+from audit.engine.scheduler import check_scheduler, open_scheduler
 from audit.cli import main
 from audit.errors import InputError
 from procedures import get_procedures

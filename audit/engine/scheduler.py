@@ -9,10 +9,8 @@ single-threaded worker processes; ``tcp://HOST:PORT`` uses an existing Dask clus
 result of a record does not depend on where it was computed (the solver's threads only split
 the grid), so every scheduler gives the same values.
 
-Workers get a record by reference where they can read its file: the path, the reader and its
-settings, the file's SHA-256 and a digest of the samples; the worker re-reads the file and
-uses it only if both match (a scaled record never does). Otherwise, and for pulses and
-package records, the record travels by value.
+Workers get a record by reference where they can read its file
+(:mod:`audit.engine.record_references`), otherwise by value.
 """
 
 from __future__ import annotations
@@ -21,60 +19,12 @@ import time
 from collections import deque
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager, nullcontext
-from dataclasses import dataclass, fields, replace
-from pathlib import Path
+from dataclasses import replace
 
-from audit.engine.partial import motion_digest
 from audit.engine.record_audit import audit_record
+from audit.engine.record_references import by_reference, resolve
 from audit.engine.runtime import DASK, LOCAL, check_scheduler
 from audit.errors import InputError
-
-#: Readers a worker can re-run from a motion's ``metadata["format"]``.
-_READERS = ("peer-at2", "columns")
-
-
-@dataclass(frozen=True)
-class RecordReference:
-    """A record sent by reference: everything but the samples, and how to read them back."""
-
-    entry: object  # records.RecordEntry without its motion
-    motion_fields: dict  # the GroundMotion's fields except ``acceleration``
-    samples_digest: str
-
-
-def by_reference(entry):
-    """``entry`` as a :class:`RecordReference` when its file can be re-read, else ``entry``."""
-    motion = entry.motion
-    if (motion is None or motion.pulse is not None
-            or motion.metadata.get("format") not in _READERS or not Path(motion.source).is_file()):
-        return entry
-    return RecordReference(replace(entry, motion=None),
-                           {f.name: getattr(motion, f.name) for f in fields(motion)
-                            if f.name != "acceleration"},
-                           motion_digest(motion))
-
-
-def resolve(item):
-    """The :class:`RecordEntry` of ``item`` (re-read on a worker), or None if it cannot be.
-
-    None when the file is not readable here, or its SHA-256 or samples differ from the ones
-    the run was given (e.g. another file at that path, or a record scaled after reading).
-    """
-    if not isinstance(item, RecordReference):
-        return item
-    from records import GroundMotion, read_at2, read_columns
-    given = item.motion_fields
-    try:
-        if given["metadata"]["format"] == "peer-at2":
-            motion = read_at2(given["source"])
-        else:
-            motion = read_columns(given["source"], given["metadata"]["column"], given["dt"],
-                                  given["metadata"]["units"])
-    except (InputError, OSError, KeyError):
-        return None
-    if motion.sha256 != given["sha256"] or motion_digest(motion) != item.samples_digest:
-        return None
-    return replace(item.entry, motion=GroundMotion(acceleration=motion.acceleration, **given))
 
 
 def timed(task, item, *args):
@@ -308,4 +258,4 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
 
 
 __all__ = ["computed_parts", "open_scheduler", "check_scheduler", "LocalScheduler", "DaskScheduler",
-           "RecordReference", "by_reference", "resolve", "timed"]
+           "timed"]
