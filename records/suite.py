@@ -99,6 +99,16 @@ class RecordSuite:
                          f"available: {', '.join(e.id for e in self.entries)}")
 
 
+def counted_records(count: int, description: str) -> str:
+    """``count`` records of a suite described as ``description``, in words: "44 records of the
+    FEMA P695 far-field record set"; a description that itself begins with "records" is not
+    repeated ("5 records of manifest suite.toml", not "5 records of records of manifest …")."""
+    noun = "record" if count == 1 else "records"
+    if description.startswith("records "):
+        return f"{count} {noun} {description[len('records '):]}"
+    return f"{count} {noun} of {description}"
+
+
 def site_of(facts: RecordFacts | None, fields: dict) -> dict:
     """A record's site: its catalogue's FEMA 356 site (Table 3.1), then the given fields."""
     site = {}

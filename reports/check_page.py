@@ -23,6 +23,7 @@ from scipy.special import ndtr
 from audit.engine.check_risk import quiet_risk
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
+from records.suite import counted_records
 from reports.margins_figures import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
 from reports.plots import _axis, _layout, to_json
@@ -162,7 +163,8 @@ def render_check_page(folder) -> str:
                 "risk_figure": to_json(_risk(obj, document)) if obj["risk"] else None}
                for obj in document["objects"]]
     return env.get_template("check.html.j2").render(
-        document=document, objects=objects, plotly=get_plotlyjs())
+        document=document, objects=objects, plotly=get_plotlyjs(),
+        records_words=counted_records(len(document["records"]), document["records_source"]))
 
 
 __all__ = ["render_check_page", "CHECK_JSON"]

@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from records.suite import counted_records
 from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
 from reports.block_metres import describe_block
@@ -117,8 +118,9 @@ def render_margins_page(folder) -> str:
     required, scan = read["required_alpha"], read["scan"]
     titles = {p["name"]: p["title"] for p in summary["procedures"]}
     names = [p["name"] for p in summary["procedures"]]
+    suite = counted_records(len(summary["records"]), summary["records_source"])
     parts = [f"<h1>How safe is a block sized by each guideline?</h1>"
-             f"<p>{len(summary['records'])} records of {html.escape(summary['records_source'])}"
+             f"<p>{html.escape(suite)}"
              f", design site {html.escape(_site_words(summary))}; intensity measure "
              f"{html.escape(summary['im'])} [{summary['im_unit']}], {len(summary['levels'])} "
              f"stripes from {min(summary['levels']):.3g} to {max(summary['levels']):.3g}; "

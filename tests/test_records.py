@@ -300,3 +300,15 @@ def test_a_misspelt_suite_name_suggests_the_nearest(tmp_path, monkeypatch, name,
         load_records(name)
     with pytest.raises(InputError, match="^far-away.toml: file not found$"):
         load_records("far-away.toml")
+
+
+def test_a_suite_counted_in_words_never_says_records_twice():
+    """The pages' "N records of …" over every kind of description a suite gets: a manifest's
+    ("records of manifest …") is not prefixed again."""
+    from records.suite import counted_records
+    assert counted_records(44, "the FEMA P695 far-field record set") == (
+        "44 records of the FEMA P695 far-field record set")
+    assert counted_records(5, "records of manifest suite.toml") == (
+        "5 records of manifest suite.toml")
+    assert counted_records(1, "the record file a.AT2") == "1 record of the record file a.AT2"
+    assert counted_records(1, "records of manifest one.toml") == "1 record of manifest one.toml"

@@ -3,6 +3,8 @@ summary printed on standard output (a paragraph, then per object its sentence an
 
 from __future__ import annotations
 
+from records.suite import counted_records
+
 #: Share of an annual rate from outside the stripes above which the sentence warns of it.
 EXTRAPOLATED_SHARE = 0.10
 
@@ -84,9 +86,10 @@ def _intensity(name: str):
 def summary_text(document: dict) -> str:
     """The summary on standard output: one paragraph, then per object its sentence and table."""
     site = document["site"]
+    source = document["records_source"].split(":")[0]
     lines = [f"Site S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g, at the hazard level "
-             f"these values are for (as given); {len(document['records'])} records of "
-             f"{document['records_source'].split(':')[0]}, each scaled "
+             f"these values are for (as given); "
+             f"{counted_records(len(document['records']), source)}, each scaled "
              f"to {im_words(_intensity(document['im']), document['site_im'])} and to "
              f"{len(document['levels'])} stripes {min(document['levels']):.3g}–"
              f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility.", ""]
