@@ -37,6 +37,19 @@ def may_repeat(window: np.ndarray, cycle_tolerance: float, max_length: int) -> b
     return False
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _push(window: np.ndarray, new: float, tolerance: float):
+    """Push the iterate ``new`` into one block's ``window`` (newest last; 1 for an overturning
+    one). Returns (over, done): it overturns (θ/α ≥ 1), or has converged (|Δθ|/α ≤
+    ``tolerance``)."""
+    width = window.size
+    over = new >= 1.0
+    done = not over and abs(new - window[width - 1]) <= tolerance
+    window[:width - 1] = window[1:].copy()
+    window[width - 1] = 1.0 if over else new
+    return over, done
+
+
 @numba.njit(cache=True, nogil=True)
 def advance(recent: np.ndarray, new: np.ndarray, tolerance: float, cycle_tolerance: float,
             max_length: int):
@@ -52,15 +65,12 @@ def advance(recent: np.ndarray, new: np.ndarray, tolerance: float, cycle_toleran
     -------
     over, done, maybe : numpy.ndarray of bool
     """
-    rows, width = recent.shape
+    rows = recent.shape[0]
     over = np.zeros(rows, dtype=np.bool_)
     done = np.zeros(rows, dtype=np.bool_)
     maybe = np.zeros(rows, dtype=np.bool_)
     for row in range(rows):
-        over[row] = new[row] >= 1.0
-        done[row] = not over[row] and abs(new[row] - recent[row, width - 1]) <= tolerance
-        recent[row, :width - 1] = recent[row, 1:].copy()
-        recent[row, width - 1] = 1.0 if over[row] else new[row]
+        over[row], done[row] = _push(recent[row], new[row], tolerance)
         maybe[row] = (not (over[row] or done[row])
                       and may_repeat(recent[row], cycle_tolerance, max_length))
     return over, done, maybe
@@ -180,11 +190,7 @@ def push_iterate(recent, new, tolerance, cycle_tolerance, subcycle_tolerance, ma
         Outcome code (:data:`NOT_SETTLED` while it goes on) and the cycle's length (0 unless
         cycling).
     """
-    width = recent.size
-    over = new >= 1.0
-    done = not over and abs(new - recent[width - 1]) <= tolerance
-    recent[:width - 1] = recent[1:].copy()
-    recent[width - 1] = 1.0 if over else new
+    over, done = _push(recent, new, tolerance)
     if over or done:
         return (OVERTURNED if over else CONVERGED), 0
     if may_repeat(recent, cycle_tolerance, max_length):
