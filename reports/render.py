@@ -17,7 +17,7 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from audit import G
 from audit.engine.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_key,
-                                  rank_worst)
+                                  is_drawn, rank_worst)
 from audit.engine.schemas import GUIDE
 from audit.engine.verdicts import ROTATION_VERDICTS, UNSAFE_VERDICTS, VERDICTS, meanings
 from reports.block_metres import describe_block
@@ -142,14 +142,10 @@ def _worst_cases(run, procedures, names, metas) -> list[dict]:
     """Per procedure and class, the worst blocks whose time history the run simulated (the run
     holds the rows of the records shown, which include those blocks; the totals are the
     whole suite's, from the bottom line)."""
-    drawn = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
     counts = {line["name"]: line["count"] for line in run.summary["bottom_line"]}
     # only drawn blocks can be listed: ranked after this cut, they keep their order (the
     # ranking is a stable sort) and the sort handles a few rows, not the whole suite
-    results = run.results
-    is_drawn = [block_key(r, a, s) in drawn for r, a, s in zip(
-        results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())]
-    drawn_rows = results.loc[is_drawn, list(WORST_COLUMNS)]
+    drawn_rows = run.results.loc[is_drawn(run.results, metas), list(WORST_COLUMNS)]
     tables = []
     for procedure in procedures:
         rows = drawn_rows[drawn_rows["procedure"] == procedure["name"]]

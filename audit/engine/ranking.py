@@ -53,6 +53,14 @@ def block_key(record, alpha_deg, size_s) -> tuple:
     return record, round(float(alpha_deg), 6), round(float(size_s), 6)
 
 
+def is_drawn(results: pd.DataFrame, metas: list[dict]) -> np.ndarray:
+    """Which rows of ``results`` are blocks whose time history was drawn (``metas``)."""
+    keys = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
+    return np.array([block_key(*key) in keys for key in zip(
+        results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())],
+        dtype=bool)
+
+
 class ShownRecords:
     """What the report shows of a large suite, folded over the records one part at a time: the
     records with the most unsafe blocks, and the worst drawn blocks of each procedure and class
@@ -77,13 +85,9 @@ class ShownRecords:
         for record, n in results.loc[results["verdict"].isin(UNSAFE_VERDICTS),
                                      "record"].value_counts(sort=False).items():
             self._unsafe[record] = self._unsafe.get(record, 0) + int(n)
-        drawn = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
         # only the rows of the ranked classes can enter the table
         results = results[results["verdict"].isin([verdict for verdict, *_ in WORST_CLASSES])]
-        keys = [block_key(*key) for key in zip(results["record"], results["alpha_deg"],
-                                                results["size_s"])]
-        results = results.loc[pd.Series([key in drawn for key in keys], index=results.index,
-                                        dtype=bool)]
+        results = results[is_drawn(results, metas)]
         for verdict, column, largest, _ in WORST_CLASSES:
             hits = results[results["verdict"] == verdict]
             for name in hits["procedure"].unique():
@@ -108,4 +112,4 @@ class ShownRecords:
 
 
 __all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst",
-           "worst_case", "block_key", "ShownRecords"]
+           "worst_case", "block_key", "is_drawn", "ShownRecords"]
