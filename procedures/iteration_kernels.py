@@ -12,7 +12,7 @@ import math
 import numba
 import numpy as np
 
-from audit.physics.peaks_between_samples import fill_displacement
+from audit.physics.spectrum_kernel import fill_displacement
 
 
 @numba.njit(cache=True, nogil=True)
@@ -203,7 +203,7 @@ def push_iterate(recent, new, tolerance, cycle_tolerance, subcycle_tolerance, ma
 @numba.njit(cache=True, nogil=True)
 def _read_on_demand(period, period_s, table, source):
     """Make ``table`` known at the nodes :func:`interp` reads for ``period``: each computed by
-    :func:`~audit.physics.peaks_between_samples.fill_displacement` where unknown, × the factor
+    :func:`~audit.physics.spectrum_kernel.fill_displacement` where unknown, × the factor
     (``source`` as :meth:`procedures.tabulated.TabulatedOnDemand.kernel_arguments`)."""
     known, factor, acc, dt, coeffs, omega, damping, raw, raw_known = source
     if period != period:

@@ -144,7 +144,8 @@ def test_audit_report_imports_no_solver(tmp_path):
              f"status = main(['report', {str(tmp_path / 'run')!r}]); "
              "print(status, sorted(m for m in sys.modules if m.startswith(('numba', "
              "'audit.physics.rocking', 'audit.physics.oscillator', "
-             "'audit.physics.response_spectra', 'audit.physics.peaks_between_samples'))))")
+             "'audit.physics.response_spectra', 'audit.physics.peaks_between_samples', "
+             "'audit.physics.spectrum_kernel'))))")
     done = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True,
                           text=True, check=True)
     assert done.stdout.strip().splitlines()[-1] == "0 []"

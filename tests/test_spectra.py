@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import signal
 
 from audit.errors import InputError
@@ -12,8 +14,10 @@ from audit.physics.damping import (damping_fema356, damping_free_rocking, dampin
                            housner_period, housner_rotation_ratio)
 from audit.physics.design_spectra import FEMA356_TABLE_1_6, FEMA356Spectrum, UBC97Spectrum, \
     fema356_damping_coefficients
-from audit.physics.oscillator import oscillator_history, oscillator_step, recurrence_coefficients
-from audit.physics.peaks_between_samples import _step_peaks, spectrum_peaks
+from audit.physics.oscillator import (oscillator_history, oscillator_step, recurrence_coefficients,
+                                      step_coefficients)
+from audit.physics.peaks_between_samples import step_peaks
+from audit.physics.spectrum_kernel import spectrum_peaks
 from audit.physics.response_spectra import response_spectra
 from records import GroundMotion
 
@@ -164,17 +168,41 @@ def test_steps_left_unexamined_change_no_peak(seed_suite, displacement_only):
             xi_omega = damping * omega[i]
             omega_d = omega[i] * math.sqrt(1.0 - damping * damping)
             u, v = np.zeros(acc.size), np.zeros(acc.size)
+            step = step_coefficients(coeffs[i])
             for k in range(acc.size - 1):
-                u[k + 1], v[k + 1] = oscillator_step(coeffs[i], u[k], v[k], acc[k], acc[k + 1])
+                u[k + 1], v[k + 1] = oscillator_step(step, u[k], v[k], acc[k], acc[k + 1])
             peaks = tuple(np.nan_to_num(at_samples[i]))
             for k in range(acc.size - 1):
-                peaks = _step_peaks(u[k], v[k], u[k + 1], v[k + 1], acc[k],
+                peaks = step_peaks(u[k], v[k], u[k + 1], v[k + 1], acc[k],
                                     (acc[k + 1] - acc[k]) / dt, int(omega_d * dt / 3.0) + 1,
                                     xi_omega, omega_d, omega[i] * omega[i], dt, *peaks,
                                     displacement_only)
             expected = peaks[:1] + (np.nan, np.nan) if displacement_only else peaks
             np.testing.assert_array_equal(searched[i], expected, err_msg=f"T = {period} s")
         assert np.all(searched[:, 0] > at_samples[:, 0])  # peaks between samples were found
+
+
+@settings(max_examples=25, deadline=None)
+@given(periods=st.lists(st.floats(0.02, 6.0), min_size=1, max_size=11),
+       damping=st.sampled_from([0.0, 0.05, 0.3]), start=st.integers(0, 2500),
+       between_samples=st.booleans(), displacement_only=st.booleans())
+def test_a_table_computes_each_oscillator_as_alone(seed_suite, periods, damping, start,
+                                                   between_samples, displacement_only):
+    """spectrum_peaks runs the recurrences of four oscillators side by side (the last lanes of a
+    table not a multiple of four repeat its last one): each oscillator's peaks are those of a
+    table of it alone, bit for bit, at every position of any table."""
+    motion = seed_suite.get("rinaldi_1994").motion
+    acc, dt = motion.acceleration[start:start + 1500], motion.dt
+    periods = np.array(periods)
+    dampings = np.full(periods.size, damping)
+    coeffs, omega = recurrence_coefficients(periods, dampings, dt), 2.0 * np.pi / periods
+    table = np.empty((periods.size, 3))
+    spectrum_peaks(acc, dt, coeffs, omega, dampings, between_samples, displacement_only, table)
+    for i in range(periods.size):
+        alone = np.empty((1, 3))
+        spectrum_peaks(acc, dt, coeffs[i:i + 1], omega[i:i + 1], dampings[i:i + 1],
+                       between_samples, displacement_only, alone)
+        np.testing.assert_array_equal(table[i].view(np.int64), alone[0].view(np.int64))
 
 
 def test_overdamped_oscillators_are_refused():

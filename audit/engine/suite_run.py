@@ -148,7 +148,7 @@ def compiles_first() -> bool:
     """Whether the rocking solver, the oscillator and the fixed-point scan kernels the audit
     runs lack cached machine code, so that the first record waits for numba to compile them
     (once after installing)."""
-    from audit.physics.peaks_between_samples import spectrum_peaks
+    from audit.physics.spectrum_kernel import spectrum_peaks
     from audit.physics.rocking import kernel
     from audit.physics.tiers import machine_code_cached
     from procedures.fixed_point_scan import tabulated_excess

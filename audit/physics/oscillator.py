@@ -6,10 +6,10 @@ with x = (u, u'). The coefficients are the Nigam–Jennings closed forms, writte
 functions φ₁(z) = (eᶻ − 1)/z and φ₂(z) = (eᶻ − 1 − z)/z² of the complex eigenvalue
 z = (−ξω + iω_d)·dt, ω_d = ω√(1 − ξ²), so they are evaluated without the cancellation the textbook
 form suffers at long periods (ω·dt → 0), vectorised over all oscillators at once; the recurrence
-runs for every (period, damping) pair in one compiled loop. Overdamped oscillators (ξ ≥ 1) are
-refused: no spectrum of this tool needs them. The peaks between samples are found in
-:mod:`audit.physics.peaks_between_samples`, the spectra assembled in
-:mod:`audit.physics.response_spectra`.
+runs for four (period, damping) pairs at a time in one compiled loop. Overdamped oscillators
+(ξ ≥ 1) are refused: no spectrum of this tool needs them. The peaks between samples are found in
+:mod:`audit.physics.peaks_between_samples`, a table's spectra computed in
+:mod:`audit.physics.spectrum_kernel` and assembled in :mod:`audit.physics.response_spectra`.
 """
 
 from __future__ import annotations
@@ -94,21 +94,77 @@ def recurrence_coefficients(period_s, damping, dt):
     return coeffs
 
 
-@numba.njit(cache=True, nogil=True)
+#: Oscillators whose recurrences :func:`sampled_responses` runs side by side: one step waits on
+#: the last (a multiply and three adds in a chain), so four independent chains keep the core
+#: busy where one leaves it waiting; each runs the same operations as alone, so bit for bit.
+LANES = 4
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def step_coefficients(c):
+    """The eight numbers :func:`oscillator_step` reads, from an oscillator's (2, 4) row of
+    :func:`recurrence_coefficients`; held as values, a loop keeps them in registers instead of
+    loading them at every step."""
+    return (c[0, 0], c[0, 1], c[0, 2], c[0, 3], c[1, 0], c[1, 1], c[1, 2], c[1, 3])
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
 def oscillator_step(c, u, v, acc_k, acc_next):
-    """One exact step of the recurrence: (u, u') at the next sample."""
-    return (c[0, 0] * u + c[0, 1] * v + c[0, 2] * acc_k + c[0, 3] * acc_next,
-            c[1, 0] * u + c[1, 1] * v + c[1, 2] * acc_k + c[1, 3] * acc_next)
+    """One exact step of the recurrence: (u, u') at the next sample (``c`` from
+    :func:`step_coefficients`)."""
+    return (c[0] * u + c[1] * v + c[2] * acc_k + c[3] * acc_next,
+            c[4] * u + c[5] * v + c[6] * acc_k + c[7] * acc_next)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _raised(peaks, u, v, two_xi_omega, omega2):
+    """(max|u|, max|u'|, max|ü + üg|) raised to one sample's state (ü + üg = −2ξωu' − ω²u)."""
+    return (max(peaks[0], abs(u)), max(peaks[1], abs(v)),
+            max(peaks[2], abs(two_xi_omega * v + omega2 * u)))
+
+
+@numba.njit(cache=True, nogil=True)
+def sampled_responses(acc, coeffs, two_xi_omega, omega2, lanes, u_at, v_at, peaks):
+    """The states of :data:`LANES` oscillators at every sample, from rest, and their peaks there.
+
+    ``lanes`` holds four indices into ``coeffs`` (its rows from :func:`recurrence_coefficients`),
+    ``two_xi_omega`` and ``omega2`` (2ξω [1/s] and ω² [1/s²]); an index may repeat (the last
+    oscillators of a table). Fills ``u_at[lane]``, ``v_at[lane]`` with u [m] and u' [m/s] at the
+    samples of ``acc`` and ``peaks[lane]`` with (max|u|, max|u'|, max|ü + üg|) over them.
+    """
+    a, b, c, d = lanes
+    ca, cb = step_coefficients(coeffs[a]), step_coefficients(coeffs[b])
+    cc, cd = step_coefficients(coeffs[c]), step_coefficients(coeffs[d])
+    ta, tb, tc, td = two_xi_omega[a], two_xi_omega[b], two_xi_omega[c], two_xi_omega[d]
+    oa, ob, oc, od = omega2[a], omega2[b], omega2[c], omega2[d]
+    ua = va = ub = vb = uc = vc = ud = vd = 0.0
+    pa = pb = pc = pd = (0.0, 0.0, 0.0)
+    u_at[:, 0] = 0.0
+    v_at[:, 0] = 0.0
+    for k in range(acc.size - 1):
+        ua, va = oscillator_step(ca, ua, va, acc[k], acc[k + 1])
+        ub, vb = oscillator_step(cb, ub, vb, acc[k], acc[k + 1])
+        uc, vc = oscillator_step(cc, uc, vc, acc[k], acc[k + 1])
+        ud, vd = oscillator_step(cd, ud, vd, acc[k], acc[k + 1])
+        u_at[0, k + 1], u_at[1, k + 1], u_at[2, k + 1], u_at[3, k + 1] = ua, ub, uc, ud
+        v_at[0, k + 1], v_at[1, k + 1], v_at[2, k + 1], v_at[3, k + 1] = va, vb, vc, vd
+        pa = _raised(pa, ua, va, ta, oa)
+        pb = _raised(pb, ub, vb, tb, ob)
+        pc = _raised(pc, uc, vc, tc, oc)
+        pd = _raised(pd, ud, vd, td, od)
+    for lane, lane_peaks in enumerate((pa, pb, pc, pd)):
+        peaks[lane, 0], peaks[lane, 1], peaks[lane, 2] = lane_peaks
 
 
 @numba.njit(cache=True, nogil=True)
 def _history(acc, coeffs, u_out):
     """u_out[k] = u at sample k for one oscillator, from rest."""
+    c = step_coefficients(coeffs)
     u = 0.0
     v = 0.0
     u_out[0] = 0.0
     for k in range(acc.size - 1):
-        u, v = oscillator_step(coeffs, u, v, acc[k], acc[k + 1])
+        u, v = oscillator_step(c, u, v, acc[k], acc[k + 1])
         u_out[k + 1] = u
 
 
@@ -141,5 +197,5 @@ def oscillator_history(motion, period_s: float, damping: float, free_motion_s: f
     return np.arange(acc.size) * motion.dt, u
 
 
-__all__ = ["recurrence_coefficients", "oscillator_step", "oscillator_history",
-           "INTERPRETED_STEP_S"]
+__all__ = ["recurrence_coefficients", "step_coefficients", "oscillator_step",
+           "sampled_responses", "oscillator_history", "LANES", "INTERPRETED_STEP_S"]

@@ -9,9 +9,6 @@ from __future__ import annotations
 import math
 
 import numba
-import numpy as np
-
-from audit.physics.oscillator import oscillator_step
 
 @numba.njit(cache=True, nogil=True)
 def _derivatives(u, v, acc, slope, two_xi_omega, omega2):
@@ -100,9 +97,9 @@ def _may_exceed(f0, f1, f2, f3, reach, xi_omega, inv_omega_d, peak):
 
 
 @numba.njit(cache=True, nogil=True)
-def _step_may_peak(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega2, dt,
+def step_may_peak(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega2, dt,
                    inv_omega_d, sd, sv, sa, displacement_only):
-    """Whether :func:`_step_peaks` may raise (sd, sv, sa) inside this step: the tests of
+    """Whether :func:`step_peaks` may raise (sd, sv, sa) inside this step: the tests of
     :func:`_may_peak_inside` on the step's own derivatives at both ends (not the record's
     bounds of the first test), in the same operations. With one segment the step is then
     examined exactly where one of the tests inside it passes; with several, where the bound
@@ -153,7 +150,7 @@ def _segment_peak(f0, g0, f2, f3, g1, length, xi_omega, omega_d, omega2):
 
 
 @numba.njit(cache=True, nogil=True)
-def _step_peaks(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega_d, omega2,
+def step_peaks(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega_d, omega2,
                 dt, sd, sv, sa, displacement_only):
     """(sd, sv, sa) raised to the extrema of u, u', ü + üg strictly inside one step from
     (u, u') to (u_next, v_next) under üg = acc_k + slope·τ (sd alone if ``displacement_only``).
@@ -197,91 +194,4 @@ def _step_peaks(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega_
     return sd, sv, sa
 
 
-@numba.njit(cache=True, nogil=True)
-def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacement_only, out):
-    """out[i] = (max|u|, max|u'|, max|u'' + üg|) of oscillator i (see :func:`response_spectra`);
-    with ``displacement_only`` the last two are NaN and only max|u| is searched between samples.
-
-    Two passes per oscillator. The first runs the recurrence, keeps the states at the samples
-    and their peaks. The second looks inside a step only where an extremum there could beat
-    those peaks. Inside a step each f of u, u', ü + üg has f'' = e^{−ξωτ}(P cos ω_dτ + Q sin ω_dτ)
-    (:func:`_closed_form`), so |f''| ≤ |P| + |Q| over the whole step, and an interior extremum
-    exceeds max(|f|) at the step's ends by at most (|P| + |Q|)·dt²/8 (:func:`_may_peak_inside`).
-    By Eq. 3.2, |P| and |Q| at every sample are bounded by the sampled peaks, max|üg| and
-    max|üg'|: almost every step fails the test at the cost of two loads, and the few that pass
-    get the exact search of :func:`_step_peaks`.
-    """
-    n = acc.size
-    u_at = np.empty(n)
-    v_at = np.empty(n)
-    acc_max = 0.0
-    slope_max = 0.0
-    for k in range(n):
-        acc_max = max(acc_max, abs(acc[k]))
-        if k:
-            slope_max = max(slope_max, abs(acc[k] - acc[k - 1]) / dt)
-    for i in range(coeffs.shape[0]):
-        c = coeffs[i]
-        xi_omega = damping[i] * omega[i]
-        two_xi_omega = 2.0 * xi_omega
-        omega2 = omega[i] * omega[i]
-        omega_d = omega[i] * math.sqrt(1.0 - damping[i] * damping[i])
-        u = 0.0
-        v = 0.0
-        u_at[0] = 0.0
-        v_at[0] = 0.0
-        sd = 0.0
-        sv = 0.0
-        sa = 0.0
-        for k in range(n - 1):
-            u, v = oscillator_step(c, u, v, acc[k], acc[k + 1])
-            u_at[k + 1] = u
-            v_at[k + 1] = v
-            sd = max(sd, abs(u))
-            sv = max(sv, abs(v))
-            sa = max(sa, abs(two_xi_omega * v + omega2 * u))
-        if between_samples:
-            # bounds on |u''|, …, |u⁽⁵⁾| at every sample by Eq. 3.2 (see _derivatives)
-            d2 = two_xi_omega * sv + omega2 * sd + acc_max
-            d3 = two_xi_omega * d2 + omega2 * sv + slope_max
-            d4 = two_xi_omega * d3 + omega2 * d2
-            d5 = two_xi_omega * d4 + omega2 * d3
-            reach = dt * dt / 8.0
-            margin_d = (d2 + (d3 + xi_omega * d2) / omega_d) * reach
-            margin_v = (d3 + (d4 + xi_omega * d3) / omega_d) * reach
-            margin_a = (d4 + (d5 + xi_omega * d4) / omega_d) * reach
-            n_segments = int(omega_d * dt / 3.0) + 1
-            inv_omega_d = 1.0 / omega_d
-            sa_k = 0.0
-            for k in range(n - 1):
-                sa_next = abs(two_xi_omega * v_at[k + 1] + omega2 * u_at[k + 1])
-                if ((max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd
-                     or not displacement_only
-                     and (max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv
-                          or max(sa_k, sa_next) + margin_a > sa))
-                        and _step_may_peak(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
-                                           (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega,
-                                           omega2, dt, inv_omega_d, sd, sv, sa,
-                                           displacement_only)):
-                    sd, sv, sa = _step_peaks(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
-                                             (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega,
-                                             omega_d, omega2, dt, sd, sv, sa, displacement_only)
-                sa_k = sa_next
-        out[i, 0] = sd
-        out[i, 1] = math.nan if displacement_only else sv
-        out[i, 2] = math.nan if displacement_only else sa
-
-
-@numba.njit(cache=True, nogil=True)
-def fill_displacement(acc, dt, coeffs, omega, damping, sd, known, j):
-    """sd[j] = max|u| of oscillator j (:func:`spectrum_peaks` with ``displacement_only``, on
-    that oscillator alone: the same number as among all of them), unless ``known[j]``."""
-    if not known[j]:
-        out = np.empty((1, 3))
-        spectrum_peaks(acc, dt, coeffs[j:j + 1], omega[j:j + 1], damping[j:j + 1], True, True,
-                       out)
-        sd[j] = out[0, 0]
-        known[j] = True
-
-
-__all__ = ["fill_displacement", "spectrum_peaks"]
+__all__ = ["step_may_peak", "step_peaks"]

@@ -1,6 +1,6 @@
 """True response spectra of a record (Eq. 3.2): the peaks of every oscillator of a set of periods
 and dampings, exact between samples (:mod:`audit.physics.peaks_between_samples`), on the
-recurrence of :mod:`audit.physics.oscillator`.
+recurrence of :mod:`audit.physics.oscillator`, computed by :mod:`audit.physics.spectrum_kernel`.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from audit import G
 from audit.errors import InputError
 from audit.physics.kernel_threads import run_chunks
 from audit.physics.oscillator import recurrence_coefficients
-from audit.physics.peaks_between_samples import spectrum_peaks
+from audit.physics.spectrum_kernel import spectrum_peaks
 
 @dataclass(frozen=True)
 class ResponseSpectra:
@@ -205,7 +205,7 @@ class DisplacementOnDemand:
             self.known[missing] = True
 
     def kernel_arguments(self) -> tuple:
-        """What :func:`~audit.physics.peaks_between_samples.fill_displacement` needs, for a
+        """What :func:`~audit.physics.spectrum_kernel.fill_displacement` needs, for a
         compiled reader: (acc, dt, coeffs, omega, damping, sd_m, known), the oscillators of
         every period of the table. Made at each call and not kept: a check holds one of these
         per record and damping tried, and they would be ten times the values."""
