@@ -150,7 +150,8 @@ def required_alpha(procedures, suite, settings: MarginsSettings, runtime: Runtim
 
     grid, _, _ = computed_parts(record_grid, entries, procedures, settings(size_s, grid_deg),
                                 scheduler, progress=progress)
-    exact_share = np.mean([part.exact_overturned for part in grid], axis=0)  # (α, size)
+    grid_overturned = np.array([part.exact_overturned for part in grid])  # (record, α, size)
+    exact_share = np.mean(grid_overturned, axis=0)
     # the last bracket of every exact curve and size, all halved together: one solve per
     # record and open bracket at each halving
     curves = [(target, s) for target in targets for s in range(size_s.size)]
@@ -159,6 +160,11 @@ def required_alpha(procedures, suite, settings: MarginsSettings, runtime: Runtim
     low = np.array([grid_deg[j] if j is not None and j >= 0 else np.nan for j in crossings])
     high = np.array([np.nan if j is None else grid_deg[j + 1] if j >= 0 else grid_deg[0]
                      for j in crossings])
+    # every record's outcome at ``high``, kept with it: the exact share of the block a curve
+    # accepts is read there, not solved again
+    at_high = np.array([grid_overturned[:, j + 1 if j >= 0 else 0, s] if j is not None
+                        else np.zeros(len(entries), dtype=bool)
+                        for j, (_, s) in zip(crossings, curves)])
     searched = np.flatnonzero(np.isfinite(low))
     limit = np.array([target for target, _ in curves])[searched]
     for _ in range(bisections if searched.size else 0):
@@ -166,23 +172,29 @@ def required_alpha(procedures, suite, settings: MarginsSettings, runtime: Runtim
         sizes = size_s[[curves[k][1] for k in searched]]
         overturned, _, _ = computed_parts(record_blocks, entries, procedures,
                                           settings(sizes, middle), scheduler)
+        overturned = np.array(overturned)  # (record, curve searched)
         above = np.mean(overturned, axis=0) > limit
         low[searched[above]] = middle[above]
         high[searched[~above]] = middle[~above]
+        at_high[searched[~above]] = overturned[:, ~above].T
     rows = [{"procedure": f"exact@{target:.2f}", "size_s": float(size_s[s]),
-             "required_alpha_deg": float(value)} for (target, s), value in zip(curves, high)]
+             "required_alpha_deg": float(value),
+             "exact_overturning_share": float(np.mean(outcomes)) if np.isfinite(value)
+             else np.nan}
+            for (target, s), value, outcomes in zip(curves, high, at_high)]
     for proc in procedures:
         mine = [part.predicted[proc.name] for part in grid if part.evaluated[proc.name]]
         if not mine:  # a procedure that can evaluate no record draws no curve
             continue
         share = np.mean(mine, axis=0)
         rows += [{"procedure": proc.name, "size_s": float(size),
-                  "required_alpha_deg": interpolated_alpha(grid_deg, share[:, s], ACCEPTED_SHARE)}
+                  "required_alpha_deg": interpolated_alpha(grid_deg, share[:, s], ACCEPTED_SHARE),
+                  "exact_overturning_share": np.nan}
                  for s, size in enumerate(size_s)]
     table = pd.DataFrame(rows)
-    # how safe the block each curve accepts is: the exact share of the records overturning it
-    found = table.index[np.isfinite(table["required_alpha_deg"])]
-    table["exact_overturning_share"] = np.nan
+    # how safe the block each guideline accepts is: the exact share of the records overturning it
+    found = table.index[np.isfinite(table["required_alpha_deg"])
+                        & ~table["procedure"].str.startswith("exact@")]
     if len(found):
         overturned, _, _ = computed_parts(record_blocks, entries, procedures, settings(
             table.loc[found, "size_s"], table.loc[found, "required_alpha_deg"]), scheduler)
