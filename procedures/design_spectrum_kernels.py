@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
+from audit.physics.kernel_cache import kernel
 from procedures.iteration_kernels import NOT_SETTLED, push_iterate, rocking_period
 
 #: 4π² of Eq. 3.5, computed as :func:`audit.physics.design_spectra.displacement_from_acceleration`
@@ -24,7 +24,7 @@ from procedures.iteration_kernels import NOT_SETTLED, push_iterate, rocking_peri
 _FOUR_PI_SQUARED = 4.0 * math.pi ** 2
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def fema356_displacement(period, sxs, sx1, b_s, b_1, t_0, t_s, g):
     """Sd [m] at one period T [s] of a FEMA 356 spectrum (S_XS, S_X1 [g]; B_S, B_1 of Table
     1-6; corner periods T_0, T_S [s]): Sa in its branch, then Sa·g·T²/(4π²)."""
@@ -37,7 +37,7 @@ def fema356_displacement(period, sxs, sx1, b_s, b_1, t_0, t_s, g):
     return sa * g * (period * period) / _FOUR_PI_SQUARED
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def iterate_fema356(p, scale, site, g, initial_ratio, tolerance, cycle_tolerance,
                     subcycle_tolerance, max_length, max_iterations):
     """:func:`procedures.iteration_kernels.iterate_tabulated`'s iteration with Sd read from

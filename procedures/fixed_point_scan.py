@@ -7,13 +7,13 @@ Apart from :mod:`procedures.rotation_map` so that reading a run back and renderi
 
 from __future__ import annotations
 
-import numba
 import numpy as np
 
+from audit.physics.kernel_cache import kernel
 from procedures.iteration_kernels import interp_between
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _read(period, period_s, sd_m, low):
     """``numpy.interp(period, period_s, sd_m)``, the node it reads found by walking up from node
     ``low`` (at or before it: periods are read in ascending order). Returns (Sd, that node)."""
@@ -27,7 +27,7 @@ def _read(period, period_s, sd_m, low):
     return interp_between(period, period_s, sd_m, low, low + 1), low
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def tabulated_excess(v, grid, p, scale, period_s, sd_m, chunk, room):
     """Whether F(θ) > θ at every point of the scan's grid, block by block: ``Sd(4v/p)·scale −
     grid > 0``, Sd read as ``numpy.interp(T, period_s, sd_m)`` reads it: the values of the

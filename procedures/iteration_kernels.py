@@ -9,13 +9,13 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
+from audit.physics.kernel_cache import kernel
 from audit.physics.spectrum_kernel import fill_displacement
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def may_repeat(window: np.ndarray, cycle_tolerance: float, max_length: int) -> bool:
     """Whether the iterates ``window`` (newest last) may hold a settled cycle (see
     :func:`procedures.iteration_cycles.cycle_length`).
@@ -37,7 +37,7 @@ def may_repeat(window: np.ndarray, cycle_tolerance: float, max_length: int) -> b
     return False
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def _push(window: np.ndarray, new: float, tolerance: float):
     """Push the iterate ``new`` into one block's ``window`` (newest last; 1 for an overturning
     one). Returns (over, done): it overturns (θ/α ≥ 1), or has converged (|Δθ|/α ≤
@@ -50,7 +50,7 @@ def _push(window: np.ndarray, new: float, tolerance: float):
     return over, done
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def advance(recent: np.ndarray, new: np.ndarray, tolerance: float, cycle_tolerance: float,
             max_length: int):
     """One step of the iteration's bookkeeping for every block still iterating: ``new``
@@ -76,7 +76,7 @@ def advance(recent: np.ndarray, new: np.ndarray, tolerance: float, cycle_toleran
     return over, done, maybe
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def nodes_read(x: float, xp: np.ndarray):
     """The nodes (low, high) ``numpy.interp`` reads for x (not NaN): xp[low] ≤ x < xp[high]
     inside the table, the end node twice beyond either end."""
@@ -95,7 +95,7 @@ def nodes_read(x: float, xp: np.ndarray):
     return low, high
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def interp_between(x: float, xp: np.ndarray, fp: np.ndarray, low: int, high: int) -> float:
     """``numpy.interp``'s value at x (not NaN) from the nodes it reads (:func:`nodes_read`), with
     its arithmetic: slope·(x − xpⱼ) + fpⱼ between nodes (retried from the right node where that
@@ -111,7 +111,7 @@ def interp_between(x: float, xp: np.ndarray, fp: np.ndarray, low: int, high: int
     return value
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
     """``numpy.interp(x, xp, fp)`` for one x (:func:`interp_between`)."""
     if x != x:
@@ -120,7 +120,7 @@ def interp(x: float, xp: np.ndarray, fp: np.ndarray) -> float:
     return interp_between(x, xp, fp, low, high)
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def cycle_length(window: np.ndarray, cycle_tolerance: float, subcycle_tolerance: float,
                  max_length: int) -> int:
     """:func:`procedures.iteration_cycles.cycle_length` of one window of iterates (newest
@@ -171,14 +171,14 @@ def cycle_length(window: np.ndarray, cycle_tolerance: float, subcycle_tolerance:
 NOT_SETTLED, CONVERGED, OVERTURNED, CYCLING = 0, 1, 2, 3
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def rocking_period(ratio, p):
     """T = (4/p) acosh(1/(1 − θ/α)) of Eq. 8.1 at one θ/α [s], in the operations of
     :func:`audit.physics.damping.housner_period`."""
     return 4.0 / p * math.acosh(1.0 / (1.0 - ratio))
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def push_iterate(recent, new, tolerance, cycle_tolerance, subcycle_tolerance, max_length):
     """One block's step of :func:`advance` and :func:`cycle_length`: push the iterate ``new``
     into its window ``recent`` (newest last; 1 for an overturning one) and say how the
@@ -200,7 +200,7 @@ def push_iterate(recent, new, tolerance, cycle_tolerance, subcycle_tolerance, ma
     return NOT_SETTLED, 0
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _read_on_demand(period, period_s, table, source):
     """Make ``table`` known at the nodes :func:`interp` reads for ``period``: each computed by
     :func:`~audit.physics.spectrum_kernel.fill_displacement` where unknown, × the factor
@@ -215,7 +215,7 @@ def _read_on_demand(period, period_s, table, source):
             known[j] = True
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _iterate_block(period_s, table, p, scale, initial_ratio, tolerance, cycle_tolerance,
                    subcycle_tolerance, max_length, max_iterations, recent, source):
     """One block of :func:`iterate_tabulated`, its window of iterates in ``recent``; ``source``
@@ -239,7 +239,7 @@ def _iterate_block(period_s, table, p, scale, initial_ratio, tolerance, cycle_to
     return NOT_SETTLED, max_iterations, 0
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _iterate_blocks(period_s, sd_m, rows, p, scale, initial_ratio, tolerance, cycle_tolerance,
                     subcycle_tolerance, max_length, max_iterations, source):
     """:func:`iterate_tabulated`, the tables computed where read when ``source`` is not None."""
@@ -255,7 +255,7 @@ def _iterate_blocks(period_s, sd_m, rows, p, scale, initial_ratio, tolerance, cy
     return outcome, iterations, cycle, windows
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def iterate_tabulated(period_s, sd_m, rows, p, scale, initial_ratio, tolerance,
                       cycle_tolerance, subcycle_tolerance, max_length, max_iterations):
     """The iteration of :func:`procedures.iteration.iterate_rotation`, compiled, each block
@@ -275,7 +275,7 @@ def iterate_tabulated(period_s, sd_m, rows, p, scale, initial_ratio, tolerance,
                            cycle_tolerance, subcycle_tolerance, max_length, max_iterations, None)
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def iterate_on_demand(period_s, table, source, p, scale, initial_ratio, tolerance,
                       cycle_tolerance, subcycle_tolerance, max_length, max_iterations):
     """:func:`iterate_tabulated` of blocks that all read one table computed where it is read

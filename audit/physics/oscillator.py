@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
 from audit.errors import InputError
+from audit.physics.kernel_cache import kernel
 from audit.physics.tiers import tiered
 
 INTERPRETED_STEP_S = 1e-6
@@ -100,7 +100,7 @@ def recurrence_coefficients(period_s, damping, dt):
 LANES = 4
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def step_coefficients(c):
     """The eight numbers :func:`oscillator_step` reads, from an oscillator's (2, 4) row of
     :func:`recurrence_coefficients`; held as values, a loop keeps them in registers instead of
@@ -108,7 +108,7 @@ def step_coefficients(c):
     return (c[0, 0], c[0, 1], c[0, 2], c[0, 3], c[1, 0], c[1, 1], c[1, 2], c[1, 3])
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def oscillator_step(c, u, v, acc_k, acc_next):
     """One exact step of the recurrence: (u, u') at the next sample (``c`` from
     :func:`step_coefficients`)."""
@@ -116,14 +116,14 @@ def oscillator_step(c, u, v, acc_k, acc_next):
             c[4] * u + c[5] * v + c[6] * acc_k + c[7] * acc_next)
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def _raised(peaks, u, v, two_xi_omega, omega2):
     """(max|u|, max|u'|, max|ü + üg|) raised to one sample's state (ü + üg = −2ξωu' − ω²u)."""
     return (max(peaks[0], abs(u)), max(peaks[1], abs(v)),
             max(peaks[2], abs(two_xi_omega * v + omega2 * u)))
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def sampled_responses(acc, coeffs, two_xi_omega, omega2, lanes, u_at, v_at, peaks):
     """The states of :data:`LANES` oscillators at every sample, from rest, and their peaks there.
 
@@ -156,7 +156,7 @@ def sampled_responses(acc, coeffs, two_xi_omega, omega2, lanes, u_at, v_at, peak
         peaks[lane, 0], peaks[lane, 1], peaks[lane, 2] = lane_peaks
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _history(acc, coeffs, u_out):
     """u_out[k] = u at sample k for one oscillator, from rest."""
     c = step_coefficients(coeffs)

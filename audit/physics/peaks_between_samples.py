@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import math
 
-import numba
+from audit.physics.kernel_cache import kernel
 
-@numba.njit(cache=True, nogil=True)
+
+@kernel()
 def _derivatives(u, v, acc, slope, two_xi_omega, omega2):
     """u, u', …, u⁽⁵⁾ at one instant from Eq. 3.2 (üg = acc with slope ``slope``, üg'' = 0)."""
     d2 = -two_xi_omega * v - omega2 * u - acc
@@ -19,7 +20,7 @@ def _derivatives(u, v, acc, slope, two_xi_omega, omega2):
     return u, v, d2, d3, d4, -two_xi_omega * d4 - omega2 * d3
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _closed_form(f0, g0, f2, f3, xi_omega, omega_d, omega2):
     """f(τ) = p + q·τ + e^{−ξωτ}(P cos ω_dτ + Q sin ω_dτ) from f, f', f'', f''' at τ = 0.
 
@@ -32,7 +33,7 @@ def _closed_form(f0, g0, f2, f3, xi_omega, omega_d, omega2):
     return f0 - h0, g0 - h1, h0, (h1 + xi_omega * h0) / omega_d
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _evaluate(tau, form, xi_omega, omega_d):
     """f(τ), f'(τ), f''(τ) of a closed form from :func:`_closed_form`."""
     p, q, big_p, big_q = form
@@ -47,7 +48,7 @@ def _evaluate(tau, form, xi_omega, omega_d):
             p2 * cos + q2 * sin)
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _extremum(form, low, g_low, high, xi_omega, omega_d):
     """|f| at the root of f' in [low, high], where f' changes sign and is monotone."""
     tau = low + (high - low) * 0.5
@@ -68,7 +69,7 @@ def _extremum(form, low, g_low, high, xi_omega, omega_d):
     return abs(_evaluate(tau, form, xi_omega, omega_d)[0])
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _may_peak_inside(f0, g0, f2, f3, f1, g1, f2_end, reach, xi_omega, inv_omega_d, peak):
     """Whether f may have an extremum strictly inside a segment with |f| above ``peak``.
 
@@ -87,7 +88,7 @@ def _may_peak_inside(f0, g0, f2, f3, f1, g1, f2_end, reach, xi_omega, inv_omega_
     return g0 * g1 < 0.0 or (g0 * f2 < 0.0 and f2 * f2_end < 0.0)
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _may_exceed(f0, f1, f2, f3, reach, xi_omega, inv_omega_d, peak):
     """Whether the bound of :func:`_may_peak_inside` on |f| at an extremum inside a stretch of
     length L (``reach`` = L²/8) exceeds ``peak``; it holds over a whole step, since |f''| ≤
@@ -96,7 +97,7 @@ def _may_exceed(f0, f1, f2, f3, reach, xi_omega, inv_omega_d, peak):
     return not max(abs(f0), abs(f1)) + amplitude * reach <= peak
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def step_may_peak(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega2, dt,
                    inv_omega_d, sd, sv, sa, displacement_only):
     """Whether :func:`step_peaks` may raise (sd, sv, sa) inside this step: the tests of
@@ -129,7 +130,7 @@ def step_may_peak(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omeg
                            xi_omega, inv_omega_d, sa))
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _segment_peak(f0, g0, f2, f3, g1, length, xi_omega, omega_d, omega2):
     """Largest |f| at the roots of f' strictly inside a segment (0 if none); arguments as in
     :func:`_may_peak_inside`. Each root is bracketed where f' is monotone and located by
@@ -149,7 +150,7 @@ def _segment_peak(f0, g0, f2, f3, g1, length, xi_omega, omega_d, omega2):
                _extremum(form, middle, g_middle, length, xi_omega, omega_d))
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def step_peaks(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega_d, omega2,
                 dt, sd, sv, sa, displacement_only):
     """(sd, sv, sa) raised to the extrema of u, u', ü + üg strictly inside one step from

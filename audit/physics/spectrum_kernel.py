@@ -8,14 +8,14 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
 
+from audit.physics.kernel_cache import kernel
 from audit.physics.oscillator import LANES, sampled_responses
 from audit.physics.peaks_between_samples import step_may_peak, step_peaks
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _searched_between_samples(acc, dt, u_at, v_at, acc_max, slope_max, omega, damping, sd, sv,
                               sa, displacement_only, candidates):
     """One oscillator's sampled peaks (sd, sv, sa) raised to its extrema between the samples
@@ -66,7 +66,7 @@ def _searched_between_samples(acc, dt, u_at, v_at, acc_max, slope_max, omega, da
     return sd, sv, sa
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacement_only, out):
     """out[i] = (max|u|, max|u'|, max|u'' + üg|) of oscillator i (see :func:`response_spectra`);
     with ``displacement_only`` the last two are NaN and only max|u| is searched between samples.
@@ -111,7 +111,7 @@ def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacemen
             out[i, 2] = math.nan if displacement_only else sa
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def fill_displacement(acc, dt, coeffs, omega, damping, sd, known, j):
     """sd[j] = max|u| of oscillator j (:func:`spectrum_peaks` with ``displacement_only``, on
     that oscillator alone: the same number as among all of them), unless ``known[j]``."""

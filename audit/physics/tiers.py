@@ -13,7 +13,6 @@ the compiled code does; no fast-math), so they agree to rounding.
 from __future__ import annotations
 
 import functools
-import os
 import sys
 import types
 
@@ -61,10 +60,11 @@ def _any_compiled() -> bool:
 
 
 def machine_code_cached(kernel: CPUDispatcher) -> bool:
-    """Whether numba holds cached machine code of ``kernel`` on disk, so that a run loads it
-    (~0.5 s) rather than compiling it (seconds; the first run after installing)."""
-    try:  # numba keeps the cache's index file name in its FunctionCache, not in a public API
-        return os.path.exists(kernel._cache._cache_file._index_path)
+    """Whether numba holds cached machine code of ``kernel`` on disk that is current (stamped
+    with today's sources, :mod:`audit.physics.kernel_cache`), so that a run loads it (~0.5 s)
+    rather than compiling it (seconds; the first run after installing or updating)."""
+    try:  # numba reads its cache's index in its FunctionCache, not in a public API
+        return bool(kernel._cache._cache_file._load_index())
     except AttributeError:  # another numba layout: say nothing rather than guess
         return True
 

@@ -6,10 +6,10 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-import numba
 import numpy as np
 
 from audit.errors import InputError
+from audit.physics.kernel_cache import kernel
 from audit.physics.rocking.motion_equation import (_COSINE, _SAMPLED, _SINE, _friction_ratio,
                                                    _ground, _lifts, _locate, _rk4,
                                                    pivot_reactions)
@@ -40,7 +40,7 @@ class ResponseSummary(NamedTuple):
     min_vertical_reaction: float  # min V/(mg) [-]
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out,
               turns_out, stride=1, reactions=False):
@@ -251,7 +251,7 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                            peak_signed, n_turns, max_ratio, min_vertical)
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _spectrum(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, reactions, out):
     """Peaks of many blocks under one motion; fills ``out``, a

@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import math
 
-import numba
+from audit.physics.kernel_cache import kernel
 
 # Ground-motion kinds understood by the kernel.
 _SAMPLED, _COSINE, _SINE = 0, 1, 2
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def _ground(t, kind, a0, slope, t0, amp, omega_p):
     """üg at time t on the current smooth interval."""
     if kind == _SAMPLED:
@@ -21,7 +21,7 @@ def _ground(t, kind, a0, slope, t0, amp, omega_p):
     return amp * math.sin(omega_p * t)
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def _theta_acc(theta, ug, uv, side, p2, alpha, g):
     """Eq. 4.3 with sgn(θ) replaced by the side of the current pivot, and gravity g + üv under
     a vertical ground acceleration üv (Eq. 4.3 with g → g + üv in its moment of the weight;
@@ -31,14 +31,14 @@ def _theta_acc(theta, ug, uv, side, p2, alpha, g):
     return -p2 * ((1.0 + uv / g) * math.sin(phi) + ug / g * math.cos(phi))
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def _lifts(ug, uv, g, tan_alpha):
     """Whether the ground lifts a block at rest: |üg| > (g + üv) tan α."""
     return abs(ug) > (g + uv) * tan_alpha
 
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def pivot_reactions(theta, omega, ug, uv, side, p2, alpha, g):
     """Horizontal and vertical reactions H/(mg), V/(mg) [-] at the pivot of a rocking block.
 
@@ -74,13 +74,13 @@ def pivot_reactions(theta, omega, ug, uv, side, p2, alpha, g):
     return horizontal / g, vertical / g
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@kernel(inline="always")
 def _friction_ratio(horizontal, vertical):
     """|H| / V, infinite where V ≤ 0 (no friction keeps a jumping block in place)."""
     return abs(horizontal) / vertical if vertical > 0.0 else math.inf
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _rk4(theta, omega, t, h, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p, v0, vslope):
     """One classical Runge–Kutta step of length h from (θ, θ') at t; the vertical ground
     acceleration is v0 + vslope·(t − t0) on the interval (zero without vertical motion)."""
@@ -102,7 +102,7 @@ def _rk4(theta, omega, t, h, side, p2, alpha, g, kind, a0, slope, t0, amp, omega
             omega + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w))
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
             kind, a0, slope, t0, amp, omega_p, v0, vslope):
     """Step length τ in [lo, hi] at which θ (which=0) or θ' (which=1) equals ``target``.

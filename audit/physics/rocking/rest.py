@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import math
 
-import numba
-
+from audit.physics.kernel_cache import kernel
 from audit.physics.rocking.motion_equation import _COSINE, _SAMPLED, _ground
 
 #: Smallest rest tolerance: smaller rebounds fly for less than the 1e-15 s to which impacts
@@ -14,7 +13,7 @@ from audit.physics.rocking.motion_equation import _COSINE, _SAMPLED, _ground
 MIN_REST_TOLERANCE = 1e-20
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _largest_ground(t_a, t_b, kind, a0, slope, t0, amp, omega_p):
     """max |üg| over [t_a, t_b] inside one smooth interval: the ends where üg is linear (a
     record), |amp| too where a crest of the pulse's cosine or sine lies between them."""
@@ -28,7 +27,7 @@ def _largest_ground(t_a, t_b, kind, a0, slope, t0, amp, omega_p):
     return largest
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def chatter_time_bound(omega, restoring, velocity_ratio):
     """Upper bound of the time a block rebounding at θ' = ``omega`` chatters until it is at rest
     (a Zeno sequence of impacts, summed in closed form) [s].
@@ -57,7 +56,7 @@ def chatter_time_bound(omega, restoring, velocity_ratio):
 
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _restoring(t_a, t_b, kind, a0, slope, t0, amp, omega_p, v0, vslope, p2, alpha, g):
     """Smallest restoring deceleration on either corner at small θ over [t_a, t_b] inside one
     smooth interval [rad/s²] (negative where the ground can lift the block there)."""
@@ -66,7 +65,7 @@ def _restoring(t_a, t_b, kind, a0, slope, t0, amp, omega_p, v0, vslope, p2, alph
     return p2 * math.cos(alpha) * (weight * math.tan(alpha) - largest) / g
 
 
-@numba.njit(cache=True, nogil=True)
+@kernel()
 def _chatter_ends(omega, t_imp, t1, kind, a0, slope, t0, amp, omega_p, v0, vslope, p2, alpha, g,
                   velocity_ratio, rest_tolerance):
     """Whether a rebound at θ' = ``omega`` at ``t_imp`` ends in rest: its chatter converges
