@@ -157,6 +157,21 @@ def sampled_responses(acc, coeffs, two_xi_omega, omega2, lanes, u_at, v_at, peak
 
 
 @kernel()
+def sampled_response(acc, c, two_xi_omega, omega2, u_at, v_at):
+    """:func:`sampled_responses` of one oscillator (``c`` from :func:`step_coefficients`), for a
+    table of one, where four lanes would do the work four times: fills ``u_at``, ``v_at`` and
+    returns the peaks."""
+    u = v = 0.0
+    peaks = (0.0, 0.0, 0.0)
+    u_at[0] = v_at[0] = 0.0
+    for k in range(acc.size - 1):
+        u, v = oscillator_step(c, u, v, acc[k], acc[k + 1])
+        u_at[k + 1], v_at[k + 1] = u, v
+        peaks = _raised(peaks, u, v, two_xi_omega, omega2)
+    return peaks
+
+
+@kernel()
 def _history(acc, coeffs, u_out):
     """u_out[k] = u at sample k for one oscillator, from rest."""
     c = step_coefficients(coeffs)
@@ -198,4 +213,5 @@ def oscillator_history(motion, period_s: float, damping: float, free_motion_s: f
 
 
 __all__ = ["recurrence_coefficients", "step_coefficients", "oscillator_step",
-           "sampled_responses", "oscillator_history", "LANES", "INTERPRETED_STEP_S"]
+           "sampled_responses", "sampled_response", "oscillator_history", "LANES",
+           "INTERPRETED_STEP_S"]

@@ -11,7 +11,8 @@ import math
 import numpy as np
 
 from audit.physics.kernel_cache import kernel
-from audit.physics.oscillator import LANES, sampled_responses
+from audit.physics.oscillator import (LANES, sampled_response, sampled_responses,
+                                      step_coefficients)
 from audit.physics.peaks_between_samples import step_may_peak, step_peaks
 
 
@@ -24,7 +25,7 @@ def _searched_between_samples(acc, dt, u_at, v_at, acc_max, slope_max, omega, da
     two_xi_omega = 2.0 * xi_omega
     omega2 = omega * omega
     omega_d = omega * math.sqrt(1.0 - damping * damping)
-    # bounds on |u''|, …, |u⁽⁵⁾| at every sample by Eq. 3.2 (see peaks_between_samples._derivatives)
+    # bounds on |u''|, …, |u⁽⁵⁾| at every sample by Eq. 3.2 (peaks_between_samples._derivatives)
     d2 = two_xi_omega * sv + omega2 * sd + acc_max
     d3 = two_xi_omega * d2 + omega2 * sv + slope_max
     d4 = two_xi_omega * d3 + omega2 * d2
@@ -58,28 +59,30 @@ def _searched_between_samples(acc, dt, u_at, v_at, acc_max, slope_max, omega, da
              and (max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv
                   or max(sa_k, sa_next) + margin_a > sa))
                 and step_may_peak(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
-                                   (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega, omega2,
-                                   dt, inv_omega_d, sd, sv, sa, displacement_only)):
+                                  (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega, omega2,
+                                  dt, inv_omega_d, sd, sv, sa, displacement_only)):
             sd, sv, sa = step_peaks(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
-                                     (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega, omega_d,
-                                     omega2, dt, sd, sv, sa, displacement_only)
+                                    (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega, omega_d,
+                                    omega2, dt, sd, sv, sa, displacement_only)
     return sd, sv, sa
 
 
 @kernel()
 def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacement_only, out):
-    """out[i] = (max|u|, max|u'|, max|u'' + üg|) of oscillator i (see :func:`response_spectra`);
-    with ``displacement_only`` the last two are NaN and only max|u| is searched between samples.
+    """out[i] = (max|u|, max|u'|, max|u'' + üg|) of oscillator i (see
+    :func:`~audit.physics.response_spectra.response_spectra`); with ``displacement_only`` the
+    last two are NaN and only max|u| is searched between samples.
 
     Two passes per oscillator. The first runs the recurrence, keeps the states at the samples
     and their peaks (:func:`~audit.physics.oscillator.sampled_responses`, four oscillators at
     a time). The second looks inside a step only where an extremum there could beat those
     peaks. Inside a step each f of u, u', ü + üg has f'' = e^{−ξωτ}(P cos ω_dτ + Q sin ω_dτ)
-    (:func:`~audit.physics.peaks_between_samples._closed_form`), so |f''| ≤ |P| + |Q| over the whole step, and an interior extremum
-    exceeds max(|f|) at the step's ends by at most (|P| + |Q|)·dt²/8 (:func:`~audit.physics.peaks_between_samples._may_peak_inside`).
-    By Eq. 3.2, |P| and |Q| at every sample are bounded by the sampled peaks, max|üg| and
-    max|üg'|: almost every step fails the test at the cost of two loads, and the few that pass
-    get the exact search of :func:`~audit.physics.peaks_between_samples.step_peaks`.
+    (``peaks_between_samples._closed_form``), so |f''| ≤ |P| + |Q| over the whole step, and
+    an interior extremum exceeds max(|f|) at the step's ends by at most (|P| + |Q|)·dt²/8
+    (``peaks_between_samples._may_peak_inside``). By Eq. 3.2, |P| and |Q| at every sample are
+    bounded by the sampled peaks, max|üg| and max|üg'|: almost every step fails the test, and
+    the few that pass get the exact search of
+    :func:`~audit.physics.peaks_between_samples.step_peaks`.
     """
     n = acc.size
     last = coeffs.shape[0] - 1
@@ -96,9 +99,12 @@ def spectrum_peaks(acc, dt, coeffs, omega, damping, between_samples, displacemen
         if k:
             slope_max = max(slope_max, abs(acc[k] - acc[k - 1]) / dt)
     for first in range(0, last + 1, LANES):
-        # the last lanes of a table not a multiple of four repeat its last oscillator
-        lanes = (first, min(first + 1, last), min(first + 2, last), min(first + 3, last))
-        sampled_responses(acc, coeffs, two_xi_omega, omega2, lanes, u_at, v_at, peaks)
+        if first == last:
+            peaks[0] = sampled_response(acc, step_coefficients(coeffs[first]),
+                                        two_xi_omega[first], omega2[first], u_at[0], v_at[0])
+        else:  # the last lanes of a table not a multiple of four repeat its last oscillator
+            lanes = (first, min(first + 1, last), min(first + 2, last), min(first + 3, last))
+            sampled_responses(acc, coeffs, two_xi_omega, omega2, lanes, u_at, v_at, peaks)
         for lane in range(min(LANES, last + 1 - first)):
             i = first + lane
             sd, sv, sa = peaks[lane, 0], peaks[lane, 1], peaks[lane, 2]
