@@ -23,7 +23,8 @@ from numba.core import caching
 #: The folders of the modules that define kernels: this package and ``procedures`` beside it.
 KERNEL_FOLDERS = (Path(__file__).resolve().parent,
                   Path(__file__).resolve().parents[2] / "procedures")
-#: What marks a module that defines kernels.
+#: What marks a module that defines kernels (this one holds it too, and counts: it says how
+#: they are compiled).
 _DEFINES_KERNELS = b"@kernel("
 
 
