@@ -239,3 +239,16 @@ def test_first_run_compile_is_announced_only_without_cached_machine_code(tmp_pat
         [sys.executable, "-c", "from audit.engine.suite_run import compiles_first as c; print(c())"],
         env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path)), capture_output=True, text=True)
     assert fresh.stdout.strip() == "True", fresh.stderr
+
+
+def test_first_run_compile_is_not_announced_for_a_kernel_the_command_never_compiles(monkeypatch):
+    """`run fema356` never compiles the fixed-point scan: with the solver and the oscillator
+    cached, its missing cache must not announce a first run at every run."""
+    import audit.physics.tiers
+    from audit.engine.suite_run import compiles_first
+    from procedures.fixed_point_scan import tabulated_excess
+    monkeypatch.setattr(audit.physics.tiers, "machine_code_cached",
+                        lambda kernel: kernel is not tabulated_excess)
+    assert not compiles_first()
+    monkeypatch.setattr(audit.physics.tiers, "machine_code_cached", lambda kernel: False)
+    assert compiles_first()

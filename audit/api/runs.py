@@ -200,7 +200,7 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
         stage.stage(f"auditing {', '.join(p.name for p in chosen)} on {len(suite)} records")
         if compiles_first():
             stage.stage("compiling the rocking solver and the oscillator kernels for this "
-                        "machine (first run only: about 20 s)")
+                        "machine (only the first run after installing or updating: about 20 s)")
     stage = stage if hasattr(stage, "stage") else None
     if out_dir is None:
         scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
