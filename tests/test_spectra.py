@@ -174,9 +174,9 @@ def test_steps_left_unexamined_change_no_peak(seed_suite, displacement_only):
             peaks = tuple(np.nan_to_num(at_samples[i]))
             for k in range(acc.size - 1):
                 peaks = step_peaks(u[k], v[k], u[k + 1], v[k + 1], acc[k],
-                                    (acc[k + 1] - acc[k]) / dt, int(omega_d * dt / 3.0) + 1,
-                                    xi_omega, omega_d, omega[i] * omega[i], dt, *peaks,
-                                    displacement_only)
+                                   (acc[k + 1] - acc[k]) / dt, int(omega_d * dt / 3.0) + 1,
+                                   xi_omega, omega_d, omega[i] * omega[i], dt, *peaks,
+                                   displacement_only)
             expected = peaks[:1] + (np.nan, np.nan) if displacement_only else peaks
             np.testing.assert_array_equal(searched[i], expected, err_msg=f"T = {period} s")
         assert np.all(searched[:, 0] > at_samples[:, 0])  # peaks between samples were found
@@ -189,8 +189,9 @@ def test_steps_left_unexamined_change_no_peak(seed_suite, displacement_only):
 def test_a_table_computes_each_oscillator_as_alone(seed_suite, periods, damping, start,
                                                    between_samples, displacement_only):
     """spectrum_peaks runs the recurrences of four oscillators side by side (the last lanes of a
-    table not a multiple of four repeat its last one): each oscillator's peaks are those of a
-    table of it alone, bit for bit, at every position of any table."""
+    table not a multiple of four repeat its last one; a table of one runs one lane): each
+    oscillator's peaks are those of a table of it alone, bit for bit, at every position of any
+    table."""
     motion = seed_suite.get("rinaldi_1994").motion
     acc, dt = motion.acceleration[start:start + 1500], motion.dt
     periods = np.array(periods)
