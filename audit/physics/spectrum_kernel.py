@@ -16,6 +16,22 @@ from audit.physics.oscillator import (LANES, sampled_response, sampled_responses
 from audit.physics.peaks_between_samples import step_may_peak, step_peaks
 
 
+@kernel(inline="always")
+def _displacement_through(u_at, k, margin_d, sd):
+    """Whether the record's bound lets an extremum of u inside step k beat ``sd``."""
+    return max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd
+
+
+@kernel(inline="always")
+def _motion_through(u_at, v_at, k, two_xi_omega, omega2, margin_v, margin_a, sv, sa):
+    """Whether the record's bounds let an extremum of u' or ü + üg inside step k beat ``sv``
+    or ``sa`` (both evaluated, no branch: the loop over every step compiles to vector
+    instructions)."""
+    return ((max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv)
+            | (max(abs(two_xi_omega * v_at[k] + omega2 * u_at[k]),
+                   abs(two_xi_omega * v_at[k + 1] + omega2 * u_at[k + 1])) + margin_a > sa))
+
+
 @kernel()
 def _searched_between_samples(acc, dt, u_at, v_at, acc_max, slope_max, omega, damping, sd, sv,
                               sa, displacement_only, candidates):
@@ -41,23 +57,18 @@ def _searched_between_samples(acc, dt, u_at, v_at, acc_max, slope_max, omega, da
     # a step these bounds stop would be stopped there too
     if displacement_only:
         for k in range(acc.size - 1):
-            candidates[k] = max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd
+            candidates[k] = _displacement_through(u_at, k, margin_d, sd)
     else:
         for k in range(acc.size - 1):
-            candidates[k] = ((max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd)
-                             | (max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv)
-                             | (max(abs(two_xi_omega * v_at[k] + omega2 * u_at[k]),
-                                    abs(two_xi_omega * v_at[k + 1] + omega2 * u_at[k + 1]))
-                                + margin_a > sa))
+            candidates[k] = (_displacement_through(u_at, k, margin_d, sd)
+                             | _motion_through(u_at, v_at, k, two_xi_omega, omega2, margin_v,
+                                               margin_a, sv, sa))
     for k in range(acc.size - 1):
-        if not candidates[k]:
-            continue
-        sa_k = abs(two_xi_omega * v_at[k] + omega2 * u_at[k])
-        sa_next = abs(two_xi_omega * v_at[k + 1] + omega2 * u_at[k + 1])
-        if ((max(abs(u_at[k]), abs(u_at[k + 1])) + margin_d > sd
-             or not displacement_only
-             and (max(abs(v_at[k]), abs(v_at[k + 1])) + margin_v > sv
-                  or max(sa_k, sa_next) + margin_a > sa))
+        if (candidates[k]
+                and (_displacement_through(u_at, k, margin_d, sd)
+                     or not displacement_only
+                     and _motion_through(u_at, v_at, k, two_xi_omega, omega2, margin_v,
+                                         margin_a, sv, sa))
                 and step_may_peak(u_at[k], v_at[k], u_at[k + 1], v_at[k + 1], acc[k],
                                   (acc[k + 1] - acc[k]) / dt, n_segments, xi_omega, omega2,
                                   dt, inv_omega_d, sd, sv, sa, displacement_only)):
