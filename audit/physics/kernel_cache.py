@@ -35,10 +35,16 @@ def kernel(inline: str = "never"):
     return numba.njit(cache=True, nogil=True, inline=inline)
 
 
+def _kernel_sources() -> list[tuple[Path, bytes]]:
+    """The modules that define kernels and their contents, in a fixed order (each read once)."""
+    sources = ((path, path.read_bytes()) for folder in KERNEL_FOLDERS
+               for path in folder.rglob("*.py"))
+    return sorted((path, text) for path, text in sources if _DEFINES_KERNELS in text)
+
+
 def kernel_modules() -> list[Path]:
     """The modules that define kernels, in a fixed order."""
-    return sorted(path for folder in KERNEL_FOLDERS for path in folder.rglob("*.py")
-                  if _DEFINES_KERNELS in path.read_bytes())
+    return [path for path, _ in _kernel_sources()]
 
 
 @functools.cache
@@ -46,8 +52,8 @@ def kernel_sources_digest() -> bytes:
     """SHA-256 of the names and contents of every module that defines kernels (read once per
     process)."""
     digest = hashlib.sha256()
-    for path in kernel_modules():
-        digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    for path, text in _kernel_sources():
+        digest.update(path.name.encode() + b"\0" + text + b"\0")
     return digest.digest()
 
 
