@@ -13,17 +13,16 @@ from the curve and the fragility the JSON holds).
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 
 import numpy as np
-from jinja2 import Environment, PackageLoader, select_autoescape
 from scipy.special import ndtr
 
 from audit.engine.check_risk import quiet_risk
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
+from reports.html_parts import number, page_templates
 from reports.margins_figures import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
 from reports.plots import _axis, _layout, to_json
@@ -140,13 +139,8 @@ def _risk(obj, document) -> dict:
     return risk_figure(curve, fitted or counted, quiet_risk(fitted or counted, curve),
                        counted if fitted else None,
                        f"{obj['name']}: λ_ov = {risk['annual_rate']:.3g}/yr, P in 50 years "
-                       f"{risk['p50']:.2%}; 90 % of it from {_number(low)} to "
-                       f"{_number(high)} g (shaded)")
-
-
-def _number(value, fmt="{:.3g}") -> str:
-    return "—" if value is None or (isinstance(value, float) and math.isnan(value)) \
-        else fmt.format(value)
+                       f"{risk['p50']:.2%}; 90 % of it from {number(low)} to "
+                       f"{number(high)} g (shaded)")
 
 
 def render_check_page(folder) -> str:
@@ -154,15 +148,11 @@ def render_check_page(folder) -> str:
     from plotly.offline import get_plotlyjs
     document = json.loads((Path(folder) / CHECK_JSON).read_text(encoding="utf-8"))
     colours = _colours(document)
-    env = Environment(loader=PackageLoader("reports", "templates"),
-                      autoescape=select_autoescape(["html", "j2"]), trim_blocks=True,
-                      lstrip_blocks=True)
-    env.filters["num"] = _number
     objects = [{**obj, "drawing": to_json(_drawing(obj, colours)),
                 "fragility": to_json(_fragility(obj, document, colours)),
                 "risk_figure": to_json(_risk(obj, document)) if obj["risk"] else None}
                for obj in document["objects"]]
-    return env.get_template("check.html.j2").render(
+    return page_templates().get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs(),
         records_words=counted_records(len(document["records"]), document["records_source"]))
 

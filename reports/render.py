@@ -13,7 +13,6 @@ from datetime import datetime, timezone
 
 import numpy as np
 import pandas as pd
-from jinja2 import Environment, PackageLoader, select_autoescape
 
 from audit import G
 from audit.engine.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_key,
@@ -24,6 +23,7 @@ from reports.block_metres import describe_block
 from reports.frame_rows import row_dicts
 from reports.grid_figures import verdict_map_figure
 from reports.history_figures import history_figure
+from reports.html_parts import page_templates
 from reports.outcome_words import describe_exact, describe_guideline
 from reports.palette import CHECK_COLOURS, VERDICT_COLOURS
 from reports.plots import to_json
@@ -41,15 +41,6 @@ ESTIMATE_COLUMNS = ("procedure", "verdict", "alpha_deg", "approx_outcome", "appr
 #: What a row of the worst-cases table is made of, and ranked by (``WORST_CLASSES``).
 WORST_COLUMNS = (*ESTIMATE_COLUMNS, "record", "size_s", "exact_overturned", "exact_fragile",
                  "exact_theta_rad", "ratio")
-
-
-def _environment() -> Environment:
-    env = Environment(loader=PackageLoader("reports", "templates"),
-                      autoescape=select_autoescape(["html", "j2"]), trim_blocks=True,
-                      lstrip_blocks=True)
-    env.filters["num"] = lambda v, fmt="{:.3g}": "—" if v is None or (
-        isinstance(v, float) and math.isnan(v)) else fmt.format(v)
-    return env
 
 
 class _Figures:
@@ -267,7 +258,7 @@ def render_report(run, generated: datetime | None = None) -> str:
                   for s in summary["statistics"] if s["record"] in detail_ids]
     sections = _record_sections(run, procedures, pending, results, detail, names, shown,
                                 by_record)
-    html = _environment().get_template("report.html.j2").render(
+    html = page_templates().get_template("report.html.j2").render(
         summary=summary, procedures=procedures, bottom=bottom, worst=worst,
         worst_histories=worst_histories, verdict_maps=verdict_maps, sections=sections,
         mechanics=mechanics_section(run, pending), statistics=statistics, large=large,

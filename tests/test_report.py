@@ -547,3 +547,19 @@ def test_suite_statistics_and_bottom_line_folded_record_by_record_equal_the_whol
     assert json.dumps(line.lines(), sort_keys=True, default=str) == json.dumps(
         whole_line, sort_keys=True, default=str)
     assert any(entry["worst"] for entry in whole_line)
+
+
+def test_templates_compile_once_across_processes(monkeypatch):
+    """A page's template is compiled in one process and loaded compiled by the next (jinja2's
+    bytecode cache): a fresh environment loads it, with the same blocks, without compiling."""
+    from jinja2 import Environment
+    from reports.html_parts import page_templates
+
+    first = page_templates().get_template("report.html.j2")
+
+    def compiled_again(*args, **kwargs):
+        raise AssertionError("the template was compiled again")
+
+    monkeypatch.setattr(Environment, "compile", compiled_again)
+    again = page_templates().get_template("report.html.j2")
+    assert again.blocks.keys() == first.blocks.keys()
