@@ -3,6 +3,7 @@ figure's div and a table."""
 
 from __future__ import annotations
 
+import functools
 import math
 
 import pandas as pd
@@ -17,15 +18,41 @@ def number(value, fmt: str = "{:.3g}") -> str:
         else fmt.format(value)
 
 
+class _SparingBytecodeCache(FileSystemBytecodeCache):
+    """jinja2's cache of compiled templates, which never fails a page: compiled code it cannot
+    read or write is compiled again, as without a cache."""
+
+    def load_bytecode(self, bucket) -> None:
+        try:
+            super().load_bytecode(bucket)
+        except OSError:
+            pass
+
+    def dump_bytecode(self, bucket) -> None:
+        try:
+            super().dump_bytecode(bucket)
+        except OSError:
+            pass
+
+
+@functools.cache
+def _bytecode_cache() -> FileSystemBytecodeCache | None:
+    """The cache in jinja2's folder of the user's temporary directory (``_jinja2-cache-UID``),
+    None where that folder cannot be made or is not safely the user's own."""
+    try:
+        return _SparingBytecodeCache()
+    except (OSError, RuntimeError):
+        return None
+
+
 def page_templates() -> Environment:
     """The pages' templates (``reports/templates``), with the ``num`` filter (:func:`number`).
 
-    Compiling a template costs ~80 ms a process; jinja2 keeps the compiled code in its own
-    folder of the user's temporary directory, keyed by the template's source, so later
-    processes load it instead."""
+    Compiling a template costs ~80 ms a process; jinja2 keeps the compiled code, keyed by the
+    template's source, so later processes load it instead (:func:`_bytecode_cache`)."""
     env = Environment(loader=PackageLoader("reports", "templates"),
                       autoescape=select_autoescape(["html", "j2"]), trim_blocks=True,
-                      lstrip_blocks=True, bytecode_cache=FileSystemBytecodeCache())
+                      lstrip_blocks=True, bytecode_cache=_bytecode_cache())
     env.filters["num"] = number
     return env
 

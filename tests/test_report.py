@@ -563,3 +563,43 @@ def test_templates_compile_once_across_processes(monkeypatch):
     monkeypatch.setattr(Environment, "compile", compiled_again)
     again = page_templates().get_template("report.html.j2")
     assert again.blocks.keys() == first.blocks.keys()
+
+
+@pytest.fixture
+def own_temporary_directory(tmp_path, monkeypatch):
+    """The temporary directory jinja2's cache folder goes in, moved to ``tmp_path`` (the
+    process's cache object made afresh there, and again after the test)."""
+    import tempfile
+    from reports import html_parts
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    html_parts._bytecode_cache.cache_clear()
+    yield tmp_path
+    html_parts._bytecode_cache.cache_clear()
+
+
+def test_pages_render_where_the_template_cache_folder_is_not_the_users(own_temporary_directory):
+    """Something else at the cache folder's name (here a file; on a shared machine, another
+    user's folder) turns the cache off; the page is still drawn."""
+    from reports.html_parts import page_templates
+
+    (own_temporary_directory / f"_jinja2-cache-{os.getuid()}").write_text("not a folder")
+    env = page_templates()
+    assert env.bytecode_cache is None
+    assert "report.html.j2" == env.get_template("report.html.j2").name
+
+
+def test_pages_render_where_the_template_cache_cannot_be_written(own_temporary_directory,
+                                                                  monkeypatch):
+    """A compiled template that cannot be saved (a full disk) is compiled again next time,
+    not an error."""
+    import jinja2.bccache
+    from reports.html_parts import page_templates
+
+    def disk_full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(jinja2.bccache.tempfile, "NamedTemporaryFile", disk_full)
+    for _ in range(2):
+        assert page_templates().get_template("check.html.j2").name == "check.html.j2"
+    assert not any((own_temporary_directory / f"_jinja2-cache-{os.getuid()}").iterdir())
