@@ -99,7 +99,7 @@ def _may_exceed(f0, f1, f2, f3, reach, xi_omega, inv_omega_d, peak):
 
 @kernel()
 def step_may_peak(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega2, dt,
-                   inv_omega_d, sd, sv, sa, displacement_only):
+                  inv_omega_d, sd, sv, sa, displacement_only):
     """Whether :func:`step_peaks` may raise (sd, sv, sa) inside this step: the tests of
     :func:`_may_peak_inside` on the step's own derivatives at both ends (not the record's
     bounds of the first test), in the same operations. With one segment the step is then
@@ -152,7 +152,7 @@ def _segment_peak(f0, g0, f2, f3, g1, length, xi_omega, omega_d, omega2):
 
 @kernel()
 def step_peaks(u, v, u_next, v_next, acc_k, slope, n_segments, xi_omega, omega_d, omega2,
-                dt, sd, sv, sa, displacement_only):
+               dt, sd, sv, sa, displacement_only):
     """(sd, sv, sa) raised to the extrema of u, u', ü + üg strictly inside one step from
     (u, u') to (u_next, v_next) under üg = acc_k + slope·τ (sd alone if ``displacement_only``).
 
