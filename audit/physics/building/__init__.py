@@ -1,0 +1,1 @@
+"""Linear building models that turn a ground motion into the motion of a floor."""
