@@ -10,6 +10,12 @@ light).
 
 __version__ = "0.1.0"
 
+# records, reports and procedures are generic names: a foreign one found first is named here,
+# not met later as a puzzling ImportError inside the audit (docs/install.md)
+from audit.top_level import check_siblings as _check_siblings  # noqa: E402
+
+_check_siblings()
+
 #: Acceleration of gravity [m/s²] used throughout unless configured otherwise.
 G = 9.81
 

@@ -2,9 +2,9 @@
 
 Layers, lowest first: records → physics → procedures → engine → reports → API → command line;
 a module imports only from its own layer or lower ones. ``audit`` (G, the version),
-``audit.errors`` and ``audit.files`` are below every layer. Every import counts, including the
-ones inside functions that keep start-up light: an import deferred into a function still ties
-the two modules together.
+``audit.errors``, ``audit.files`` and ``audit.top_level`` are below every layer. Every import
+counts, including the ones inside functions that keep start-up light: an import deferred into
+a function still ties the two modules together.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[1]
 PACKAGES = ("audit", "procedures", "reports", "records")
-BASE = {"audit", "audit.errors", "audit.files"}
+BASE = {"audit", "audit.errors", "audit.files", "audit.top_level"}
 LAYERS = (("records",), ("audit.physics",), ("procedures",), ("audit.engine",), ("reports",),
           ("audit.api",), ("audit.cli", "audit.__main__"))
 
