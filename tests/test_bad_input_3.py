@@ -263,6 +263,23 @@ def test_ten_thousand_objects_refused_with_the_estimate_and_force(workdir, capsy
     assert "force=True" not in line
 
 
+def test_long_width_search_passes_report_each_record(monkeypatch):
+    import records
+    from audit.engine import check_widths
+    from audit.engine.check_settings import CheckSettings
+    monkeypatch.setattr(check_widths, "PROGRESS_BLOCKS", 2)  # 1,000 blocks, made small
+    pulse = records.one_pulse("cosine", 0.3, 1.0)
+    entries = [SimpleNamespace(id=f"p{i}", motion=pulse) for i in range(2)]
+    calls = []
+    family = check_widths.Family(entries, np.array([0.1, 0.2]), {"p0": 0.3, "p1": 0.3},
+                                 CheckSettings.parse(free_motion_s=1.0), 1, "local",
+                                 lambda done, total, what, how: calls.append((done, total, what)))
+    family.overturned([1.0], [0.2])  # one block: a short pass says nothing
+    assert calls == []
+    family.overturned([1.0, 1.0], [0.2, 0.3])
+    assert calls == [(1, 2, "p0"), (2, 2, "p1")]
+
+
 # --- noticed: text records, a campaign that all overturned, a tiny block -----------------------
 
 TIMES = np.arange(200) * 0.01
