@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import lzma
 import re
+import warnings
 import zipfile
 import zlib
 from dataclasses import dataclass
@@ -29,7 +30,7 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.errors import InputError
+from audit.errors import InputError, InputWarning
 from records.motion import GroundMotion
 from records.readers import PLAUSIBLE_PGA_G
 
@@ -44,6 +45,10 @@ _DT_TOLERANCE = 1e-3
 #: sample at 20 Hz to 10 kHz; coarser than 0.05 s (Nyquist 10 Hz) a record cannot carry what
 #: rocks a block, and a time column in milliseconds (steps of 1–20 "s") lands well above it.
 TABLE_DT_S = (1e-4, 0.05)
+#: Median peak of a campaign's table motions above which it is warned of as m/s² under acc_g
+#: [g]: rocking campaigns shake at 0.05–1.5 g, while a real campaign of strong tests could
+#: exceed it, so a warning, not a refusal (cm/s² land above any recorded peak: refused).
+MEDIAN_PEAK_WARN_G = 1.5
 
 
 @dataclass(frozen=True)
@@ -167,6 +172,11 @@ def read_campaign(folder) -> Campaign:
             peers[owner][column] = _binary(frame, column, str(where))
     motions = tuple(read_table_motion(folder / path, name)
                     for name, path in zip(frame["test"], frame["motion_file"]))
+    median_g = float(np.median([m.pga_g for m in motions]))
+    if median_g > MEDIAN_PEAK_WARN_G:
+        warnings.warn(f"{where}: acc_g: the median peak of the table motions is {median_g:.3g} g; "
+                      f"are they in m/s² ({median_g / G:.2g} g)? The column must hold g",
+                      InputWarning, stacklevel=2)
     tests = frame[list(REQUIRED_COLUMNS)].reset_index(drop=True)
     return Campaign(folder, tests, motions, outcomes, peers)
 

@@ -147,6 +147,18 @@ def test_campaign_motion_in_cm_s2_under_a_g_column(workdir, capsys):
     assert "(0.05 g)" in line  # what it is in g if the column holds cm/s²
 
 
+def test_campaign_in_m_s2_under_a_g_column_is_warned(tmp_path):
+    from audit.errors import InputWarning
+    # 0.2 g written in m/s² reads as 1.96 "g": a possible, if strong, shake-table test
+    t = np.arange(800) * 0.01
+    folder = tmp_path / "camp"
+    _campaign(folder)
+    for path in (folder / "motions").iterdir():
+        path.write_text(_motion_csv(t, 0.2 * G * np.sin(2 * np.pi * t)))
+    with pytest.warns(InputWarning, match=r"tests\.csv: acc_g: the median peak .* m/s²"):
+        read_campaign(folder)
+
+
 def test_campaign_motion_too_short_for_the_band_pass(workdir, capsys):
     t = np.arange(12) * 0.01
     _campaign(workdir / "camp", _motion_csv(t, 0.2 * np.sin(t)))
