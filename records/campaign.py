@@ -18,7 +18,11 @@ refused with a message: this version fits outcomes only.
 
 from __future__ import annotations
 
+import lzma
 import re
+import warnings
+import zipfile
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -26,8 +30,9 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.errors import InputError
+from audit.errors import InputError, InputWarning
 from records.motion import GroundMotion
+from records.readers import PLAUSIBLE_PGA_G
 
 TESTS_CSV = "tests.csv"
 REQUIRED_COLUMNS = ("test", "ground_motion", "motion_file")
@@ -36,6 +41,14 @@ PEAK_ROTATION_SUFFIX = "_peak_rotation_rad"
 PEER_PREFIX = "numerical_"
 #: Relative spread of the time steps accepted as one constant step.
 _DT_TOLERANCE = 1e-3
+#: Time steps of a table motion accepted [s]: shake-table controllers and their acquisition
+#: sample at 20 Hz to 10 kHz; coarser than 0.05 s (Nyquist 10 Hz) a record cannot carry what
+#: rocks a block, and a time column in milliseconds (steps of 1–20 "s") lands well above it.
+TABLE_DT_S = (1e-4, 0.05)
+#: Median peak of a campaign's table motions above which it is warned of as m/s² under acc_g
+#: [g]: rocking campaigns shake at 0.05–1.5 g, while a real campaign of strong tests could
+#: exceed it, so a warning, not a refusal (cm/s² land above any recorded peak: refused).
+MEDIAN_PEAK_WARN_G = 1.5
 
 
 @dataclass(frozen=True)
@@ -93,7 +106,8 @@ def read_table_motion(path: Path, name: str) -> GroundMotion:
         frame = pd.read_csv(path)
     except FileNotFoundError:
         raise InputError(f"{path}: motion_file of test {name}: no such file") from None
-    except (ValueError, OSError, EOFError) as exc:
+    except (ValueError, OSError, EOFError, zlib.error, lzma.LZMAError,
+            zipfile.BadZipFile) as exc:  # a corrupt compressed stream raises the codec's error
         raise InputError(f"{path}: motion_file of test {name}: unreadable ({exc})") from None
     missing = [c for c in ("time_s", "acc_g") if c not in frame.columns]
     if missing:
@@ -110,6 +124,15 @@ def read_table_motion(path: Path, name: str) -> GroundMotion:
     dt = float(np.median(steps))
     if not (dt > 0 and np.all(np.abs(steps - dt) <= _DT_TOLERANCE * dt + 1e-9)):
         raise InputError(f"{path}: time_s: the time step is not constant")
+    if not TABLE_DT_S[0] <= dt <= TABLE_DT_S[1]:
+        raise InputError(f"{path}: time_s: a step of {dt:g} s is not a table motion's (expected "
+                         f"{TABLE_DT_S[0]:g}–{TABLE_DT_S[1]:g} s); is the time in "
+                         f"{'milliseconds' if dt > TABLE_DT_S[1] else 'another unit'}?")
+    peak = float(np.max(np.abs(acc)))
+    if peak > PLAUSIBLE_PGA_G:  # no recorded motion exceeds ~4.4 g; cm/s² land far above
+        raise InputError(f"{path}: acc_g: a peak of {peak:.3g} g is beyond any recorded motion "
+                         f"(at most ~4.4 g); is it in cm/s² ({peak / 100 / G:.2g} g) or m/s² "
+                         f"({peak / G:.2g} g)? The column must hold g")
     return GroundMotion(name, acc * G, dt, component="shake-table acceleration",
                         source=str(path))
 
@@ -149,6 +172,11 @@ def read_campaign(folder) -> Campaign:
             peers[owner][column] = _binary(frame, column, str(where))
     motions = tuple(read_table_motion(folder / path, name)
                     for name, path in zip(frame["test"], frame["motion_file"]))
+    median_g = float(np.median([m.pga_g for m in motions]))
+    if median_g > MEDIAN_PEAK_WARN_G:
+        warnings.warn(f"{where}: acc_g: the median peak of the table motions is {median_g:.3g} g; "
+                      f"are they in m/s² ({median_g / G:.2g} g)? The column must hold g",
+                      InputWarning, stacklevel=2)
     tests = frame[list(REQUIRED_COLUMNS)].reset_index(drop=True)
     return Campaign(folder, tests, motions, outcomes, peers)
 

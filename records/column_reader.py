@@ -63,8 +63,10 @@ def read_columns(path: str | Path, column: int | None = None, dt: float | None =
     if column is not None and (not isinstance(column, int) or isinstance(column, bool)
                                or column < 1):
         raise InputError(f"{path}: column: must be a whole number ≥ 1, got {column!r}")
-    comments = " ".join(line for line in lines if line.lstrip()[:1] in ("%", "#"))
-    timed = column != 1 and _opens_with_time(lines)
+    rows, header = _data_rows(lines, path)
+    # an uncommented header line of names may state the units or the step, as a comment does
+    comments = " ".join([line for line in lines if line.lstrip()[:1] in ("%", "#")] + [header])
+    timed = column != 1 and _opens_with_time([tokens for _, tokens in rows])
     column = column or (2 if timed else 1)
     if dt is None and not timed:
         found = _DT_COMMENT.search(comments)
@@ -82,10 +84,7 @@ def read_columns(path: str | Path, column: int | None = None, dt: float | None =
                              f"({', '.join(UNIT_FACTORS)})")
     factor = unit_factor(units, str(path))
     texts, times, line_nos = [], [], []
-    for line_no, line in enumerate(lines, start=1):
-        tokens = line.split()
-        if not tokens or tokens[0][0] in "%#":
-            continue
+    for line_no, tokens in rows:
         if len(tokens) < column:
             raise InputError(f"{path}: line {line_no}: column {column} missing "
                              f"(the line has {len(tokens)})")
@@ -117,16 +116,42 @@ def read_columns(path: str | Path, column: int | None = None, dt: float | None =
     ), units)
 
 
-def _opens_with_time(lines: list[str]) -> bool:
+def _is_number(token: str) -> bool:
+    try:
+        float(token.replace("D", "E").replace("d", "e"))
+    except ValueError:
+        return False
+    return True
+
+
+def _data_rows(lines: list[str], path: Path) -> tuple[list, str]:
+    """(line number, fields) of every data line, and the text of an uncommented header line
+    of names before them (``time_s acc_g``: no field of it is a number), which is not data.
+    Fields are separated by whitespace, or by commas where the data's decimals are points (a
+    CSV file); commas without a decimal point anywhere could be decimal commas: refused."""
+    data = [(line_no, line) for line_no, line in enumerate(lines, start=1)
+            if line.strip() and line.lstrip()[0] not in "%#"]
+    header = ""
+    if len(data) > 1 and not any(_is_number(field)
+                                 for field in re.split(r"[,\s]+", data[0][1].strip())):
+        header = data.pop(0)[1]
+    commas = [(line_no, line) for line_no, line in data if "," in line]
+    if commas and not any("." in line for _, line in data):
+        line_no, line = commas[0]
+        raise InputError(f"{path}: line {line_no}: '{line.strip()[:40]}' has commas and no "
+                         "decimal point: decimal commas? write decimals with points and "
+                         "separate columns by spaces, tabs or commas")
+    return [(line_no, [field.strip() for field in line.split(",")] if commas else line.split())
+            for line_no, line in data], header
+
+
+def _opens_with_time(rows: list[list[str]]) -> bool:
     """Whether the file's first column is a time column: its first :data:`TIME_SNIFF_LINES`
-    data lines hold two or more numbers each, and the first number rises on at least
+    data rows hold two or more numbers each, and the first number rises on at least
     :data:`TIME_COLUMN_RISING` of the steps between them (an acceleration column rises on
     about half)."""
     firsts = []
-    for line in lines:
-        tokens = line.split()
-        if not tokens or tokens[0][0] in "%#":
-            continue
+    for tokens in rows:
         if len(tokens) < 2:
             return False
         firsts.append(tokens[0])

@@ -19,6 +19,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from audit.engine.check_risk import quiet_risk
+from audit.engine.check_words import metres
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
@@ -68,7 +69,7 @@ def _drawing(obj, colours) -> dict:
         shapes.append(_outline(x, width, height, colour, dash, fill))
         notes.append({"x": x + width / 2, "y": -0.04 * height, "yanchor": "top",
                       "showarrow": False, "textangle": -30 if len(columns) > 4 else 0,
-                      "text": f"{label}<br>{width:.2f} m", "font": {"size": 11, "color": colour}})
+                      "text": f"{label}<br>{metres(width)}", "font": {"size": 11, "color": colour}})
         x += width + gap
     layout = _layout(460, shapes=shapes, annotations=notes)
     layout["xaxis"] = _axis("width [m]", range=[-0.1 * height, x], zeroline=False)

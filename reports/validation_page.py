@@ -31,12 +31,19 @@ _SCORE_HEADINGS = {"log_loss": "log-loss", "true_positive": "TP", "false_positiv
 _OUTCOME_STYLE = {1.0: ("overturned", "#d62728", "x"), 0.0: ("stood", "#1f77b4", "circle-open")}
 
 
-def _fifty_percent_line(tests: pd.DataFrame, fit) -> dict:
+def _fifty_percent_line(tests: pd.DataFrame, fit) -> dict | None:
     """The model's 50 % line in the plane: its full-fit probabilities on these tests smoothed
     by a logistic in ln PGA and ln(PGV/PGA) (the probability depends on the whole motion, so
-    any line in a two-number plane is a projection)."""
+    any line in a two-number plane is a projection). None where the model puts every test on
+    one side of 50 % (e.g. a campaign where every test overturned): the smoothing logistic's
+    coefficients then run off to infinity and no line crosses the tests."""
+    p = tests["p_model"].to_numpy(dtype=float)
+    if not ((p > 0.5).any() and (p < 0.5).any()):
+        return None
     smooth = VectorLogistic.fit(tests["pga_g"], tests["pgv_pga_s"], tests["p_model"], 1e-9)
     b0, b1, b2 = smooth.coefficients
+    if b2 == 0.0:  # the line does not depend on PGV/PGA: vertical, off this parametrisation
+        return None
     tan_alpha = math.tan(math.radians(fit.alpha_deg))
     reach = tests["pga_g"] / tan_alpha
     x = np.geomspace(reach.min(), reach.max(), 120)
@@ -59,7 +66,9 @@ def _outcome_map(tests: pd.DataFrame, fit) -> dict:
     data.append({"type": "scatter", "mode": "markers", "name": "no outcome (predicted)",
                  "x": x[unknown], "y": y[unknown], "text": tests["test"][unknown].astype(str),
                  "marker": {"color": "#999999", "size": 4}})
-    data.append(_fifty_percent_line(tests, fit))
+    line = _fifty_percent_line(tests, fit)
+    if line is not None:
+        data.append(line)
     return {"data": data, "layout": {
         "title": {"text": f"{fit.specimen}: outcomes (α̂ = {fit.alpha_deg:.1f}°, "
                           f"p̂ = {fit.p_rad_s:.2f} rad/s)"},

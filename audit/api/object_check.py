@@ -117,7 +117,7 @@ def _objects(objects, g: float) -> list:
 
 
 def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc_site=None,
-          progress=False, **options) -> CheckResult:
+          progress=False, force: bool = False, **options) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check_risk`).
@@ -139,6 +139,9 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
         NTC 2018 site, see :func:`audit.api.design_suite`.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, record_id, how)``.
+    force : bool
+        Start even when the work is estimated beyond the limits of
+        :mod:`audit.engine.guards` (as for :func:`audit.api.run`); InputError otherwise.
     **options :
         What is computed, the fields of :class:`~audit.engine.check_settings.CheckSettings`:
         ``im`` (``pga`` or ``sa:T``, the site's intensity read from its design spectrum;
@@ -152,8 +155,10 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
     -------
     CheckResult
     """
-    from audit.api import design_suite
     from audit.api.inputs import procedures_of, split, suite_of
+    from audit.engine import fields, guards
+    from audit.engine.costs import check_cost
+    from audit.engine.design_site import DesignSite
     from audit.engine.check import run_check
     from audit.engine.check_settings import CHECK_FIELDS, CheckSettings
     from audit.engine.progress import Progress
@@ -170,8 +175,14 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
                          f"how), got {progress!r}", "progress")
     runtime = Runtime.parse(**how, progress=progress if callable(progress) else None)
     chosen = procedures_of(procedures)
-    suite = design_suite(suite_of(records), site=(sxs_g, sx1_g), site_override=True,
-                         scale_to_site=True, ntc_site=ntc_site)
+    # the site is checked before the records are read (a site in per cent of g fails at once)
+    design_site = DesignSite.parse(site=(sxs_g, sx1_g), site_override=True, scale_to_site=True,
+                                   ntc_site=ntc_site)
+    given = suite_of(records)
+    # the work, before the records are scaled to the site (scaling keeps their samples)
+    guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
+                 fields.flag("force", force))
+    suite = design_site.apply(given)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, settings,

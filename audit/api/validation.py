@@ -70,9 +70,6 @@ def validate(folder, geometry=None, folds: int = 5, jobs: int = DEFAULT_JOBS,
     settings = settings or ValidationSettings(folds=folds, jobs=jobs, free_motion_s=free_motion_s)
     bar = Progress(len(campaign.motions), "test") if progress is True else None
     try:
-        if bar:
-            bar.stage(f"exact outcomes of {settings.solves_per_test} blocks under each of "
-                      f"{len(campaign.motions)} table motions")
         result = run_validation(campaign, settings, given, bar or progress or None)
     finally:
         if bar is not None:

@@ -59,6 +59,7 @@ def add_parser(sub):
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
                    metavar="S", help="free motion after each record [s]")
     p.add_argument("--out", metavar="DIR", help="write check.json, check.csv, check.html here")
+    options.add_force_option(p)
     p.add_argument("--scheduler", default="local", metavar="local|dask|tcp://HOST:PORT",
                    help="where records are computed")
     p.set_defaults(func=run)
@@ -118,7 +119,7 @@ def run(args) -> int:
         raise InputError("--site-location: a site of the --hazard file; no --hazard given")
     result = check(objects, site, procedures=args.procedure, records=args.records,
                    ntc_site=ntc_site, jobs=args.jobs, scheduler=args.scheduler,
-                   progress=True, **values)
+                   progress=True, force=args.force, **values)
     if out_dir is not None:
         result.write(out_dir)
     print(f"done in {time.perf_counter() - start:.1f} s", file=sys.stderr)

@@ -175,7 +175,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         _stage(progress, "the exact width for P(overturn) ≤ 10 % and ≤ 50 % at each height"
                + (" and for the risk target" if curve is not None else ""))
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
-        family = Family(entries, levels, intensity, settings, jobs, executor)
+        family = Family(entries, levels, intensity, settings, jobs, executor, progress)
         widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure)
         contexts = {}  # records scaled to the site, on the spectra their parts computed
 

@@ -148,9 +148,14 @@ def read_objects(path, option: str = "objects", g: float = G) -> list[CheckObjec
                          f"(or name,alpha_deg,size_s), got {','.join(columns) or 'none'}")
     objects, names = [], set()
     for row_number, raw in enumerate(reader, start=2):
+        extra = raw.pop(None, None)  # csv puts the fields beyond the header's under None
         row = {(k or "").strip(): (v or "").strip() for k, v in raw.items()}
         name = row.get("name", "")
         where = f"{option}: {path}: row {row_number}" + (f" ({name})" if name else "")
+        if extra and any(field.strip() for field in extra):
+            raise InputError(f"{where}: {len(columns) + len(extra)} fields, the header has "
+                             f"{len(columns)} ({','.join(columns)}); quote a name that holds "
+                             "a comma")
         if not name:
             raise InputError(f"{where}: name: empty")
         if name in names:

@@ -42,6 +42,9 @@ WIDTH_TOLERANCE = 0.005
 #: α (Priestley's β(r(α))) reads a new spectrum of the record.
 GUIDELINE_STEP = 1.5
 GUIDELINE_TOLERANCE = 0.02
+#: Blocks (each solved at every stripe) from which a pass of the width search reports each
+#: record done: a long inventory's passes take minutes, a few objects' a moment.
+PROGRESS_BLOCKS = 1000
 
 
 @dataclass(frozen=True)
@@ -167,6 +170,9 @@ class Family:
     jobs : int
     scheduler :
         An open scheduler (:func:`~audit.engine.scheduler.open_scheduler`).
+    progress : callable, optional
+        ``progress(done, total, record_id, how)`` after each record of a pass of
+        :data:`PROGRESS_BLOCKS` blocks or more.
     """
 
     entries: list
@@ -175,6 +181,7 @@ class Family:
     settings: object
     jobs: int
     scheduler: object
+    progress: object = None
 
     def overturned(self, heights_m, widths_m) -> np.ndarray:
         """Exact overturning of the block of each (height, width) pair [m] under every record at
@@ -186,7 +193,9 @@ class Family:
                               tuple(b.alpha_deg for b in blocks), tuple(self.levels),
                               tuple(self.intensity.items()), self.settings.restitution, g,
                               self.settings.free_motion_s, self.jobs)
-        parts, _, _ = computed_parts(record_family, self.entries, [], work, self.scheduler)
+        parts, _, _ = computed_parts(record_family, self.entries, [], work, self.scheduler,
+                                     progress=(self.progress if len(blocks) >= PROGRESS_BLOCKS
+                                               else None))
         return np.stack(parts)
 
 

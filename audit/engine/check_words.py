@@ -9,6 +9,12 @@ from records.suite import counted_records
 EXTRAPOLATED_SHARE = 0.10
 
 
+def metres(value: float) -> str:
+    """A width in metres: to the centimetre from 10 cm, to two significant figures below, so
+    that a small object's width is not printed "0.00 m"."""
+    return f"{value:.2f} m" if value >= 0.1 else f"{value:.2g} m"
+
+
 def im_words(im, site_im: float) -> str:
     """The site's intensity in words, e.g. ``S_a(1 s) = S_X1 = 0.9 g``."""
     if im.kind == "sa":
@@ -43,8 +49,8 @@ def sentence(answer: dict, im) -> str:
     if w10 is None:
         text += "; no width up to 0.95 × its height brings it to 10 % (restrain it)"
     else:
-        text += (f"; it needs {w10:.2f} m of base width for 10 %"
-                 + (f" ({w50:.2f} m for 50 %)" if w50 is not None else ""))
+        text += (f"; it needs {metres(w10)} of base width for 10 %"
+                 + (f" ({metres(w50)} for 50 %)" if w50 is not None else ""))
     risk = answer["risk"]
     if risk is None:
         return text + "."
@@ -56,7 +62,7 @@ def sentence(answer: dict, im) -> str:
             + f", P = {100 * risk['p50']:.2g} % in 50 years "
             f"({'within' if risk['meets_target'] else 'above'} the "
             f"{100 * risk['target_p50']:g} % target"
-            + (f"; {width:.2f} m of base width meets it)" if width is not None else
+            + (f"; {metres(width)} of base width meets it)" if width is not None else
                "; no width up to 0.95 × its height meets it)")
             + (f"; {100 * outside:.0f} % of that rate comes from intensities outside the stripes, "
                "where the fitted fragility is extrapolated." if outside > EXTRAPOLATED_SHARE
@@ -106,18 +112,18 @@ def summary_text(document: dict) -> str:
             width = proc["required_width_m"]
             rows.append((proc["title"], proc["verdict"] or "—",
                          _compared(proc) if proc["verdict"] else "cannot judge",
-                         f"{width:.2f} m" if width is not None else "—")
+                         metres(width) if width is not None else "—")
                         + ((_percent(proc["risk_p50"]),) if hazard else ()))
         exact = obj["exact"]
         for target in ("10", "50"):
             width = exact[f"required_width_m_{target}pct"]
             rows.append((f"exact, P(overturn) ≤ {target} %", "", "",
-                         f"{width:.2f} m" if width is not None else "none ≤ 0.95 h")
+                         metres(width) if width is not None else "none ≤ 0.95 h")
                         + (("",) if hazard else ()))
         if hazard:
             width = obj["risk"]["required_width_m"]
             rows.append((f"exact, P in 50 years ≤ {100 * hazard['target_p50']:g} %", "", "",
-                         f"{width:.2f} m" if width is not None else "none ≤ 0.95 h",
+                         metres(width) if width is not None else "none ≤ 0.95 h",
                          f"≤ {_percent(hazard['target_p50'])}" if width is not None else ""))
         sizes = [max(len(row[k]) for row in rows) for k in range(len(rows[0]))]
         lines += ["  " + "  ".join(cell.ljust(size) for cell, size in zip(row, sizes)).rstrip()

@@ -9,6 +9,12 @@ from audit.engine import fields as check
 from audit.engine.defaults import DEFAULT_ANCHOR_PERIOD_S
 from audit.errors import InputError
 
+#: Largest S_XS or S_X1 accepted [g]. The largest mapped MCE_R short-period values of the US
+#: maps are about 3 g (S_S near faults, where F_a ≤ 1.2) and the 1 s values lower, so no code
+#: design spectrum reaches S_XS ≈ 4 g; a site above 5 g is per cent of g (150 for 1.5 g) or
+#: m/s² (14.7 for 1.5 g). Refused, not warned: no real site looks alike. A per-cent site
+#: under 5 % g would read as 1–5 g, a real if extreme site, and cannot be told apart.
+MAX_SITE_G = 5.0
 #: The fields :meth:`DesignSite.parse` takes, and their defaults.
 SITE_DEFAULTS = {"site": None, "site_override": False, "scale_to_site": False,
                  "anchor_period_s": None, "ntc_site": None}
@@ -52,6 +58,11 @@ class DesignSite:
             if len(site) != 2:
                 raise InputError(f"site: expected two numbers S_XS, S_X1 in g, got {values['site']!r}",
                                  "site")
+            if max(site) > MAX_SITE_G:
+                raise InputError(f"site: S_XS, S_X1 = {site[0]:g}, {site[1]:g} g is beyond any "
+                                 f"design spectrum (at most ~4 g; limit {MAX_SITE_G:g} g): in g, "
+                                 f"not per cent of g ({site[0] / 100:g}, {site[1] / 100:g}) or "
+                                 "m/s²", "site")
         ntc = value["ntc_site"]
         if ntc is not None:
             if isinstance(ntc, str) or not hasattr(ntc, "__len__") or len(ntc) != 5:
@@ -91,4 +102,4 @@ class DesignSite:
         return suite
 
 
-__all__ = ["DesignSite", "SITE_DEFAULTS", "SITE_FIELDS"]
+__all__ = ["DesignSite", "SITE_DEFAULTS", "SITE_FIELDS", "MAX_SITE_G"]

@@ -139,7 +139,9 @@ def estimate(motions, free_motion_s: float, blocks: int = 0, oscillators: int = 
                     f"records, {len(motions):,} of them (usually at most {USUAL_RECORDS}): "
                     "audit fewer"),
               *(Cause(s.count / max(s.default, 1),
-                      f"{s.option}, {s.count:,} values ({s.default:,} by default): give fewer")
+                      f"{s.option}, {s.count:,} "
+                      + (f"values ({s.default:,} by default)" if s.default else "of them")
+                      + ": give fewer")
                 for s in settings)]
     memory = max([free_motion, record] if oscillators else [record], key=lambda c: c.ratio)
     return Estimate(seconds, max(stored) * BYTES_PER_SAMPLE, work,

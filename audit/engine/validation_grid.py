@@ -80,13 +80,25 @@ class ValidationSettings:
 
 
 def band_passed(motion, settings: ValidationSettings):
-    """The motion band-passed (zero phase) as ``settings`` says; SI in and out."""
+    """The motion band-passed (zero phase) as ``settings`` says; SI in and out. InputError
+    naming the motion's file where its step leaves the high-pass at or above the Nyquist
+    frequency, or where it is too short for the zero-phase filter's padding."""
     nyquist = 0.5 / motion.dt
+    if settings.highpass_hz >= nyquist:
+        raise InputError(f"{motion.source}: time step {motion.dt:g} s: the Nyquist frequency "
+                         f"{nyquist:g} Hz is not above the {settings.highpass_hz:g} Hz "
+                         "high-pass; is the time column in seconds?")
     if settings.lowpass_hz < nyquist:
         sos = butter(4, [settings.highpass_hz, settings.lowpass_hz], "bandpass",
                      fs=1.0 / motion.dt, output="sos")
     else:
         sos = butter(4, settings.highpass_hz, "highpass", fs=1.0 / motion.dt, output="sos")
+    # sosfiltfilt pads each end by 3 samples per pole (scipy's default padlen) and needs more
+    pad = 3 * (2 * len(sos) + 1 - min((sos[:, 2] == 0).sum(), (sos[:, 5] == 0).sum()))
+    if motion.acceleration.size <= pad:
+        raise InputError(f"{motion.source}: {motion.acceleration.size} samples "
+                         f"({motion.duration:g} s), too short for the zero-phase band-pass "
+                         f"filter: needs more than {pad}")
     return replace(motion, acceleration=sosfiltfilt(sos, motion.acceleration),
                    component=f"{motion.component}, band-passed "
                              f"{settings.highpass_hz:g}–{settings.lowpass_hz:g} Hz")

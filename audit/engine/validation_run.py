@@ -126,6 +126,9 @@ def run_validation(campaign, settings: ValidationSettings, geometry: pd.DataFram
         ``progress(done, total, what)`` while the grid is solved.
     """
     motions = [band_passed(m, settings) for m in campaign.motions]
+    if hasattr(progress, "stage"):  # said once every motion could be filtered
+        progress.stage(f"exact outcomes of {settings.solves_per_test} blocks under each of "
+                       f"{len(motions)} table motions")
     measures = intensities(motions)
     grid = overturning_grid(motions, settings, progress)
     base = pd.DataFrame({"test": campaign.tests["test"],

@@ -86,14 +86,22 @@ def read_openquake_curve(path, site=None) -> HazardCurve:
         raise InputError(f"{path}: poe-LEVEL: expected a column per intensity level, found "
                          f"{len(poe_columns)}")
     levels = np.array([number(header[j][len(_POE):], path, header[j]) for j in poe_columns])
-    body = [row for row in rows[2:] if any(field.strip() for field in row)]
+    body = []
+    for line_no, row in enumerate(rows[2:], start=3):
+        while row and not row[-1].strip():  # trailing empty fields are no data
+            row = row[:-1]
+        if not row:
+            continue
+        if len(row) != len(header):
+            raise InputError(f"{path}: row {line_no}: {len(row)} fields, expected "
+                             f"{len(header)} (lon, lat, ... and a poe per level, as the column "
+                             "names)")
+        body.append(row)
     lon, lat = header.index("lon"), header.index("lat")
     sites = [(number(row[lon], path, "lon"), number(row[lat], path, "lat")) for row in body]
     index = match_site(sites, site, str(path))
     row = body[index]
     where = f"{path}: site ({sites[index][0]:g}, {sites[index][1]:g})"
-    if len(row) < len(header):
-        raise InputError(f"{where}: {header[len(row)]}: missing (the row is short)")
     poe = np.array([number(row[j], path, header[j]) for j in poe_columns])
     bad = np.flatnonzero(~((poe >= 0) & (poe <= 1)))
     if bad.size:
