@@ -194,7 +194,7 @@ def test_block_by_its_dimensions():
     assert block.size_s == pytest.approx(2 * math.pi / p, rel=1e-12)
     assert [b.label for b in parse_blocks(["0.4x2,0.8x2.4", "1x3"])] == ["0.4x2", "0.8x2.4", "1x3"]
     for bad in ("0.4", "2x0.4", "0x1", "axb"):
-        with pytest.raises(InputError, match="^blocks: "):
+        with pytest.raises(InputError, match=f"^blocks {bad}: "):
             parse_blocks([bad])
 
 
