@@ -151,7 +151,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
     from audit.api.inputs import motion_of
     from audit.engine import guards
     if isinstance(block, str):
-        block = Block.parse(block, "block")
+        block = Block.parse(block)
     if not isinstance(block, Block):
         raise InputError(f"block: expected a Block (audit.Block(alpha_deg=…, size_s=…) or "
                          f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")

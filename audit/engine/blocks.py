@@ -114,8 +114,8 @@ class Block:
                    width_m=float(width_m), height_m=float(height_m), name=name)
 
     @classmethod
-    def parse(cls, text: str, option: str = "block", r: float | None = None,
-              g: float = G) -> Block:
+    def parse(cls, text: str, r: float | None = None, g: float = G, *,
+              option: str = "block") -> Block:
         """The one block typed as ``WIDTHxHEIGHT`` [m] (full width × full height), e.g.
         ``0.8x2.0``; InputError naming ``option``, the text and the field otherwise."""
         blocks = parse_blocks([text], option, g, r)
