@@ -23,18 +23,19 @@ from audit.errors import InputError
 from audit.physics.block import RigidBlock
 
 #: The largest block a user may name, by its size 2π/p [s] (10 s: R = 3g/(4p²) = 18.6 m, a
-#: 0.6 m wide object 37 m tall).
+#: 0.6 m wide object 37 m tall). A limit chosen here from the physics, not a code's.
 #:
 #: Slenderness alone sets no limit: the solver integrates Eq. 4.3 exactly between impacts for
 #: any 0 < α < 45° (Eq. 4.8's r > 0 holds there; at α ≥ 45° the "block" is wider than tall and
-#: does not rock about its corners), so α < 45° is the only bound on it. Size does: a block
-#: rocks under the ground motion's content at frequencies near its own p — the rocking spectra
-#: scale with ω_p/p (Makris & Konstantinidis 2001, Section 3) — and the processed strong-motion
-#: records hold no reliable content beyond periods of about 10 s (they are high-pass filtered;
-#: the response spectra this project computes stop at 10 s too). A larger block's answer would
-#: rest on filtered-out ground motion. The usual cause of such a block is a dimension typed in
-#: millimetres, so the message suggests the block in metres. Grid sweeps (``--sizes``) are
-#: research inputs and are not limited.
+#: does not rock about its corners), so α < 45° is the only bound on it. Size does: the
+#: rocking spectra scale with ω_p/p (Makris & Konstantinidis 2001), so a block of size 2π/p
+#: is governed by ground motion of comparable periods, and processed strong-motion records are
+#: high-pass filtered, their usable band rarely reaching beyond about 10 s (the response
+#: spectra this project computes stop at 10 s too). A larger block's answer would rest on
+#: ground motion the records do not hold: ``1x80`` (2π/p = 14.6 s) and ``1x500`` (36.6 s) are
+#: refused. The usual cause of such a block is a dimension typed in millimetres, so the
+#: message then gives the block in metres. Grid sweeps (``--sizes``) are research inputs and
+#: are not limited.
 MAX_SIZE_S = 10.0
 #: From this base width [m] up, a block too large is taken as typed in millimetres and the
 #: message gives it in metres; below it (``1x80``) no unit is guessed.
@@ -202,8 +203,12 @@ def _block_of_text(item: str, option: str, g: float, r: float | None) -> Block:
 def parse_blocks(texts, option: str = "blocks", g: float = G,
                  r: float | None = None) -> list[Block]:
     """The one ``WIDTHxHEIGHT`` parser: the blocks of ``option``'s texts (repeated, each
-    possibly comma-separated), e.g. ``0.4x2.0`` [m], unnamed, within :func:`within_limits`;
-    InputError naming the option, the text and the field otherwise."""
+    possibly comma-separated), e.g. ``0.4x2.0`` [m], unnamed; InputError naming the option,
+    the text and the field otherwise.
+
+    The limits, the same for every command: positive dimensions, width < height (α < 45°,
+    the rocking model's blocks), and size 2π/p ≤ :data:`MAX_SIZE_S` = 10 s (the records'
+    long-period band; the reasons at :data:`MAX_SIZE_S`)."""
     return [_block_of_text(item.strip(), option, g, r) for text in texts or ()
             for item in str(text).split(",") if item.strip()]
 
