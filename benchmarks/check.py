@@ -27,19 +27,19 @@ sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit.api import design_suite  # noqa: E402
 from audit.engine.check import run_check  # noqa: E402
-from audit.engine.check_objects import CheckObject  # noqa: E402
+from audit.engine.blocks import Block  # noqa: E402
 from audit.engine.check_settings import CheckSettings  # noqa: E402
 from audit.engine.runtime import Runtime  # noqa: E402
 from procedures import get_procedures  # noqa: E402
 from records import load_records  # noqa: E402
 
 
-def inventory(count: int) -> list[CheckObject]:
+def inventory(count: int) -> list[Block]:
     """``count`` objects, heights and slendernesses spread (seeded)."""
     rng = np.random.default_rng(32)
     heights = rng.uniform(0.6, 3.0, count)
     widths = heights * np.tan(np.radians(rng.uniform(8.0, 30.0, count)))
-    return [CheckObject(f"object-{i + 1}", float(w), float(h)) for i, (w, h)
+    return [Block.of_dimensions(float(w), float(h), name=f"object-{i + 1}") for i, (w, h)
             in enumerate(zip(widths, heights))]
 
 
@@ -55,11 +55,11 @@ def main() -> None:
     settings = CheckSettings.parse(im="sa:1.0")
     runtime = Runtime.parse(jobs=args.jobs)
     every = get_procedures("all")
-    cases = {"one object, every procedure": (every, [CheckObject("0.6x1.8", 0.6, 1.8)]),
-             "one object, exact only": ([], [CheckObject("0.6x1.8", 0.6, 1.8)]),
+    cases = {"one object, every procedure": (every, [Block.of_dimensions(0.6, 1.8, name="0.6x1.8")]),
+             "one object, exact only": ([], [Block.of_dimensions(0.6, 1.8, name="0.6x1.8")]),
              f"{args.objects} objects, every procedure": (every, inventory(args.objects))}
     two = replace(suite, entries=tuple(list(suite)[:2]))
-    run_check(every, two, [CheckObject("warm-up", 0.5, 1.5)], settings, runtime)
+    run_check(every, two, [Block.of_dimensions(0.5, 1.5, name="warm-up")], settings, runtime)
     wall = {name: [] for name in cases}
     cpu = {name: [] for name in cases}
     for _ in range(args.repeat):

@@ -13,7 +13,7 @@ from scipy.stats import norm
 
 import audit
 from audit.cli import main
-from audit.engine.check_objects import CheckObject
+from audit.engine.blocks import Block
 from audit.engine.check_summary import CSV_COLUMNS
 from audit.engine.check_widths import required_width
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
@@ -42,7 +42,7 @@ def _pulses():
 
 @pytest.fixture(scope="module")
 def result():
-    by_slenderness = CheckObject.from_slenderness("by-alpha", ALPHA_DEG, SIZE_S)
+    by_slenderness = Block(alpha_deg=ALPHA_DEG, size_s=SIZE_S, name="by-alpha")
     return audit.check(["0.6x1.8", by_slenderness], SITE, procedures=["fema356", "housner1963"],
                        records=_pulses(), im="pga", free_motion_s=5.0)
 
@@ -223,7 +223,7 @@ def test_accepted_width_is_the_order_statistic_of_the_records_widths():
     rng = np.random.default_rng(5)
     for n in (1, 7, 44):
         c = rng.uniform(0.2, 1.4, n)
-        obj = CheckObject("x", 0.6, 1.8)
+        obj = Block.of_dimensions(0.6, 1.8, name="x")
         tries = []
 
         def refine(which, widths, c=c):
@@ -240,7 +240,7 @@ def test_accepted_width_is_the_order_statistic_of_the_records_widths():
 
 def test_a_guideline_that_rejects_every_width_requires_none():
     from audit.engine.check_widths import accepted_width, guideline_bracket
-    obj = CheckObject("x", 0.6, 1.8)
+    obj = Block.of_dimensions(0.6, 1.8, name="x")
     low, high = guideline_bracket(lambda w: True, obj, True)
     assert (low, high) == (pytest.approx(0.99 * 1.8), math.inf)
     assert math.isinf(accepted_width([low], [high], lambda which, widths: [True] * len(which)))
@@ -263,7 +263,7 @@ def test_a_dask_cluster_gives_the_same_answers(result):
     """The check's records on a Dask LocalCluster of two worker processes: every object's
     answer as in this process (the width search sends its records with no procedure, and the
     check's work sets its stripes' solver threads)."""
-    dask = audit.check(["0.6x1.8", CheckObject.from_slenderness("by-alpha", ALPHA_DEG, SIZE_S)],
+    dask = audit.check(["0.6x1.8", Block(alpha_deg=ALPHA_DEG, size_s=SIZE_S, name="by-alpha")],
                        SITE, procedures=["fema356", "housner1963"], records=_pulses(), im="pga",
                        free_motion_s=5.0, scheduler="dask", jobs=2)
     assert "LocalCluster of 2" in dask.document["scheduler"]

@@ -60,14 +60,14 @@ def test_from_dimensions_none():
     _raises("width_m", audit.Block.from_dimensions, None, 2)
 
 
-def test_from_dimensions_millimetres_refused_above_100_m():
-    assert "100 m" in _raises("width_m", audit.Block.from_dimensions, 600, 1800)
+def test_from_dimensions_millimetres_refused_with_the_block_in_metres():
+    assert "millimetres? 0.6x1.8 m" in _raises("height_m", audit.Block.from_dimensions, 600, 1800)
 
 
-def test_from_dimensions_tall_block_warned_above_10_m():
-    with pytest.warns(audit.errors.InputWarning, match="height_m"):
-        block = audit.Block.from_dimensions(2.0, 12.0)
-    assert block.height_m == pytest.approx(12.0)
+def test_from_dimensions_tall_block_within_the_limit_kept_as_typed():
+    # 2 × 12 m: R = √(1 + 36) = 6.08 m, 2π/p = 2π/√(3g/(4R)) = 5.7 s ≤ 10 s
+    block = audit.Block.from_dimensions(2.0, 12.0)
+    assert (block.width_m, block.height_m) == (2.0, 12.0)
 
 
 def test_run_a_number_for_procedures():

@@ -11,7 +11,7 @@ import pytest
 from scipy.stats import norm
 
 from audit.cli import main
-from audit.engine.blocks import BlockList, NamedBlock
+from audit.engine.blocks import Block, BlockList
 from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.intensity import IntensityMeasure
 from audit.engine.margins import run_margins
@@ -99,7 +99,7 @@ def test_a_site_based_step_is_placed_at_its_level_not_between_stripes():
     levels = np.geomspace(0.2, 1.6, 8)  # 0.566 and 0.749 g around the step
     run = run_margins(get_procedures("fema356"), _suite(),
                       _settings(im="sa:1.0", stripes=levels, alpha_deg=(), sizes_s=(),
-                                blocks=[NamedBlock(0.8, 2.0)]), Runtime())
+                                blocks=[Block.of_dimensions(0.8, 2.0)]), Runtime())
     step = 0.4 * 0.9 / (0.4 * 1.5)
     capacity = run.capacity.iloc[0]
     assert capacity["guideline_im"] == pytest.approx(step, rel=1e-6)
@@ -194,12 +194,12 @@ def test_block_by_its_dimensions():
     assert block.size_s == pytest.approx(2 * math.pi / p, rel=1e-12)
     assert [b.label for b in parse_blocks(["0.4x2,0.8x2.4", "1x3"])] == ["0.4x2", "0.8x2.4", "1x3"]
     for bad in ("0.4", "2x0.4", "0x1", "axb"):
-        with pytest.raises(InputError, match="^blocks: "):
+        with pytest.raises(InputError, match=f"^blocks {bad}: "):
             parse_blocks([bad])
 
 
 def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
-    block = NamedBlock(0.8, 4.0)
+    block = Block.of_dimensions(0.8, 4.0)
     procedures = get_procedures("priestley1978")
     named = run_margins(procedures, _suite(), _settings(blocks=[block]), Runtime())
     twin = run_margins(procedures, _suite(),
@@ -270,7 +270,7 @@ def test_margins_page_from_the_files(tmp_path):
     assert ("Blocks sized by FEMA 356 (2000) for S_XS = 1.5 g, S_X1 = 0.9 g" in page
             and f"overturn in a median {share:.0%}" in page)
     assert "0.8x4 m (α = " in page and 'id="scan0"' in page and 'id="required"' in page
-    assert result.summary["blocks"][0]["alpha_deg"] == NamedBlock(0.8, 4.0).alpha_deg
+    assert result.summary["blocks"][0]["alpha_deg"] == Block.of_dimensions(0.8, 4.0).alpha_deg
 
 
 def test_margins_command_names_the_block_option(tmp_path, capsys):

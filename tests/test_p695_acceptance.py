@@ -13,7 +13,7 @@ from audit.engine.margins import run_margins
 from audit.engine.margins_settings import MarginsSettings
 from audit.engine.margins_tables import exact_fit
 from audit.engine.p695_acceptance import counted_fit, p695_acceptance, sized_blocks
-from audit.engine.blocks import NamedBlock
+from audit.engine.blocks import Block
 from audit.engine.runtime import Runtime
 from audit.physics.block import Restitution
 from audit.engine.sites import with_design_site
@@ -45,7 +45,7 @@ def test_blocks_sized_alike_share_their_fit_and_every_value_is_the_full_audits()
     table, _ = p695_acceptance(suite, _settings(), Runtime(), required)
     assert list(table["procedure"]) == ["priestley1978", "fema356", "housner1963", "fema356"]
     sized = sized_blocks(required, 9.81)
-    blocks = tuple(NamedBlock(float(w), float(h), 9.81)
+    blocks = tuple(Block.of_dimensions(float(w), float(h), g=9.81)
                    for w, h in zip(sized["width_m"], sized["height_m"]))
     # the slow path: run_margins of the sized blocks (duplicates and all, bootstrap and all)
     full = {v: run_margins([], suite, replace(_settings(), alpha_deg=(), size_s=(), blocks=blocks,

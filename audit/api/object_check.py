@@ -88,23 +88,21 @@ class CheckResult:
 
 
 def _objects(objects, g: float) -> list:
-    from audit.api import Block
-    from audit.engine.check_objects import CheckObject, checked_object, parse_block_text
-    if isinstance(objects, (str, Block, CheckObject)):
+    from audit.engine.blocks import Block, within_limits
+    from audit.engine.check_objects import checked_object, parse_block_text
+    if isinstance(objects, (str, Block)):
         objects = [objects]
     out = []
     for i, item in enumerate(objects):
         where = f"objects[{i}]"
-        if isinstance(item, CheckObject):  # checked where it was made (the command line)
-            out.append(item)
-        elif isinstance(item, str):
+        if isinstance(item, str):
             try:
                 out += parse_block_text(item, where, g)
             except InputError as exc:
                 raise InputError(str(exc)) from None
-        elif isinstance(item, Block):
-            out.append(checked_object(f"{item.width_m:.3g}x{item.height_m:.3g}", item.width_m,
-                                      item.height_m, where, g))
+        elif isinstance(item, Block):  # named on the command line; by its dimensions if not
+            out.append(within_limits(item if item.name else replace(
+                item, name=f"{item.width_m:.3g}x{item.height_m:.3g}"), where))
         elif isinstance(item, (tuple, list)) and len(item) == 3:
             name, width, height = item
             out.append(checked_object(str(name), width, height, f"{where} ({name})", g))
@@ -129,7 +127,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
     ----------
     objects : str, Block or sequence
         ``"WIDTHxHEIGHT"`` [m], :class:`audit.api.Block`, ``(name, width_m, height_m)``,
-        :class:`audit.engine.check_objects.CheckObject`, or a list of those.
+        or a list of those.
     site : (float, float)
         FEMA 356 / ASCE 41 S_XS, S_X1 [g] at the hazard level assessed.
     procedures, records :

@@ -1,127 +1,18 @@
-"""One block and one ground motion: :class:`Block`, :func:`rock` and its
-:class:`RockingResponse`."""
+"""One block and one ground motion: :func:`rock` and its :class:`RockingResponse`; the block
+is the audit's one :class:`~audit.engine.blocks.Block`."""
 
 from __future__ import annotations
 
 import math
-import warnings
-from dataclasses import dataclass
 
 from audit import G
 from audit.engine import fields as check
+from audit.engine.blocks import Block, within_limits
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S
-from audit.errors import InputError, InputWarning
+from audit.errors import InputError
 from audit.physics.block import Restitution, RigidBlock
 from audit.physics.rocking import RockingHistory
 from audit.physics.rocking import simulate
-
-#: Above this full height or width [m] a "block" is refused: no free-standing object is that
-#: large, and the likeliest cause is a dimension typed in millimetres.
-REFUSED_DIMENSION_M = 100.0
-#: Above this full height [m] a block is accepted with a warning (a tall tank, a monument).
-WARNED_DIMENSION_M = 10.0
-
-
-@dataclass(frozen=True, kw_only=True)
-class Block:
-    """A free-standing rectangular block, by its slenderness and size (keyword arguments only:
-    ``Block(alpha_deg=15, size_s=2.0)``; by its dimensions, :meth:`from_dimensions`).
-
-    Parameters
-    ----------
-    alpha_deg : float
-        Slenderness α = atan(b/h) [degrees], 0 < α < 45.
-    size_s : float
-        Size 2π/p [s], p = √(3g/(4R)) the frequency parameter (Eq. 4.2), R the half-diagonal.
-    r : float, optional
-        Coefficient of restitution (ratio of kinetic energies after/before an impact) [-];
-        Eq. 4.8 of Makris & Konstantinidis (2001), r = (1 − 1.5 sin²α)², when not given.
-    g : float
-        Acceleration of gravity [m/s²].
-    """
-
-    alpha_deg: float
-    size_s: float
-    r: float | None = None
-    g: float = G
-
-    def __post_init__(self):
-        check.number("alpha_deg", self.alpha_deg, "a slenderness between 0 and 45 degrees", 0,
-                     45, low_open=True, high_open=True)
-        check.number("size_s", self.size_s, "a positive size 2π/p in s", 0, low_open=True)
-        _check_r_g(self.r, self.g)
-
-    @classmethod
-    def from_dimensions(cls, width_m: float, height_m: float, r: float | None = None,
-                        g: float = G) -> Block:
-        """The block of full width 2b and full height 2h [m]: α = atan(b/h), R = √(b² + h²).
-
-        A dimension above :data:`REFUSED_DIMENSION_M` (100 m) is refused (millimetres typed
-        as metres), a height above :data:`WARNED_DIMENSION_M` (10 m) warned about.
-        """
-        _check_r_g(r, g)
-        for name, value in (("width_m", width_m), ("height_m", height_m)):
-            check.number(name, value, "a positive number of metres", 0, low_open=True)
-            if value > REFUSED_DIMENSION_M:
-                raise InputError(f"{name}: {value:g} m is beyond any free-standing block "
-                                 f"(the limit is {REFUSED_DIMENSION_M:g} m); dimensions are in "
-                                 "metres, not millimetres", name)
-        if width_m >= height_m:
-            raise InputError(f"width_m, height_m: a rocking block is taller than it is wide "
-                             f"(α < 45°), got width {width_m:g} m ≥ height {height_m:g} m",
-                             "width_m", "height_m")
-        if height_m > WARNED_DIMENSION_M:
-            warnings.warn(f"height_m: {height_m:g} m is taller than most free-standing blocks "
-                          f"(above {WARNED_DIMENSION_M:g} m); dimensions are in metres",
-                          InputWarning, stacklevel=2)
-        rigid = RigidBlock.from_dimensions(width_m / 2.0, height_m / 2.0, r, g)
-        return cls(alpha_deg=math.degrees(rigid.alpha), size_s=rigid.size_s, r=r, g=g)
-
-    @classmethod
-    def parse(cls, text: str, r: float | None = None, g: float = G) -> Block:
-        """The block typed as ``WIDTHxHEIGHT`` [m] (full width × full height), e.g. ``0.8x2.0``."""
-        from audit.engine.blocks import parse_blocks
-        blocks = parse_blocks([text], "block", g)
-        if len(blocks) != 1:
-            raise InputError(f"block: expected one block WIDTHxHEIGHT, got {text!r}", "block")
-        return cls.from_dimensions(blocks[0].width_m, blocks[0].height_m, r, g)
-
-    @property
-    def rigid(self) -> RigidBlock:
-        """The solver's block (p [rad/s], α [rad], r, g)."""
-        return RigidBlock.from_size(self.size_s, math.radians(self.alpha_deg), self.r, self.g)
-
-    @property
-    def p_rad_s(self) -> float:
-        """Frequency parameter p = 2π/size [rad/s]."""
-        return 2.0 * math.pi / self.size_s
-
-    @property
-    def radius_m(self) -> float:
-        """Half-diagonal R = 3g/(4p²) [m]."""
-        return self.rigid.radius
-
-    @property
-    def width_m(self) -> float:
-        """Full width 2b = 2R sin α [m]."""
-        return 2.0 * self.rigid.half_width
-
-    @property
-    def height_m(self) -> float:
-        """Full height 2h = 2R cos α [m]."""
-        return 2.0 * self.rigid.half_height
-
-    @property
-    def restitution(self) -> float:
-        """The coefficient of restitution r the solver uses [-]."""
-        return self.rigid.r
-
-
-def _check_r_g(r, g) -> None:
-    if r is not None:
-        check.number("r", r, "a coefficient of restitution in (0, 1]", 0, 1, low_open=True)
-    check.number("g", g, "a positive acceleration in m/s²", 0, low_open=True)
-
 
 class RockingResponse:
     """The exact response of one block to one ground motion (:func:`rock`).
@@ -237,7 +128,9 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
 
     Parameters
     ----------
-    block : Block
+    block : Block or str
+        The block, or its full width and height typed ``WIDTHxHEIGHT`` [m] (``"0.8x2.0"``);
+        within the limits every command applies (:func:`audit.engine.blocks.within_limits`).
     motion : str, path, records.GroundMotion, records.RecordEntry or (array, float)
         A record id (of ``records``), a record file, a motion, or ``(acceleration [m/s²],
         dt [s])``.
@@ -257,9 +150,12 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
     """
     from audit.api.inputs import motion_of
     from audit.engine import guards
+    if isinstance(block, str):
+        block = Block.parse(block)
     if not isinstance(block, Block):
         raise InputError(f"block: expected a Block (audit.Block(alpha_deg=…, size_s=…) or "
-                         f"Block.from_dimensions), got {block!r}", "block")
+                         f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")
+    block = within_limits(block, "block", "block")
     motion = motion_of(motion, records)
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
     if friction is not None:
@@ -280,4 +176,4 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
                            friction, label)
 
 
-__all__ = ["Block", "RockingResponse", "rock", "REFUSED_DIMENSION_M", "WARNED_DIMENSION_M"]
+__all__ = ["Block", "RockingResponse", "rock"]

@@ -68,7 +68,7 @@ class CheckWork:
     ----------
     stripes : audit.engine.stripes.StripeSettings
         The stripes (the site's intensity its ``design_im``) and the objects as blocks.
-    objects : tuple of audit.engine.check_objects.CheckObject
+    objects : tuple of audit.engine.blocks.Block
     per_record : tuple of str
         Procedures judged on every record (those reading the record); the others read only the
         site and are judged once.
@@ -136,7 +136,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     procedures : list of procedures.Procedure
     suite : records.RecordSuite
         Its ``design_site`` (S_XS, S_X1 [g]) is the site.
-    objects : sequence of audit.engine.check_objects.CheckObject
+    objects : sequence of audit.engine.blocks.Block
     settings : audit.engine.check_settings.CheckSettings
         With a hazard curve, also the risk (:mod:`audit.engine.check_risk`).
     runtime : audit.engine.runtime.Runtime

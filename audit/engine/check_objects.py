@@ -1,79 +1,28 @@
-"""The objects ``audit check`` is asked about: free-standing blocks in metres, checked once.
+"""The objects ``audit check`` is asked about: named blocks
+(:class:`~audit.engine.blocks.Block`) in metres, checked once.
 
 An object is a rectangular block by its full base width and full height [m] (the box of its
 centre of mass: the rocking model's 2b × 2h), or by its slenderness and size (α, 2π/p) for
-one described that way; either gives the other through α = atan(b/h), R = √(b² + h²) and
-p = √(3g/(4R)) (Eq. 4.2). Bad objects are refused with one line naming the object and the
-field, before any work.
+one described that way. Every object passes the limits every command applies
+(:func:`~audit.engine.blocks.within_limits`); bad objects are refused with one line naming
+the object and the field, before any work.
 """
 
 from __future__ import annotations
 
 import csv
 import math
-from dataclasses import dataclass
+from dataclasses import replace
 from pathlib import Path
 
 from audit import G
+from audit.engine.blocks import Block, parse_blocks, within_limits
 from audit.errors import InputError
-from audit.physics.block import RigidBlock
 
-#: Tallest object accepted [m]: beyond it a "block" is a building, not contents.
-MAX_HEIGHT_M = 50.0
 #: Columns of an inventory file (``--objects``): required, then optional.
 REQUIRED_COLUMNS = ("name",)
 DIMENSION_COLUMNS = ("width_m", "height_m")
 SLENDERNESS_COLUMNS = ("alpha_deg", "size_s")
-
-
-@dataclass(frozen=True)
-class CheckObject:
-    """One object: a rigid block by its full base width and height [m].
-
-    Attributes
-    ----------
-    name : str
-    width_m, height_m : float
-        Full base width 2b and full height 2h [m].
-    g : float
-        Acceleration of gravity [m/s²].
-    """
-
-    name: str
-    width_m: float
-    height_m: float
-    g: float = G
-
-    @property
-    def label(self) -> str:
-        """The name outputs give the object (as :class:`~audit.engine.blocks.NamedBlock`'s)."""
-        return self.name
-
-    @property
-    def rigid(self) -> RigidBlock:
-        return RigidBlock.from_dimensions(self.width_m / 2.0, self.height_m / 2.0, g=self.g)
-
-    @property
-    def alpha_deg(self) -> float:
-        """Slenderness α = atan(width/height) [degrees]."""
-        return math.degrees(math.atan2(self.width_m, self.height_m))
-
-    @property
-    def size_s(self) -> float:
-        """Size 2π/p [s]."""
-        return self.rigid.size_s
-
-    def with_width(self, width_m: float) -> CheckObject:
-        """The object of the same height and another width (its family at this height)."""
-        return CheckObject(self.name, float(width_m), self.height_m, self.g)
-
-    @classmethod
-    def from_slenderness(cls, name: str, alpha_deg: float, size_s: float,
-                         g: float = G) -> CheckObject:
-        """The block of slenderness α [degrees] and size 2π/p [s]: width 2R sin α, height
-        2R cos α, R = 3g/(4p²)."""
-        rigid = RigidBlock.from_size(size_s, math.radians(alpha_deg), g=g)
-        return cls(name, 2.0 * rigid.half_width, 2.0 * rigid.half_height, g)
 
 
 def _positive(value, where: str, field: str, unit: str) -> float:
@@ -87,49 +36,37 @@ def _positive(value, where: str, field: str, unit: str) -> float:
     return number
 
 
-def checked_object(name: str, width_m, height_m, where: str, g: float = G) -> CheckObject:
-    """The object ``name`` after the checks every object passes; InputError naming ``where``
+def checked_object(name: str, width_m, height_m, where: str, g: float = G) -> Block:
+    """The object ``name`` after the checks every block passes; InputError naming ``where``
     (the option, argument or file row) and the field otherwise."""
     width = _positive(width_m, where, "width_m", "metres")
     height = _positive(height_m, where, "height_m", "metres")
-    if height > MAX_HEIGHT_M:
-        raise InputError(f"{where}: height_m: {height:g} m is over {MAX_HEIGHT_M:g} m, not a "
-                         "free-standing object")
     if width >= height:
-        # the wider-than-tall case also covers "width larger than 10 × the height"
         raise InputError(f"{where}: width_m: a rocking block is taller than it is wide "
                          f"(α < 45°), got width {width:g} m ≥ height {height:g} m")
-    return CheckObject(str(name), width, height, g)
+    return within_limits(Block.of_dimensions(width, height, g=g, name=str(name)), where)
 
 
-def object_by_slenderness(name: str, alpha_deg, size_s, where: str, g: float = G) -> CheckObject:
+def object_by_slenderness(name: str, alpha_deg, size_s, where: str, g: float = G) -> Block:
     """The object of slenderness α [degrees] and size 2π/p [s], checked as
-    :func:`checked_object`."""
+    :func:`checked_object` (and, like every object, known by its dimensions from then on)."""
     alpha = _positive(alpha_deg, where, "alpha_deg", "degrees")
     if alpha >= 45.0:
         raise InputError(f"{where}: alpha_deg: slenderness must lie between 0 and 45 degrees, "
                          f"got {alpha:g}")
     size = _positive(size_s, where, "size_s", "seconds")
-    shaped = CheckObject.from_slenderness(name, alpha, size, g)
+    shaped = Block(alpha_deg=alpha, size_s=size, g=g)
     return checked_object(name, shaped.width_m, shaped.height_m, where, g)
 
 
-def parse_block_text(text: str, option: str = "blocks", g: float = G) -> list[CheckObject]:
+def parse_block_text(text: str, option: str = "blocks", g: float = G) -> list[Block]:
     """Objects of one ``--block`` value, ``WIDTHxHEIGHT`` [m] (several comma-separated), named
-    as typed."""
-    objects = []
-    for item in str(text).split(","):
-        item = item.strip()
-        if not item:
-            continue
-        parts = item.lower().replace("×", "x").split("x")
-        if len(parts) != 2:
-            raise InputError(f"{option} {item}: expected WIDTHxHEIGHT in metres (e.g. 0.6x1.8)")
-        objects.append(checked_object(item, parts[0], parts[1], f"{option} {item}", g))
-    return objects
+    as typed (:func:`~audit.engine.blocks.parse_blocks`)."""
+    items = [item.strip() for item in str(text).split(",") if item.strip()]
+    return [replace(block, name=item) for item, block in zip(items, parse_blocks(items, option, g))]
 
 
-def read_objects(path, option: str = "objects", g: float = G) -> list[CheckObject]:
+def read_objects(path, option: str = "objects", g: float = G) -> list[Block]:
     """An inventory: a CSV file with ``name`` and either ``width_m,height_m`` or
     ``alpha_deg,size_s`` on each row (a row may use either pair). InputError naming the file,
     the row and the field of the first bad row."""
@@ -172,5 +109,4 @@ def read_objects(path, option: str = "objects", g: float = G) -> list[CheckObjec
     return objects
 
 
-__all__ = ["CheckObject", "checked_object", "object_by_slenderness", "parse_block_text",
-           "read_objects", "MAX_HEIGHT_M"]
+__all__ = ["checked_object", "object_by_slenderness", "parse_block_text", "read_objects"]

@@ -86,7 +86,7 @@ class ObjectFindings:
 
     Attributes
     ----------
-    obj : audit.engine.check_objects.CheckObject
+    obj : audit.engine.blocks.Block
     index : int
         Its column in the stripes' outcomes and the judgements.
     fit : audit.engine.lognormal_fit.LognormalFit or None

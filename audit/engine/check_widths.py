@@ -186,9 +186,9 @@ class Family:
     def overturned(self, heights_m, widths_m) -> np.ndarray:
         """Exact overturning of the block of each (height, width) pair [m] under every record at
         every stripe, shaped (record, stripe, block)."""
-        from audit.engine.check_objects import CheckObject
+        from audit.engine.blocks import Block
         g = self.settings.g
-        blocks = [CheckObject("", w, h, g) for h, w in zip(heights_m, widths_m)]
+        blocks = [Block.of_dimensions(w, h, g=g) for h, w in zip(heights_m, widths_m)]
         work = FamilySettings(tuple(b.size_s for b in blocks),
                               tuple(b.alpha_deg for b in blocks), tuple(self.levels),
                               tuple(self.intensity.items()), self.settings.restitution, g,

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from audit import G
 from audit.engine import fields as check
-from audit.engine.blocks import NamedBlock, parse_blocks
+from audit.engine.blocks import Block, parse_blocks, within_limits
 from audit.engine.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
                                    DEFAULT_MARGINS_SIZES, DEFAULT_RESTITUTION,
                                    DEFAULT_RISK_TARGET, DEFAULT_SITE_LEVEL,
@@ -40,7 +40,7 @@ class MarginsSettings:
     alpha_deg, size_s : tuple of float
         Slendernesses [degrees] and sizes 2π/p [s] of the grid (either may be empty when
         ``blocks`` are given).
-    blocks : tuple of audit.engine.blocks.NamedBlock
+    blocks : tuple of audit.engine.blocks.Block
         Blocks by their dimensions, beside the grid.
     restitution : Restitution
     free_motion_s, g : float
@@ -145,18 +145,17 @@ def _grid(field, value, what, low, high) -> tuple:
 
 
 def _blocks(items, g: float) -> tuple:
-    """``blocks`` as NamedBlocks: ``"WIDTHxHEIGHT"`` texts, or blocks with dimensions."""
-    if isinstance(items, str) or not hasattr(items, "__iter__"):
+    """``blocks`` as Blocks named by their dimensions: ``"WIDTHxHEIGHT"`` texts or Blocks,
+    within the limits every command applies."""
+    if isinstance(items, (str, Block)) or not hasattr(items, "__iter__"):
         items = [items]
     blocks = []
     for item in items:
         if isinstance(item, str):
             blocks += parse_blocks([item], "blocks", g)
-        elif isinstance(item, NamedBlock):
-            blocks.append(item)
-        elif hasattr(item, "width_m") and hasattr(item, "height_m"):
-            blocks.append(NamedBlock(float(item.width_m), float(item.height_m),
-                                     float(getattr(item, "g", g))))
+        elif isinstance(item, Block):
+            # margins' tables name a block by its dimensions (block_m)
+            blocks.append(within_limits(replace(item, name=""), "blocks", "blocks"))
         else:
             raise InputError(f"blocks: expected 'WIDTHxHEIGHT' in metres (e.g. '0.8x2.0') or a "
                              f"Block, got {item!r}", "blocks")

