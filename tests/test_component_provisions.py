@@ -142,3 +142,29 @@ def test_entries_in_the_agreed_shape():
     assert {entry["anchorage_force_over_weight"] for entry in squat} == {None}
     with pytest.raises(InputError, match="width_m"):
         component_entries(0.0, 1.0, site=(1.0, 0.6))
+
+
+def test_check_lists_the_provisions():
+    from records import RecordEntry, RecordSuite, one_pulse
+    import audit
+    pulses = RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
+                                                                       record_id=f"c{t:g}"))
+                               for t in (0.5, 1.0, 2.0)), "three one-cosine pulses")
+    result = audit.check(["0.6x1.8"], (1.5, 0.9), procedures=["fema356"], records=pulses,
+                         im="pga", free_motion_s=5.0)
+    (obj,) = result.document["objects"]
+    by_key = {entry["key"]: entry for entry in obj["component_provisions"]}
+    # on the ground, S_DS = 1.5 g: ASCE's 0.4·1.5/1.712698/1.5 = 0.2335 < 0.3·1.5 = 0.45, the
+    # lower bound; capacity (0.9 − 0.2·1.5)·0.3/0.9 = 0.6/3 = 0.2: fails
+    assert (by_key["asce7_22"]["demand"], by_key["asce7_22"]["capacity"]) \
+        == pytest.approx((0.45, 0.2))
+    # EN: a_g·S = 0.4·1.5 = 0.6; 0.6·1·1/2 = 0.3 ≤ 1/3: passes. NZS: 0.6·1·2 = 1.2 > 1/3: fails
+    assert [by_key[k]["verdict"] for k in ("asce7_22", "en1998_1", "nzs1170_5")] \
+        == ["fails", "passes", "fails"]
+    assert by_key["en1998_1"]["demand"] == pytest.approx(0.3)
+    assert by_key["nzs1170_5"]["demand"] == pytest.approx(1.2)
+    assert {entry["exact_p_exceed"] for entry in obj["component_provisions"]} \
+        == {obj["exact"]["p_overturn_at_site"]}
+    (line,) = [row for row in result.summary().splitlines() if "ASCE 7-22 §13.3 (static)" in row]
+    # the width at which 0.6·b/h = 0.45: 2·0.9·0.45/0.6 = 1.35 m
+    assert line.split()[-8:] == ["fails", "F/W", "0.45", "vs", "0.2", "g", "1.35", "m"]

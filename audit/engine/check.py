@@ -226,9 +226,11 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
                 if all(ntc.get(key) is not None for key in NTC2018_SITE_KEYS) else None)
     for obj, answer in zip(objects, answers):
-        answer["component_provisions"] = component_entries(
-            obj.width_m, obj.height_m, site=(site["sxs_g"], site["sx1_g"]), ntc_site=ntc_site,
-            floor=floor)
+        answer["component_provisions"] = [
+            {**entry, "exact_p_exceed": answer["exact"]["p_overturn_at_site"]}
+            for entry in component_entries(obj.width_m, obj.height_m,
+                                           site=(site["sxs_g"], site["sx1_g"]),
+                                           ntc_site=ntc_site, floor=floor)]
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
