@@ -10,9 +10,9 @@ and they agree with each other:
   and H_f = 1 + 2.5·(z/h) where T_a is not known                                    (Eq. 13.3-5)
 * R_μ = √(1.1·R/(I_e·Ω0)) ≥ 1.3                                                      (Eq. 13.3-6)
 
-T_a in H_f is the *supporting building's* approximate fundamental period (§12.8.2.1), not the
-component's (the component's own dynamics enter through C_AR only): here the building's T1 of
-the floor settings. On the roof of a T1 = 1 s building H_f = 1 + 1 + 0.84 = 2.84.
+T_a in H_f is the *supporting building's* approximate fundamental period (§12.8.2.1, the
+calculator computes it as C_t·h_n^x, Eq. 12.8-7), not the component's (the component's own
+dynamics enter through C_AR only): here the building's T1 of the floor settings stands for it. On the roof of a T1 = 1 s building H_f = 1 + 1 + 0.84 = 2.84.
 
 An unanchored object is checked for overturning with the strength combination 0.9D + 1.0E of
 §2.3.6, E = E_h − E_v with the concurrent vertical force E_v = 0.2·S_DS·D (§12.4.2.2, and
