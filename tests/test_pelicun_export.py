@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from io import BytesIO
 
 import numpy as np
 import pandas as pd
@@ -24,7 +25,8 @@ NO_FIT = FragilityComponent("RA.squat", "never overturned", "PGV",
 
 
 def test_layout_is_the_p58_librarys():
-    table = pd.read_csv(pd.io.common.BytesIO(pelicun_fragility_csv([BOOKCASE, RACK, NO_FIT])))
+    table = pd.read_csv(BytesIO(pelicun_fragility_csv([BOOKCASE, RACK, NO_FIT])),
+                        float_precision="round_trip")
     assert tuple(table.columns) == PELICUN_COLUMNS
     assert list(table["Demand-Type"]) == ["Peak Floor Velocity", "Peak Floor Acceleration",
                                           "Peak Floor Velocity"]
@@ -80,3 +82,22 @@ def test_export_takes_precedence_over_the_p58_library(tmp_path):
     # ours replaces P-58's 0.251 m/s; the filing cabinet keeps P-58's 0.498 m/s
     assert params.loc[BOOKCASE.id, ("LS1", "Theta_0")] == 0.3172843
     assert params.loc["E.20.22.114a", ("LS1", "Theta_0")] == pytest.approx(0.498)
+
+
+def test_fragility_audit_exports_its_exact_fits():
+    import audit
+    from records import RecordEntry, RecordSuite, one_pulse
+    pulses = RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
+                                                                       record_id=f"c{t:g}"))
+                               for t in (0.3, 0.6, 1.0, 2.0)), "four one-cosine pulses")
+    result = audit.fragility("femap58", pulses)
+    exported = pd.read_csv(BytesIO(result.pelicun_csv()),
+                           float_precision="round_trip").set_index("ID")
+    components = result.tables[COMPONENTS_CSV].set_index("component")
+    assert list(exported.index) == list(components.index)  # the audited PGV components
+    for component_id, row in components.iterrows():
+        fitted = math.isfinite(row["exact_median_m_s"])
+        assert exported.loc[component_id, "Incomplete"] == (0 if fitted else 1)
+        if fitted:
+            assert exported.loc[component_id, "LS1-Theta_0"] == row["exact_median_m_s"]
+            assert exported.loc[component_id, "LS1-Theta_1"] == row["exact_beta"]
