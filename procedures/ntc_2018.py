@@ -25,6 +25,12 @@ The demand comes in two variants, chosen per record (:meth:`NTC2018.demand_varia
   record's true spectrum at ξ over [T₀, T_LS] (the Circolare's rule for accelerograms), PGA of
   the record.
 
+On a floor (:attr:`NTC2018.floor` above the ground) the code-spectrum variant reads the
+Circolare's floor spectrum for elements at height (§C7.2.3, [C7.2.11],
+:class:`~audit.physics.ntc2018_floor_spectrum.NTC2018FloorSpectrum`) at the block's periods in
+place of the site's, and the floor's peak acceleration α·S·(1 + z/H) in place of a_g·S; the
+record-based variant reads the record given, which on a floor is the floor motion.
+
 The rotation the audit compares with the exact peak is θ(d_dem(T_SLV)) at ξ_SLV: 0 where the
 SLD check passes (the block does not rock), overturning where d_dem ≥ d₀.
 """
@@ -38,6 +44,8 @@ import numpy as np
 from audit import G
 from audit.errors import InputError
 from audit.physics.block import radius_from_p, rotation_at_displacement
+from audit.physics.building.floor import Floor
+from audit.physics.ntc2018_floor_spectrum import NTC2018FloorSpectrum
 from audit.physics.ntc2018_spectrum import NTC2018Spectrum
 from records.sites import NTC2018_SITE_KEYS as SITE_KEYS
 from procedures.base import (CONVERGED, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, OVERTURN,
@@ -122,6 +130,8 @@ class NTC2018(Procedure):
         FC [-] (1 for the audit).
     behaviour_factor : float
         q of the linear SLV check [-].
+    floor : audit.physics.building.floor.Floor
+        Where the block stands; above the ground the code spectrum is the floor spectrum.
     """
 
     e_star: float = 1.0
@@ -131,6 +141,7 @@ class NTC2018(Procedure):
     damping_slc: float = 0.10
     confidence_factor: float = 1.0
     behaviour_factor: float = 2.0
+    floor: Floor = Floor()
 
     name = "ntc2018"
     title = "NTC 2018 / Circolare 2019"
@@ -167,12 +178,17 @@ class NTC2018(Procedure):
     def damping(self, r):
         return self.damping_slv
 
-    def site_spectrum(self, entry) -> NTC2018Spectrum:
-        """The NTC 2018 elastic spectrum of the record's site."""
-        return NTC2018Spectrum.from_site(entry.site)
+    def site_spectrum(self, entry) -> NTC2018Spectrum | NTC2018FloorSpectrum:
+        """The NTC 2018 elastic spectrum of the record's site; on a floor, the Circolare's floor
+        spectrum (§C7.2.3) of it."""
+        ground = NTC2018Spectrum.from_site(entry.site)
+        if self.floor.on_ground:
+            return ground
+        return NTC2018FloorSpectrum(ground, self.floor.z_over_h, self.floor.building_period_s)
 
     def peak_ground_acceleration(self, entry, context):
-        """S_e(T₀ = 0) [m/s²]: a_g·S of the site, or the record's PGA."""
+        """S_e(T₀ = 0) [m/s²]: a_g·S of the site (α·S·(1 + z/H) on a floor), or the record's
+        PGA."""
         if self.demand_variant(entry) == CODE_SPECTRUM:
             return float(self.site_spectrum(entry).acceleration(0.0, self.damping_slv)) * G
         return entry.motion.pga

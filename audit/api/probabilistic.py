@@ -26,6 +26,22 @@ class FragilityResult:
         title = f"{self.procedure.title} against the exact fragility ({self.source})"
         return with_page(files, FRAGILITY_HTML, lambda saved: render_fragility_page(saved, title))
 
+    def exact_components(self) -> list:
+        """The audited components with their *exact* lognormal fragility (the maximum-likelihood
+        fit to the exact stripes), in PGV [m/s]: NaN where no fit exists."""
+        from procedures.probabilistic import FragilityComponent, LognormalFragility
+        from audit.engine.fragility_audit import COMPONENTS_CSV
+        return [FragilityComponent(row.component, row.description, "PGV",
+                                   LognormalFragility(row.exact_median_m_s, row.exact_beta),
+                                   2.0 * row.half_width_m, 2.0 * row.half_height_m)
+                for row in self.tables[COMPONENTS_CSV].itertuples()]
+
+    def pelicun_csv(self) -> bytes:
+        """The exact fragilities in pelicun's FEMA P-58 library layout
+        (:mod:`audit.engine.pelicun_export`): peak floor velocity, median [m/s] and β."""
+        from audit.engine.pelicun_export import pelicun_fragility_csv
+        return pelicun_fragility_csv(self.exact_components())
+
     def write(self, out_dir) -> Path:
         """Write the files and ``fragility.html`` into ``out_dir`` (atomically, together)."""
         from audit.files import write_files_atomically

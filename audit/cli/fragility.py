@@ -19,15 +19,23 @@ def add_parser(sub):
     options.add_records_option(p)
     p.add_argument("--out", required=True, metavar="DIR",
                    help="output folder: fragility-*.csv and fragility.html")
+    p.add_argument("--pelicun", metavar="FILE",
+                   help="also write the exact fragilities (median, beta in peak floor velocity) "
+                        "in pelicun's FEMA P-58 damage library layout (CSV)")
     p.set_defaults(func=run, records=DEFAULT_FRAGILITY_RECORDS)
     return p
 
 
 def run(args) -> int:
     from audit.api import FRAGILITY_HTML, fragility
-    from audit.files import check_output_dir
+    from audit.files import check_output_dir, check_output_file, write_file_atomically
     out_dir = check_output_dir(Path(args.out))
-    fragility(args.procedure, args.records, progress=True).write(out_dir)
-    print(f"note: wrote {out_dir / FRAGILITY_HTML} and the fragility-*.csv files",
-          file=sys.stderr)
+    pelicun = check_output_file(args.pelicun, "--pelicun") if args.pelicun else None
+    result = fragility(args.procedure, args.records, progress=True)
+    pelicun_csv = result.pelicun_csv() if pelicun else None  # made before anything is written
+    result.write(out_dir)
+    if pelicun:
+        write_file_atomically(pelicun, pelicun_csv)
+    print(f"note: wrote {out_dir / FRAGILITY_HTML} and the fragility-*.csv files"
+          + (f", and {pelicun} for pelicun" if pelicun else ""), file=sys.stderr)
     return 0

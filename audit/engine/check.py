@@ -33,6 +33,7 @@ from audit.engine.blocks import BlockList
 from audit.engine.check_risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check_settings import CheckSettings
 from audit.engine.check_judgement import at_site, judge
+from audit.engine.component_checks import component_entries
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
                                       overturns_at, probability_at_site)
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
@@ -42,7 +43,9 @@ from audit.engine.risk import LognormalFragility, StripeFragility
 from audit.engine.runtime import Runtime
 from audit.engine.scheduler import computed_parts, open_scheduler
 from audit.errors import InputError, InputWarning
+from audit.physics.building.floor import Floor
 from procedures.context import RecordContext
+from records.sites import NTC2018_SITE_KEYS
 
 #: Stripes either side of the site's intensity, and the ratio between neighbours: 0.25–4 ×.
 SITE_STRIPES = 4
@@ -128,7 +131,7 @@ class CheckRun:
 
 
 def run_check(procedures, suite, objects, settings: CheckSettings,
-              runtime: Runtime) -> CheckRun:
+              runtime: Runtime, floor: Floor = Floor()) -> CheckRun:
     """Check every object at the suite's design site (see the module).
 
     Parameters
@@ -141,6 +144,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         With a hazard curve, also the risk (:mod:`audit.engine.check_risk`).
     runtime : audit.engine.runtime.Runtime
         ``jobs``, ``scheduler`` and ``progress`` (a check keeps no parts to resume).
+    floor : audit.physics.building.floor.Floor
+        Where the objects stand, for the component provisions' static checks
+        (:mod:`audit.engine.component_checks`, ``component_provisions`` of each object).
     """
     from audit.engine.check_summary import (CheckFrame, ObjectFindings, object_answer,
                                             run_summary)
@@ -215,6 +221,16 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
                            guideline_p50.get(b, {})), frame))
+    site = suite.design_site or {}
+    ntc = entries[0].site
+    ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
+                if all(ntc.get(key) is not None for key in NTC2018_SITE_KEYS) else None)
+    for obj, answer in zip(objects, answers):
+        answer["component_provisions"] = [
+            {**entry, "exact_p_exceed": answer["exact"]["p_overturn_at_site"]}
+            for entry in component_entries(obj.width_m, obj.height_m,
+                                           site=(site["sxs_g"], site["sx1_g"]),
+                                           ntc_site=ntc_site, floor=floor)]
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)

@@ -114,6 +114,13 @@ def summary_text(document: dict) -> str:
                          _compared(proc) if proc["verdict"] else "cannot judge",
                          metres(width) if width is not None else "—")
                         + ((_percent(proc["risk_p50"]),) if hazard else ()))
+        for entry in obj.get("component_provisions", ()):  # static checks: no risk at a width
+            width = entry["required_width_m"]
+            rows.append((f"{entry['procedure']} (static)", entry["verdict"],
+                         f"F/W {entry['demand']:.3g} vs {entry['capacity']:.3g} g"
+                         if entry["demand"] is not None else entry["basis"],
+                         f"{width:.2f} m" if width is not None else "—")
+                        + (("",) if hazard else ()))
         exact = obj["exact"]
         for target in ("10", "50"):
             width = exact[f"required_width_m_{target}pct"]
