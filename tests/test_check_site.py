@@ -68,7 +68,7 @@ def test_return_period_sets_the_exact_answers_intensity_from_the_curve(hazard_di
     site_hazard = document["site_hazard"]
     assert site_hazard["return_period_years"] == 2475
     assert "+" not in site_hazard["warning"] and "-15 %" in site_hazard["warning"]
-    assert "hazard curve, 2,475 years" in result.summary()
+    assert "hazard curve at 2,475 years" in result.summary()
     # 2 % in 50 years is a return period of −50/ln(0.98) = 2474.9 years
     by_poe = CheckSettings.parse(hazard=path, site_location=(0.0, -0.3), poe="2%")
     assert by_poe.site_return_period_years == pytest.approx(-50.0 / math.log(0.98))
@@ -108,7 +108,7 @@ def test_the_command_line_takes_percentages_and_western_coordinates():
     # the percentages reach the settings as typed, which read them
     assert probability("risk_target", args.risk_target) == pytest.approx(0.02)
     assert probability("poe", args.poe) == pytest.approx(0.1)
-    args = build_parser().parse_args(["margins", "--site", "1,0.6", "--hazard", "x.json",
+    args = build_parser().parse_args(["margins", "all", "--site", "1,0.6", "--hazard", "x.json",
                                       "--site-location", "-118.25,-34.5"])
     assert args.site_location == "-118.25,-34.5"
 

@@ -74,11 +74,11 @@ def site_intensity(im, design_site: dict | None, curve=None,
     site_im = curve.im_at_rate(1.0 / return_period_years)
     warning = None
     if abs(site_im / design_im - 1.0) > DISAGREEMENT:
-        warning = (f"site: the hazard curve gives {im.name} = {site_im:.3g} g at "
+        warning = (f"the hazard curve gives {im.name} = {site_im:.3g} g at "
                    f"{return_period_years:,.0f} years, the design spectrum {design_im:.3g} g "
                    f"({100 * (site_im / design_im - 1):+.0f} %): the exact answer is at the "
                    "curve's, the guidelines' verdicts at the design spectrum's")
-        warnings.warn(warning, InputWarning, stacklevel=2)
+        warnings.warn(f"site: {warning}", InputWarning, stacklevel=2)
     return SiteIntensity(site_im, design_im, return_period_years, warning)
 
 

@@ -74,9 +74,10 @@ def sliding_answer(needed, record_ids, alpha_deg: float, friction: float | None)
            "records_jumping": [r for r, j in zip(record_ids, jumping) if j]}
     if friction is None:
         out.update(mode=None, records_sliding=None,
-                   text=(f"It assumes no sliding: at the site's intensity the records need a "
-                         f"friction coefficient μ ≥ {_mu(median)} (median), up to "
-                         f"{_mu(_largest(needed))} (tan α = {tan_alpha:.2f} to rock at all)."))
+                   text=(f"It assumes no sliding: at the site's intensity its rocking under the "
+                         f"records needs a friction coefficient μ of {_mu(median)} (median over "
+                         f"records) up to {_mu(_largest(needed))}; below tan α = "
+                         f"{tan_alpha:.2f} it would slide before it could rock."))
         return out
     slid = np.asarray(slides(needed, friction), dtype=bool)
     sliding = [r for r, s in zip(record_ids, slid) if s]

@@ -11,10 +11,11 @@ EXTRAPOLATED_SHARE = 0.10
 
 def im_words(im, site_im: float, return_period_years: float | None = None) -> str:
     """The site's intensity in words, e.g. ``S_a(1 s) = S_X1 = 0.9 g``, or ``S_a(1 s) =
-    0.764 g (hazard curve, 2,475 years)`` where the hazard curve sets it."""
+    0.764 g of the hazard curve at 2,475 years`` where the hazard curve sets it."""
     if return_period_years is not None:
         name = f"S_a({im.period_s:g} s)" if im.kind == "sa" else "PGA"
-        return f"{name} = {site_im:.3g} g (hazard curve, {return_period_years:,.0f} years)"
+        return (f"{name} = {site_im:.3g} g of the hazard curve at {return_period_years:,.0f} "
+                "years")
     if im.kind == "sa":
         design = " = S_X1" if im.period_s == 1.0 else " of the design spectrum"
         return f"S_a({im.period_s:g} s){design} = {site_im:.3g} g"
@@ -96,8 +97,8 @@ def _scaled_to(document: dict) -> str:
         return im_words(im, document["site_im"])
     years = site_hazard["return_period_years"]
     return (f"{im_words(im, document['site_im'], years)} (P = "
-            f"{100 * site_hazard['poe_50_years']:.2g} % in 50 years) for the exact answer, and "
-            f"to {im_words(im, document['design_im'])} for the guidelines")
+            f"{100 * site_hazard['poe_50_years']:.2g} % in 50 years) for the exact answer, to "
+            f"{im_words(im, document['design_im'])} for the guidelines,")
 
 
 def summary_text(document: dict) -> str:
