@@ -221,3 +221,18 @@ def test_a_stocky_block_on_mu_02_slides_before_it_rocks(stocky):
     # the slender one (tan α = 1/6 < 0.2) rocks; its records' rocking needs more than 0.2
     slender = stocky[0.2]["objects"][1]["sliding"]
     assert slender["tan_alpha"] < 0.2 and slender["mode"] != "rocking"
+
+
+@pytest.mark.parametrize("given", [(-118, 34), [-118.0, 34.0], "-118,34", "-118, 34"])
+def test_a_site_location_is_a_pair_or_its_text(hazard_dir, given):
+    settings = CheckSettings.parse(hazard=hazard_dir / "usgs-example.json", hazard_imt="PGA",
+                                   site_location=given)
+    assert settings.hazard.site == (-118.0, 34.0)
+
+
+@pytest.mark.parametrize("given", ["-118", "west,34", (1, 2, 3), 5.0, (-118, 95)])
+def test_a_bad_site_location_names_the_argument(hazard_dir, given):
+    with pytest.raises(InputError) as excinfo:
+        CheckSettings.parse(hazard=hazard_dir / "usgs-example.json", hazard_imt="PGA",
+                            site_location=given)
+    assert excinfo.value.fields == ("site_location",)

@@ -98,9 +98,11 @@ class CheckSettings:
                 raise InputError(f"{field}: read on the hazard curve; no hazard given", field)
         risk_target = check.probability("risk_target", value["risk_target"])
         hazard = value["hazard"]
+        location = (None if value["site_location"] is None
+                    else check.lon_lat("site_location", value["site_location"]))
         if hazard is not None:  # read and checked before any work
             from audit.engine.risk import site_hazard
-            hazard, im = site_hazard(hazard, value["site_location"], risk_target,
+            hazard, im = site_hazard(hazard, location, risk_target,
                                      im if "im" in values else None, value["hazard_imt"])
         friction = value["friction"]
         if friction is not None:

@@ -97,4 +97,24 @@ def probability(field: str, value, what: str = "a probability strictly between 0
     return float(value)
 
 
-__all__ = ["number", "numbers", "whole", "flag", "words", "unknown", "probability"]
+def lon_lat(field: str, value) -> tuple[float, float]:
+    """``value`` as a site (longitude, latitude) [degrees]: a pair of numbers, or text
+    ``"LON,LAT"`` (``"-118,34"``: west and south negative)."""
+    given = value
+    if isinstance(value, str):
+        value = value.split(",")
+        try:
+            value = [float(v) for v in value]
+        except ValueError:
+            value = None
+    what = "a site (longitude, latitude) in degrees, e.g. (-118, 34) or '-118,34'"
+    if value is None or isinstance(value, (bytes, dict)) or not hasattr(value, "__len__") \
+            or len(value) != 2:
+        raise InputError(f"{field}: expected {what}, got {given!r}", field)
+    lon, lat = (number(field, v, what) for v in value)
+    if not (-180 <= lon <= 360 and -90 <= lat <= 90):
+        raise InputError(f"{field}: expected {what}, got {given!r}", field)
+    return lon, lat
+
+
+__all__ = ["number", "numbers", "whole", "flag", "words", "unknown", "probability", "lon_lat"]
