@@ -89,7 +89,8 @@ def _entry(entry, path, k):
     row = _total_row(entry.get("data"), where)
     rates = row.get("yvals", row.get("yvalues"))
     if not isinstance(rates, list):
-        raise InputError(f"{where}: data[].yvals: missing (nor yvalues)")
+        raise InputError(f"{where}: data[].yvals: expected a list of annual rates (or "
+                         f"yvalues), got {type(rates).__name__} {rates!r:.40}")
     lon = meta.get("longitude", row.get("longitude"))
     lat = meta.get("latitude", row.get("latitude"))
     try:
@@ -110,7 +111,8 @@ def _total_row(data, where: str) -> dict:
     (``yvals``), or the dynamic services' entry with ``component: "Total"`` (each other entry
     is one source type's share of it, never the total: without the total, refused)."""
     if not isinstance(data, list) or not data:
-        raise InputError(f"{where}: data: missing or empty")
+        raise InputError(f"{where}: data: expected a non-empty list of curves, got "
+                         f"{type(data).__name__} {data!r:.40}")
     for j, row in enumerate(data):
         if not isinstance(row, dict):
             raise InputError(f"{where}: data[{j}]: expected an object with its curve (yvals, or "
