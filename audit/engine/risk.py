@@ -194,6 +194,7 @@ def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=N
     its file (at ``site_location``; of the IMT ``hazard_imt``, else of ``im`` in a file of
     several IMTs) unless given, ``im`` (when the user gave one) held to the curve's IMT, which
     sets the intensity measure, and the risk target checked."""
+    from audit.engine.hazard_imt import im_of_imt, imt_of
     from records.hazard import HazardCurve, read_hazard
     im_text = None if im is None else im if isinstance(im, str) else im.name
     if hazard_imt is not None and not isinstance(hazard_imt, str):
@@ -208,29 +209,6 @@ def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=N
         check_same_im(hazard, im_text, "im")
     annual_rate_for(risk_target)
     return hazard, hazard_im(hazard)
-
-
-def imt_of(im: str) -> str | None:
-    """The hazard files' IMT (``PGA``, ``SA(1.0)``) of an intensity measure as ``--im`` names
-    it (``pga``, ``sa:1``); None for one no hazard file gives (PGV) or not an IM at all (the
-    settings refuse those with their own message)."""
-    from audit.engine.intensity import IntensityMeasure
-    try:
-        mine = IntensityMeasure.parse(im)
-    except InputError:
-        return None
-    return {"pga": "PGA", "sa": f"SA({mine.period_s})"}.get(mine.kind)
-
-
-def im_of_imt(imt: str) -> str:
-    """``--im``'s name (``pga``, ``sa:1``) of a hazard file's IMT (``PGA``, ``SA(1.0)``,
-    ``SA1P0``); InputError naming ``hazard_imt`` otherwise."""
-    from records.hazard import parse_imt
-    try:
-        kind, period = parse_imt(imt, "hazard_imt")
-    except InputError as exc:
-        raise InputError(str(exc), "hazard_imt") from None
-    return "pga" if kind == "PGA" else f"sa:{period:g}"
 
 
 def risk_integral(fragility, curve) -> OverturningRisk:
@@ -311,7 +289,7 @@ def _central_range(x, density, tail, top, total) -> tuple:
     return tuple(out)
 
 
-__all__ = ["risk_integral", "site_hazard", "imt_of", "im_of_imt", "OverturningRisk", "LognormalFragility", "StripeFragility",
+__all__ = ["risk_integral", "site_hazard", "OverturningRisk", "LognormalFragility", "StripeFragility",
            "block_fragilities",
            "annual_rate_for", "hazard_im", "check_same_im", "POINTS_PER_INTERVAL",
            "RANGE_SHARE", "YEARS"]
