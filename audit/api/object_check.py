@@ -145,9 +145,13 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
         ``im`` (``pga`` or ``sa:T``, the site's intensity read from its design spectrum;
         default ``sa:1.0``), ``restitution``, ``free_motion_s``, ``g``, ``seed`` (of the
         bootstrap over records), ``hazard`` (a hazard curve or its file: the risk; its IMT
-        sets ``im``), ``site_location`` (lon, lat [degrees] in a file of several sites),
-        ``risk_target`` (probability of overturning in 50 years, default 0.01); how:
-        ``jobs``, ``scheduler``.
+        sets ``im``), ``hazard_imt`` (the IMT of a file of several, e.g. ``"SA(1.0)"``),
+        ``site_location`` (lon, lat [degrees] in a file of several sites), ``risk_target``
+        (probability of overturning in 50 years, 0.01 or ``"1%"``; default 0.01),
+        ``return_period`` [years] or ``poe`` (in 50 years, 0.02 or ``"2%"``): the site's
+        intensity for the exact answer read on the hazard curve, ``site`` staying the design
+        spectrum the guidelines read; ``friction`` (μ of the base: which mode governs, sliding
+        or rocking; without it no sliding is assumed); how: ``jobs``, ``scheduler``.
 
     Returns
     -------

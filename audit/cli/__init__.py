@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import sys
 import warnings
 
@@ -25,8 +26,21 @@ COMMANDS = (listing, check, rock, spectrum, design_spectrum, run, margins, fragi
             validate)
 
 
+#: A value that starts with a minus sign but is numbers, not an option: ``-118,34``,
+#: ``-0.5``, ``-1e-3,2`` (argparse alone takes only ``-118`` or ``-0.5`` for a value).
+_NUMBERS = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?"
+                      r"(,\s*-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)*$")
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with usage errors on one line (``error: COMMAND: what; see --help``), exit 2."""
+    """argparse with usage errors on one line (``error: COMMAND: what; see --help``), exit 2,
+    and negative numbers and lists of numbers taken as values (``--site-location -118,34``):
+    no option of the tool looks like a number. Its subcommands' parsers are of this class too
+    (argparse makes them of the parent's class)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NUMBERS
 
     def error(self, message):
         message = " ".join(message.split())

@@ -53,6 +53,19 @@ def add_parser(sub):
                         "the true 5 %%-damped spectral acceleration at T [g] (the site's "
                         "intensity: its design spectrum at T; S_X1 at 1 s) or PGA (0.4 S_XS)")
     options.add_hazard_options(p)
+    p.add_argument("--return-period", type=options.number("must be more than 1 year", 1.0,
+                                                          low_open=True),
+                   metavar="YEARS", help="with --hazard: the site's intensity for the exact "
+                   "answer is the hazard curve's at this return period (e.g. 2475); --site "
+                   "stays the design spectrum the guidelines read")
+    p.add_argument("--poe", metavar="P",
+                   help="with --hazard: as --return-period, by the probability of exceedance "
+                        "in 50 years (e.g. 2%%, or 0.02)")
+    p.add_argument("--friction", type=options.POSITIVE, metavar="MU",
+                   help="friction coefficient μ of the objects' base: which mode governs, "
+                        "sliding (tan α > μ, or records whose rocking needs more than μ) or "
+                        "rocking; without it, no sliding is assumed and the friction the "
+                        "records need is given")
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -109,14 +122,18 @@ def run(args) -> int:
     objects = objects_of(args)
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
-              "risk_target": args.risk_target}
+              "risk_target": args.risk_target, "friction": args.friction}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:
-        values.update(hazard=args.hazard,
-                      site_location=options.site_location(args.site_location))
-    elif args.site_location:
-        raise InputError("--site-location: a site of the --hazard file; no --hazard given")
+        values.update(hazard=args.hazard, hazard_imt=args.hazard_imt,
+                      site_location=options.site_location(args.site_location),
+                      return_period=args.return_period, poe=args.poe)
+    else:
+        for flag in ("site_location", "hazard_imt", "return_period", "poe"):
+            if getattr(args, flag) is not None:
+                raise InputError(f"--{flag.replace('_', '-')}: read on the --hazard file; no "
+                                 "--hazard given")
     result = check(objects, site, procedures=args.procedure, records=args.records,
                    ntc_site=ntc_site, jobs=args.jobs, scheduler=args.scheduler,
                    progress=True, force=args.force, **values)

@@ -20,6 +20,7 @@ FLAGS = {
     "periods_s": "--periods", "damping_pct": "--damping", "sxs_g": "--sxs", "sx1_g": "--sx1",
     "ag_g": "--ag", "f0": "--f0", "tc_star_s": "--tc-star", "site_level": "--level",
     "hazard": "--hazard", "objects": "--objects", "site_location": "--site-location", "risk_target": "--risk-target",
+    "hazard_imt": "--hazard-imt", "return_period": "--return-period", "poe": "--poe",
 }
 #: Where a command's flag for an argument differs from :data:`FLAGS`.
 COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}
@@ -27,13 +28,54 @@ COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}
 
 def with_flags(message: str, fields, command: str | None = None) -> str:
     """``message`` with each of ``fields`` it names replaced by the command's flag (a boolean
-    ``field=True`` by the flag alone)."""
+    ``field=True`` by the flag alone).
+
+    A field of one plain word (``hazard``, ``records``) is also an ordinary word, which a
+    message quotes from a file or a description (a curve's source "USGS hazard service", a
+    suite's title): it is replaced only outside parentheses and quotes, where the message
+    speaks of the argument itself. A field with an underscore (``site_location``) is the
+    argument wherever it appears."""
     table = {**FLAGS, **COMMAND_FLAGS.get(command, {})}
     for field in dict.fromkeys(fields):
         flag = table.get(field)
         if flag:
-            message = re.sub(rf"(?<![\w-]){re.escape(field)}(=True)?(?!\w)", flag, message)
+            pattern = re.compile(rf"(?<![\w-]){re.escape(field)}(=True)?(?!\w)")
+            if "_" in field:
+                message = pattern.sub(flag, message)
+            else:
+                message = "".join(pattern.sub(flag, part) if outside else part
+                                  for part, outside in _spoken_parts(message))
     return message
+
+
+def _spoken_parts(message: str):
+    """``(text, outside)`` pieces of ``message``: ``outside`` false for text in parentheses
+    (nested too) or in single or double quotes, which the message quotes from elsewhere."""
+    depth, quote, start, out = 0, None, 0, []
+
+    def cut(end, outside):
+        if end > start:
+            out.append((message[start:end], outside))
+        return end
+
+    for i, char in enumerate(message):
+        if quote:
+            if char == quote:
+                start = cut(i + 1, False)
+                quote = None
+        elif char in "'\"" and depth == 0 and (i == 0 or not message[i - 1].isalnum()):
+            start = cut(i, True)
+            quote = char
+        elif char == "(":
+            if depth == 0:
+                start = cut(i, True)
+            depth += 1
+        elif char == ")" and depth:
+            depth -= 1
+            if depth == 0:
+                start = cut(i + 1, False)
+    cut(len(message), depth == 0 and quote is None)
+    return out
 
 
 __all__ = ["FLAGS", "COMMAND_FLAGS", "with_flags"]

@@ -80,9 +80,11 @@ def run(args) -> int:
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:
-        values.update(hazard=args.hazard, site_location=options.site_location(args.site_location))
-    elif args.site_location:
-        raise InputError("--site-location: a site of the --hazard file; no --hazard given")
+        values.update(hazard=args.hazard, hazard_imt=args.hazard_imt,
+                      site_location=options.site_location(args.site_location))
+    elif args.site_location or args.hazard_imt:
+        raise InputError(f"{'--site-location' if args.site_location else '--hazard-imt'}: read "
+                         "on the --hazard file; no --hazard given")
     if args.stripes is not None:  # '' is refused, not taken for the default
         values["stripes"] = options.float_list(args.stripes, "--stripes")
     site = site_options(args)

@@ -298,20 +298,20 @@ def add_excitation_options(parser):
     parser.add_argument("--pulse-period", type=POSITIVE, metavar="S", help="pulse period T_p [s]")
 
 
-#: ``type`` of ``--risk-target``: a probability in 50 years, strictly between 0 and 1.
-PROBABILITY = number("must lie strictly between 0 and 1", 0.0, 1.0, low_open=True,
-                     high_open=True)
-
-
 def add_hazard_options(parser):
     parser.add_argument("--hazard", metavar="FILE",
                         help="the site's hazard curve: an OpenQuake hazard-curve CSV export, a "
                              "USGS hazard service response (.json) or a CSV im_g,annual_rate "
                              "with a line '# imt=SA(1.0)'; its IMT sets --im")
+    parser.add_argument("--hazard-imt", metavar="IMT",
+                        help="the IMT to read from a hazard file of several (a USGS response: "
+                             "PGA, SA(0.2), SA(1.0)); without it, --im's; it sets --im")
     parser.add_argument("--site-location", metavar="LON,LAT",
-                        help="the site in a hazard file of several sites [degrees]")
-    parser.add_argument("--risk-target", type=PROBABILITY, default=DEFAULT_RISK_TARGET, metavar="P",
-                        help="risk target: probability of overturning in 50 years")
+                        help="the site in a hazard file of several sites [degrees]; west and "
+                             "south negative, e.g. -118,34")
+    # a probability is checked where the API checks it, which takes 0.02 and 2% alike
+    parser.add_argument("--risk-target", default=DEFAULT_RISK_TARGET, metavar="P",
+                        help="risk target: probability of overturning in 50 years (0.02 or 2%%)")
 
 
 def site_location(text: str | None) -> tuple[float, float] | None:

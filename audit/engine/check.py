@@ -3,8 +3,9 @@ to overturn; how wide must it be.
 
 For every object (:mod:`audit.engine.check_objects`) and a FEMA 356 site (S_XS, S_X1 at the
 hazard level the user assesses), the suite's records are each scaled to the site's intensity
-(S_X1 for the default S_a(1 s); the design spectrum at the intensity measure otherwise) and to
-:data:`SITE_STRIPES` stripes either side, a factor :data:`STRIPE_STEP` apart: the design-level
+(S_X1 for the default S_a(1 s); the design spectrum at the intensity measure otherwise; with a
+hazard curve and a return period, the curve's, while the guidelines keep the design spectrum:
+:mod:`audit.engine.check_site`) and to :data:`SITE_STRIPES` stripes either side, a factor :data:`STRIPE_STEP` apart: the design-level
 audit's unit of work (:func:`audit.engine.stripes.record_stripes`) on a stripe set around the
 site, not its whole grid. From it, per object:
 
@@ -16,6 +17,8 @@ site, not its whole grid. From it, per object:
   procedure reading only the site's design spectrum gives one answer for all), the numbers it
   compares (its rotation estimate against α, or its overturning check's demand and capacity,
   the median over records), and where it draws its line on the stripes;
+* the friction each record needs at the site and, on a base of friction μ, which mode governs
+  (:mod:`audit.engine.check_sliding`);
 * the width each guideline requires at the object's height, against the exact widths for
   P(overturn) at the site ≤ 10 % and ≤ 50 % (:mod:`audit.engine.check_widths`): each record's
   bracket found with its judgement, the brackets that matter halved after.
@@ -32,6 +35,9 @@ import numpy as np
 from audit.engine.blocks import BlockList
 from audit.engine.check_risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check_settings import CheckSettings
+from audit.engine.check_site import site_intensity
+from audit.engine.check_sliding import required_friction, sliding_answer
+from audit.engine.check_words import sentence
 from audit.engine.check_judgement import at_site, judge
 from audit.engine.component_checks import component_entries
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
@@ -97,11 +103,13 @@ class CheckWork:
 class CheckRecord:
     """One record's part of a check: its stripes, the judgements of the procedures that read
     it (None where a procedure cannot evaluate the record), and its context, whose cached
-    spectra the width searches read again."""
+    spectra the width searches read again, and the friction each object's pure-rocking response
+    needs at the site's intensity (:mod:`audit.engine.check_sliding`)."""
 
     stripes: RecordStripes
     judged: dict
     context: RecordContext
+    required_friction: np.ndarray | None = None
 
 
 def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
@@ -118,7 +126,11 @@ def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
         if proc.name in settings.per_record and proc.unmet_requirements(scaled) is None:
             judged[proc.name] = judge(proc, scaled, scaled_context, settings.objects,
                                       margins.restitution, margins.g)
-    return CheckRecord(stripes, judged, context)
+    site_level = margins.levels[len(margins.levels) // 2]  # the site's, mid-stripes
+    friction = required_friction(entry.motion, site_level / stripes.intensity, margins.blocks,
+                                 margins.restitution, margins.g, margins.free_motion_s,
+                                 margins.jobs)
+    return CheckRecord(stripes, judged, context, friction)
 
 
 @dataclass
@@ -154,14 +166,14 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     if not entries:
         raise InputError(f"records: no record of {suite.description} has a file", "records")
     im, restitution, g = settings.im, settings.restitution, settings.g
-    site_im = im.of_design_site(suite.design_site)
-    if not site_im:
-        raise InputError("site: the check needs the site's S_XS,S_X1 [g]", "site")
+    site = site_intensity(im, suite.design_site, settings.hazard,
+                          settings.site_return_period_years)
+    site_im, design_im = site.site_im, site.design_im  # the exact answer's; the guidelines'
     levels = check_levels(site_im)
     objects = tuple(objects)
     jobs, progress = runtime.jobs, runtime.progress
     per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
-    work = CheckWork(StripeSettings(im, tuple(levels.tolist()), site_im,
+    work = CheckWork(StripeSettings(im, tuple(levels.tolist()), design_im,
                                     BlockList.of(named=objects), restitution, g,
                                     settings.free_motion_s, jobs),
                      objects, per_record)
@@ -188,7 +200,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         def site_context(i: int):
             if i not in contexts:
                 contexts[i] = at_site(entries[i], parts[i].context, intensity[entries[i].id],
-                                      site_im)
+                                      design_im)
             return contexts[i]
 
         # a procedure reading only the site: one answer for every record, judged on the first
@@ -221,7 +233,12 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
                            guideline_p50.get(b, {})), frame))
-    site = suite.design_site or {}
+        sliding = sliding_answer([part.required_friction[b] for part in parts], frame.record_ids,
+                                 obj.alpha_deg, settings.friction)
+        answer = answers[-1]
+        answer["exact"]["site_return_period_years"] = site.return_period_years
+        answer.update(sliding=sliding, sentence=f"{sentence(answer, im)} {sliding['text']}")
+    design_site = suite.design_site or {}
     ntc = entries[0].site
     ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
                 if all(ntc.get(key) is not None for key in NTC2018_SITE_KEYS) else None)
@@ -229,11 +246,13 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         answer["component_provisions"] = [
             {**entry, "exact_p_exceed": answer["exact"]["p_overturn_at_site"]}
             for entry in component_entries(obj.width_m, obj.height_m,
-                                           site=(site["sxs_g"], site["sx1_g"]),
+                                           site=(design_site["sxs_g"], design_site["sx1_g"]),
                                            ntc_site=ntc_site, floor=floor)]
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
+    summary.update(design_im=design_im, site_hazard=site.as_dict(curve),
+                   friction=settings.friction)
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)

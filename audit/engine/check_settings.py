@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from audit import G
@@ -15,7 +16,8 @@ from audit.physics.block import Restitution
 #: The fields :meth:`CheckSettings.parse` takes, and their defaults.
 CHECK_DEFAULTS = {"im": DEFAULT_IM, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
-                  "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET}
+                  "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET,
+                  "hazard_imt": None, "return_period": None, "poe": None, "friction": None}
 CHECK_FIELDS = tuple(CHECK_DEFAULTS)
 
 
@@ -37,6 +39,12 @@ class CheckSettings:
         object as each guideline would size it, and the exact width for ``risk_target``.
     risk_target : float
         Probability of overturning in 50 years [-].
+    site_return_period_years : float or None
+        With a hazard curve: the return period whose intensity on the curve is the site's for
+        the exact answer (:mod:`audit.engine.check_site`); None: the design spectrum's.
+    friction : float or None
+        Friction coefficient μ of the object's base [-]: which mode governs, sliding or rocking
+        (:mod:`audit.engine.check_sliding`); None: no sliding assumed.
 
     Build it with :meth:`parse`, which checks every field once.
     """
@@ -48,6 +56,8 @@ class CheckSettings:
     seed: int | None = None
     hazard: object = None
     risk_target: float = DEFAULT_RISK_TARGET
+    site_return_period_years: float | None = None
+    friction: float | None = None
 
     @classmethod
     def parse(cls, **values) -> CheckSettings:
@@ -65,8 +75,17 @@ class CheckSettings:
             when ``im`` is not given, and must be ``im`` when it is.
         site_location : (float, float), optional
             Longitude, latitude [degrees] of the site in a hazard file of several sites.
-        risk_target : float
-            In (0, 1).
+        risk_target : float or str
+            In (0, 1): 0.02 or '2%'.
+        hazard_imt : str, optional
+            The IMT of a hazard file of several (``PGA``, ``SA(1.0)``); without it, ``im``'s.
+        return_period : float, optional
+            Years: the site's intensity for the exact answer is the hazard curve's at this
+            return period (log–log interpolation), not the design spectrum's.
+        poe : float or str, optional
+            The same as a probability of exceedance in 50 years (0.02 or '2%').
+        friction : float, optional
+            Friction coefficient μ > 0 of the object's base.
         """
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
@@ -74,11 +93,21 @@ class CheckSettings:
         if value["site_location"] is not None and value["hazard"] is None:
             raise InputError("site_location: a site of the hazard file; no hazard given",
                              "site_location")
+        for field in ("hazard_imt", "return_period", "poe"):
+            if value[field] is not None and value["hazard"] is None:
+                raise InputError(f"{field}: read on the hazard curve; no hazard given", field)
+        risk_target = check.probability("risk_target", value["risk_target"])
         hazard = value["hazard"]
+        location = (None if value["site_location"] is None
+                    else check.lon_lat("site_location", value["site_location"]))
         if hazard is not None:  # read and checked before any work
             from audit.engine.risk import site_hazard
-            hazard, im = site_hazard(hazard, value["site_location"], value["risk_target"],
-                                     im if "im" in values else None)
+            hazard, im = site_hazard(hazard, location, risk_target,
+                                     im if "im" in values else None, value["hazard_imt"])
+        friction = value["friction"]
+        if friction is not None:
+            friction = check.number("friction", friction, "a positive friction coefficient μ",
+                                    0, low_open=True)
         im = im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im)
         if im.kind == "pgv":
             raise InputError("im: a design spectrum gives no PGV; choose pga or sa:T", "im")
@@ -93,7 +122,24 @@ class CheckSettings:
             free_motion_s=check.number("free_motion_s", value["free_motion_s"],
                                        "a duration ≥ 0 s", 0),
             g=check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True),
-            seed=seed, hazard=hazard, risk_target=float(value["risk_target"]))
+            seed=seed, hazard=hazard, risk_target=risk_target,
+            site_return_period_years=site_return_period(value["return_period"], value["poe"]),
+            friction=friction)
+
+
+def site_return_period(return_period, poe) -> float | None:
+    """The return period [years] of ``return_period`` or ``poe`` (in 50 years, Poisson:
+    T = −50 / ln(1 − P)), at most one of them given; None when neither is."""
+    if return_period is not None and poe is not None:
+        raise InputError("return_period and poe: give one of them (both say the site's "
+                         "hazard level)", "return_period", "poe")
+    if poe is not None:
+        from audit.engine.risk import YEARS
+        return -YEARS / math.log1p(-check.probability("poe", poe))
+    if return_period is not None:
+        return check.number("return_period", return_period, "a return period > 1 year", 1,
+                            low_open=True)
+    return None
 
 
 __all__ = ["CheckSettings", "CHECK_DEFAULTS", "CHECK_FIELDS"]

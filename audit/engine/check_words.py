@@ -15,8 +15,13 @@ def metres(value: float) -> str:
     return f"{value:.2f} m" if value >= 0.1 else f"{value:.2g} m"
 
 
-def im_words(im, site_im: float) -> str:
-    """The site's intensity in words, e.g. ``S_a(1 s) = S_X1 = 0.9 g``."""
+def im_words(im, site_im: float, return_period_years: float | None = None) -> str:
+    """The site's intensity in words, e.g. ``S_a(1 s) = S_X1 = 0.9 g``, or ``S_a(1 s) =
+    0.764 g of the hazard curve at 2,475 years`` where the hazard curve sets it."""
+    if return_period_years is not None:
+        name = f"S_a({im.period_s:g} s)" if im.kind == "sa" else "PGA"
+        return (f"{name} = {site_im:.3g} g of the hazard curve at {return_period_years:,.0f} "
+                "years")
     if im.kind == "sa":
         design = " = S_X1" if im.period_s == 1.0 else " of the design spectrum"
         return f"S_a({im.period_s:g} s){design} = {site_im:.3g} g"
@@ -43,7 +48,7 @@ def sentence(answer: dict, im) -> str:
     low, high = exact["p_band"]
     text = (f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m "
             f"tall): " + "; ".join(parts) + f"; the exact P(overturn) at "
-            f"{im_words(im, exact['site_im_g'])} is {100 * exact['p_overturn_at_site']:.0f} % "
+            f"{im_words(im, exact['site_im_g'], exact.get('site_return_period_years'))} is {100 * exact['p_overturn_at_site']:.0f} % "
             f"[{100 * low:.0f}–{100 * high:.0f} %]")
     w10, w50 = exact["required_width_m_10pct"], exact["required_width_m_50pct"]
     if w10 is None:
@@ -89,6 +94,19 @@ def _intensity(name: str):
     return IntensityMeasure.parse(name)
 
 
+def _scaled_to(document: dict) -> str:
+    """Where the records are scaled: the site's intensity, and the design spectrum's for the
+    guidelines where the hazard curve sets the site's."""
+    im = _intensity(document["im"])
+    site_hazard = document.get("site_hazard")
+    if not site_hazard:
+        return im_words(im, document["site_im"])
+    years = site_hazard["return_period_years"]
+    return (f"{im_words(im, document['site_im'], years)} (P = "
+            f"{100 * site_hazard['poe_50_years']:.2g} % in 50 years) for the exact answer, to "
+            f"{im_words(im, document['design_im'])} for the guidelines,")
+
+
 def summary_text(document: dict) -> str:
     """The summary on standard output: one paragraph, then per object its sentence and table."""
     site = document["site"]
@@ -96,9 +114,12 @@ def summary_text(document: dict) -> str:
     lines = [f"Site S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g, at the hazard level "
              f"these values are for (as given); "
              f"{counted_records(len(document['records']), source)}, each scaled "
-             f"to {im_words(_intensity(document['im']), document['site_im'])} and to "
+             f"to {_scaled_to(document)} and to "
              f"{len(document['levels'])} stripes {min(document['levels']):.3g}–"
              f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility.", ""]
+    site_hazard = document.get("site_hazard")
+    if site_hazard and site_hazard.get("warning"):
+        lines[-1:-1] = [f"Warning: {site_hazard['warning']}."]
     hazard = document.get("hazard")
     if hazard:
         lines[-1:-1] = [f"Risk from the hazard curve {hazard['source']}: target P ≤ "

@@ -79,4 +79,42 @@ def unknown(where: str, values: dict, known) -> None:
                          f"{', '.join(known)})", extra[0])
 
 
-__all__ = ["number", "numbers", "whole", "flag", "words", "unknown"]
+def probability(field: str, value, what: str = "a probability strictly between 0 and 1") -> float:
+    """``value`` as a probability in (0, 1): a number (0.02) or text, a number or a
+    percentage ('0.02', '2%', '2 %'), as engineers write "2 % in 50 years"."""
+    given = value
+    if isinstance(value, str):
+        text = value.strip()
+        percent = text.endswith("%")
+        try:
+            value = float(text[:-1] if percent else text) / (100.0 if percent else 1.0)
+        except ValueError:
+            raise InputError(f"{field}: expected {what} (0.02 or 2%), got {given!r}",
+                             field) from None
+    if isinstance(value, bool) or not isinstance(value, Real) \
+            or not (math.isfinite(value) and 0.0 < value < 1.0):
+        raise InputError(f"{field}: expected {what} (0.02 or 2%), got {given!r}", field)
+    return float(value)
+
+
+def lon_lat(field: str, value) -> tuple[float, float]:
+    """``value`` as a site (longitude, latitude) [degrees]: a pair of numbers, or text
+    ``"LON,LAT"`` (``"-118,34"``: west and south negative)."""
+    given = value
+    if isinstance(value, str):
+        value = value.split(",")
+        try:
+            value = [float(v) for v in value]
+        except ValueError:
+            value = None
+    what = "a site (longitude, latitude) in degrees, e.g. (-118, 34) or '-118,34'"
+    if value is None or isinstance(value, (bytes, dict)) or not hasattr(value, "__len__") \
+            or len(value) != 2:
+        raise InputError(f"{field}: expected {what}, got {given!r}", field)
+    lon, lat = (number(field, v, what) for v in value)
+    if not (-180 <= lon <= 360 and -90 <= lat <= 90):
+        raise InputError(f"{field}: expected {what}, got {given!r}", field)
+    return lon, lat
+
+
+__all__ = ["number", "numbers", "whole", "flag", "words", "unknown", "probability", "lon_lat"]

@@ -23,7 +23,7 @@ MARGINS_DEFAULTS = {"im": DEFAULT_IM, "stripes": None, "alpha_deg": DEFAULT_ALPH
                     "sizes_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
                     "free_motion_s": DEFAULT_FREE_MOTION_S, "required": True, "g": G,
                     "site_level": DEFAULT_SITE_LEVEL, "hazard": None, "site_location": None,
-                    "risk_target": DEFAULT_RISK_TARGET}
+                    "risk_target": DEFAULT_RISK_TARGET, "hazard_imt": None}
 MARGINS_FIELDS = tuple(MARGINS_DEFAULTS)
 
 
@@ -95,8 +95,10 @@ class MarginsSettings:
             when ``im`` is not given, and must be ``im`` when it is.
         site_location : (float, float), optional
             Longitude, latitude [degrees] of the site in a hazard file of several sites.
-        risk_target : float
-            In (0, 1).
+        risk_target : float or str
+            In (0, 1): 0.02 or '2%'.
+        hazard_imt : str, optional
+            The IMT of a hazard file of several (``PGA``, ``SA(1.0)``); without it, ``im``'s.
         """
         check.unknown("the design-level audit", values, MARGINS_FIELDS)
         value = {**MARGINS_DEFAULTS, **values}
@@ -113,11 +115,17 @@ class MarginsSettings:
         if value["site_level"] not in SITE_LEVELS:
             raise InputError(f"site_level: expected {' or '.join(SITE_LEVELS)}, got "
                              f"{value['site_level']!r}", "site_level")
+        risk_target = check.probability("risk_target", value["risk_target"])
         hazard = value["hazard"]
+        location = (None if value["site_location"] is None
+                    else check.lon_lat("site_location", value["site_location"]))
         if hazard is not None:  # read and checked before any work
             from audit.engine.risk import site_hazard
-            hazard, im = site_hazard(hazard, value["site_location"], value["risk_target"],
-                                     im if "im" in values else None)
+            hazard, im = site_hazard(hazard, location, risk_target,
+                                     im if "im" in values else None, value["hazard_imt"])
+        elif value["hazard_imt"] is not None:
+            raise InputError("hazard_imt: the IMT of a hazard file; no hazard given",
+                             "hazard_imt")
         return cls(
             im=im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im),
             stripes=stripes,
@@ -133,7 +141,7 @@ class MarginsSettings:
                                        "a duration ≥ 0 s", 0),
             required=check.flag("required", value["required"]),
             g=g, site_level=value["site_level"], hazard=hazard,
-            risk_target=float(value["risk_target"]))
+            risk_target=risk_target)
 
 
 def _grid(field, value, what, low, high) -> tuple:

@@ -189,15 +189,24 @@ def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
                          f"{theirs.name} for both", "hazard", what)
 
 
-def site_hazard(hazard, site_location, risk_target: float, im=None):
+def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=None):
     """(curve, intensity measure) of a settings object's ``hazard`` field: the curve read from
-    its file (at ``site_location``) unless given, ``im`` (when the user gave one) held to the
-    curve's IMT, which sets the intensity measure, and the risk target checked."""
+    its file (at ``site_location``; of the IMT ``hazard_imt``, else of ``im`` in a file of
+    several IMTs) unless given, ``im`` (when the user gave one) held to the curve's IMT, which
+    sets the intensity measure, and the risk target checked."""
+    from audit.engine.hazard_imt import im_of_imt, imt_of
     from records.hazard import HazardCurve, read_hazard
+    im_text = None if im is None else im if isinstance(im, str) else im.name
+    if hazard_imt is not None and not isinstance(hazard_imt, str):
+        raise InputError(f"hazard_imt: expected an IMT of the hazard file (PGA, SA(1.0)), got "
+                         f"{hazard_imt!r}", "hazard_imt")
     if not isinstance(hazard, HazardCurve):
-        hazard = read_hazard(hazard, site_location)
-    if im is not None:
-        check_same_im(hazard, im if isinstance(im, str) else im.name, "im")
+        hazard = read_hazard(hazard, site_location,
+                             hazard_imt or (imt_of(im_text) if im_text else None))
+    elif hazard_imt is not None:
+        check_same_im(hazard, im_of_imt(hazard_imt), "hazard_imt")
+    if im_text is not None:
+        check_same_im(hazard, im_text, "im")
     annual_rate_for(risk_target)
     return hazard, hazard_im(hazard)
 

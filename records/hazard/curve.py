@@ -74,6 +74,33 @@ class HazardCurve:
         """``PGA`` or ``SA(T)``, T in s."""
         return "PGA" if self.imt == "PGA" else f"SA({float(self.period_s)})"
 
+    def im_at_rate(self, annual_rate: float) -> float:
+        """The level [g] exceeded at ``annual_rate`` [1/yr]: the curve interpolated log–log
+        (a power law between its levels, as the risk integral reads it),
+
+        .. math:: \\ln im = \\ln im_i + \\frac{\\ln \\lambda - \\ln \\lambda_i}
+                  {\\ln \\lambda_{i+1} - \\ln \\lambda_i} \\ln\\frac{im_{i+1}}{im_i}
+
+        between the levels whose rates bracket λ. InputError naming ``return_period`` when
+        λ lies outside the curve's positive rates (the curve says nothing there); on a flat
+        stretch of the curve, its highest level of that rate."""
+        positive = self.annual_rate > 0
+        levels, rates = self.im_g[positive], self.annual_rate[positive]
+        if not rates[-1] <= annual_rate <= rates[0]:
+            raise InputError(
+                f"return_period: the hazard curve ({self.source}) covers annual rates "
+                f"{rates[-1]:.3g} to {rates[0]:.3g} /yr (return periods {1 / rates[0]:.3g} to "
+                f"{1 / rates[-1]:.3g} years), not {annual_rate:.3g} /yr", "return_period")
+        # rates fall with the level: search the reversed (ascending) rates
+        x, y = np.log(rates[::-1]), np.log(levels[::-1])
+        j = int(np.searchsorted(x, math.log(annual_rate), side="right"))
+        if j == 0:
+            return float(levels[-1])
+        if j == x.size or x[j] == x[j - 1]:
+            return float(np.exp(y[j - 1]))
+        t = (math.log(annual_rate) - x[j - 1]) / (x[j] - x[j - 1])
+        return float(np.exp(y[j - 1] + t * (y[j] - y[j - 1])))
+
     @classmethod
     def checked(cls, imt: str, levels, rates, source: str, site=None,
                 where: str | None = None) -> HazardCurve:

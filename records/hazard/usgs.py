@@ -49,10 +49,11 @@ def read_usgs_curve(path, imt: str | None = None, site=None) -> HazardCurve:
         chosen = [c for c in curves if (c[0], c[1]) == wanted]
         if not chosen:
             raise InputError(f"{path}: imt: no curve of {imt}; the response has "
-                             f"{', '.join(sorted({c[2] for c in curves}))}")
+                             f"{', '.join(sorted({c[2] for c in curves}))}", "hazard_imt")
     elif len({(c[0], c[1]) for c in curves}) > 1:
         raise InputError(f"{path}: imt: the response holds curves of "
-                         f"{', '.join(c[2] for c in curves)}; say which one")
+                         f"{', '.join(c[2] for c in curves)}; say which one with hazard_imt "
+                         "or im", "hazard_imt", "im")
     else:
         chosen = curves
     sites = [c[3] for c in chosen]
@@ -85,16 +86,11 @@ def _entry(entry, path, k):
     levels = meta.get("xvals", meta.get("xvalues"))
     if not isinstance(levels, list):
         raise InputError(f"{where}: metadata.xvals: missing (nor xvalues)")
-    data = entry.get("data")
-    if not isinstance(data, list) or not data:
-        raise InputError(f"{where}: data: missing or empty")
-    totals = [d for d in data if isinstance(d, dict) and d.get("component") == TOTAL]
-    row = totals[0] if totals else data[0]
-    if "yvalues" not in row and len(data) > 1:
-        raise InputError(f"{where}: data: no entry with component 'Total'")
+    row = _total_row(entry.get("data"), where)
     rates = row.get("yvals", row.get("yvalues"))
     if not isinstance(rates, list):
-        raise InputError(f"{where}: data[].yvals: missing (nor yvalues)")
+        raise InputError(f"{where}: data[].yvals: expected a list of annual rates (or "
+                         f"yvalues), got {type(rates).__name__} {rates!r:.40}")
     lon = meta.get("longitude", row.get("longitude"))
     lat = meta.get("latitude", row.get("latitude"))
     try:
@@ -108,6 +104,30 @@ def _entry(entry, path, k):
     except (TypeError, ValueError):
         raise InputError(f"{where}: xvals/yvals: expected numbers") from None
     return kind, period, text, site, levels, rates, k, meta
+
+
+def _total_row(data, where: str) -> dict:
+    """The entry of ``data`` holding the total hazard: the static service's one curve
+    (``yvals``), or the dynamic services' entry with ``component: "Total"`` (each other entry
+    is one source type's share of it, never the total: without the total, refused)."""
+    if not isinstance(data, list) or not data:
+        raise InputError(f"{where}: data: expected a non-empty list of curves, got "
+                         f"{type(data).__name__} {data!r:.40}")
+    for j, row in enumerate(data):
+        if not isinstance(row, dict):
+            raise InputError(f"{where}: data[{j}]: expected an object with its curve (yvals, or "
+                             f"component and yvalues), got {type(row).__name__} {row!r:.40}")
+    if any("component" in row or "yvalues" in row for row in data):
+        totals = [row for row in data if row.get("component") == TOTAL]
+        if not totals:
+            found = ", ".join(str(row.get("component")) for row in data)
+            raise InputError(f"{where}: data: no entry with component '{TOTAL}' (the total "
+                             f"hazard; the response has {found}, each one source type's share)")
+        return totals[0]
+    if len(data) > 1:
+        raise InputError(f"{where}: data: {len(data)} curves; a static-service response has "
+                         "one per IMT")
+    return data[0]
 
 
 __all__ = ["read_usgs_curve"]
