@@ -8,6 +8,7 @@ import warnings
 from dataclasses import dataclass
 
 from audit import G
+from audit.api.result_shape import Files
 from audit.engine import fields as check
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError, InputWarning
@@ -123,7 +124,7 @@ def _check_r_g(r, g) -> None:
     check.number("g", g, "a positive acceleration in m/s²", 0, low_open=True)
 
 
-class RockingResponse:
+class RockingResponse(Files):
     """The exact response of one block to one ground motion (:func:`rock`).
 
     Attributes
@@ -207,6 +208,76 @@ class RockingResponse:
             "required_friction": None if math.isinf(required) else required,
             "jumps": response.jumps, "friction": self.friction, "slides": self.slides}
 
+    PAGE = "rocking.html"
+
+    @property
+    def table(self):
+        """:attr:`history`, the response at every solver output point (a DataFrame)."""
+        return self.history
+
+    @property
+    def summary(self) -> dict:
+        """:meth:`as_dict`: the response's numbers, JSON-ready."""
+        return self.as_dict()
+
+    def summary_text(self, show_dimensions: bool = False) -> str:
+        """What ``audit rock`` prints: the block, the excitation, and the response's numbers
+        (peaks, impacts, cycles, the friction it needs); with ``show_dimensions`` the block is
+        named by its full width × height [m] too."""
+        solution, rigid, motion = self.solution, self.solution.block, self.motion
+        block_m = f"{self.block.width_m:g}x{self.block.height_m:g}" if show_dimensions else None
+        state = (f"OVERTURNS at t = {solution.overturn_time:.3f} s" if solution.overturned
+                 else "survives" if solution.uplifted else "does not uplift (PGA ≤ g tan α)")
+        source = "" if motion.source in ("", "analytic pulse") else f" — {motion.source}"
+        # after overturning there is no "after the excitation"
+        after = ("n/a" if solution.overturned
+                 else f"{solution.peak_rotation_after_excitation / rigid.alpha:.4f} α")
+        free = ("n/a" if math.isnan(solution.peak_rotation_free_vibration)
+                else f"{solution.peak_rotation_free_vibration / rigid.alpha:.4f} α (largest turning point)")
+        cycles = ", ".join(f"{d:.3f}" for d in solution.cycle_durations[:8]) or "—"
+        more = " …" if solution.cycle_durations.size > 8 else ""
+        friction = solution.required_friction
+        text = ((f"Block {block_m} m (width × height): " if block_m else "Block ")
+                + f"p = {rigid.p:.4g} rad/s (2π/p = {rigid.size_s:.4g} s, R = {rigid.radius:.3g} m), "
+                f"α = {self.block.alpha_deg:g}°, r = {rigid.r:.4f}\n"
+                f"Excitation: {motion.id}: {motion.component}{source}\n"
+                f"Result: {state}\n"
+                f"  peak |θ|                   {solution.peak_rotation:.6g} rad = "
+                f"{solution.peak_rotation_ratio:.4f} α\n"
+                f"  peak |θ| after excitation  {after}\n"
+                f"  free-vibration peak |θ|    {free}\n"
+                f"  peak |θ'|                  {solution.peak_angular_velocity:.6g} rad/s\n"
+                f"  impacts                    {solution.n_impacts}\n"
+                f"  full rocking cycles [s]    {cycles}{more}\n"
+                f"  required friction |H|/V    "
+                f"{'n/a (jumps: V < 0)' if solution.jumps else f'{friction:.4f}'} "
+                f"(tan α = {math.tan(rigid.alpha):.4f})"
+                + ("" if self.slides is None else
+                   f"\n  {'with μ = ' + format(self.friction, 'g'):<27}"
+                   f"{'SLIDES: pure rocking does not apply' if self.slides else 'rocks without sliding'}"))
+        return text + "\n"
+
+    def files(self) -> dict[str, bytes]:
+        """``rocking.json`` (:attr:`summary`), ``history.csv``, ``rocking.png`` (:meth:`plot`)
+        and ``rocking.html``, the text and the figure on one page."""
+        import base64
+        import html
+        import json
+
+        from reports.figures import png_bytes
+        png = png_bytes(self.plot(height_in=3.9))
+        page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>Rocking response"
+                f"</title></head><body><pre>{html.escape(self.summary_text())}</pre><img "
+                f"alt='θ/α and θ′ against time' src='data:image/png;base64,"
+                f"{base64.b64encode(png).decode()}'></body></html>\n")
+        return {"rocking.json": (json.dumps(self.summary) + "\n").encode(),
+                "history.csv": self.history_csv(), "rocking.png": png,
+                self.PAGE: page.encode()}
+
+    def _repr_html_(self) -> str:
+        import html
+        return f"<pre>{html.escape(self.summary_text())}</pre>"
+
     def plot(self, height_in: float = 5.0):
         """θ/α and θ' against time, rocking cycles shaded: a matplotlib Figure."""
         from reports.figures import draw_time_histories, new_figure
@@ -260,6 +331,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
     if not isinstance(block, Block):
         raise InputError(f"block: expected a Block (audit.Block(alpha_deg=…, size_s=…) or "
                          f"Block.from_dimensions), got {block!r}", "block")
+    force = check.flag("force", force)
     motion = motion_of(motion, records)
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
     if friction is not None:
@@ -275,7 +347,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         model = restitution if isinstance(restitution, Restitution) else Restitution.parse(
             restitution, "restitution")
         rigid, label = RigidBlock(rigid.p, rigid.alpha, model, rigid.g), str(model)
-    guards.check(guards.estimate([motion], free_motion_s, blocks=1), check.flag("force", force))
+    guards.check(guards.estimate([motion], free_motion_s, blocks=1), force)
     return RockingResponse(block, motion, simulate(rigid, motion, free_motion_s, vertical=vertical),
                            friction, label)
 

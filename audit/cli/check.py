@@ -61,6 +61,8 @@ def add_parser(sub):
     p.add_argument("--out", metavar="DIR", help="write check.json, check.csv, check.html here")
     p.add_argument("--scheduler", default="local", metavar="local|dask|tcp://HOST:PORT",
                    help="where records are computed")
+    p.add_argument("--skip-bad-records", action="store_true",
+                   help="check with the readable records and list the unreadable ones")
     p.set_defaults(func=run)
 
 
@@ -117,12 +119,12 @@ def run(args) -> int:
     elif args.site_location:
         raise InputError("--site-location: a site of the --hazard file; no --hazard given")
     result = check(objects, site, procedures=args.procedure, records=args.records,
-                   ntc_site=ntc_site, jobs=args.jobs, scheduler=args.scheduler,
-                   progress=True, **values)
+                   ntc_site=ntc_site, skip_bad_records=args.skip_bad_records,
+                   jobs=args.jobs, scheduler=args.scheduler, progress=True, **values)
     if out_dir is not None:
         result.write(out_dir)
     print(f"done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
-    sys.stdout.write(result.summary())
+    sys.stdout.write(result.summary_text())
     if out_dir is not None:
         print(f"Wrote {out_dir / 'check.html'}, check.json and check.csv")
     return 0

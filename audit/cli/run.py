@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import shutil
+import sys
 import time
 from pathlib import Path
 
@@ -101,24 +102,7 @@ def run(args) -> int:
         return options.interrupted(out_dir, out_dir_existed)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     total = time.perf_counter() - start
-    summary = result.summary
-    names = ", ".join(p["name"] for p in summary["procedures"])
-    print(f"Audited {names} on {summary['records_source']} "
-          f"in {summary['scheduler']}"
-          + (f"; reused {len(summary['resumed'])} records of an interrupted run"
-             if summary["resumed"] else ""))
-    grouped = {}  # one line per procedure and reason, whatever the number of records
-    for item in summary["unauditable"]:
-        grouped.setdefault((item["procedure"], item["reason"]), []).append(item["record"])
-    for (procedure, reason), records in grouped.items():
-        which = records[0] if len(records) == 1 else f"{len(records)} records"
-        print(f"  not audited: {procedure} × {which}: {reason}")
-    counts = {}
-    for line in summary["bottom_line"]:
-        for verdict, n in line["count"].items():
-            counts[verdict] = counts.get(verdict, 0) + n
-    print("Verdicts: " + ", ".join(f"{v} {n}" for v, n in
-                                   sorted(counts.items(), key=lambda item: -item[1]) if n))
+    sys.stdout.write(result.summary_text())
     print(f"Wrote {out_dir / REPORT_HTML} and results.csv, summary.json "
           f"in {total:.1f} s")
     return 0

@@ -13,7 +13,7 @@ from audit.errors import InputError
 from audit.physics.block import Restitution
 
 #: The fields :meth:`CheckSettings.parse` takes, and their defaults.
-CHECK_DEFAULTS = {"im": DEFAULT_IM, "restitution": DEFAULT_RESTITUTION,
+CHECK_DEFAULTS = {"im": None, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
                   "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET}
 CHECK_FIELDS = tuple(CHECK_DEFAULTS)
@@ -71,14 +71,19 @@ class CheckSettings:
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
         im = value["im"]
+        risk_target = check.number("risk_target", value["risk_target"],
+                                   "a probability in 50 years in (0, 1)", 0, 1, low_open=True,
+                                   high_open=True)
         if value["site_location"] is not None and value["hazard"] is None:
             raise InputError("site_location: a site of the hazard file; no hazard given",
                              "site_location")
         hazard = value["hazard"]
+        if not isinstance(im, (str, IntensityMeasure, type(None))):
+            IntensityMeasure.parse(im)  # refused, naming im
         if hazard is not None:  # read and checked before any work
             from audit.engine.risk import site_hazard
-            hazard, im = site_hazard(hazard, value["site_location"], value["risk_target"],
-                                     im if "im" in values else None)
+            hazard, im = site_hazard(hazard, value["site_location"], risk_target, im)
+        im = DEFAULT_IM if im is None else im
         im = im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im)
         if im.kind == "pgv":
             raise InputError("im: a design spectrum gives no PGV; choose pga or sa:T", "im")
@@ -93,7 +98,7 @@ class CheckSettings:
             free_motion_s=check.number("free_motion_s", value["free_motion_s"],
                                        "a duration ≥ 0 s", 0),
             g=check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True),
-            seed=seed, hazard=hazard, risk_target=float(value["risk_target"]))
+            seed=seed, hazard=hazard, risk_target=risk_target)
 
 
 __all__ = ["CheckSettings", "CHECK_DEFAULTS", "CHECK_FIELDS"]

@@ -47,11 +47,7 @@ class DesignSite:
         value = {**SITE_DEFAULTS, **values}
         site = value["site"]
         if site is not None:
-            site = check.numbers("site", site, "two positive accelerations S_XS, S_X1 in g", 0,
-                                 low_open=True)
-            if len(site) != 2:
-                raise InputError(f"site: expected two numbers S_XS, S_X1 in g, got {values['site']!r}",
-                                 "site")
+            site = check.pair("site", site, "S_XS, S_X1 in g (positive)", 0, low_open=True)
         ntc = value["ntc_site"]
         if ntc is not None:
             if isinstance(ntc, str) or not hasattr(ntc, "__len__") or len(ntc) != 5:

@@ -71,6 +71,31 @@ def words(field: str, value) -> tuple[str, ...]:
     return tuple(items)
 
 
+def pair(field: str, value, what: str, low: float | None = None,
+         high: float | None = None, *, low_open: bool = False) -> tuple[float, float]:
+    """``value`` as two finite floats (a sequence of two numbers: not one string, not one
+    number), each in [low, high]."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise InputError(f"{field}: expected two numbers {what}, got {value!r}", field)
+    first, second = numbers(field, value, f"two numbers {what}", low, high, low_open=low_open)
+    return first, second
+
+
+def path(field: str, value, what: str = "a path"):
+    """``value`` as a :class:`pathlib.Path` (from text or a path; not a number or None)."""
+    from pathlib import Path
+    if isinstance(value, (str, Path)) and str(value).strip():
+        return Path(value)
+    raise InputError(f"{field}: expected {what}, got {value!r}", field)
+
+
+def callback(field: str, value, how: str):
+    """``value`` as True, False or a callable ``how`` (e.g. ``progress(done, total, …)``)."""
+    if value is True or value is False or callable(value):
+        return value
+    raise InputError(f"{field}: expected True, False or {how}, got {value!r}", field)
+
+
 def unknown(where: str, values: dict, known) -> None:
     """InputError naming the first of ``values`` that is not a field of ``where``."""
     extra = [name for name in values if name not in known]
@@ -79,4 +104,4 @@ def unknown(where: str, values: dict, known) -> None:
                          f"{', '.join(known)})", extra[0])
 
 
-__all__ = ["number", "numbers", "whole", "flag", "words", "unknown"]
+__all__ = ["number", "numbers", "whole", "flag", "words", "pair", "path", "callback", "unknown"]

@@ -19,7 +19,7 @@ from audit.physics.block import Restitution
 
 #: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``sizes_s``: None, the
 #: default grid; ``stripes``: None, levels around the design intensity).
-MARGINS_DEFAULTS = {"im": DEFAULT_IM, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
+MARGINS_DEFAULTS = {"im": None, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
                     "sizes_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
                     "free_motion_s": DEFAULT_FREE_MOTION_S, "required": True, "g": G,
                     "site_level": DEFAULT_SITE_LEVEL, "hazard": None, "site_location": None,
@@ -101,6 +101,9 @@ class MarginsSettings:
         check.unknown("the design-level audit", values, MARGINS_FIELDS)
         value = {**MARGINS_DEFAULTS, **values}
         im = value["im"]
+        risk_target = check.number("risk_target", value["risk_target"],
+                                   "a probability in 50 years in (0, 1)", 0, 1, low_open=True,
+                                   high_open=True)
         g = check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True)
         stripes = value["stripes"]
         if stripes is not None:
@@ -110,14 +113,19 @@ class MarginsSettings:
                 raise InputError(f"stripes: expected increasing intensity levels, each once, "
                                  f"got {', '.join(f'{s:g}' for s in stripes)}", "stripes")
         sizes = value["sizes_s"]
-        if value["site_level"] not in SITE_LEVELS:
+        if value["site_location"] is not None and value["hazard"] is None:
+            raise InputError("site_location: a site of the hazard file; no hazard given",
+                             "site_location")
+        if not isinstance(value["site_level"], str) or value["site_level"] not in SITE_LEVELS:
             raise InputError(f"site_level: expected {' or '.join(SITE_LEVELS)}, got "
                              f"{value['site_level']!r}", "site_level")
         hazard = value["hazard"]
+        if not isinstance(im, (str, IntensityMeasure, type(None))):
+            IntensityMeasure.parse(im)  # refused, naming im
         if hazard is not None:  # read and checked before any work
             from audit.engine.risk import site_hazard
-            hazard, im = site_hazard(hazard, value["site_location"], value["risk_target"],
-                                     im if "im" in values else None)
+            hazard, im = site_hazard(hazard, value["site_location"], risk_target, im)
+        im = DEFAULT_IM if im is None else im
         return cls(
             im=im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im),
             stripes=stripes,
@@ -133,7 +141,7 @@ class MarginsSettings:
                                        "a duration ≥ 0 s", 0),
             required=check.flag("required", value["required"]),
             g=g, site_level=value["site_level"], hazard=hazard,
-            risk_target=float(value["risk_target"]))
+            risk_target=risk_target)
 
 
 def _grid(field, value, what, low, high) -> tuple:

@@ -193,9 +193,14 @@ def site_hazard(hazard, site_location, risk_target: float, im=None):
     """(curve, intensity measure) of a settings object's ``hazard`` field: the curve read from
     its file (at ``site_location``) unless given, ``im`` (when the user gave one) held to the
     curve's IMT, which sets the intensity measure, and the risk target checked."""
+    from audit.engine import fields
     from records.hazard import HazardCurve, read_hazard
+    if site_location is not None:
+        site_location = fields.pair("site_location", site_location,
+                                    "longitude, latitude in degrees")
     if not isinstance(hazard, HazardCurve):
-        hazard = read_hazard(hazard, site_location)
+        hazard = read_hazard(fields.path("hazard", hazard, "a hazard curve or its file"),
+                             site_location)
     if im is not None:
         check_same_im(hazard, im if isinstance(im, str) else im.name, "im")
     annual_rate_for(risk_target)
