@@ -8,7 +8,6 @@ with a DC drift and content above 25 Hz; docs/validation.md).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
