@@ -28,6 +28,7 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     from audit.engine.grid import size_grid
     from audit.physics.block import Restitution
     from audit.physics.rocking import rocking_spectrum as spectrum
+    force = check.flag("force", force)
     motion = motion_of(motion)
     sizes = check.numbers("sizes_s", sizes_s, "positive block sizes 2π/p in s", 0, low_open=True)
     alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
@@ -60,6 +61,7 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
     from audit.engine import guards
     from audit.engine.grid import size_grid
     from audit.physics.response_spectra import response_spectra as spectra
+    force = check.flag("force", force)
     motion = motion_of(motion)
     periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
     damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,
