@@ -97,15 +97,7 @@ def run(args) -> int:
     if not args.site:
         raise InputError("--site: required, S_XS,S_X1 [g] of the hazard level assessed "
                          "(e.g. --site 1.5,0.9)")
-    site = options.float_list(args.site, "--site")
-    if len(site) != 2:
-        raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
-    ntc_site = None
-    if args.ntc_site:
-        fields = args.ntc_site.split(",")
-        if len(fields) != 5:
-            raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        ntc_site = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+    site = options.design_site(args)
     out_dir = check_output_dir(Path(args.out)) if args.out else None
     objects = objects_of(args)
     start = time.perf_counter()
@@ -118,8 +110,8 @@ def run(args) -> int:
                       site_location=options.site_location(args.site_location))
     elif args.site_location:
         raise InputError("--site-location: a site of the --hazard file; no --hazard given")
-    result = check(objects, site, procedures=args.procedure, records=args.records,
-                   ntc_site=ntc_site, skip_bad_records=args.skip_bad_records,
+    result = check(objects, site["site"], procedures=args.procedure, records=args.records,
+                   ntc_site=site.get("ntc_site"), skip_bad_records=args.skip_bad_records,
                    jobs=args.jobs, scheduler=args.scheduler, progress=True, **values)
     if out_dir is not None:
         result.write(out_dir)

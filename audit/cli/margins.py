@@ -7,7 +7,6 @@ import sys
 from pathlib import Path
 
 from audit.cli import options
-from audit.cli.run import site_options
 from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
                                    DEFAULT_MARGINS_SIZES, DEFAULT_SITE_LEVEL, SITE_LEVELS,
                                    alpha_text, sizes_text)
@@ -69,7 +68,6 @@ def add_parser(sub):
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, margins
     from audit.files import check_output_dir
-    from reports.margins_page import MARGINS_HTML
     out_dir = check_output_dir(Path(args.out))
     out_dir_existed = out_dir.exists()
     values = {"alpha_deg": options.alphas_deg(args.alpha),
@@ -84,7 +82,7 @@ def run(args) -> int:
         raise InputError("--site-location: a site of the --hazard file; no --hazard given")
     if args.stripes is not None:  # '' is refused, not taken for the default
         values["stripes"] = options.float_list(args.stripes, "--stripes")
-    site = site_options(args)
+    site = options.design_site(args)
     del site["site_override"]  # one design site: the audit is of that site
     try:
         result = margins(args.procedure, options.suite(args), force=args.force, **values, **site,
@@ -95,7 +93,7 @@ def run(args) -> int:
     result.write(out_dir)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     sys.stdout.write(result.summary_text())
-    print(f"Wrote {out_dir / MARGINS_HTML} and stripes.csv, fragility.csv, capacity.csv, "
+    print(f"Wrote {out_dir / result.PAGE} and stripes.csv, fragility.csv, capacity.csv, "
           "required_alpha.csv, scan.csv, summary.json"
           + (", risk.csv, risk_alpha.csv, hazard.csv" if args.hazard else ""))
     return 0

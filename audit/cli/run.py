@@ -61,24 +61,6 @@ def add_parser(sub):
     p.set_defaults(func=run)
 
 
-def site_options(args) -> dict:
-    """The design-site arguments of the API from ``--site``, ``--site-override``,
-    ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``."""
-    site = {"site_override": getattr(args, "site_override", False),
-            "scale_to_site": args.scale_to_site,
-            "anchor_period_s": args.anchor_period}
-    if args.ntc_site:
-        fields = args.ntc_site.split(",")
-        if len(fields) != 5:
-            raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        site["ntc_site"] = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
-    if args.site:
-        site["site"] = options.float_list(args.site, "--site")
-        if len(site["site"]) != 2:
-            raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
-    return site
-
-
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, REPORT_HTML
     from audit.api import run as run_api
@@ -86,7 +68,7 @@ def run(args) -> int:
     out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
     out_dir_existed = out_dir.exists()
     grid = {"alpha_deg": options.alphas_deg(args.alpha), "sizes_s": options.sizes(args.sizes)}
-    site = site_options(args)
+    site = options.design_site(args)
     start = time.perf_counter()
     try:
         result = run_api(args.procedure, options.suite(args), out_dir=out_dir, force=args.force,
