@@ -22,7 +22,19 @@ def _real(field: str, value, what: str) -> float:
 def number(field: str, value, what: str = "a number", low: float | None = None,
            high: float | None = None, *, low_open: bool = False,
            high_open: bool = False) -> float:
-    """``value`` as a finite float in [low, high] (open ends where asked)."""
+    """``value`` as a finite float in [low, high] (open ends where asked).
+
+    Parameters
+    ----------
+    field : str
+        The argument's name, which the message starts with and the error names.
+    value :
+        A real number (not a bool, not text such as ``'0.01 s'``).
+    what : str
+        What is expected, with its unit (``"a duration ≥ 0 s"``), for the message.
+    low, high : float, optional
+        Bounds, in the field's unit; ``low_open``/``high_open`` exclude them.
+    """
     number_ = _real(field, value, what)
     below = low is not None and (number_ <= low if low_open else number_ < low)
     above = high is not None and (number_ >= high if high_open else number_ > high)
@@ -35,7 +47,15 @@ def numbers(field: str, value, what: str = "numbers", low: float | None = None,
             high: float | None = None, *, low_open: bool = False,
             high_open: bool = False) -> tuple[float, ...]:
     """``value`` (a number, or a sequence or array of them) as a non-empty tuple of finite
-    floats, each in [low, high]."""
+    floats, each in [low, high].
+
+    Parameters
+    ----------
+    field, what, low, high, low_open, high_open :
+        As for :func:`number`; text and None are refused whole.
+    value :
+        A number, a list or tuple of numbers, or an array.
+    """
     if isinstance(value, (str, bytes)) or value is None:
         raise InputError(f"{field}: expected {what}, got {value!r}", field)
     items = value.tolist() if hasattr(value, "tolist") else value
