@@ -16,6 +16,7 @@ from audit import G
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_JOBS, DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS,
                                    DEFAULT_SCHEDULER)
+from audit.api.inputs import settings_fields
 from audit.engine.design_site import SITE_FIELDS, DesignSite
 from audit.engine.runtime import Runtime
 from audit.engine.settings import AUDIT_FIELDS, AuditSettings
@@ -232,7 +233,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
     -------
     AuditResult
     """
-    from audit.api.inputs import procedures_of, settings_fields, suite_of
+    from audit.api.inputs import procedures_of, suite_of
     from audit.engine import guards
     from audit.engine.costs import audit_cost
     from audit.engine.progress import Progress
@@ -278,18 +279,36 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
 
 def load_result(folder) -> AuditResult:
     """The audit whose files are in ``folder`` (the output of :func:`run`, or of ``python -m
-    audit run``), read on first use."""
+    audit run``), read on first use.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The folder of an audit's files.
+
+    Returns
+    -------
+    AuditResult
+    """
     from audit.engine.results import checked_summary
     result = AuditResult(check.path("folder", folder, "the folder of an audit's files"))
     result.summary = checked_summary(result.folder)  # a folder without an audit is refused
     return result
 
 
-def design_suite(suite, **site):
+def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site: bool = False,
+                 anchor_period_s: float | None = None, ntc_site=None):
     """``suite`` with the design site and scaling of the fields of
-    :class:`~audit.engine.design_site.DesignSite` (``site``, ``site_override``,
-    ``scale_to_site``, ``anchor_period_s``, ``ntc_site``)."""
-    return DesignSite.parse(**site).apply(suite)
+    :class:`~audit.engine.design_site.DesignSite`.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+    site, site_override, scale_to_site, anchor_period_s, ntc_site :
+        As for :func:`run` (S_XS, S_X1 [g]; anchor period [s]; NTC 2018 a_g [g], F0, T_C* [s],
+        soil, topography).
+    """
+    return DesignSite.parse(**settings_fields(locals(), SITE_FIELDS)).apply(suite)
 
 
 def _warn_without_vertical(suite, settings: AuditSettings) -> None:

@@ -19,7 +19,27 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     """The rocking spectrum of ``motion`` (ids, paths, GroundMotions, (array, dt): see
     :func:`audit.rock`) over sizes 2π/p [s] × slendernesses [degrees]: a DataFrame (one row per
     block; ``audit.physics.rocking.RockingSpectrum.to_frame``), the record's id in
-    ``.attrs["record"]``."""
+    ``.attrs["record"]``.
+
+    Parameters
+    ----------
+    motion : str, path, records.GroundMotion or (array, float)
+        As for :func:`audit.rock` (acceleration [m/s²], dt [s]).
+    sizes_s : float or sequence of float
+        Block sizes 2π/p [s], positive.
+    alpha_deg : float or sequence of float
+        Slendernesses [degrees], in (0, 45).
+    restitution : str or float
+        ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or ``xFACTOR`` times Eq. 4.8.
+    free_motion_s : float
+        Free motion after the excitation [s].
+    vertical : bool
+        Include the motion's vertical component.
+    jobs : int
+        Solver threads.
+    force : bool
+        Start even when the estimated work is beyond the limits.
+    """
     import numpy as np
 
     from audit.api.inputs import motion_of
@@ -54,7 +74,21 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
 def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
                      free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False):
     """True response spectra of ``motion`` at periods [s] and damping ratios [%]: a DataFrame
-    (``audit.physics.response_spectra.ResponseSpectra.to_frame``)."""
+    (``audit.physics.response_spectra.ResponseSpectra.to_frame``).
+
+    Parameters
+    ----------
+    motion : str, path, records.GroundMotion or (array, float)
+        As for :func:`audit.rock`.
+    periods_s : float or sequence of float
+        Oscillator periods [s], ≥ 0.
+    damping_pct : float or sequence of float
+        Damping ratios [%], in [0, 100).
+    free_motion_s : float
+        Free vibration after the excitation [s].
+    force : bool
+        Start even when the estimated work is beyond the limits.
+    """
     import numpy as np
 
     from audit.api.inputs import motion_of

@@ -325,9 +325,9 @@ def design_site(args) -> dict:
         fields = args.ntc_site.split(",")
         if len(fields) != 5:
             raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        site["ntc_site"] = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+        site["ntc_site"] = (*float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
     if args.site:
-        site["site"] = options.float_list(args.site, "--site")
+        site["site"] = float_list(args.site, "--site")
         if len(site["site"]) != 2:
             raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
     return site

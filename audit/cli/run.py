@@ -10,7 +10,6 @@ from pathlib import Path
 from audit.cli import options
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
-from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out"
 
