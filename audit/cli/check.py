@@ -68,7 +68,7 @@ def add_parser(sub):
 
 def objects_of(args) -> list:
     """Every object of ``--block``, ``--objects`` and ``--alpha``/``--size``, checked."""
-    from audit.api.object_check import object_by_slenderness, parse_block_text, read_objects
+    from audit.api import object_by_slenderness, parse_block_text, read_objects
     objects = []
     for text in args.block or ():
         objects += parse_block_text(text, "--block")
