@@ -1,7 +1,7 @@
 """What the API accepts, turned into what the engine takes, each argument checked once:
 procedures (names, instances, classes of plug-ins), records (suite names, paths, suites),
-motions (ids, paths, GroundMotions, (array, dt) pairs), and the keyword arguments of a run
-sorted into its settings objects."""
+motions (ids, paths, GroundMotions, (array, dt) pairs), and an entry point's explicit keywords
+handed to its settings objects by name."""
 
 from __future__ import annotations
 
@@ -151,16 +151,4 @@ def settings_fields(keywords: dict, fields) -> dict:
     return {name: keywords[name] for name in fields}
 
 
-def split(options: dict, *groups) -> list[dict]:
-    """``options`` sorted into the given groups of field names (one dict each); InputError
-    naming a keyword that is in none."""
-    known = [name for group in groups for name in group]
-    extra = [name for name in options if name not in known]
-    if extra:
-        raise InputError(f"{extra[0]}: not an argument (the arguments: {', '.join(known)})",
-                         extra[0])
-    return [{name: value for name, value in options.items() if name in group}
-            for group in groups]
-
-
-__all__ = ["procedures_of", "suite_of", "motion_of", "settings_fields", "split"]
+__all__ = ["procedures_of", "suite_of", "motion_of", "settings_fields"]

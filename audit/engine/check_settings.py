@@ -12,7 +12,8 @@ from audit.engine.intensity import IntensityMeasure
 from audit.errors import InputError
 from audit.physics.block import Restitution
 
-#: The fields :meth:`CheckSettings.parse` takes, and their defaults.
+#: The fields :meth:`CheckSettings.parse` takes, and their defaults (``im``: None, the hazard
+#: curve's IMT, else ``DEFAULT_IM``).
 CHECK_DEFAULTS = {"im": None, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
                   "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET}

@@ -17,8 +17,9 @@ from audit.engine.intensity import IntensityMeasure
 from audit.errors import InputError
 from audit.physics.block import Restitution
 
-#: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``sizes_s``: None, the
-#: default grid; ``stripes``: None, levels around the design intensity).
+#: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``im``: None, the hazard
+#: curve's IMT, else ``DEFAULT_IM``; ``sizes_s``: None, the default grid; ``stripes``: None,
+#: levels around the design intensity).
 MARGINS_DEFAULTS = {"im": None, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
                     "sizes_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
                     "free_motion_s": DEFAULT_FREE_MOTION_S, "required": True, "g": G,
