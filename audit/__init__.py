@@ -4,8 +4,9 @@ Equation numbers refer to Makris & Konstantinidis, *The Rocking Spectrum and the
 Shortcomings of Design Guidelines*, PEER 2001/07.
 
 The Python API (:mod:`audit.api`) is here too: ``audit.Block``, ``audit.rock``, ``audit.run``,
-``audit.margins``, ``audit.check``, ``audit.risk``, ``audit.fragility`` (loaded on first use, so that the command line starts
-light).
+``audit.margins``, ``audit.check``, ``audit.risk``, ``audit.fragility``, ``audit.validate``,
+``audit.rocking_spectrum``, ``audit.design_spectrum``, ``audit.load_result`` (loaded on first
+use, so that the command line starts light).
 """
 
 __version__ = "0.1.0"
@@ -22,7 +23,8 @@ G = 9.81
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
 _API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
         "run", "margins", "fragility", "design_suite", "risk", "read_hazard", "check",
-        "CheckResult", "validate", "ValidationResult")
+        "CheckResult", "validate", "ValidationResult", "rocking_spectrum", "response_spectra",
+        "design_spectrum", "load_result")
 
 
 def __getattr__(name):

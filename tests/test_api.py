@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -97,3 +98,63 @@ def test_command_line_defaults_are_the_engines():
     rock = build_parser().parse_args(["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine",
                                       "--amplitude", "0.3", "--pulse-period", "2"])
     assert rock.duration == defaults.DEFAULT_FREE_MOTION_S
+
+
+def _keywords(function) -> dict:
+    import inspect
+    return {name: parameter.default
+            for name, parameter in inspect.signature(function).parameters.items()}
+
+
+@pytest.mark.parametrize("name", ["check", "run", "margins", "rock", "fragility", "validate",
+                                  "rocking_spectrum", "response_spectra", "design_spectrum",
+                                  "design_suite", "risk", "read_hazard", "load_result"])
+def test_every_entry_point_shows_its_keywords_each_documented(name):
+    import inspect
+    function = getattr(audit, name)
+    parameters = inspect.signature(function).parameters.values()
+    assert not [p for p in parameters if p.kind in (p.VAR_KEYWORD, p.VAR_POSITIONAL)]
+    documented = function.__doc__.split("Parameters\n    ----------\n")[1].split("\n\n")[0]
+    for parameter in parameters:  # numpydoc: a line "name :" or "a, name, b :"
+        assert re.search(rf"^    (\w+, )*{parameter.name}(, \w+)* :", documented, re.M), \
+            (name, parameter.name)
+
+
+@pytest.mark.parametrize(("function", "defaults"), [
+    ("check", "audit.engine.check_settings:CHECK_DEFAULTS"),
+    ("run", "audit.engine.settings:AUDIT_DEFAULTS"),
+    ("run", "audit.engine.design_site:SITE_DEFAULTS"),
+    ("margins", "audit.engine.margins_settings:MARGINS_DEFAULTS")])
+def test_the_keywords_are_the_settings_fields_with_their_defaults(function, defaults):
+    """Adding a setting is one field, one keyword, one flag: the keyword is the field, named
+    and defaulted alike (the function hands its keywords to the settings' parse by name)."""
+    import importlib
+    module, _, table = defaults.partition(":")
+    fields = getattr(importlib.import_module(module), table)
+    keywords = _keywords(getattr(audit, function))
+    assert {name: keywords.get(name, "absent") for name in fields} == fields
+
+
+@pytest.mark.parametrize("name", ["CheckResult", "AuditResult", "MarginsResult",
+                                  "FragilityResult", "ValidationResult", "RockingResponse"])
+def test_every_result_has_one_shape(name):
+    kind = getattr(audit, name)
+    for member in ("table", "summary", "summary_text", "write", "report", "_repr_html_"):
+        assert hasattr(kind, member) or member in ("table", "summary"), (name, member)
+    assert callable(kind.summary_text) and callable(kind.write) and callable(kind.report)
+
+
+def test_a_rocking_response_has_the_shape_of_every_result(tmp_path):
+    pulse = records.one_pulse("cosine", 0.5, 1.0)  # a_p = 0.5 g > g tan 15°: it rocks
+    response = audit.rock(audit.Block.from_dimensions(width_m=0.6, height_m=1.8), pulse)
+    assert list(response.table.columns) == ["time_s", "theta_rad", "theta_dot_rad_s",
+                                            "ground_acc_g"]
+    assert response.summary["alpha_deg"] == pytest.approx(math.degrees(math.atan(0.3 / 0.9)))
+    assert response.summary_text().startswith("Block p = ")
+    assert response.summary_text(show_dimensions=True).startswith("Block 0.6x1.8 m")
+    written = response.write(tmp_path / "out")
+    assert sorted(p.name for p in written.iterdir()) == ["history.csv", "rocking.html",
+                                                         "rocking.json", "rocking.png"]
+    page = response.report(tmp_path / "page.html").read_text(encoding="utf-8")
+    assert "data:image/png;base64," in page and "impacts" in page
+    assert "<pre>" in response._repr_html_()

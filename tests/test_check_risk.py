@@ -92,7 +92,7 @@ def test_files_and_page_carry_the_risk(result, tmp_path):
     assert float(row["p50"]) == pytest.approx(document["objects"][0]["risk"]["p50"], rel=1e-5)
     page = (tmp_path / "check.html").read_text()
     assert "Risk at the site" in page and "risk1" in page
-    assert "P in 50 years" in result.summary() and "/yr" in result.sentences[0]
+    assert "P in 50 years" in result.summary_text() and "/yr" in result.sentences[0]
 
 
 def test_the_hazard_curve_sets_the_intensity_measure():

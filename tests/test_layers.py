@@ -118,6 +118,11 @@ def test_the_command_line_goes_through_the_api():
     assert not around, "the command line around the API: " + "; ".join(sorted(around))
     # the check sees the command line's imports
     assert "audit.api" in GRAPH["audit.cli.run"] and "audit.cli.options" in GRAPH["audit.cli.run"]
+    # through its front door: ``from audit.api import check``, never a module behind it
+    behind = [f"{name} → {target}" for name, targets in GRAPH.items()
+              if _layer(name) == _layer("audit.cli") for target in targets
+              if target.startswith("audit.api.")]
+    assert not behind, "the command line behind the API's front: " + "; ".join(sorted(behind))
 
 
 def _import_alone(name: str) -> tuple[str, str]:

@@ -28,13 +28,16 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           "rock": "audit.api.rocking", "run": "audit.api.runs", "AuditResult": "audit.api.runs",
           "typed": "audit.api.runs", "design_suite": "audit.api.runs",
           "margins": "audit.api.design_level", "MarginsResult": "audit.api.design_level",
-          "with_page": "audit.api.design_level", "fragility": "audit.api.probabilistic",
+          "with_page": "audit.api.result_shape", "fragility": "audit.api.probabilistic",
           "FragilityResult": "audit.api.probabilistic",
           "FRAGILITY_HTML": "audit.api.probabilistic",
           "rocking_spectrum": "audit.api.spectra", "response_spectra": "audit.api.spectra",
           "design_spectrum": "audit.api.spectra", "load_result": "audit.api.runs",
           "risk": "audit.api.site_risk", "read_hazard": "audit.api.site_risk",
           "check": "audit.api.object_check", "CheckResult": "audit.api.object_check",
+          # an inventory, --block and --alpha/--size as objects of a check, checked
+          "read_objects": "audit.api.object_check", "parse_block_text": "audit.api.object_check",
+          "object_by_slenderness": "audit.api.object_check",
           "validate": "audit.api.validation", "ValidationResult": "audit.api.validation",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
           # and its report, for the command line
@@ -57,4 +60,5 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "MarginsResult", "fragility", "FragilityResult", "typed", "with_page", "PARTIAL_DIR",
            "REPORT_HTML", "FRAGILITY_HTML", "rocking_spectrum", "response_spectra",
            "design_spectrum", "load_result", "available_procedures", "size_grid", "kept_parts",
-           "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult"]
+           "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
+           "read_objects", "parse_block_text", "object_by_slenderness"]

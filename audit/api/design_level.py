@@ -2,47 +2,58 @@
 
 from __future__ import annotations
 
+import time
 from dataclasses import replace
-from pathlib import Path
 
-from audit.engine.design_site import SITE_FIELDS, DesignSite
+from audit import G
+from audit.api.result_shape import Files, with_page
+from audit.engine.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+                                   DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER,
+                                   DEFAULT_SITE_LEVEL)
+from audit.engine.design_site import DesignSite
 from audit.engine.margins_settings import MARGINS_FIELDS, MarginsSettings
-from audit.engine.runtime import RUNTIME_FIELDS, Runtime
+from audit.engine.runtime import Runtime
 
 
-class MarginsResult:
-    """A design-level audit's tables: ``.stripes``, ``.fragility``, ``.capacity``,
-    ``.required_alpha``, ``.scan``, ``.acceptance`` (FEMA P695's test of the blocks each
-    guideline sizes, with a design site), and at a site ``.risk``, ``.risk_alpha`` (DataFrames,
-    the columns of the CSV files of the same names), ``.summary``, ``.write(folder)`` (the
-    files and ``margins.html``) and ``.report(path)``."""
+class MarginsResult(Files):
+    """A design-level audit's tables: ``.stripes``, ``.fragility`` (also ``.table``),
+    ``.capacity``, ``.required_alpha``, ``.scan``, ``.acceptance`` (FEMA P695's test of the
+    blocks each guideline sizes, with a design site), and at a site ``.risk``, ``.risk_alpha``
+    (DataFrames, the columns of the CSV files of the same names); ``.summary`` (everything of
+    ``summary.json``), ``.summary_text()``, ``.write(folder)`` (the files and ``margins.html``)
+    and ``.report(path)``.
 
-    def __init__(self, margins):
-        self.margins = margins
+    Attributes
+    ----------
+    seconds : float
+        How long the audit took [s] (the first line of :meth:`summary_text`).
+    """
+
+    PAGE = "margins.html"
+
+    def __init__(self, margins, seconds: float = 0.0):
+        self.margins, self.seconds = margins, seconds
         self.stripes, self.fragility = margins.stripes, margins.fragility
         self.capacity, self.summary = margins.capacity, margins.summary
         self.required_alpha, self.scan = margins.required_alpha, margins.scan
         self.risk, self.risk_alpha = margins.risk, margins.risk_alpha
         self.acceptance = margins.acceptance
 
+    @property
+    def table(self):
+        """One row per block: its exact fragility and collapse margin (``fragility.csv``)."""
+        return self.fragility
+
+    def summary_text(self) -> str:
+        """The lines ``audit margins`` prints."""
+        from audit.engine.margins_words import margins_summary_text
+        return margins_summary_text(self.margins, self.seconds)
+
     def files(self) -> dict[str, bytes]:
         """Every file of the audit, the page drawn from the CSV files as saved."""
         from audit.engine.margins import margins_files
         from reports.margins_page import MARGINS_HTML, render_margins_page
         return with_page(margins_files(self.margins), MARGINS_HTML, render_margins_page)
-
-    def write(self, out_dir) -> Path:
-        """Write the files and ``margins.html`` into ``out_dir`` (atomically, together)."""
-        from audit.files import write_files_atomically
-        write_files_atomically(Path(out_dir), self.files())
-        return Path(out_dir)
-
-    def report(self, path) -> Path:
-        """Write ``margins.html`` alone to ``path``."""
-        from audit.files import write_file_atomically
-        from reports.margins_page import MARGINS_HTML
-        write_file_atomically(Path(path), self.files()[MARGINS_HTML])
-        return Path(path)
 
     def __repr__(self) -> str:
         blocks = len(self.fragility)
@@ -61,73 +72,100 @@ class MarginsResult:
                 + lines.to_html(float_format=lambda v: f"{v:.3g}", na_rep="—"))
 
 
-def with_page(files: dict, page_name: str, render) -> dict:
-    """``files`` and the page ``render(folder)`` draws from them as saved (in a scratch folder),
-    so that a page is always the picture of exactly the files beside it."""
-    import tempfile
-
-    from audit.files import write_files_atomically
-    with tempfile.TemporaryDirectory() as saved:
-        write_files_atomically(saved, files)
-        return {**files, page_name: render(saved).encode()}
-
-
-def margins(procedures="all", records=None, *, force: bool = False,
-            **options) -> MarginsResult:
+def margins(procedures="all", records=None, *, im: str | None = None, stripes=None,
+            alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, blocks=(),
+            restitution=DEFAULT_RESTITUTION, free_motion_s: float = DEFAULT_FREE_MOTION_S,
+            required: bool = True, g: float = G, site_level: str = DEFAULT_SITE_LEVEL,
+            hazard=None, site_location=None, risk_target: float = DEFAULT_RISK_TARGET,
+            site=None, scale_to_site: bool = False, anchor_period_s: float | None = None,
+            ntc_site=None, skip_bad_records: bool = False, force: bool = False,
+            jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
+            resume: bool = False, progress=False) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
     procedure draws its line against it (see :mod:`audit.engine.margins`).
 
-    Every argument is checked before anything is read or computed; a bad one raises
+    Every argument is checked before anything is read or computed (by
+    :meth:`MarginsSettings.parse <audit.engine.margins_settings.MarginsSettings.parse>`,
+    :meth:`DesignSite.parse <audit.engine.design_site.DesignSite.parse>` and
+    :meth:`Runtime.parse <audit.engine.runtime.Runtime.parse>`); a bad one raises
     :class:`~audit.errors.InputError` naming it.
 
     Parameters
     ----------
     procedures, records :
         As for :func:`audit.run`.
+    im : str, optional
+        Intensity measure: ``pga`` [g], ``pgv`` [m/s] or ``sa:T`` (T in s) [g]; default
+        ``sa:1.0``, or the hazard curve's IMT.
+    stripes : float or sequence of float, optional
+        Intensity levels, increasing [unit of ``im``]; default 24 levels, 0.2–5 × the design
+        intensity or the suite's median.
+    alpha_deg : float or sequence of float
+        Slendernesses [degrees], 0 < α < 45 (may be empty when ``blocks`` are given).
+    sizes_s : float or sequence of float, optional
+        Block sizes 2π/p [s]; default 0.5 … 8 s in steps of 0.25 s.
+    blocks : sequence of str or Block
+        Blocks by their dimensions, ``"WIDTHxHEIGHT"`` [m] or :class:`Block`, beside the grid.
+    restitution : str or float
+        ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or ``xFACTOR`` times Eq. 4.8.
+    free_motion_s : float
+        Free motion after each record [s].
+    required : bool
+        Also search the required slenderness of each size.
+    g : float
+        Acceleration of gravity [m/s²].
+    site_level : {"mce", "design"}
+        The hazard level of ``site``: the CMR is over the MCE intensity, 1.5 × design values.
+    hazard : records.hazard.HazardCurve, str or pathlib.Path, optional
+        The site's hazard curve or its file: the risk at the site; its IMT sets ``im``.
+    site_location : (float, float), optional
+        Longitude, latitude [degrees] of the site in a hazard file of several sites.
+    risk_target : float
+        Probability of overturning in 50 years [-], in (0, 1).
+    site : (float, float), optional
+        FEMA 356 S_XS, S_X1 [g], replacing the records' own: the design intensity of the CMR.
+    scale_to_site, anchor_period_s, ntc_site :
+        As for :func:`audit.run` (anchor period in s; NTC 2018 a_g [g], F0, T_C* [s], soil,
+        topography).
+    skip_bad_records : bool
+        Audit the readable records; the unreadable ones are warned about and left out.
     force : bool
         Start even when the estimated work is beyond the limits (:mod:`audit.engine.guards`).
-    **options :
-        What is computed, the fields of
-        :class:`~audit.engine.margins_settings.MarginsSettings`: ``im`` (``pga`` [g], ``pgv``
-        [m/s] or ``sa:T``), ``stripes`` (intensity levels, increasing; default 24 levels,
-        0.2–5 × the design intensity or the suite's median), ``alpha_deg``, ``sizes_s``
-        (default 0.5 … 8 s in steps of 0.25 s), ``blocks`` (``"WIDTHxHEIGHT"`` [m] or
-        :class:`Block`), ``restitution``, ``free_motion_s``, ``required`` (also the required
-        slenderness of each size), ``g``, ``site_level`` (``"mce"``, the default, or
-        ``"design"``: the CMR is over the MCE intensity, 1.5 × design values), ``hazard`` (a
-        hazard curve or its file: the risk at the site; its IMT sets ``im``),
-        ``site_location`` (lon, lat [degrees] in a file of several sites), ``risk_target``
-        (probability of overturning in 50 years);
-        the design site: ``site`` (S_XS, S_X1 [g], replacing the records' own: the design
-        intensity of the CMR), ``scale_to_site``, ``anchor_period_s``, ``ntc_site`` (see
-        :func:`audit.run`);
-        how: ``jobs``, ``scheduler``, ``partial_dir``, ``resume``, ``progress``.
+    jobs, scheduler, partial_dir, resume, progress :
+        How, as for :func:`audit.run`.
+
+    Returns
+    -------
+    MarginsResult
     """
-    from audit.api.inputs import procedures_of, split, suite_of
+    from audit.api.inputs import procedures_of, settings_fields, suite_of
+    from audit.engine import fields as check
     from audit.engine import guards
     from audit.engine.costs import margins_cost
     from audit.engine.margins_audit import design_level_audit
     from audit.engine.progress import Progress
-    values, site, how = split(options, MARGINS_FIELDS,
-                              tuple(f for f in SITE_FIELDS if f != "site_override"),
-                              RUNTIME_FIELDS)
-    settings = MarginsSettings.parse(**values)
+    given = locals()
+    settings = MarginsSettings.parse(**settings_fields(given, MARGINS_FIELDS))
     # one design site: the audit is of that site
-    site = DesignSite.parse(**site, site_override=site.get("site") is not None)
-    bar = how.get("progress") is True
-    runtime = Runtime.parse(**{**how, "progress": None if how.get("progress") in (True, False)
-                               else how.get("progress")})
+    site = DesignSite.parse(site=site, site_override=site is not None,
+                            scale_to_site=scale_to_site, anchor_period_s=anchor_period_s,
+                            ntc_site=ntc_site)
+    bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
+    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
+                            resume=resume, progress=progress if callable(progress) else None)
+    force = check.flag("force", force)
     chosen = procedures_of(procedures)
-    suite = site.apply(suite_of(records))
+    suite = site.apply(suite_of(records, skip_bad_records))
     guards.check(margins_cost(chosen, suite, settings, runtime), force)
     if bar:
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
+    start = time.perf_counter()
     try:
         run = design_level_audit(chosen, suite, settings, runtime)
     finally:
         if bar:
             runtime.progress.done()
-    return MarginsResult(run)
+    return MarginsResult(run, time.perf_counter() - start)
 
 
-__all__ = ["margins", "MarginsResult", "with_page"]
+__all__ = ["margins", "MarginsResult"]

@@ -1,7 +1,7 @@
 """What the API accepts, turned into what the engine takes, each argument checked once:
 procedures (names, instances, classes of plug-ins), records (suite names, paths, suites),
-motions (ids, paths, GroundMotions, (array, dt) pairs), and the keyword arguments of a run
-sorted into its settings objects."""
+motions (ids, paths, GroundMotions, (array, dt) pairs), and an entry point's explicit keywords
+handed to its settings objects by name."""
 
 from __future__ import annotations
 
@@ -81,15 +81,24 @@ def _check_plug_in(proc: Procedure, registered: dict) -> None:
                          f"one damping ratio in [0, 1) for one r, got {beta!r}", "procedures")
 
 
-def suite_of(records):
-    """A :class:`records.RecordSuite` from a suite, a name or a path (None: the default)."""
+def suite_of(records, skip_bad_records: bool = False):
+    """A :class:`records.RecordSuite` from a suite, a name or a path (None: the default); with
+    ``skip_bad_records``, the unreadable records of a path are left out, each warned about
+    (:class:`~audit.errors.InputWarning`, one line)."""
+    import warnings
     from pathlib import Path
 
+    from audit.engine.fields import flag
+    from audit.errors import InputWarning
     from records import RecordSuite, load_records
+    skip = flag("skip_bad_records", skip_bad_records)
     if isinstance(records, RecordSuite):
         suite = records
     elif records is None or isinstance(records, (str, Path)):
-        suite = load_records(records)
+        suite = load_records(records, skip_bad=skip)
+        for bad in getattr(suite, "rejected", ()):
+            warnings.warn(f"not audited: {bad['record']} ({bad['file']}): {bad['reason']}",
+                          InputWarning, stacklevel=3)
     else:
         raise InputError(f"records: expected a suite name, a path or a RecordSuite, got "
                          f"{records!r}", "records")
@@ -106,7 +115,7 @@ def motion_of(motion, records=None):
 
     import numpy as np
 
-    from records import GroundMotion, RecordEntry, load_path, load_records, resolve_motion
+    from records import GroundMotion, RecordEntry, load_path, resolve_motion
     if isinstance(motion, GroundMotion):
         return motion
     if isinstance(motion, RecordEntry):
@@ -117,8 +126,7 @@ def motion_of(motion, records=None):
     if isinstance(motion, (str, Path)):
         if Path(motion).is_file():  # a record file: no suite to look it up in
             return load_path(motion).entries[0].motion
-        return resolve_motion(records if hasattr(records, "entries") else load_records(records),
-                              str(motion)).motion
+        return resolve_motion(suite_of(records), str(motion)).motion
     if isinstance(motion, tuple) and len(motion) == 2:
         acceleration, dt = motion
         values = np.asarray(acceleration, dtype=float) if not isinstance(acceleration, str) \
@@ -137,16 +145,10 @@ def motion_of(motion, records=None):
                         if hasattr(motion, "shape") else ""), "motion")
 
 
-def split(options: dict, *groups) -> list[dict]:
-    """``options`` sorted into the given groups of field names (one dict each); InputError
-    naming a keyword that is in none."""
-    known = [name for group in groups for name in group]
-    extra = [name for name in options if name not in known]
-    if extra:
-        raise InputError(f"{extra[0]}: not an argument (the arguments: {', '.join(known)})",
-                         extra[0])
-    return [{name: value for name, value in options.items() if name in group}
-            for group in groups]
+def settings_fields(keywords: dict, fields) -> dict:
+    """The settings fields among a function's explicit keywords (its ``locals()``): a keyword
+    added to a settings object reaches it by being named in the function's signature."""
+    return {name: keywords[name] for name in fields}
 
 
-__all__ = ["procedures_of", "suite_of", "motion_of", "split"]
+__all__ = ["procedures_of", "suite_of", "motion_of", "settings_fields"]

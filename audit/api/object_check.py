@@ -3,7 +3,7 @@
     import audit
     result = audit.check(["0.6x1.8"], site=(1.5, 0.9))
     result.table              # one row per object × procedure (a DataFrame)
-    print(result.summary())   # the paragraph and table the command line prints
+    print(result.summary_text())   # the paragraph and table the command line prints
     result.report("check.html")
 
 Objects are ``"WIDTHxHEIGHT"`` strings [m], :class:`audit.api.Block` instances, or
@@ -15,17 +15,20 @@ from __future__ import annotations
 
 import html
 from dataclasses import replace
-from pathlib import Path
 
 import pandas as pd
 
+from audit import G
+from audit.api.result_shape import Files, with_page
+from audit.engine import fields as check_field
 from audit.engine.check_objects import object_by_slenderness, parse_block_text, read_objects
-from audit.engine.defaults import DEFAULT_CHECK_RECORDS
+from audit.engine.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+                                   DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER)
 from audit.errors import InputError
 
 
 
-class CheckResult:
+class CheckResult(Files):
     """The answer of a check.
 
     Attributes
@@ -35,11 +38,17 @@ class CheckResult:
         ``objects``, each with its ``exact`` answer and ``procedures``.
     table : pandas.DataFrame
         One row per object × procedure (the columns of ``check.csv``).
+    summary : dict
+        The run of ``check.json`` without its objects: site, intensity measure, records,
+        procedures.
     """
+
+    PAGE = "check.html"
 
     def __init__(self, run):
         from audit.engine.check_summary import check_table
         self.run = run
+        self.summary: dict = run.summary
         self.document = {**run.summary, "objects": run.objects}
         self.table: pd.DataFrame = check_table(run.objects)
 
@@ -48,7 +57,7 @@ class CheckResult:
         """One sentence per object, for a calculation note."""
         return [obj["sentence"] for obj in self.run.objects]
 
-    def summary(self) -> str:
+    def summary_text(self) -> str:
         """The paragraph and per-object table ``audit check`` prints."""
         from audit.engine.check_words import summary_text
         return summary_text(self.document)
@@ -56,23 +65,9 @@ class CheckResult:
     def files(self) -> dict[str, bytes]:
         """``check.json``, ``check.csv`` and ``check.html`` (the page drawn from the JSON as
         saved)."""
-        from audit.api import with_page
         from audit.engine.check_summary import CHECK_HTML, check_data_files
         from reports.check_page import render_check_page
         return with_page(check_data_files(self.run), CHECK_HTML, render_check_page)
-
-    def write(self, out_dir) -> Path:
-        """Write the three files into ``out_dir`` (atomically, together)."""
-        from audit.files import write_files_atomically
-        write_files_atomically(Path(out_dir), self.files())
-        return Path(out_dir)
-
-    def report(self, path) -> Path:
-        """Write ``check.html`` alone to ``path``."""
-        from audit.engine.check_summary import CHECK_HTML
-        from audit.files import write_file_atomically
-        write_file_atomically(Path(path), self.files()[CHECK_HTML])
-        return Path(path)
 
     def _repr_html_(self) -> str:
         table = self.table[["object", "procedure", "verdict", "demand", "capacity", "unit",
@@ -92,6 +87,9 @@ def _objects(objects, g: float) -> list:
     from audit.engine.check_objects import checked_object, parse_block_text
     if isinstance(objects, (str, Block)):
         objects = [objects]
+    if not isinstance(objects, (list, tuple)):
+        raise InputError(f"objects: expected 'WIDTHxHEIGHT', a Block, (name, width_m, "
+                         f"height_m) or a list of those, got {objects!r}", "objects")
     out = []
     for i, item in enumerate(objects):
         where = f"objects[{i}]"
@@ -99,28 +97,40 @@ def _objects(objects, g: float) -> list:
             try:
                 out += parse_block_text(item, where, g)
             except InputError as exc:
-                raise InputError(str(exc)) from None
+                raise InputError(str(exc), "objects") from None
         elif isinstance(item, Block):  # named on the command line; by its dimensions if not
             out.append(within_limits(item if item.name else replace(
                 item, name=f"{item.width_m:.3g}x{item.height_m:.3g}"), where))
         elif isinstance(item, (tuple, list)) and len(item) == 3:
             name, width, height = item
-            out.append(checked_object(str(name), width, height, f"{where} ({name})", g))
+            try:
+                out.append(checked_object(str(name), width, height, f"{where} ({name})", g))
+            except InputError as exc:
+                raise InputError(str(exc), "objects") from None
         else:
             raise InputError(f"{where}: expected 'WIDTHxHEIGHT', a Block or (name, width_m, "
-                             f"height_m), got {item!r}")
+                             f"height_m), got {item!r}", "objects")
     if not out:
-        raise InputError("objects: no object to check")
+        raise InputError("objects: no object to check", "objects")
     return out
 
 
-def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc_site=None,
-          progress=False, force: bool = False, **options) -> CheckResult:
+def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
+          im: str | None = None, restitution=DEFAULT_RESTITUTION,
+          free_motion_s: float = DEFAULT_FREE_MOTION_S, g: float = G, seed: int | None = None,
+          hazard=None, hazard_imt: str | None = None, site_location=None,
+          risk_target: float = DEFAULT_RISK_TARGET, return_period: float | None = None,
+          poe: float | None = None, friction: float | None = None, ntc_site=None,
+          skip_bad_records: bool = False, jobs: int = DEFAULT_JOBS,
+          scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check_risk`).
 
-    Every argument is checked before anything is read or computed; a bad one raises
+    Every argument is checked before anything is read or computed (by
+    :meth:`CheckSettings.parse <audit.engine.check_settings.CheckSettings.parse>`,
+    :meth:`DesignSite.parse <audit.engine.design_site.DesignSite.parse>` and
+    :meth:`Runtime.parse <audit.engine.runtime.Runtime.parse>`); a bad one raises
     :class:`~audit.errors.InputError` naming it.
 
     Parameters
@@ -130,61 +140,84 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
         or a list of those.
     site : (float, float)
         FEMA 356 / ASCE 41 S_XS, S_X1 [g] at the hazard level assessed.
-    procedures, records :
-        As for :func:`audit.api.run`; records default to the FEMA P695 far-field set, scaled to
-        the site.
+    procedures : str, Procedure, type or list
+        As for :func:`audit.api.run`.
+    records : str, path or records.RecordSuite
+        As for :func:`audit.api.run`; default the FEMA P695 far-field set. Scaled to the site.
+    im : str, optional
+        Intensity measure, ``pga`` [g] or ``sa:T`` (T in s) [g], read from the site's design
+        spectrum; default ``sa:1.0``, or the hazard curve's IMT.
+    restitution : str or float
+        Impact model of the exact solver: ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or
+        ``xFACTOR`` times Eq. 4.8.
+    free_motion_s : float
+        Free motion after each record [s], ≥ 0.
+    g : float
+        Acceleration of gravity [m/s²].
+    seed : int, optional
+        Seed of the bootstrap over records.
+    hazard : records.hazard.HazardCurve, str or pathlib.Path, optional
+        The site's hazard curve or its file: the annual rate of overturning; its IMT sets
+        ``im``.
+    hazard_imt : str, optional
+        The IMT of a hazard file of several (``"SA(1.0)"``, ``"PGA"``); without it, ``im``'s.
+    site_location : (float, float) or str, optional
+        Longitude, latitude [degrees] of the site in a hazard file of several sites (west and
+        south negative; ``"-118,34"`` too).
+    risk_target : float or str
+        Probability of overturning in 50 years the risk-targeted width meets [-], in (0, 1):
+        0.01 or ``"1%"``.
+    return_period : float, optional
+        With ``hazard``: the site's intensity for the exact answer is the hazard curve's at this
+        return period [years]; ``site`` stays the design spectrum the guidelines read.
+    poe : float or str, optional
+        The same, as a probability of exceedance in 50 years (0.02 or ``"2%"``).
+    friction : float, optional
+        Friction coefficient μ of the object's base [-]: which mode governs, sliding or
+        rocking; without it no sliding is assumed and the friction the records need is given.
     ntc_site : (float, float, float, str, str), optional
-        NTC 2018 site, see :func:`audit.api.design_suite`.
+        NTC 2018 site a_g [g], F0 [-], T_C* [s], soil, topography
+        (see :func:`audit.api.design_suite`).
+    skip_bad_records : bool
+        Check with the readable records of the suite; the unreadable ones are warned about
+        (:class:`~audit.errors.InputWarning`) and left out.
+    jobs : int
+        Solver threads, or worker processes with ``scheduler="dask"``.
+    scheduler : str
+        ``local``, ``dask`` or ``tcp://HOST:PORT``.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, record_id, how)``.
     force : bool
         Start even when the work is estimated beyond the limits of
         :mod:`audit.engine.guards` (as for :func:`audit.api.run`); InputError otherwise.
-    **options :
-        What is computed, the fields of :class:`~audit.engine.check_settings.CheckSettings`:
-        ``im`` (``pga`` or ``sa:T``, the site's intensity read from its design spectrum;
-        default ``sa:1.0``), ``restitution``, ``free_motion_s``, ``g``, ``seed`` (of the
-        bootstrap over records), ``hazard`` (a hazard curve or its file: the risk; its IMT
-        sets ``im``), ``hazard_imt`` (the IMT of a file of several, e.g. ``"SA(1.0)"``),
-        ``site_location`` (lon, lat [degrees] in a file of several sites), ``risk_target``
-        (probability of overturning in 50 years, 0.01 or ``"1%"``; default 0.01),
-        ``return_period`` [years] or ``poe`` (in 50 years, 0.02 or ``"2%"``): the site's
-        intensity for the exact answer read on the hazard curve, ``site`` staying the design
-        spectrum the guidelines read; ``friction`` (μ of the base: which mode governs, sliding
-        or rocking; without it no sliding is assumed); how: ``jobs``, ``scheduler``.
 
     Returns
     -------
     CheckResult
     """
-    from audit.api.inputs import procedures_of, split, suite_of
-    from audit.engine import fields, guards
+    from audit.api.inputs import procedures_of, settings_fields, suite_of
+    from audit.engine import guards
     from audit.engine.costs import check_cost
-    from audit.engine.design_site import DesignSite
     from audit.engine.check import run_check
     from audit.engine.check_settings import CHECK_FIELDS, CheckSettings
+    from audit.engine.design_site import DesignSite
     from audit.engine.progress import Progress
     from audit.engine.runtime import Runtime
-    values, how = split(options, CHECK_FIELDS, ("jobs", "scheduler"))
-    settings = CheckSettings.parse(**values)
+    settings = CheckSettings.parse(**settings_fields(locals(), CHECK_FIELDS))
     chosen_objects = _objects(objects, settings.g)
-    try:
-        sxs_g, sx1_g = (float(v) for v in site)
-    except (TypeError, ValueError):
-        raise InputError(f"site: expected (S_XS, S_X1) in g, got {site!r}", "site") from None
-    if progress not in (True, False) and not callable(progress):
-        raise InputError(f"progress: expected True, False or progress(done, total, record_id, "
-                         f"how), got {progress!r}", "progress")
-    runtime = Runtime.parse(**how, progress=progress if callable(progress) else None)
+    progress = check_field.callback("progress", progress, "progress(done, total, record_id, how)")
+    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler,
+                            progress=progress if callable(progress) else None)
+    if site is None:
+        raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
+    site = DesignSite.parse(site=site, site_override=True, scale_to_site=True,
+                            ntc_site=ntc_site)
     chosen = procedures_of(procedures)
-    # the site is checked before the records are read (a site in per cent of g fails at once)
-    design_site = DesignSite.parse(site=(sxs_g, sx1_g), site_override=True, scale_to_site=True,
-                                   ntc_site=ntc_site)
-    given = suite_of(records)
+    given = suite_of(records, skip_bad_records)
     # the work, before the records are scaled to the site (scaling keeps their samples)
     guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
-                 fields.flag("force", force))
-    suite = design_site.apply(given)
+                 check_field.flag("force", force))
+    suite = site.apply(given)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, settings,

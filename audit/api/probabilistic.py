@@ -3,28 +3,53 @@ overturning fragility: :func:`fragility` and its :class:`FragilityResult`."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
+from audit.api.result_shape import Files, table_html, with_page
 from audit.engine.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
 
 #: The page of the audit, drawn from its saved CSV files.
 FRAGILITY_HTML = "fragility.html"
 
 
-class FragilityResult:
-    """The tables of :func:`fragility` (``.tables``: file name → DataFrame), ``.files()`` (the
-    CSV files and ``fragility.html``) and ``.write(folder)``."""
+class FragilityResult(Files):
+    """The tables of :func:`fragility` (``.tables``: file name → DataFrame; ``.table``, its
+    components' fragilities), ``.summary``, ``.summary_text()``, ``.files()`` (the CSV files
+    and ``fragility.html``), ``.write(folder)`` and ``.report(path)``."""
+
+    PAGE = FRAGILITY_HTML
 
     def __init__(self, procedure, tables: dict, source: str):
         self.procedure, self.tables, self.source = procedure, tables, source
 
+    @property
+    def title(self) -> str:
+        """What the audit is of."""
+        return f"{self.procedure.title} against the exact fragility ({self.source})"
+
+    @property
+    def table(self):
+        """One row per component of the procedure: its fragility against the exact one
+        (``fragility-components.csv``)."""
+        from audit.engine.fragility_audit import COMPONENTS_CSV
+        return self.tables[COMPONENTS_CSV]
+
+    @property
+    def summary(self) -> dict:
+        """The procedure, the records and the rows of each table."""
+        return {"procedure": self.procedure.name, "title": self.procedure.title,
+                "records_source": self.source,
+                "rows": {name: len(table) for name, table in self.tables.items()}}
+
+    def summary_text(self) -> str:
+        """What was audited, and the files' rows."""
+        return (f"{self.title}\n" + "".join(f"  {name}: {rows} rows\n"
+                                           for name, rows in self.summary["rows"].items()))
+
     def files(self) -> dict[str, bytes]:
         """Every file of the audit, the page drawn from the CSV files as saved."""
-        from audit.api.design_level import with_page
         from reports.fragility_page import render_fragility_page
         files = {name: table.to_csv(index=False).encode() for name, table in self.tables.items()}
-        title = f"{self.procedure.title} against the exact fragility ({self.source})"
-        return with_page(files, FRAGILITY_HTML, lambda saved: render_fragility_page(saved, title))
+        return with_page(files, FRAGILITY_HTML,
+                         lambda saved: render_fragility_page(saved, self.title))
 
     def exact_components(self) -> list:
         """The audited components with their *exact* lognormal fragility (the maximum-likelihood
@@ -42,11 +67,8 @@ class FragilityResult:
         from audit.engine.pelicun_export import pelicun_fragility_csv
         return pelicun_fragility_csv(self.exact_components())
 
-    def write(self, out_dir) -> Path:
-        """Write the files and ``fragility.html`` into ``out_dir`` (atomically, together)."""
-        from audit.files import write_files_atomically
-        write_files_atomically(Path(out_dir), self.files())
-        return Path(out_dir)
+    def _repr_html_(self) -> str:
+        return table_html(self.table, self.title)
 
     def __repr__(self) -> str:
         return (f"FragilityResult({self.procedure.name} on {self.source}: "
@@ -54,7 +76,7 @@ class FragilityResult:
 
 
 def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_FRAGILITY_RECORDS,
-              progress: bool = False) -> FragilityResult:
+              *, skip_bad_records: bool = False, progress: bool = False) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
     multiple PGV stripes (:mod:`audit.engine.fragility_audit`).
 
@@ -64,19 +86,28 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         A registered probabilistic procedure (``femap58``).
     records : str, path or records.RecordSuite
         The suite (default the FEMA P695 far-field set).
+    skip_bad_records : bool
+        Use the readable records of the suite; the unreadable ones are warned about and left
+        out.
     progress : bool
         Say on standard error what is being computed.
+
+    Returns
+    -------
+    FragilityResult
     """
     from audit.api.inputs import suite_of
     from audit.engine.fragility_audit import audit_procedure
     from audit.engine.progress import Progress
     from audit.errors import InputError
     from procedures.registry import available_procedures
+    from audit.engine import fields as check
     found = available_procedures(probabilistic=True)
-    if procedure not in found:
+    progress = check.flag("progress", progress)
+    if not isinstance(procedure, str) or procedure not in found:
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
-    suite = suite_of(records)
+    suite = suite_of(records, skip_bad_records)
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")

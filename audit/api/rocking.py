@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 
 from audit import G
+from audit.api.result_shape import Files
 from audit.engine import fields as check
 from audit.engine.blocks import Block, within_limits
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S
@@ -14,7 +15,7 @@ from audit.physics.block import Restitution, RigidBlock
 from audit.physics.rocking import RockingHistory
 from audit.physics.rocking import simulate
 
-class RockingResponse:
+class RockingResponse(Files):
     """The exact response of one block to one ground motion (:func:`rock`).
 
     Attributes
@@ -98,6 +99,48 @@ class RockingResponse:
             "required_friction": None if math.isinf(required) else required,
             "jumps": response.jumps, "friction": self.friction, "slides": self.slides}
 
+    PAGE = "rocking.html"
+
+    @property
+    def table(self):
+        """:attr:`history`, the response at every solver output point (a DataFrame)."""
+        return self.history
+
+    @property
+    def summary(self) -> dict:
+        """:meth:`as_dict`: the response's numbers, JSON-ready."""
+        return self.as_dict()
+
+    def summary_text(self, show_dimensions: bool = False) -> str:
+        """What ``audit rock`` prints: the block, the excitation, and the response's numbers
+        (peaks, impacts, cycles, the friction it needs); with ``show_dimensions`` the block is
+        named by its full width × height [m] too."""
+        from audit.engine.rock_words import rocking_text
+        block_m = f"{self.block.width_m:g}x{self.block.height_m:g}" if show_dimensions else None
+        return rocking_text(self.solution, self.motion, self.block.alpha_deg, block_m,
+                            self.friction, self.slides)
+
+    def files(self) -> dict[str, bytes]:
+        """``rocking.json`` (:attr:`summary`), ``history.csv``, ``rocking.png`` (:meth:`plot`)
+        and ``rocking.html``, the text and the figure on one page."""
+        import base64
+        import html
+        import json
+
+        from reports.figures import png_bytes
+        png = png_bytes(self.plot(height_in=3.9))
+        page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>Rocking response"
+                f"</title></head><body><pre>{html.escape(self.summary_text())}</pre><img "
+                f"alt='θ/α and θ′ against time' src='data:image/png;base64,"
+                f"{base64.b64encode(png).decode()}'></body></html>\n")
+        return {"rocking.json": (json.dumps(self.summary) + "\n").encode(),
+                "history.csv": self.history_csv(), "rocking.png": png,
+                self.PAGE: page.encode()}
+
+    def _repr_html_(self) -> str:
+        import html
+        return f"<pre>{html.escape(self.summary_text())}</pre>"
+
     def plot(self, height_in: float = 5.0):
         """θ/α and θ' against time, rocking cycles shaded: a matplotlib Figure."""
         from reports.figures import draw_time_histories, new_figure
@@ -156,6 +199,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         raise InputError(f"block: expected a Block (audit.Block(alpha_deg=…, size_s=…) or "
                          f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")
     block = within_limits(block, "block", "block")
+    force = check.flag("force", force)
     motion = motion_of(motion, records)
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
     if friction is not None:
@@ -171,7 +215,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         model = restitution if isinstance(restitution, Restitution) else Restitution.parse(
             restitution, "restitution")
         rigid, label = RigidBlock(rigid.p, rigid.alpha, model, rigid.g), str(model)
-    guards.check(guards.estimate([motion], free_motion_s, blocks=1), check.flag("force", force))
+    guards.check(guards.estimate([motion], free_motion_s, blocks=1), force)
     return RockingResponse(block, motion, simulate(rigid, motion, free_motion_s, vertical=vertical),
                            friction, label)
 

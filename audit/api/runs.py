@@ -12,8 +12,13 @@ import pandas as pd
 
 from audit.engine import fields as check
 from audit.engine.audit_run import AuditRun
+from audit import G
+from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
+                                   DEFAULT_JOBS, DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS,
+                                   DEFAULT_SCHEDULER)
+from audit.api.inputs import settings_fields
 from audit.engine.design_site import SITE_FIELDS, DesignSite
-from audit.engine.runtime import RUNTIME_FIELDS, Runtime
+from audit.engine.runtime import Runtime
 from audit.engine.settings import AUDIT_FIELDS, AuditSettings
 from audit.errors import InputWarning
 
@@ -46,6 +51,8 @@ class AuditResult:
         given one).
     summary : dict
         Everything of ``summary.json`` (read on first use).
+    table : pandas.DataFrame
+        One row per procedure × record × α × size (``results.csv``), as :attr:`results`.
     """
 
     def __init__(self, folder, scratch=None):
@@ -67,6 +74,8 @@ class AuditResult:
 
     results = property(lambda self: typed(self.run.results, "results.csv"),
                        doc="One row per procedure × record × α × size (``results.csv``).")
+    table = property(lambda self: self.results,
+                     doc="The audit's table: :attr:`results` (``results.csv``).")
     suite = property(lambda self: typed(self.run.suite, "suite.csv"),
                      doc="Verdict statistics over the records per procedure × α × size.")
     checks = property(lambda self: typed(self.run.checks, "checks.csv"),
@@ -95,12 +104,19 @@ class AuditResult:
                          "worst_verdict": worst.get("verdict")})
         return pd.DataFrame(rows)
 
+    def summary_text(self) -> str:
+        """The lines ``audit run`` prints: what was audited where, what could not be, and the
+        count of each verdict."""
+        from audit.engine.audit_words import audit_summary_text
+        return audit_summary_text(self.summary)
+
     def write(self, out_dir) -> Path:
         """Write the result files and ``report.html`` into ``out_dir`` (atomically, together)."""
         import shutil
 
         from audit.engine.results import COLUMNS_JSON, DATA_FILES, REPORT_HTML
         from audit.files import staged_folder
+        out_dir = check.path("out_dir", out_dir, "a folder")
         with staged_folder(out_dir) as staging:
             for name in (*DATA_FILES, COLUMNS_JSON):
                 shutil.copyfile(self.folder / name, staging / name)
@@ -113,6 +129,7 @@ class AuditResult:
         from audit.engine.results import load_run
         from audit.files import write_file_atomically
         from reports import render_report
+        path = check.path("path", path, "a file name")
         html = render_report(load_run(self.folder, shown=True))
         write_file_atomically(Path(path), html.encode("utf-8"))
         return Path(path)
@@ -134,11 +151,21 @@ class AuditResult:
         return sum(line["blocks"] for line in self.summary["bottom_line"])
 
 
-def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
-        **options) -> AuditResult:
+def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None,
+        free_motion_s: float = DEFAULT_FREE_MOTION_S, agree_band: float = DEFAULT_AGREE_BAND,
+        robustness: float = DEFAULT_ROBUSTNESS, g: float = G, restitution=DEFAULT_RESTITUTION,
+        vertical: bool = False, friction: float | None = None, sensitivity=(), site=None,
+        site_override: bool = False, scale_to_site: bool = False,
+        anchor_period_s: float | None = None, ntc_site=None, skip_bad_records: bool = False,
+        detail=(), out_dir=None, force: bool = False, jobs: int = DEFAULT_JOBS,
+        scheduler=DEFAULT_SCHEDULER, partial_dir=None, resume: bool = False,
+        progress=False) -> AuditResult:
     """Audit guideline procedures on a suite of records over a grid of blocks.
 
-    Every argument is checked before anything is read or computed; a bad one raises
+    Every argument is checked before anything is read or computed (by
+    :meth:`AuditSettings.parse <audit.engine.settings.AuditSettings.parse>`,
+    :meth:`DesignSite.parse <audit.engine.design_site.DesignSite.parse>` and
+    :meth:`Runtime.parse <audit.engine.runtime.Runtime.parse>`); a bad one raises
     :class:`~audit.errors.InputError` naming it.
 
     Parameters
@@ -149,6 +176,41 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
     records : str, path or records.RecordSuite, optional
         A built-in suite name, a manifest / record file / folder, or a suite from
         :func:`records.load`; default: ``$ROCKING_AUDIT_RECORDS``, else the shipped seed records.
+    alpha_deg : float or sequence of float
+        Slendernesses α [degrees], 0 < α < 45.
+    sizes_s : float or sequence of float, optional
+        Block sizes 2π/p [s]; default 0.5 … 8.0 s in steps of 0.05 s.
+    free_motion_s : float
+        Free motion after each record, for the exact solver and the record spectra [s].
+    agree_band : float
+        Half-width of the agreement band on approx/exact [-], in [0, 1).
+    robustness : float
+        ε of the fragility flag: exact spectra also at the record × (1 ± ε) [-]; 0 = off.
+    g : float
+        Acceleration of gravity [m/s²].
+    restitution : str or float
+        ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or ``xFACTOR`` times Eq. 4.8.
+    vertical : bool
+        Include the records' vertical components in the exact response.
+    friction : float, optional
+        Friction coefficient μ of the base [-]: blocks that would slide are flagged.
+    sensitivity : str or sequence of str
+        Alternative ground-truth models (``"restitution=x0.9,x0.8"``, ``"vertical"``).
+    site : (float, float), optional
+        FEMA 356 design site S_XS, S_X1 [g] for every record without one.
+    site_override : bool
+        Also replace the sites records carry (Table 3.1).
+    scale_to_site : bool
+        Scale the suite to the design spectrum at ``anchor_period_s`` (FEMA P695).
+    anchor_period_s : float, optional
+        Anchor period of the scaling [s] (1 s when not given).
+    ntc_site : (float, float, float, str, str), optional
+        NTC 2018 site a_g [g], F0 [-], T_C* [s], soil category A–E, topography T1–T4.
+    skip_bad_records : bool
+        Audit the readable records of the suite; the unreadable ones are warned about
+        (:class:`~audit.errors.InputWarning`) and left out.
+    detail : str or sequence of str
+        Records whose detail the report shows.
     out_dir : str or Path, optional
         Write the result files and ``report.html`` there (atomically, together), record by
         record: memory does not grow with the suite beyond a small term per record until the
@@ -156,41 +218,40 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
         kept with the result (``.write(out_dir)`` saves them later).
     force : bool
         Start even when the estimated work is beyond the limits (:mod:`audit.engine.guards`).
-    **options :
-        What is computed, the fields of :class:`~audit.engine.settings.AuditSettings`:
-        ``alpha_deg`` (slendernesses [degrees], a number or a list), ``sizes_s`` (block sizes
-        2π/p [s]; default 0.5 … 8.0 s in steps of 0.05 s), ``free_motion_s``, ``agree_band``,
-        ``robustness``, ``g``, ``restitution`` (``housner``, a fixed r, ``xFACTOR``),
-        ``vertical``, ``friction`` (μ of the base [-]), ``sensitivity``
-        (``"restitution=x0.9,x0.8"``, ``"vertical"``);
-        the design site, the fields of :class:`~audit.engine.design_site.DesignSite`: ``site``
-        (S_XS, S_X1 [g]), ``site_override``, ``scale_to_site``, ``anchor_period_s``,
-        ``ntc_site``;
-        how, the fields of :class:`~audit.engine.runtime.Runtime`: ``jobs``, ``scheduler``
-        (``local``, ``dask``, ``tcp://HOST:PORT``), ``partial_dir``, ``resume``, ``progress``
-        (True: a progress bar on standard error, or ``progress(done, total, record_id, how)``);
-        and ``detail``, the records whose detail the report shows.
+    jobs : int
+        Threads of the exact solver, or worker processes with ``scheduler="dask"``.
+    scheduler : str
+        ``local``, ``dask`` or ``tcp://HOST:PORT``.
+    partial_dir : str or Path, optional
+        Folder for the per-record results as they complete (for ``resume``).
+    resume : bool
+        Reuse the matching per-record results already in ``partial_dir``.
+    progress : bool or callable
+        A progress bar on standard error, or ``progress(done, total, record_id, how)``.
 
     Returns
     -------
     AuditResult
     """
-    from audit.api.inputs import procedures_of, split, suite_of
+    from audit.api.inputs import procedures_of, suite_of
     from audit.engine import guards
     from audit.engine.costs import audit_cost
     from audit.engine.progress import Progress
     from audit.engine.results import REPORT_HTML
     from audit.engine.suite_run import audit_suite, compiles_first
     from audit.files import staged_folder
-    values, site, how, shown = split(options, AUDIT_FIELDS, SITE_FIELDS, RUNTIME_FIELDS,
-                                     ("detail",))
-    settings, site = AuditSettings.parse(**values), DesignSite.parse(**site)
-    detail = check.words("detail", shown.get("detail", ()))
-    bar = how.get("progress") is True
-    runtime = Runtime.parse(**{**how, "progress": None if how.get("progress") in (True, False)
-                               else how.get("progress")})
+    given = locals()
+    settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))
+    site = DesignSite.parse(**settings_fields(given, SITE_FIELDS))
+    detail = check.words("detail", detail)
+    bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
+    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
+                            resume=resume, progress=progress if callable(progress) else None)
+    force = check.flag("force", force)
+    if out_dir is not None:
+        out_dir = check.path("out_dir", out_dir, "a folder")
     chosen = procedures_of(procedures)
-    suite = site.apply(suite_of(records))
+    suite = site.apply(suite_of(records, skip_bad_records))
     _warn_without_vertical(suite, settings)
     guards.check(audit_cost(chosen, suite, settings, runtime), force)
     stage = Progress(len(suite), "record") if bar else runtime.progress
@@ -218,18 +279,36 @@ def run(procedures="all", records=None, *, out_dir=None, force: bool = False,
 
 def load_result(folder) -> AuditResult:
     """The audit whose files are in ``folder`` (the output of :func:`run`, or of ``python -m
-    audit run``), read on first use."""
+    audit run``), read on first use.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The folder of an audit's files.
+
+    Returns
+    -------
+    AuditResult
+    """
     from audit.engine.results import checked_summary
-    result = AuditResult(folder)
+    result = AuditResult(check.path("folder", folder, "the folder of an audit's files"))
     result.summary = checked_summary(result.folder)  # a folder without an audit is refused
     return result
 
 
-def design_suite(suite, **site):
+def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site: bool = False,
+                 anchor_period_s: float | None = None, ntc_site=None):
     """``suite`` with the design site and scaling of the fields of
-    :class:`~audit.engine.design_site.DesignSite` (``site``, ``site_override``,
-    ``scale_to_site``, ``anchor_period_s``, ``ntc_site``)."""
-    return DesignSite.parse(**site).apply(suite)
+    :class:`~audit.engine.design_site.DesignSite`.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+    site, site_override, scale_to_site, anchor_period_s, ntc_site :
+        As for :func:`run` (S_XS, S_X1 [g]; anchor period [s]; NTC 2018 a_g [g], F0, T_C* [s],
+        soil, topography).
+    """
+    return DesignSite.parse(**settings_fields(locals(), SITE_FIELDS)).apply(suite)
 
 
 def _warn_without_vertical(suite, settings: AuditSettings) -> None:

@@ -19,11 +19,16 @@ def read_hazard(hazard, site=None, imt: str | None = None):
     imt : str, optional
         ``PGA`` or ``SA(T)``: which curve of a USGS response.
     """
+    from audit.engine import fields as check
     from records.hazard import HazardCurve
     from records.hazard import read_hazard as read_file
+    if site is not None:
+        site = check.pair("site", site, "longitude, latitude in degrees")
+    if imt is not None and not isinstance(imt, str):
+        raise InputError(f"imt: expected PGA or SA(T), got {imt!r}", "imt")
     if isinstance(hazard, HazardCurve):
         return hazard
-    return read_file(hazard, site, imt)
+    return read_file(check.path("hazard", hazard, "a hazard curve or its file"), site, imt)
 
 
 def risk(fragility, hazard, site=None, imt: str | None = None):
@@ -46,20 +51,22 @@ def risk(fragility, hazard, site=None, imt: str | None = None):
     audit.engine.risk.OverturningRisk
         ``.annual_rate`` [1/yr], ``.p50``, ``.im_range_90_g``, ``.deaggregation``, ...
     """
+    from audit.engine import fields as check
     from audit.engine.risk import LognormalFragility, StripeFragility, risk_integral
-    curve = read_hazard(hazard, site, imt)
     if not isinstance(fragility, (LognormalFragility, StripeFragility)):
         if hasattr(fragility, "get") and "median" in fragility:  # a fragility.csv row
-            fragility = LognormalFragility(float(fragility["median"]), float(fragility["beta"]),
-                                           fragility.get("im"))
+            values, im = (fragility["median"], fragility["beta"]), fragility.get("im")
+        elif isinstance(fragility, (str, bytes)) or not hasattr(fragility, "__len__") \
+                or len(fragility) != 2:
+            raise InputError(f"fragility: expected (median_g, beta), a row of "
+                             f"MarginsResult.fragility or a LognormalFragility, got "
+                             f"{fragility!r}", "fragility")
         else:
-            try:
-                median_g, beta = (float(v) for v in fragility)
-            except (TypeError, ValueError):
-                raise InputError("fragility: expected (median_g, beta), a row of "
-                                 "MarginsResult.fragility or a LognormalFragility") from None
-            fragility = LognormalFragility(median_g, beta)
-    return risk_integral(fragility, curve)
+            values, im = fragility, None
+        median_g, beta = check.numbers("fragility", values, "a positive median in g and a "
+                                       "positive dispersion β", 0, low_open=True)
+        fragility = LognormalFragility(median_g, beta, im)
+    return risk_integral(fragility, read_hazard(hazard, site, imt))
 
 
 __all__ = ["read_hazard", "risk"]

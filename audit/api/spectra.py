@@ -19,7 +19,27 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     """The rocking spectrum of ``motion`` (ids, paths, GroundMotions, (array, dt): see
     :func:`audit.rock`) over sizes 2π/p [s] × slendernesses [degrees]: a DataFrame (one row per
     block; ``audit.physics.rocking.RockingSpectrum.to_frame``), the record's id in
-    ``.attrs["record"]``."""
+    ``.attrs["record"]``.
+
+    Parameters
+    ----------
+    motion : str, path, records.GroundMotion or (array, float)
+        As for :func:`audit.rock` (acceleration [m/s²], dt [s]).
+    sizes_s : float or sequence of float
+        Block sizes 2π/p [s], positive.
+    alpha_deg : float or sequence of float
+        Slendernesses [degrees], in (0, 45).
+    restitution : str or float
+        ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or ``xFACTOR`` times Eq. 4.8.
+    free_motion_s : float
+        Free motion after the excitation [s].
+    vertical : bool
+        Include the motion's vertical component.
+    jobs : int
+        Solver threads.
+    force : bool
+        Start even when the estimated work is beyond the limits.
+    """
     import numpy as np
 
     from audit.api.inputs import motion_of
@@ -28,6 +48,7 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     from audit.engine.grid import size_grid
     from audit.physics.block import Restitution
     from audit.physics.rocking import rocking_spectrum as spectrum
+    force = check.flag("force", force)
     motion = motion_of(motion)
     sizes = check.numbers("sizes_s", sizes_s, "positive block sizes 2π/p in s", 0, low_open=True)
     alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
@@ -53,13 +74,28 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
 def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
                      free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False):
     """True response spectra of ``motion`` at periods [s] and damping ratios [%]: a DataFrame
-    (``audit.physics.response_spectra.ResponseSpectra.to_frame``)."""
+    (``audit.physics.response_spectra.ResponseSpectra.to_frame``).
+
+    Parameters
+    ----------
+    motion : str, path, records.GroundMotion or (array, float)
+        As for :func:`audit.rock`.
+    periods_s : float or sequence of float
+        Oscillator periods [s], ≥ 0.
+    damping_pct : float or sequence of float
+        Damping ratios [%], in [0, 100).
+    free_motion_s : float
+        Free vibration after the excitation [s].
+    force : bool
+        Start even when the estimated work is beyond the limits.
+    """
     import numpy as np
 
     from audit.api.inputs import motion_of
     from audit.engine import guards
     from audit.engine.grid import size_grid
     from audit.physics.response_spectra import response_spectra as spectra
+    force = check.flag("force", force)
     motion = motion_of(motion)
     periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
     damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,
@@ -75,13 +111,30 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
     return frame
 
 
-def design_spectrum(code: str, periods_s, damping_pct=DEFAULT_DESIGN_DAMPING_PCT, **site):
+def design_spectrum(code: str, periods_s, damping_pct=DEFAULT_DESIGN_DAMPING_PCT, *,
+                    sxs_g: float | None = None, sx1_g: float | None = None,
+                    na: float | None = None, nv: float | None = None,
+                    ag_g: float | None = None, f0: float | None = None,
+                    tc_star_s: float | None = None, soil: str = "A", topography: str = "T1"):
     """A code's design spectrum at periods [s] and damping ratios [%]: ``(spectrum, columns)``,
     the spectrum object and a dict of equal-length columns ``period_s, damping_pct, sa_g,
     sd_m`` (no pandas).
 
-    ``site``: FEMA 356 ``sxs_g, sx1_g``; UBC 97 ``na, nv`` (1 when not given); NTC 2018 ``ag_g,
-    f0, tc_star_s, soil, topography``.
+    Parameters
+    ----------
+    code : {"fema356", "ubc97", "ntc2018"}
+    periods_s : float or sequence of float
+        Periods [s], ≥ 0.
+    damping_pct : float or sequence of float
+        Damping ratios [%], in [0, 100).
+    sxs_g, sx1_g : float
+        FEMA 356: design spectral accelerations S_XS, S_X1 [g] (required).
+    na, nv : float, optional
+        UBC 97: near-source factors N_a, N_v [-] (1 when not given).
+    ag_g, f0, tc_star_s : float
+        NTC 2018: a_g [g], F0 [-], T_C* [s] (required).
+    soil, topography : str
+        NTC 2018: soil category A–E, topography T1–T4.
     """
     import numpy as np
 
@@ -93,19 +146,26 @@ def design_spectrum(code: str, periods_s, damping_pct=DEFAULT_DESIGN_DAMPING_PCT
                                        high_open=True)) / 100.0
     needs = {"fema356": ("sxs_g", "sx1_g"), "ntc2018": ("ag_g", "f0", "tc_star_s"),
              "ubc97": ()}
-    if code not in needs:
+    if not isinstance(code, str) or code not in needs:
         raise InputError(f"code: expected one of {', '.join(CODES)}, got {code!r}", "code")
-    absent = [name for name in needs[code] if site.get(name) is None]
+    site = {"sxs_g": sxs_g, "sx1_g": sx1_g, "na": na, "nv": nv, "ag_g": ag_g, "f0": f0,
+            "tc_star_s": tc_star_s}
+    absent = [name for name in needs[code] if site[name] is None]
     if absent:
         raise InputError(f"{', '.join(absent)}: {code} needs {', '.join(needs[code])}",
                          *needs[code])
+    site = {name: value if value is None else check.number(name, value, "a number")
+            for name, value in site.items()}
+    for name, value in (("soil", soil), ("topography", topography)):
+        if not isinstance(value, str):
+            raise InputError(f"{name}: expected a category's name, got {value!r}", name)
     if code == "fema356":
         spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
     elif code == "ntc2018":
-        spectrum = NTC2018Spectrum(site["ag_g"], site["f0"], site["tc_star_s"],
-                                   site.get("soil", "A"), site.get("topography", "T1"))
+        spectrum = NTC2018Spectrum(site["ag_g"], site["f0"], site["tc_star_s"], soil,
+                                   topography)
     else:
-        spectrum = UBC97Spectrum(site.get("na") or 1.0, site.get("nv") or 1.0)
+        spectrum = UBC97Spectrum(site["na"] or 1.0, site["nv"] or 1.0)
     return spectrum, {
         "period_s": np.tile(periods, damping.size),
         "damping_pct": np.repeat(100.0 * damping, periods.size),

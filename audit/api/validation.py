@@ -3,17 +3,18 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
-from audit.api.design_level import with_page
+from audit.api.result_shape import Files, table_html, with_page
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
 
 
-class ValidationResult:
+class ValidationResult(Files):
     """A campaign's validation: ``.fits`` (specimen → fitted block), ``.fits_table``,
-    ``.scores``, ``.tests``, ``.predictions`` (DataFrames, the CSV files of the same names),
-    ``.solves``, ``.methods_statement``, ``.write(folder)`` (the files and
-    ``validation.html``)."""
+    ``.scores`` (also ``.table``), ``.tests``, ``.predictions`` (DataFrames, the CSV files of
+    the same names), ``.solves``, ``.methods_statement`` (also ``.summary_text()``),
+    ``.summary``, ``.write(folder)`` (the files and ``validation.html``) and
+    ``.report(path)``."""
+
+    PAGE = "validation.html"
 
     def __init__(self, validation):
         self.validation = validation
@@ -22,10 +23,25 @@ class ValidationResult:
         self.fits_table, self.solves = validation.fits_table(), validation.solves
 
     @property
+    def table(self):
+        """The cross-validated scores of the model and the baselines per specimen."""
+        return self.scores
+
+    @property
+    def summary(self) -> dict:
+        """The campaign's size and the exact solves it took."""
+        return {"specimens": len(self.fits_table), "tests": len(self.tests),
+                "solves": self.solves}
+
+    @property
     def methods_statement(self) -> str:
         """What a report's Methods says of this validation and its limits."""
         from audit.engine.validation_run import methods_statement
         return methods_statement(self.fits_table, self.scores)
+
+    def summary_text(self) -> str:
+        """:attr:`methods_statement`, one paragraph."""
+        return f"{self.methods_statement}\n"
 
     def files(self) -> dict[str, bytes]:
         """Every file, ``validation.html`` drawn from the CSV files as saved."""
@@ -34,18 +50,22 @@ class ValidationResult:
         return with_page(self.validation.files(), VALIDATION_HTML,
                          lambda saved: render_validation_page(saved, title, self.solves))
 
-    def write(self, out_dir) -> Path:
-        """Write the files and ``validation.html`` into ``out_dir`` (atomically, together)."""
-        from audit.files import write_files_atomically
-        write_files_atomically(Path(out_dir), self.files())
-        return Path(out_dir)
+    def _repr_html_(self) -> str:
+        return table_html(self.scores, self.methods_statement)
+
+    def __repr__(self) -> str:
+        return (f"ValidationResult({len(self.fits_table)} specimens, {len(self.tests)} tests, "
+                f"{self.solves:,} exact solves)")
 
 
-def validate(folder, geometry=None, folds: int = 5, jobs: int = DEFAULT_JOBS,
+def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
              free_motion_s: float = DEFAULT_FREE_MOTION_S, progress=False,
              settings=None) -> ValidationResult:
     """Fit each specimen's equivalent rigid block to a shake-table campaign and score it by
     cross-validation by ground motion against intensity baselines (docs/validation.md).
+
+    Every argument is checked before anything is read; a bad one raises
+    :class:`~audit.errors.InputError` naming it.
 
     Parameters
     ----------
@@ -54,20 +74,38 @@ def validate(folder, geometry=None, folds: int = 5, jobs: int = DEFAULT_JOBS,
     geometry : str or Path, optional
         CSV of geometric estimates (``specimen, alpha_deg, p_rad_s, note``); default the
         folder's ``specimens.csv`` if there is one.
-    folds, jobs, free_motion_s :
-        Cross-validation folds; solver threads; free motion after each test [s].
+    folds : int
+        Cross-validation folds, ≥ 2 (tests of one ground motion always share a fold).
+    jobs : int
+        Solver threads, ≥ 1.
+    free_motion_s : float
+        Free rocking simulated after each test motion [s], ≥ 0.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, test_id)``.
     settings : audit.engine.validation_grid.ValidationSettings, optional
         Every setting (grid, band-pass, lapse); overrides ``folds``, ``jobs``, ``free_motion_s``.
+
+    Returns
+    -------
+    ValidationResult
     """
+    from audit.engine import fields as check
     from audit.engine.progress import Progress
     from audit.engine.validation_grid import ValidationSettings
     from audit.engine.validation_run import run_validation
+    from audit.errors import InputError
     from records.campaign import campaign_geometry, read_campaign
+    folder = check.path("folder", folder, "the campaign folder")
+    if geometry is not None:
+        geometry = check.path("geometry", geometry, "a CSV file of geometric estimates")
+    progress = check.callback("progress", progress, "progress(done, total, test_id)")
+    if settings is None:
+        settings = ValidationSettings(folds=folds, jobs=jobs, free_motion_s=free_motion_s)
+    elif not isinstance(settings, ValidationSettings):
+        raise InputError(f"settings: expected a ValidationSettings, got {settings!r}",
+                         "settings")
     campaign = read_campaign(folder)
     given = campaign_geometry(campaign, geometry)
-    settings = settings or ValidationSettings(folds=folds, jobs=jobs, free_motion_s=free_motion_s)
     bar = Progress(len(campaign.motions), "test") if progress is True else None
     try:
         result = run_validation(campaign, settings, given, bar or progress or None)

@@ -75,12 +75,14 @@ def add_parser(sub):
     options.add_force_option(p)
     p.add_argument("--scheduler", default="local", metavar="local|dask|tcp://HOST:PORT",
                    help="where records are computed")
+    p.add_argument("--skip-bad-records", action="store_true",
+                   help="check with the readable records and list the unreadable ones")
     p.set_defaults(func=run)
 
 
 def objects_of(args) -> list:
     """Every object of ``--block``, ``--objects`` and ``--alpha``/``--size``, checked."""
-    from audit.api.object_check import object_by_slenderness, parse_block_text, read_objects
+    from audit.api import object_by_slenderness, parse_block_text, read_objects
     objects = []
     for text in args.block or ():
         objects += parse_block_text(text, "--block")
@@ -109,15 +111,7 @@ def run(args) -> int:
     if not args.site:
         raise InputError("--site: required, S_XS,S_X1 [g] of the hazard level assessed "
                          "(e.g. --site 1.5,0.9)")
-    site = options.float_list(args.site, "--site")
-    if len(site) != 2:
-        raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
-    ntc_site = None
-    if args.ntc_site:
-        fields = args.ntc_site.split(",")
-        if len(fields) != 5:
-            raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        ntc_site = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+    site = options.design_site(args)
     out_dir = check_output_dir(Path(args.out)) if args.out else None
     objects = objects_of(args)
     start = time.perf_counter()
@@ -134,13 +128,14 @@ def run(args) -> int:
             if getattr(args, flag) is not None:
                 raise InputError(f"--{flag.replace('_', '-')}: read on the --hazard file; no "
                                  "--hazard given")
-    result = check(objects, site, procedures=args.procedure, records=args.records,
-                   ntc_site=ntc_site, jobs=args.jobs, scheduler=args.scheduler,
-                   progress=True, force=args.force, **values)
+    result = check(objects, site["site"], procedures=args.procedure, records=args.records,
+                   ntc_site=site.get("ntc_site"), skip_bad_records=args.skip_bad_records,
+                   jobs=args.jobs, scheduler=args.scheduler, progress=True, force=args.force,
+                   **values)
     if out_dir is not None:
         result.write(out_dir)
     print(f"done in {time.perf_counter() - start:.1f} s", file=sys.stderr)
-    sys.stdout.write(result.summary())
+    sys.stdout.write(result.summary_text())
     if out_dir is not None:
         print(f"Wrote {out_dir / 'check.html'}, check.json and check.csv")
     return 0

@@ -17,6 +17,7 @@ FLAGS = {
     "records": "--records", "motion": "--record", "force": "--force", "im": "--im",
     "stripes": "--stripes", "blocks": "--block", "block": "--block", "procedure": "--procedure",
     "width_m": "--block", "height_m": "--block", "skip_bad": "--skip-bad-records",
+    "skip_bad_records": "--skip-bad-records", "out_dir": "--out", "partial_dir": "--out",
     "periods_s": "--periods", "damping_pct": "--damping", "sxs_g": "--sxs", "sx1_g": "--sx1",
     "ag_g": "--ag", "f0": "--f0", "tc_star_s": "--tc-star", "site_level": "--level",
     "hazard": "--hazard", "objects": "--objects", "site_location": "--site-location", "risk_target": "--risk-target",

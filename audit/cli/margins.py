@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import math
 import shutil
-import time
+import sys
 from pathlib import Path
 
 from audit.cli import options
-from audit.cli.run import site_options
 from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
                                    DEFAULT_MARGINS_SIZES, DEFAULT_SITE_LEVEL, SITE_LEVELS,
                                    alpha_text, sizes_text)
@@ -70,7 +68,6 @@ def add_parser(sub):
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, margins
     from audit.files import check_output_dir
-    from reports.margins_page import MARGINS_HTML
     out_dir = check_output_dir(Path(args.out))
     out_dir_existed = out_dir.exists()
     values = {"alpha_deg": options.alphas_deg(args.alpha),
@@ -87,9 +84,8 @@ def run(args) -> int:
                          "on the --hazard file; no --hazard given")
     if args.stripes is not None:  # '' is refused, not taken for the default
         values["stripes"] = options.float_list(args.stripes, "--stripes")
-    site = site_options(args)
+    site = options.design_site(args)
     del site["site_override"]  # one design site: the audit is of that site
-    start = time.perf_counter()
     try:
         result = margins(args.procedure, options.suite(args), force=args.force, **values, **site,
                          jobs=args.jobs, scheduler=args.scheduler,
@@ -98,54 +94,8 @@ def run(args) -> int:
         return options.interrupted(out_dir, out_dir_existed)
     result.write(out_dir)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
-    _print_summary(result, time.perf_counter() - start)
-    print(f"Wrote {out_dir / MARGINS_HTML} and stripes.csv, fragility.csv, capacity.csv, "
+    sys.stdout.write(result.summary_text())
+    print(f"Wrote {out_dir / result.PAGE} and stripes.csv, fragility.csv, capacity.csv, "
           "required_alpha.csv, scan.csv, summary.json"
           + (", risk.csv, risk_alpha.csv, hazard.csv" if args.hazard else ""))
     return 0
-
-
-def _print_risk(result) -> None:
-    hazard = result.summary["hazard"]
-    print(f"  at the site ({hazard['source']}), target P {hazard['target_p50']:g} in 50 years:")
-    for row in result.risk[result.risk["block_m"] != ""].itertuples():
-        print(f"  block {row.block_m} m: λ_ov {row.annual_rate_fit:.3g}/yr, P in 50 years "
-              f"{row.p50_fit:.3g} (stripe shares: {row.annual_rate_stripes:.3g}/yr); 90 % of "
-              f"it from {row.im_low_90_g:.3g}–{row.im_high_90_g:.3g} g")
-
-
-def _print_summary(result, seconds) -> None:
-    fragility, summary = result.fragility, result.summary
-    sizes = summary["grid"]["size_s"]
-    print(f"Fragility of {len(fragility)} blocks on {summary['records_source']} in "
-          f"{summary['scheduler']} ({seconds:.1f} s)"
-          + (f"; reused {len(summary['resumed'])} records of an interrupted run"
-             if summary["resumed"] else ""))
-    if summary["design_im"]:
-        print(f"  median CMR {fragility['cmr'].median():.2f} (over the MCE {summary['im']} = "
-              f"{summary['mce_im']:.3g} {summary['im_unit']}; "
-              f"{fragility['median_extrapolated'].sum()} medians beyond the stripes give bounds)")
-    print(f"  blocks with islands of survival above overturning: "
-          f"{(fragility['records_with_islands'] > 0).mean():.0%}")
-    for name, rows in result.capacity.groupby("procedure", sort=False):
-        if rows["achieved_p_fit"].isna().all():
-            print(f"  {name}: draws no line (it can evaluate none of these records)")
-            continue
-        print(f"  {name}: median exact P(overturn) where it draws its line "
-              f"{rows['achieved_p_fit'].median():.2f}, its line / exact median "
-              f"{rows['ratio_to_exact_median'].median():.2f}")
-    exact = result.required_alpha.set_index(["procedure", "size_s"])["required_alpha_deg"]
-    drawn = set(result.required_alpha["procedure"])
-    for name in (p["name"] for p in summary["procedures"] if p["name"] in drawn):
-        below = [size for size in sizes
-                 if exact.get((name, size), math.nan) < exact.get(("exact@0.10", size), math.nan)]
-        print(f"  {name} accepts blocks more slender than the exact 10 % curve for "
-              + (f"2π/p = {min(below):g}–{max(below):g} s ({len(below)} of {len(sizes)} sizes)"
-                 if below else "no size"))
-    for verdict in summary.get("acceptance", ()):
-        print(f"  {verdict['procedure']} as a seismic system (FEMA P695): "
-              f"{verdict['share_meeting_acmr20']:.0%} of the {verdict['blocks']} blocks it "
-              f"sizes meet ACMR20 %; mean CMR {verdict['mean_cmr']:.2f} against ACMR10 % "
-              f"{verdict['acmr10']:.2f}: {'passes' if verdict['passes'] else 'fails'}")
-    if result.risk is not None:
-        _print_risk(result)

@@ -314,6 +314,25 @@ def add_hazard_options(parser):
                         help="risk target: probability of overturning in 50 years (0.02 or 2%%)")
 
 
+def design_site(args) -> dict:
+    """The design-site arguments of the API from ``--site``, ``--site-override``,
+    ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``, those the command has (the
+    one place the command line reads them)."""
+    site = {"site_override": getattr(args, "site_override", False),
+            "scale_to_site": getattr(args, "scale_to_site", False),
+            "anchor_period_s": getattr(args, "anchor_period", None)}
+    if args.ntc_site:
+        fields = args.ntc_site.split(",")
+        if len(fields) != 5:
+            raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
+        site["ntc_site"] = (*float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+    if args.site:
+        site["site"] = float_list(args.site, "--site")
+        if len(site["site"]) != 2:
+            raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
+    return site
+
+
 def site_location(text: str | None) -> tuple[float, float] | None:
     """``--site-location LON,LAT`` as (lon, lat) [degrees], or None."""
     if text is None:

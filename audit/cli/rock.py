@@ -82,40 +82,7 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(result))
         return 0
-    print(_text(response, result))
+    print(response.summary_text(show_dimensions=args.block is not None), end="")
     if args.plot:
         print(f"Plot written to {args.plot}")
     return 0
-
-
-def _text(response, result: dict) -> str:
-    solution, rigid, motion = response.solution, response.solution.block, response.motion
-    state = (f"OVERTURNS at t = {solution.overturn_time:.3f} s" if solution.overturned
-             else "survives" if solution.uplifted else "does not uplift (PGA ≤ g tan α)")
-    source = "" if motion.source in ("", "analytic pulse") else f" — {motion.source}"
-    # after overturning there is no "after the excitation"
-    after = ("n/a" if solution.overturned
-             else f"{solution.peak_rotation_after_excitation / rigid.alpha:.4f} α")
-    free = ("n/a" if math.isnan(solution.peak_rotation_free_vibration)
-            else f"{solution.peak_rotation_free_vibration / rigid.alpha:.4f} α (largest turning point)")
-    cycles = ", ".join(f"{d:.3f}" for d in solution.cycle_durations[:8]) or "—"
-    more = " …" if solution.cycle_durations.size > 8 else ""
-    friction = solution.required_friction
-    return ((f"Block {result['block_m']} m (width × height): " if result["block_m"] else "Block ")
-            + f"p = {rigid.p:.4g} rad/s (2π/p = {rigid.size_s:.4g} s, R = {rigid.radius:.3g} m), "
-            f"α = {result['alpha_deg']:g}°, r = {rigid.r:.4f}\n"
-            f"Excitation: {motion.id}: {motion.component}{source}\n"
-            f"Result: {state}\n"
-            f"  peak |θ|                   {solution.peak_rotation:.6g} rad = "
-            f"{solution.peak_rotation_ratio:.4f} α\n"
-            f"  peak |θ| after excitation  {after}\n"
-            f"  free-vibration peak |θ|    {free}\n"
-            f"  peak |θ'|                  {solution.peak_angular_velocity:.6g} rad/s\n"
-            f"  impacts                    {solution.n_impacts}\n"
-            f"  full rocking cycles [s]    {cycles}{more}\n"
-            f"  required friction |H|/V    "
-            f"{'n/a (jumps: V < 0)' if solution.jumps else f'{friction:.4f}'} "
-            f"(tan α = {math.tan(rigid.alpha):.4f})"
-            + ("" if response.slides is None else
-               f"\n  {'with μ = ' + format(response.friction, 'g'):<27}"
-               f"{'SLIDES: pure rocking does not apply' if response.slides else 'rocks without sliding'}"))

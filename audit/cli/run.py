@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import shutil
+import sys
 import time
 from pathlib import Path
 
 from audit.cli import options
 from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
-from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out"
 
@@ -60,24 +60,6 @@ def add_parser(sub):
     p.set_defaults(func=run)
 
 
-def site_options(args) -> dict:
-    """The design-site arguments of the API from ``--site``, ``--site-override``,
-    ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``."""
-    site = {"site_override": getattr(args, "site_override", False),
-            "scale_to_site": args.scale_to_site,
-            "anchor_period_s": args.anchor_period}
-    if args.ntc_site:
-        fields = args.ntc_site.split(",")
-        if len(fields) != 5:
-            raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        site["ntc_site"] = (*options.float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
-    if args.site:
-        site["site"] = options.float_list(args.site, "--site")
-        if len(site["site"]) != 2:
-            raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
-    return site
-
-
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, REPORT_HTML
     from audit.api import run as run_api
@@ -85,7 +67,7 @@ def run(args) -> int:
     out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
     out_dir_existed = out_dir.exists()
     grid = {"alpha_deg": options.alphas_deg(args.alpha), "sizes_s": options.sizes(args.sizes)}
-    site = site_options(args)
+    site = options.design_site(args)
     start = time.perf_counter()
     try:
         result = run_api(args.procedure, options.suite(args), out_dir=out_dir, force=args.force,
@@ -101,24 +83,7 @@ def run(args) -> int:
         return options.interrupted(out_dir, out_dir_existed)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     total = time.perf_counter() - start
-    summary = result.summary
-    names = ", ".join(p["name"] for p in summary["procedures"])
-    print(f"Audited {names} on {summary['records_source']} "
-          f"in {summary['scheduler']}"
-          + (f"; reused {len(summary['resumed'])} records of an interrupted run"
-             if summary["resumed"] else ""))
-    grouped = {}  # one line per procedure and reason, whatever the number of records
-    for item in summary["unauditable"]:
-        grouped.setdefault((item["procedure"], item["reason"]), []).append(item["record"])
-    for (procedure, reason), records in grouped.items():
-        which = records[0] if len(records) == 1 else f"{len(records)} records"
-        print(f"  not audited: {procedure} × {which}: {reason}")
-    counts = {}
-    for line in summary["bottom_line"]:
-        for verdict, n in line["count"].items():
-            counts[verdict] = counts.get(verdict, 0) + n
-    print("Verdicts: " + ", ".join(f"{v} {n}" for v, n in
-                                   sorted(counts.items(), key=lambda item: -item[1]) if n))
+    sys.stdout.write(result.summary_text())
     print(f"Wrote {out_dir / REPORT_HTML} and results.csv, summary.json "
           f"in {total:.1f} s")
     return 0

@@ -38,7 +38,20 @@ def _positive(value, where: str, field: str, unit: str) -> float:
 
 def checked_object(name: str, width_m, height_m, where: str, g: float = G) -> Block:
     """The object ``name`` after the checks every block passes; InputError naming ``where``
-    (the option, argument or file row) and the field otherwise."""
+    (the option, argument or file row) and the field otherwise.
+
+    Parameters
+    ----------
+    name : str
+        What the object is called in the answer.
+    width_m, height_m : float
+        Full base width and full height of the box of its centre of mass [m], positive,
+        taller than wide (the limits of :func:`~audit.engine.blocks.parse_blocks`).
+    where : str
+        Where it was given (``--block``, ``objects[2]``, a file's row), for the message.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     width = _positive(width_m, where, "width_m", "metres")
     height = _positive(height_m, where, "height_m", "metres")
     if width >= height:
@@ -49,7 +62,20 @@ def checked_object(name: str, width_m, height_m, where: str, g: float = G) -> Bl
 
 def object_by_slenderness(name: str, alpha_deg, size_s, where: str, g: float = G) -> Block:
     """The object of slenderness α [degrees] and size 2π/p [s], checked as
-    :func:`checked_object` (and, like every object, known by its dimensions from then on)."""
+    :func:`checked_object` (and, like every object, known by its dimensions from then on).
+
+    Parameters
+    ----------
+    name : str
+    alpha_deg : float
+        Slenderness α = atan(b/h) [degrees], in (0, 45).
+    size_s : float
+        Size 2π/p [s], positive (p = √(3g/(4R)), R the half-diagonal, Eq. 4.2).
+    where : str
+        Where it was given, for the message.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     alpha = _positive(alpha_deg, where, "alpha_deg", "degrees")
     if alpha >= 45.0:
         raise InputError(f"{where}: alpha_deg: slenderness must lie between 0 and 45 degrees, "
@@ -61,7 +87,17 @@ def object_by_slenderness(name: str, alpha_deg, size_s, where: str, g: float = G
 
 def parse_block_text(text: str, option: str = "blocks", g: float = G) -> list[Block]:
     """Objects of one ``--block`` value, ``WIDTHxHEIGHT`` [m] (several comma-separated), named
-    as typed (:func:`~audit.engine.blocks.parse_blocks`)."""
+    as typed (:func:`~audit.engine.blocks.parse_blocks`).
+
+    Parameters
+    ----------
+    text : str
+        ``WIDTHxHEIGHT`` [m], full width × full height, or several separated by commas.
+    option : str
+        The option or argument it came from, for the message.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     items = [item.strip() for item in str(text).split(",") if item.strip()]
     return [replace(block, name=item) for item, block in zip(items, parse_blocks(items, option, g))]
 
@@ -69,7 +105,18 @@ def parse_block_text(text: str, option: str = "blocks", g: float = G) -> list[Bl
 def read_objects(path, option: str = "objects", g: float = G) -> list[Block]:
     """An inventory: a CSV file with ``name`` and either ``width_m,height_m`` or
     ``alpha_deg,size_s`` on each row (a row may use either pair). InputError naming the file,
-    the row and the field of the first bad row."""
+    the row and the field of the first bad row.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The CSV file (UTF-8, a byte-order mark allowed); dimensions in m, α in degrees,
+        sizes in s.
+    option : str
+        The option or argument it came from, for the message.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8-sig")

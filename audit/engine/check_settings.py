@@ -13,8 +13,9 @@ from audit.engine.intensity import IntensityMeasure
 from audit.errors import InputError
 from audit.physics.block import Restitution
 
-#: The fields :meth:`CheckSettings.parse` takes, and their defaults.
-CHECK_DEFAULTS = {"im": DEFAULT_IM, "restitution": DEFAULT_RESTITUTION,
+#: The fields :meth:`CheckSettings.parse` takes, and their defaults (``im``: None, the hazard
+#: curve's IMT, else ``DEFAULT_IM``).
+CHECK_DEFAULTS = {"im": None, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
                   "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET,
                   "hazard_imt": None, "return_period": None, "poe": None, "friction": None}
@@ -90,6 +91,9 @@ class CheckSettings:
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
         im = value["im"]
+        risk_target = check.number("risk_target", value["risk_target"],
+                                   "a probability in 50 years in (0, 1)", 0, 1, low_open=True,
+                                   high_open=True)
         if value["site_location"] is not None and value["hazard"] is None:
             raise InputError("site_location: a site of the hazard file; no hazard given",
                              "site_location")
@@ -98,12 +102,14 @@ class CheckSettings:
                 raise InputError(f"{field}: read on the hazard curve; no hazard given", field)
         risk_target = check.probability("risk_target", value["risk_target"])
         hazard = value["hazard"]
+        if not isinstance(im, (str, IntensityMeasure, type(None))):
+            IntensityMeasure.parse(im)  # refused, naming im
         location = (None if value["site_location"] is None
                     else check.lon_lat("site_location", value["site_location"]))
         if hazard is not None:  # read and checked before any work
             from audit.engine.risk import site_hazard
-            hazard, im = site_hazard(hazard, location, risk_target,
-                                     im if "im" in values else None, value["hazard_imt"])
+            hazard, im = site_hazard(hazard, location, risk_target, im, value["hazard_imt"])
+        im = DEFAULT_IM if im is None else im
         friction = value["friction"]
         if friction is not None:
             friction = check.number("friction", friction, "a positive friction coefficient μ",

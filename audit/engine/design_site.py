@@ -53,11 +53,7 @@ class DesignSite:
         value = {**SITE_DEFAULTS, **values}
         site = value["site"]
         if site is not None:
-            site = check.numbers("site", site, "two positive accelerations S_XS, S_X1 in g", 0,
-                                 low_open=True)
-            if len(site) != 2:
-                raise InputError(f"site: expected two numbers S_XS, S_X1 in g, got {values['site']!r}",
-                                 "site")
+            site = check.pair("site", site, "S_XS, S_X1 in g (positive)", 0, low_open=True)
             if max(site) > MAX_SITE_G:
                 raise InputError(f"site: S_XS, S_X1 = {site[0]:g}, {site[1]:g} g is beyond any "
                                  f"design spectrum (at most ~4 g; limit {MAX_SITE_G:g} g): in g, "

@@ -22,7 +22,19 @@ def _real(field: str, value, what: str) -> float:
 def number(field: str, value, what: str = "a number", low: float | None = None,
            high: float | None = None, *, low_open: bool = False,
            high_open: bool = False) -> float:
-    """``value`` as a finite float in [low, high] (open ends where asked)."""
+    """``value`` as a finite float in [low, high] (open ends where asked).
+
+    Parameters
+    ----------
+    field : str
+        The argument's name, which the message starts with and the error names.
+    value :
+        A real number (not a bool, not text such as ``'0.01 s'``).
+    what : str
+        What is expected, with its unit (``"a duration ≥ 0 s"``), for the message.
+    low, high : float, optional
+        Bounds, in the field's unit; ``low_open``/``high_open`` exclude them.
+    """
     number_ = _real(field, value, what)
     below = low is not None and (number_ <= low if low_open else number_ < low)
     above = high is not None and (number_ >= high if high_open else number_ > high)
@@ -35,7 +47,15 @@ def numbers(field: str, value, what: str = "numbers", low: float | None = None,
             high: float | None = None, *, low_open: bool = False,
             high_open: bool = False) -> tuple[float, ...]:
     """``value`` (a number, or a sequence or array of them) as a non-empty tuple of finite
-    floats, each in [low, high]."""
+    floats, each in [low, high].
+
+    Parameters
+    ----------
+    field, what, low, high, low_open, high_open :
+        As for :func:`number`; text and None are refused whole.
+    value :
+        A number, a list or tuple of numbers, or an array.
+    """
     if isinstance(value, (str, bytes)) or value is None:
         raise InputError(f"{field}: expected {what}, got {value!r}", field)
     items = value.tolist() if hasattr(value, "tolist") else value
@@ -69,6 +89,31 @@ def words(field: str, value) -> tuple[str, ...]:
     if not isinstance(items, (list, tuple)) or not all(isinstance(item, str) for item in items):
         raise InputError(f"{field}: expected text or a list of text, got {value!r}", field)
     return tuple(items)
+
+
+def pair(field: str, value, what: str, low: float | None = None,
+         high: float | None = None, *, low_open: bool = False) -> tuple[float, float]:
+    """``value`` as two finite floats (a sequence of two numbers: not one string, not one
+    number), each in [low, high]."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise InputError(f"{field}: expected two numbers {what}, got {value!r}", field)
+    first, second = numbers(field, value, f"two numbers {what}", low, high, low_open=low_open)
+    return first, second
+
+
+def path(field: str, value, what: str = "a path"):
+    """``value`` as a :class:`pathlib.Path` (from text or a path; not a number or None)."""
+    from pathlib import Path
+    if isinstance(value, (str, Path)) and str(value).strip():
+        return Path(value)
+    raise InputError(f"{field}: expected {what}, got {value!r}", field)
+
+
+def callback(field: str, value, how: str):
+    """``value`` as True, False or a callable ``how`` (e.g. ``progress(done, total, …)``)."""
+    if value is True or value is False or callable(value):
+        return value
+    raise InputError(f"{field}: expected True, False or {how}, got {value!r}", field)
 
 
 def unknown(where: str, values: dict, known) -> None:
@@ -117,4 +162,5 @@ def lon_lat(field: str, value) -> tuple[float, float]:
     return lon, lat
 
 
-__all__ = ["number", "numbers", "whole", "flag", "words", "unknown", "probability", "lon_lat"]
+__all__ = ["number", "numbers", "whole", "flag", "words", "pair", "path", "callback", "unknown",
+           "probability", "lon_lat"]

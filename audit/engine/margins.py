@@ -139,7 +139,7 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
              else None)
     parts, resumed, where = computed_parts(record_stripes, entries, procedures,
                                            settings_of_stripes, runtime.scheduler, store,
-                                           resume, runtime.progress)
+                                           runtime.progress)
     return MarginsStripes(
         entries, settings_of_stripes,
         design * SITE_LEVELS[settings.site_level] if design else None,
@@ -174,12 +174,10 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
     entries, im, blocks = run.entries, settings.im, run.settings.blocks
     levels, exact_over = np.asarray(run.settings.levels), run.exact_overturned
     site_factors = np.array([site_factor(suite, e.id) for e in entries])
-    stripes = stripe_rows(entries, levels, run.intensities, site_factors, blocks, im,
-                          exact_over, run.exact_theta_rad, run.predicted)
+    stripes = stripe_rows(run, site_factors)
     fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, run.mce_im)
     steps = step_levels(procedures, entries, run.settings, run.predicted, run.evaluated)
-    capacity = capacity_rows(procedures, levels, blocks, exact_over, run.predicted,
-                             run.evaluated, fits, boots, steps)
+    capacity = capacity_rows(procedures, run, fits, boots, steps)
     named_blocks = settings.blocks
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
                "design_im": run.settings.design_im, "site_level": settings.site_level,

@@ -17,9 +17,10 @@ from audit.engine.intensity import IntensityMeasure
 from audit.errors import InputError
 from audit.physics.block import Restitution
 
-#: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``sizes_s``: None, the
-#: default grid; ``stripes``: None, levels around the design intensity).
-MARGINS_DEFAULTS = {"im": DEFAULT_IM, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
+#: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``im``: None, the hazard
+#: curve's IMT, else ``DEFAULT_IM``; ``sizes_s``: None, the default grid; ``stripes``: None,
+#: levels around the design intensity).
+MARGINS_DEFAULTS = {"im": None, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
                     "sizes_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
                     "free_motion_s": DEFAULT_FREE_MOTION_S, "required": True, "g": G,
                     "site_level": DEFAULT_SITE_LEVEL, "hazard": None, "site_location": None,
@@ -112,20 +113,25 @@ class MarginsSettings:
                 raise InputError(f"stripes: expected increasing intensity levels, each once, "
                                  f"got {', '.join(f'{s:g}' for s in stripes)}", "stripes")
         sizes = value["sizes_s"]
-        if value["site_level"] not in SITE_LEVELS:
+        if value["site_location"] is not None and value["hazard"] is None:
+            raise InputError("site_location: a site of the hazard file; no hazard given",
+                             "site_location")
+        if not isinstance(value["site_level"], str) or value["site_level"] not in SITE_LEVELS:
             raise InputError(f"site_level: expected {' or '.join(SITE_LEVELS)}, got "
                              f"{value['site_level']!r}", "site_level")
         risk_target = check.probability("risk_target", value["risk_target"])
         hazard = value["hazard"]
+        if not isinstance(im, (str, IntensityMeasure, type(None))):
+            IntensityMeasure.parse(im)  # refused, naming im
         location = (None if value["site_location"] is None
                     else check.lon_lat("site_location", value["site_location"]))
         if hazard is not None:  # read and checked before any work
             from audit.engine.risk import site_hazard
-            hazard, im = site_hazard(hazard, location, risk_target,
-                                     im if "im" in values else None, value["hazard_imt"])
+            hazard, im = site_hazard(hazard, location, risk_target, im, value["hazard_imt"])
         elif value["hazard_imt"] is not None:
             raise InputError("hazard_imt: the IMT of a hazard file; no hazard given",
                              "hazard_imt")
+        im = DEFAULT_IM if im is None else im
         return cls(
             im=im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im),
             stripes=stripes,

@@ -45,8 +45,21 @@ def site_factor(suite, record_id: str) -> float:
     return float(scaled["scale_factor"]) if scaled else 1.0
 
 
-def stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_over,
-                 exact_theta, predicted) -> pd.DataFrame:
+def stripe_rows(run, site_factors) -> pd.DataFrame:
+    """One row per record × stripe × block (``stripes.csv``).
+
+    Parameters
+    ----------
+    run : audit.engine.margins.MarginsStripes
+        Every record's part of the audit: its records, stripes, blocks and intensity measure
+        (``run.settings``), each record's intensity [unit of the measure], and the exact and
+        predicted overturning, shaped (record, stripe, block).
+    site_factors : numpy.ndarray
+        Each record's scale factor to the design site [-], 1 where none.
+    """
+    entries, blocks, im = run.entries, run.settings.blocks, run.settings.im
+    levels, intensities = np.asarray(run.settings.levels), run.intensities
+    exact_over, exact_theta = run.exact_overturned, run.exact_theta_rad
     record, level, block = np.indices(exact_over.shape).reshape(3, -1)
     frame = pd.DataFrame({
         "record": np.array([e.id for e in entries])[record], **_block_columns(blocks, block),
@@ -54,7 +67,7 @@ def stripe_rows(entries, levels, intensities, site_factors, blocks, im, exact_ov
         "scale_factor": levels[level] / intensities[record] * site_factors[record],
         "site_factor": site_factors[record],
         "exact_overturned": exact_over.reshape(-1), "exact_theta_rad": exact_theta.reshape(-1)})
-    for name, over in predicted.items():
+    for name, over in run.predicted.items():
         frame[f"{name}_overturns"] = over.reshape(-1)
     return frame
 
@@ -145,8 +158,24 @@ def step_levels(procedures, entries, settings: StripeSettings, predicted, evalua
     return steps
 
 
-def capacity_rows(procedures, levels, blocks, exact_over, predicted, evaluated, fits, boots,
-                   steps):
+def capacity_rows(procedures, run, fits, boots, steps) -> pd.DataFrame:
+    """One row per procedure × block: where the procedure draws its line against the exact
+    fragility (``capacity.csv``).
+
+    Parameters
+    ----------
+    procedures : list of procedures.Procedure
+    run : audit.engine.margins.MarginsStripes
+        The stripes and blocks (``run.settings``), the exact and predicted overturning and
+        which records each procedure could evaluate.
+    fits, boots : list
+        Per block, the exact lognormal fit (None where none) and its bootstrap.
+    steps : dict
+        (procedure name, block index) → the intensity where the procedure's verdict steps
+        [unit of the measure], where :func:`step_levels` found one.
+    """
+    levels, blocks = np.asarray(run.settings.levels), run.settings.blocks
+    exact_over, predicted, evaluated = run.exact_overturned, run.predicted, run.evaluated
     rows = []
     exact_fraction = exact_over.mean(axis=0)  # (stripe, block)
     for proc in procedures:

@@ -81,6 +81,7 @@ class PartialStore:
     def __init__(self, directory, procedures, settings, resume: bool):
         self.directory = Path(directory)
         self.key = run_key(procedures, settings)
+        self.resume = resume  # whether its parts are reused (computed_parts asks)
         if not resume:
             self.remove()
 

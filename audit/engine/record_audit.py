@@ -16,16 +16,27 @@ from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
 
 from audit.engine.ground_truth import alternatives, slides
 from audit.engine.histories import simulate_histories
-from audit.engine.schemas import (CHECK_COLUMNS, HISTORY_COLUMNS, RESULT_COLUMNS, ROCKING_COLUMNS,
-                                  SPECTRA_COLUMNS)
+from audit.engine.schemas import (
+    CHECK_COLUMNS,
+    HISTORY_COLUMNS,
+    RESULT_COLUMNS,
+    ROCKING_COLUMNS,
+    SPECTRA_COLUMNS,
+)
 from audit.engine.settings import FIGURE_5_DAMPING, AuditSettings
-from audit.engine.verdicts import check_verdicts, classify, exact_exceeded, reported_ratio
+from audit.engine.verdicts import (
+    check_verdicts,
+    classify,
+    exact_exceeded,
+    reported_ratio,
+)
 from audit.physics.rocking import rocking_spectrum
 from procedures.base import OVERTURN, STORED_SPECTRUM_PERIODS_S
 from procedures.context import RecordContext
@@ -164,8 +175,9 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
     results, estimates_only, checks = [], [], []
     for name, i, evaluation in evaluations:
         if evaluation.estimate is not None:
-            rows = _result_rows(entry.id, name, alpha_deg[i], sizes, p, evaluation.estimate,
-                                exact, fragile, others, i, settings)
+            rows = _result_rows(RowKeys(entry.id, name, i, alpha_deg[i], sizes, p),
+                                evaluation.estimate, ExactAnswer(exact, fragile, others),
+                                settings)
             (results if exact is not None else estimates_only).append(rows)
         if exact is not None:  # a check is audited only against an exact response
             checks += [_check_rows(entry.id, name, alpha_deg[i], sizes, check, exact, i,
@@ -181,8 +193,33 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
                        concat(checks, CHECK_COLUMNS), unauditable, histories_meta)
 
 
-def _result_rows(record_id, procedure_name, alpha_deg, sizes, p, estimate, exact, fragile,
-                 others, i, settings: AuditSettings):
+class RowKeys(NamedTuple):
+    """What names a procedure's rows of one record at one slenderness: the record, the
+    procedure, α's index on the grid and α [degrees], the blocks' sizes 2π/p [s] and p
+    [rad/s]."""
+
+    record_id: str
+    procedure_name: str
+    i: int
+    alpha_deg: float
+    sizes: np.ndarray
+    p: np.ndarray
+
+
+class ExactAnswer(NamedTuple):
+    """The exact response of one record over the grid (None without a record file), its
+    fragility flags (None with robustness off) and the responses of the alternative models."""
+
+    response: object
+    fragile: object
+    others: list
+
+
+def _result_rows(keys: RowKeys, estimate, truth: ExactAnswer, settings: AuditSettings):
+    """One row per block of a procedure's estimate, beside the exact response it is judged
+    against (``results.csv``)."""
+    record_id, procedure_name, i, alpha_deg, sizes, p = keys
+    exact, fragile, others = truth
     nan = np.full(sizes.shape, np.nan)
     band, alpha_rad = settings.agree_band, np.radians(alpha_deg)
     if exact is None:

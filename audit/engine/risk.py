@@ -194,15 +194,18 @@ def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=N
     its file (at ``site_location``; of the IMT ``hazard_imt``, else of ``im`` in a file of
     several IMTs) unless given, ``im`` (when the user gave one) held to the curve's IMT, which
     sets the intensity measure, and the risk target checked."""
+    from audit.engine import fields
     from audit.engine.hazard_imt import im_of_imt, imt_of
     from records.hazard import HazardCurve, read_hazard
+    if site_location is not None:
+        site_location = fields.lon_lat("site_location", site_location)
     im_text = None if im is None else im if isinstance(im, str) else im.name
     if hazard_imt is not None and not isinstance(hazard_imt, str):
         raise InputError(f"hazard_imt: expected an IMT of the hazard file (PGA, SA(1.0)), got "
                          f"{hazard_imt!r}", "hazard_imt")
     if not isinstance(hazard, HazardCurve):
-        hazard = read_hazard(hazard, site_location,
-                             hazard_imt or (imt_of(im_text) if im_text else None))
+        hazard = read_hazard(fields.path("hazard", hazard, "a hazard curve or its file"),
+                             site_location, hazard_imt or (imt_of(im_text) if im_text else None))
     elif hazard_imt is not None:
         check_same_im(hazard, im_of_imt(hazard_imt), "hazard_imt")
     if im_text is not None:

@@ -79,7 +79,8 @@ class Runtime:
             raise InputError("resume: needs partial_dir, the folder of the interrupted run's "
                              "parts", "resume", "partial_dir")
         return cls(check.whole("jobs", value["jobs"], 1), scheduler,
-                   None if partial is None else Path(partial), resume, progress)
+                   None if partial is None else check.path("partial_dir", partial, "a folder"),
+                   resume, progress)
 
     def report(self, done: int, total: int, record_id: str, how: str) -> None:
         """Tell :attr:`progress`, if any, that a record is done."""

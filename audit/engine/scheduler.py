@@ -194,7 +194,7 @@ def _with_jobs(settings, jobs: int):
 
 
 def computed_parts(task, entries, procedures, settings, scheduler: str, store=None,
-                   resume: bool = False, progress=None, consume=None):
+                   progress=None, consume=None):
     """``task(entry, procedures, settings)`` of every entry, where ``scheduler`` says, each part
     stored as it completes and reused from ``store`` when resuming.
 
@@ -210,8 +210,8 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
         ``local``, ``dask`` or ``tcp://HOST:PORT`` (opened for this call and closed), or a
         scheduler already open (:func:`open_scheduler`), for several calls.
     store : audit.engine.partial.PartialStore, optional
-    resume : bool
-        Reuse the matching parts already in ``store``.
+        Where each part is kept as it completes; with its ``resume``, the matching parts
+        already there are reused.
     progress : callable, optional
         ``progress(done, total, record_id, how)`` after each record.
     consume : callable, optional
@@ -237,7 +237,7 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
         parts[index] = part if consume is None else True  # True: done, not held
 
     for i, entry in enumerate(entries):
-        if store and resume and (part := store.load(entry)) is not None:
+        if store and store.resume and (part := store.load(entry)) is not None:
             take(i, part)
     resumed = [entry.id for entry, part in zip(entries, parts) if part is not None]
     for count, record_id in enumerate(resumed, start=1):

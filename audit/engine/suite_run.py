@@ -116,8 +116,8 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
     in_order = _InOrder(entries, writer.add, kept, procedures, settings)
     try:
         _, resumed, where = computed_parts(audit_record, entries, procedures, settings,
-                                           runtime.scheduler, kept, runtime.resume,
-                                           runtime.progress, consume=in_order)
+                                           runtime.scheduler, kept, runtime.progress,
+                                           consume=in_order)
     finally:
         writer.close()
         in_order.remove()

@@ -8,13 +8,13 @@ with a DC drift and content above 25 Hz; docs/validation.md).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.signal import butter, sosfiltfilt
 
 from audit import G
+from audit.engine import fields as check
 from audit.errors import InputError
 from audit.physics.block import Restitution
 from audit.physics.rocking import rocking_blocks
@@ -57,22 +57,28 @@ class ValidationSettings:
     jobs: int = 1
 
     def __post_init__(self):
-        alpha = np.asarray(self.alpha_deg, dtype=float)
-        if alpha.size < 2 or not (np.all(np.diff(alpha) > 0) and alpha[0] > 0 and alpha[-1] < 45):
-            raise InputError("alpha_deg: needs ≥ 2 increasing slendernesses in (0, 45) degrees")
-        if not (len(self.p_rad_s) and all(math.isfinite(p) and p > 0 for p in self.p_rad_s)):
-            raise InputError("p_rad_s: needs positive frequency parameters")
-        if not (len(self.restitution_factors)
-                and all(0 < f <= 1 for f in self.restitution_factors)):
-            raise InputError("restitution_factors: each must lie in (0, 1]")
-        if not 0 < self.highpass_hz < self.lowpass_hz:
-            raise InputError("highpass_hz: must be positive and below lowpass_hz")
-        if not (isinstance(self.folds, int) and self.folds >= 2):
-            raise InputError(f"folds: must be an integer ≥ 2, got {self.folds!r}")
-        if not 0 < self.lapse < 0.5:
-            raise InputError(f"lapse: must lie in (0, 0.5), got {self.lapse}")
-        if not (isinstance(self.jobs, int) and self.jobs >= 1):
-            raise InputError(f"jobs: must be an integer ≥ 1, got {self.jobs!r}")
+        # each field checked once, naming it; a frozen dataclass keeps the checked values
+        alpha = check.numbers("alpha_deg", self.alpha_deg, "slendernesses in (0, 45) degrees",
+                              0, 45, low_open=True, high_open=True)
+        if len(alpha) < 2 or any(b <= a for a, b in zip(alpha, alpha[1:])):
+            raise InputError("alpha_deg: needs ≥ 2 increasing slendernesses in (0, 45) degrees",
+                             "alpha_deg")
+        check.numbers("p_rad_s", self.p_rad_s, "positive frequency parameters in rad/s", 0,
+                      low_open=True)
+        check.numbers("restitution_factors", self.restitution_factors,
+                      "multiples of Eq. 4.8's r in (0, 1]", 0, 1, low_open=True)
+        high = check.number("highpass_hz", self.highpass_hz, "a positive frequency in Hz", 0,
+                            low_open=True)
+        low = check.number("lowpass_hz", self.lowpass_hz, "a positive frequency in Hz", 0,
+                           low_open=True)
+        if not high < low:
+            raise InputError("highpass_hz: must be positive and below lowpass_hz",
+                             "highpass_hz", "lowpass_hz")
+        object.__setattr__(self, "folds", check.whole("folds", self.folds, 2))
+        check.number("lapse", self.lapse, "a probability in (0, 0.5)", 0, 0.5, low_open=True,
+                     high_open=True)
+        check.number("free_motion_s", self.free_motion_s, "a duration ≥ 0 s", 0)
+        object.__setattr__(self, "jobs", check.whole("jobs", self.jobs, 1))
 
     @property
     def solves_per_test(self) -> int:
