@@ -10,7 +10,6 @@ import csv
 import json
 import math
 
-import numpy as np
 import pytest
 
 import audit

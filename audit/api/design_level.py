@@ -76,7 +76,8 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
             alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, blocks=(),
             restitution=DEFAULT_RESTITUTION, free_motion_s: float = DEFAULT_FREE_MOTION_S,
             required: bool = True, g: float = G, site_level: str = DEFAULT_SITE_LEVEL,
-            hazard=None, site_location=None, risk_target: float = DEFAULT_RISK_TARGET,
+            hazard=None, hazard_imt: str | None = None, site_location=None,
+            risk_target: float = DEFAULT_RISK_TARGET,
             site=None, scale_to_site: bool = False, anchor_period_s: float | None = None,
             ntc_site=None, skip_bad_records: bool = False, force: bool = False,
             jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
@@ -118,6 +119,8 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         The hazard level of ``site``: the CMR is over the MCE intensity, 1.5 × design values.
     hazard : records.hazard.HazardCurve, str or pathlib.Path, optional
         The site's hazard curve or its file: the risk at the site; its IMT sets ``im``.
+    hazard_imt : str, optional
+        The IMT of a hazard file of several (``"SA(1.0)"``, ``"PGA"``); without it, ``im``'s.
     site_location : (float, float), optional
         Longitude, latitude [degrees] of the site in a hazard file of several sites.
     risk_target : float
