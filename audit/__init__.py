@@ -4,7 +4,7 @@ Equation numbers refer to Makris & Konstantinidis, *The Rocking Spectrum and the
 Shortcomings of Design Guidelines*, PEER 2001/07.
 
 The Python API (:mod:`audit.api`) is here too: ``audit.Block``, ``audit.rock``, ``audit.run``,
-``audit.margins``, ``audit.check``, ``audit.risk``, ``audit.fragility`` (loaded on first use, so that the command line starts
+``audit.margins``, ``audit.check``, ``audit.risk``, ``audit.fragility``, ``audit.floor_motion`` (loaded on first use, so that the command line starts
 light).
 """
 
@@ -16,7 +16,7 @@ G = 9.81
 #: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
 _API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
         "run", "margins", "fragility", "design_suite", "risk", "read_hazard", "check",
-        "CheckResult", "validate", "ValidationResult")
+        "CheckResult", "validate", "ValidationResult", "floor_motion", "FloorMotion")
 
 
 def __getattr__(name):

@@ -35,6 +35,7 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           "design_spectrum": "audit.api.spectra", "load_result": "audit.api.runs",
           "risk": "audit.api.site_risk", "read_hazard": "audit.api.site_risk",
           "check": "audit.api.object_check", "CheckResult": "audit.api.object_check",
+          "floor_motion": "audit.api.floors", "FloorMotion": "audit.api.floors",
           "validate": "audit.api.validation", "ValidationResult": "audit.api.validation",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
           # and its report, for the command line
@@ -57,4 +58,5 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "MarginsResult", "fragility", "FragilityResult", "typed", "with_page", "PARTIAL_DIR",
            "REPORT_HTML", "FRAGILITY_HTML", "rocking_spectrum", "response_spectra",
            "design_spectrum", "load_result", "available_procedures", "size_grid", "kept_parts",
-           "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult"]
+           "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
+           "floor_motion", "FloorMotion"]

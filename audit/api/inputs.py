@@ -137,6 +137,17 @@ def motion_of(motion, records=None):
                         if hasattr(motion, "shape") else ""), "motion")
 
 
+def on_floor_of(motion, floor: dict, records=None):
+    """(the motion of :func:`motion_of` filtered to the object's floor, the floor's JSON
+    document): ``floor`` holds the keywords ``floor``, ``building``, ``building_model``,
+    ``building_damping`` (:class:`audit.physics.building.floor.Floor`), checked first."""
+    from audit.engine.floors import floor_document
+    from audit.physics.building.floor import Floor
+    from audit.physics.building.floor_motion import floor_motion
+    where = Floor.parse(**floor)
+    return floor_motion(motion_of(motion, records), where), floor_document(where)
+
+
 def split(options: dict, *groups) -> list[dict]:
     """``options`` sorted into the given groups of field names (one dict each); InputError
     naming a keyword that is in none."""
@@ -149,4 +160,4 @@ def split(options: dict, *groups) -> list[dict]:
             for group in groups]
 
 
-__all__ = ["procedures_of", "suite_of", "motion_of", "split"]
+__all__ = ["procedures_of", "suite_of", "motion_of", "on_floor_of", "split"]

@@ -145,7 +145,10 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
         default ``sa:1.0``), ``restitution``, ``free_motion_s``, ``g``, ``seed`` (of the
         bootstrap over records), ``hazard`` (a hazard curve or its file: the risk; its IMT
         sets ``im``), ``site_location`` (lon, lat [degrees] in a file of several sites),
-        ``risk_target`` (probability of overturning in 50 years, default 0.01); how:
+        ``risk_target`` (probability of overturning in 50 years, default 0.01); where the
+        objects stand: ``floor`` (z/H, 0 the ground, the default), ``building`` (T1 [s]),
+        ``building_model`` (``shear:N`` or ``continuum:α0``, default ``continuum:10``),
+        ``building_damping`` (default 0.05), see :mod:`audit.engine.floors`; how:
         ``jobs``, ``scheduler``.
 
     Returns
@@ -156,10 +159,13 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
     from audit.api.inputs import procedures_of, split, suite_of
     from audit.engine.check import run_check
     from audit.engine.check_settings import CHECK_FIELDS, CheckSettings
+    from audit.engine.floors import FLOOR_FIELDS
     from audit.engine.progress import Progress
     from audit.engine.runtime import Runtime
-    values, how = split(options, CHECK_FIELDS, ("jobs", "scheduler"))
+    values, floor, how = split(options, CHECK_FIELDS, FLOOR_FIELDS, ("jobs", "scheduler"))
     settings = CheckSettings.parse(**values)
+    from audit.engine.design_site import DesignSite
+    DesignSite.parse(**floor)  # the floor checked before anything is read
     chosen_objects = _objects(objects, settings.g)
     try:
         sxs_g, sx1_g = (float(v) for v in site)
@@ -171,7 +177,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
     runtime = Runtime.parse(**how, progress=progress if callable(progress) else None)
     chosen = procedures_of(procedures)
     suite = design_suite(suite_of(records), site=(sxs_g, sx1_g), site_override=True,
-                         scale_to_site=True, ntc_site=ntc_site)
+                         scale_to_site=True, ntc_site=ntc_site, **floor)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, settings,

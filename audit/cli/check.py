@@ -53,6 +53,7 @@ def add_parser(sub):
                         "the true 5 %%-damped spectral acceleration at T [g] (the site's "
                         "intensity: its design spectrum at T; S_X1 at 1 s) or PGA (0.4 S_XS)")
     options.add_hazard_options(p)
+    options.add_floor_options(p)
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -108,7 +109,7 @@ def run(args) -> int:
     objects = objects_of(args)
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
-              "risk_target": args.risk_target}
+              "risk_target": args.risk_target, **options.floor_values(args)}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:

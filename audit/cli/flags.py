@@ -20,6 +20,8 @@ FLAGS = {
     "periods_s": "--periods", "damping_pct": "--damping", "sxs_g": "--sxs", "sx1_g": "--sx1",
     "ag_g": "--ag", "f0": "--f0", "tc_star_s": "--tc-star", "site_level": "--level",
     "hazard": "--hazard", "objects": "--objects", "site_location": "--site-location", "risk_target": "--risk-target",
+    "floor": "--floor", "building": "--building", "building_model": "--building-model",
+    "building_damping": "--building-damping",
 }
 #: Where a command's flag for an argument differs from :data:`FLAGS`.
 COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}

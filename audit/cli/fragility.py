@@ -17,6 +17,7 @@ def add_parser(sub):
     p.add_argument("--procedure", default=DEFAULT_PROBABILISTIC_PROCEDURE,
                    help="probabilistic procedure (see 'list')")
     options.add_records_option(p)
+    options.add_floor_options(p)
     p.add_argument("--out", required=True, metavar="DIR",
                    help="output folder: fragility-*.csv and fragility.html")
     p.set_defaults(func=run, records=DEFAULT_FRAGILITY_RECORDS)
@@ -27,7 +28,8 @@ def run(args) -> int:
     from audit.api import FRAGILITY_HTML, fragility
     from audit.files import check_output_dir
     out_dir = check_output_dir(Path(args.out))
-    fragility(args.procedure, args.records, progress=True).write(out_dir)
+    fragility(args.procedure, args.records, progress=True,
+              **options.floor_values(args)).write(out_dir)
     print(f"note: wrote {out_dir / FRAGILITY_HTML} and the fragility-*.csv files",
           file=sys.stderr)
     return 0

@@ -49,6 +49,7 @@ def add_parser(sub):
                    help="NTC 2018 site for every record: a_g [g], F0, T_C* [s], soil category "
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
                         "its demand off this code spectrum instead of the record's")
+    options.add_floor_options(p)
     options.add_restitution_option(p)
     options.add_ground_truth_options(p)
     options.add_force_option(p)
@@ -62,8 +63,9 @@ def add_parser(sub):
 
 def site_options(args) -> dict:
     """The design-site arguments of the API from ``--site``, ``--site-override``,
-    ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``."""
-    site = {"site_override": getattr(args, "site_override", False),
+    ``--scale-to-site``, ``--anchor-period``, ``--ntc-site`` and the floor's flags."""
+    site = {**options.floor_values(args),
+            "site_override": getattr(args, "site_override", False),
             "scale_to_site": args.scale_to_site,
             "anchor_period_s": args.anchor_period}
     if args.ntc_site:

@@ -19,6 +19,7 @@ import pandas as pd
 
 from audit.engine.check_words import sentence
 from audit.engine.csv_text import csv_bytes
+from audit.engine.floors import suite_floor
 from audit.engine.schemas import GUIDE
 
 #: What the site's numbers stand for, said in every output.
@@ -165,6 +166,7 @@ def run_summary(suite, entries, im, levels, site_im, procedures, restitution, wh
                      "hazard_level": HAZARD_LEVEL},
             "im": im.name, "im_unit": im.unit, "site_im": site_im, "levels": levels.tolist(),
             "records": [e.id for e in entries], "records_source": suite.description,
+            "floor": suite_floor(suite),
             "restitution": str(restitution), "scheduler": where,
             "procedures": [{"name": p.name, "title": p.title} for p in procedures]}
 

@@ -16,6 +16,7 @@ record is the scaled floor motion.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 
@@ -40,9 +41,14 @@ def building_of(floor: Floor):
             else ContinuumBuilding(model.value))
 
 
+@functools.lru_cache(maxsize=64)
 def floor_modes(floor: Floor, dt: float):
-    """(T_n [s], Γ_n φ_n(z) [-]) of the modes the floor motion keeps at sampling step ``dt``."""
-    return building_of(floor).modes(floor.building_period_s, floor.z_over_h, 2.0 * dt)
+    """(T_n [s], Γ_n φ_n(z) [-]) of the modes the floor motion keeps at sampling step ``dt``
+    (remembered: the records of a suite mostly share a few steps, and the continuum's roots
+    and integrals cost far more than filtering a record), read-only."""
+    periods, weights = building_of(floor).modes(floor.building_period_s, floor.z_over_h, 2.0 * dt)
+    periods.flags.writeable = weights.flags.writeable = False
+    return periods, weights
 
 
 @kernel()
