@@ -219,7 +219,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
-    summary["floor"] = floor_at_site(suite, intensity, site_im)
+    summary["floor"] = floor_at_site(suite, entries, intensity, site_im)
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
+
 from audit import G
 from audit.physics.building.floor import (DEFAULT_BUILDING_DAMPING, DEFAULT_BUILDING_MODEL,
                                           Floor)
@@ -43,13 +45,35 @@ def suite_floor(suite) -> dict:
     return suite.floor or {**floor_document(Floor()), "records": {}}
 
 
-def floor_at_site(suite, intensity: dict, site_im: float) -> dict:
-    """:func:`suite_floor` with each record's PFA and PFV at the site: the record scaled so that
-    its (ground) intensity is ``site_im`` (``intensity`` holds each record's as it stands)."""
+#: Periods of the floor and ground spectra of a check's page [s]: 0.05–5 s, log-spaced.
+SPECTRUM_PERIODS_S = tuple(np.geomspace(0.05, 5.0, 49).tolist())
+#: Their damping [-].
+SPECTRUM_DAMPING = 0.05
+
+
+def floor_at_site(suite, entries, intensity: dict, site_im: float) -> dict:
+    """:func:`suite_floor` with each record's PFA and PFV at the site (the record scaled so that
+    its ground intensity is ``site_im``; ``intensity`` holds each record's as it stands), and on
+    a floor the median 5 %-damped spectra [g] of the floor motions and of the ground motions at
+    the site, ``spectra``."""
     document = suite_floor(suite)
-    records = {record: {name: value * site_im / intensity[record] for name, value in peaks.items()}
-               for record, peaks in document["records"].items() if record in intensity}
-    return {**document, "records": records}
+    factors = {entry.id: site_im / intensity[entry.id] for entry in entries}
+    records = {record: {name: value * factors[record] for name, value in peaks.items()}
+               for record, peaks in document["records"].items() if record in factors}
+    if not records:
+        return {**document, "records": records}
+    from audit.physics.response_spectra import response_spectra
+    periods = np.array(SPECTRUM_PERIODS_S)
+
+    def median_sa(motions) -> list:
+        return (np.median([response_spectra(m, periods, [SPECTRUM_DAMPING], 0.0).sa[0] * factor
+                           for m, factor in motions], axis=0) / G).tolist()
+
+    spectra = {"period_s": list(SPECTRUM_PERIODS_S), "damping": SPECTRUM_DAMPING,
+               "floor_median_sa_g": median_sa([(e.motion, factors[e.id]) for e in entries]),
+               "ground_median_sa_g": median_sa([(e.motion.ground, factors[e.id])
+                                                for e in entries])}
+    return {**document, "records": records, "spectra": spectra}
 
 
 def on_floor(suite, floor: Floor):
