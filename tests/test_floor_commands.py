@@ -115,4 +115,14 @@ def test_check_on_a_floor_names_it_and_reports_each_records_peaks(far_field):
     assert "z/H = 1" in result.summary() and "shear:10" in result.summary()
     on_ground = audit.check(["0.8x2.0"], site=(1.0, 0.6), procedures="fema356", records=two)
     assert on_ground.document["floor"]["z_over_h"] == 0.0
-    assert json.loads(result.files()["check.json"])["floor"]["building_model"] == "shear:10"
+    files = result.files()
+    assert json.loads(files["check.json"])["floor"]["building_model"] == "shear:10"
+    header, row = files["check.csv"].decode().splitlines()[:2]
+    named = dict(zip(header.split(","), row.split(",")))
+    assert (named["floor_z_over_h"], named["building_period_s"], named["building_model"]) == \
+        ("1", "1", "shear:10")
+    spectra = floor["spectra"]
+    # the building amplifies near its first period: the roof's median Sa(1 s) well above the
+    # ground's (which is S_X1 = 0.6 g for every record at the site, so its median too)
+    at_1s = int(np.argmin(np.abs(np.array(spectra["period_s"]) - 1.0)))
+    assert spectra["floor_median_sa_g"][at_1s] > 2 * spectra["ground_median_sa_g"][at_1s]

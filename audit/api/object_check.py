@@ -41,7 +41,7 @@ class CheckResult:
         from audit.engine.check_summary import check_table
         self.run = run
         self.document = {**run.summary, "objects": run.objects}
-        self.table: pd.DataFrame = check_table(run.objects)
+        self.table: pd.DataFrame = check_table(run.objects, run.summary.get("floor"))
 
     @property
     def sentences(self) -> list[str]:
