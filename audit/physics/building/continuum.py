@@ -37,7 +37,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 #: Most modes kept (a stiff limit for flexible buildings sampled finely) [-].
 MAX_MODES = 400
@@ -59,6 +58,7 @@ def eigenvalues(alpha0: float, count: int) -> np.ndarray:
     Between the pure-flexure root (≈ (i − ½)π) and the pure-shear one ((i − ½)π), every root
     lies in ((i − 1)π, iπ]; each is bracketed on a grid of that interval and found by Brent's
     method."""
+    from scipy.optimize import brentq  # only here: commands on the ground start without it
     roots = []
     step = math.pi / 64.0
     gamma = 1e-9
