@@ -17,7 +17,6 @@ import numpy as np
 from audit import G
 from audit.physics.building.floor import (DEFAULT_BUILDING_DAMPING, DEFAULT_BUILDING_MODEL,
                                           Floor)
-from audit.physics.building.floor_motion import floor_motion
 
 #: The keywords (and command-line flags) of the object's floor, and their defaults.
 FLOOR_DEFAULTS = {"floor": 0.0, "building": None, "building_model": None,
@@ -82,6 +81,8 @@ def on_floor(suite, floor: Floor):
     PFA and PFV."""
     if floor.on_ground:
         return suite
+    # the filter's kernels load only here: reading results back (audit report) needs none
+    from audit.physics.building.floor_motion import floor_motion
     entries = tuple(entry if entry.motion is None
                     else replace(entry, motion=floor_motion(entry.motion, floor))
                     for entry in suite)
