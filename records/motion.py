@@ -80,6 +80,9 @@ class GroundMotion:
     vertical : numpy.ndarray or None
         The vertical ground acceleration üv at the same samples [m/s², positive up], where the
         record has one; the exact solver reads it only when asked (``--vertical``).
+    ground : GroundMotion or None
+        Set on the motion of a floor (:func:`audit.physics.building.floor_motion.floor_motion`):
+        the ground motion it was filtered from, which the hazard's intensity measures read.
     """
 
     id: str
@@ -91,6 +94,7 @@ class GroundMotion:
     pulse: Pulse | None = None
     metadata: dict = field(default_factory=dict)
     vertical: np.ndarray | None = None
+    ground: GroundMotion | None = None
 
     def __post_init__(self):
         where = self.source or self.id
@@ -132,7 +136,7 @@ class GroundMotion:
 
     def scaled(self, factor: float, component: str | None = None) -> GroundMotion:
         """The same record with every acceleration (the vertical one too, and an analytic pulse's
-        amplitude) × factor.
+        amplitude, and the ground motion of a floor's: the building is linear) × factor.
 
         Parameters
         ----------
@@ -144,6 +148,7 @@ class GroundMotion:
         pulse = self.pulse and replace(self.pulse, amplitude=self.pulse.amplitude * factor)
         return replace(self, acceleration=self.acceleration * factor, pulse=pulse,
                        vertical=None if self.vertical is None else self.vertical * factor,
+                       ground=None if self.ground is None else self.ground.scaled(factor),
                        component=self.component if component is None else component)
 
     def with_vertical(self, vertical: GroundMotion, down: bool = False) -> GroundMotion:

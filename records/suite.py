@@ -63,6 +63,9 @@ class RecordSuite:
         JSON-ready; empty where none was given.
     scaling : dict
         The factors of :func:`audit.engine.sites.scale_to_site`, JSON-ready; empty where unscaled.
+    floor : dict
+        Where the objects stand (:func:`audit.engine.floors.on_floor`), JSON-ready, with each
+        record's peak floor acceleration and velocity; empty on the ground.
     """
 
     entries: tuple[RecordEntry, ...]
@@ -70,6 +73,7 @@ class RecordSuite:
     is_pulse_idealised: bool = False
     design_site: dict = field(default_factory=dict)
     scaling: dict = field(default_factory=dict)
+    floor: dict = field(default_factory=dict)
     #: Records left out by ``--skip-bad-records``: ``{"record", "file", "reason"}`` each.
     rejected: tuple = ()
 

@@ -23,6 +23,7 @@ from audit.engine.check_words import metres
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
+from reports.floor_section import floor_spectra_figure
 from reports.html_parts import number, page_templates
 from reports.margins_figures import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
@@ -155,6 +156,7 @@ def render_check_page(folder) -> str:
                for obj in document["objects"]]
     return page_templates().get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs(),
+        floor_figure=floor_spectra_figure(document.get("floor") or {}),
         records_words=counted_records(len(document["records"]), document["records_source"]))
 
 

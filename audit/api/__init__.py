@@ -38,6 +38,7 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           # an inventory, --block and --alpha/--size as objects of a check, checked
           "read_objects": "audit.api.object_check", "parse_block_text": "audit.api.object_check",
           "object_by_slenderness": "audit.api.object_check",
+          "floor_motion": "audit.api.floors", "FloorMotion": "audit.api.floors",
           "validate": "audit.api.validation", "ValidationResult": "audit.api.validation",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
           # and its report, for the command line
@@ -61,4 +62,5 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "REPORT_HTML", "FRAGILITY_HTML", "rocking_spectrum", "response_spectra",
            "design_spectrum", "load_result", "available_procedures", "size_grid", "kept_parts",
            "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
-           "read_objects", "parse_block_text", "object_by_slenderness"]
+           "read_objects", "parse_block_text", "object_by_slenderness",
+           "floor_motion", "FloorMotion"]

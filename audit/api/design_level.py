@@ -13,6 +13,7 @@ from audit.engine.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEF
 from audit.engine.design_site import DesignSite
 from audit.engine.margins_settings import MARGINS_FIELDS, MarginsSettings
 from audit.engine.runtime import Runtime
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 
 class MarginsResult(Files):
@@ -79,7 +80,10 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
             hazard=None, hazard_imt: str | None = None, site_location=None,
             risk_target: float = DEFAULT_RISK_TARGET,
             site=None, scale_to_site: bool = False, anchor_period_s: float | None = None,
-            ntc_site=None, skip_bad_records: bool = False, force: bool = False,
+            ntc_site=None, floor: float = 0.0, building: float | None = None,
+            building_model: str | None = None,
+            building_damping: float = DEFAULT_BUILDING_DAMPING,
+            skip_bad_records: bool = False, force: bool = False,
             jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
             resume: bool = False, progress=False) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
@@ -130,6 +134,9 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     scale_to_site, anchor_period_s, ntc_site :
         As for :func:`audit.run` (anchor period in s; NTC 2018 a_g [g], F0, T_C* [s], soil,
         topography).
+    floor, building, building_model, building_damping :
+        Where the blocks stand, as for :func:`audit.run`; the stripes stay in the ground's
+        intensity measure.
     skip_bad_records : bool
         Audit the readable records; the unreadable ones are warned about and left out.
     force : bool
@@ -152,7 +159,8 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     # one design site: the audit is of that site
     site = DesignSite.parse(site=site, site_override=site is not None,
                             scale_to_site=scale_to_site, anchor_period_s=anchor_period_s,
-                            ntc_site=ntc_site)
+                            ntc_site=ntc_site, floor=floor, building=building,
+                            building_model=building_model, building_damping=building_damping)
     bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
     runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
                             resume=resume, progress=progress if callable(progress) else None)

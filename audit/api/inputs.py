@@ -151,4 +151,15 @@ def settings_fields(keywords: dict, fields) -> dict:
     return {name: keywords[name] for name in fields}
 
 
-__all__ = ["procedures_of", "suite_of", "motion_of", "settings_fields"]
+def on_floor_of(motion, floor: dict, records=None):
+    """(the motion of :func:`motion_of` filtered to the object's floor, the floor's JSON
+    document): ``floor`` holds the keywords ``floor``, ``building``, ``building_model``,
+    ``building_damping`` (:class:`audit.physics.building.floor.Floor`), checked first."""
+    from audit.engine.floors import floor_document
+    from audit.physics.building.floor import Floor
+    from audit.physics.building.floor_motion import floor_motion
+    where = Floor.parse(**floor)
+    return floor_motion(motion_of(motion, records), where), floor_document(where)
+
+
+__all__ = ["procedures_of", "suite_of", "motion_of", "settings_fields", "on_floor_of"]

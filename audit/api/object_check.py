@@ -25,6 +25,7 @@ from audit.engine.check_objects import object_by_slenderness, parse_block_text, 
 from audit.engine.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER)
 from audit.errors import InputError
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 
 
@@ -50,7 +51,7 @@ class CheckResult(Files):
         self.run = run
         self.summary: dict = run.summary
         self.document = {**run.summary, "objects": run.objects}
-        self.table: pd.DataFrame = check_table(run.objects)
+        self.table: pd.DataFrame = check_table(run.objects, run.summary.get("floor"))
 
     @property
     def sentences(self) -> list[str]:
@@ -122,7 +123,9 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           risk_target: float = DEFAULT_RISK_TARGET, return_period: float | None = None,
           poe: float | None = None, friction: float | None = None, ntc_site=None,
           skip_bad_records: bool = False, jobs: int = DEFAULT_JOBS,
-          scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False) -> CheckResult:
+          scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False, floor: float = 0.0,
+          building: float | None = None, building_model: str | None = None,
+          building_damping: float = DEFAULT_BUILDING_DAMPING) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check_risk`).
@@ -190,6 +193,15 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     force : bool
         Start even when the work is estimated beyond the limits of
         :mod:`audit.engine.guards` (as for :func:`audit.api.run`); InputError otherwise.
+    floor : float
+        Where the objects stand: z/H in the building, 0 the ground (the default), 1 the roof.
+    building : float, optional
+        The building's first-mode period T1 [s]; needed above the ground.
+    building_model : str, optional
+        ``shear:N`` or ``continuum:α0`` (default ``continuum:10``), see
+        :mod:`audit.physics.building`.
+    building_damping : float
+        ζ in every mode of the building [-] (default 0.05).
 
     Returns
     -------
@@ -211,7 +223,8 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     if site is None:
         raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
     site = DesignSite.parse(site=site, site_override=True, scale_to_site=True,
-                            ntc_site=ntc_site)
+                            ntc_site=ntc_site, floor=floor, building=building,
+                            building_model=building_model, building_damping=building_damping)
     chosen = procedures_of(procedures)
     given = suite_of(records, skip_bad_records)
     # the work, before the records are scaled to the site (scaling keeps their samples)
@@ -221,7 +234,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, settings,
-                        replace(runtime, progress=bar) if bar else runtime)
+                        replace(runtime, progress=bar) if bar else runtime, site.floor)
     finally:
         if bar is not None:
             bar.done()

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from audit.api.result_shape import Files, table_html, with_page
 from audit.engine.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 #: The page of the audit, drawn from its saved CSV files.
 FRAGILITY_HTML = "fragility.html"
@@ -76,7 +77,9 @@ class FragilityResult(Files):
 
 
 def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_FRAGILITY_RECORDS,
-              *, skip_bad_records: bool = False, progress: bool = False) -> FragilityResult:
+              *, skip_bad_records: bool = False, progress: bool = False, floor: float = 0.0,
+              building: float | None = None, building_model: str | None = None,
+              building_damping: float = DEFAULT_BUILDING_DAMPING) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
     multiple PGV stripes (:mod:`audit.engine.fragility_audit`).
 
@@ -91,6 +94,10 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         out.
     progress : bool
         Say on standard error what is being computed.
+    floor, building, building_model, building_damping :
+        Where the components stand (as for :func:`audit.rock`): the records are filtered to
+        that floor, and the PGV stripes are then the floor's PFV, the demand P-58's
+        unanchored-content fragilities are defined in.
 
     Returns
     -------
@@ -107,7 +114,11 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     if not isinstance(procedure, str) or procedure not in found:
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
-    suite = suite_of(records, skip_bad_records)
+    from audit.engine.floors import on_floor
+    from audit.physics.building.floor import Floor
+    where = Floor.parse(floor=floor, building=building, building_model=building_model,
+                        building_damping=building_damping)
+    suite = on_floor(suite_of(records, skip_bad_records), where)
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")
@@ -116,7 +127,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         Progress(0, "step").stage(f"{chosen.title}: exact overturning of its components under "
                                   f"{len(entries)} records scaled to each PGV stripe")
     tables = audit_procedure(chosen, [e.id for e in entries], [e.motion for e in entries])
-    return FragilityResult(chosen, tables, records if isinstance(records, str)
+    return FragilityResult(chosen, tables, records if isinstance(records, str) and where.on_ground
                            else suite.description)
 
 

@@ -12,6 +12,7 @@ from audit.engine.blocks import Block, within_limits
 from audit.engine.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError
 from audit.physics.block import Restitution, RigidBlock
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 from audit.physics.rocking import RockingHistory
 from audit.physics.rocking import simulate
 
@@ -40,9 +41,13 @@ class RockingResponse(Files):
     """
 
     def __init__(self, block: Block, motion, response: RockingHistory, friction=None,
-                 restitution: str = ""):
+                 restitution: str = "", floor: dict | None = None):
+        from audit.engine.floors import floor_document
         from audit.engine.ground_truth import slides
+        from audit.physics.building.floor import Floor
         self.block, self.motion, self.solution = block, motion, response
+        #: Where the block stands (:func:`audit.engine.floors.floor_document`).
+        self.floor = floor or floor_document(Floor())
         self.overturned = bool(response.overturned)
         self.peak = float(response.peak_rotation)
         self.peak_ratio = float(response.peak_rotation_ratio)
@@ -97,7 +102,8 @@ class RockingResponse(Files):
             "cycle_durations": response.cycle_durations.tolist(),
             "uplifted": response.uplifted,
             "required_friction": None if math.isinf(required) else required,
-            "jumps": response.jumps, "friction": self.friction, "slides": self.slides}
+            "jumps": response.jumps, "friction": self.friction, "slides": self.slides,
+            "floor": self.floor}
 
     PAGE = "rocking.html"
 
@@ -166,7 +172,8 @@ class RockingResponse(Files):
 
 def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
          restitution=None, vertical: bool = False, friction: float | None = None,
-         records=None, force: bool = False) -> RockingResponse:
+         records=None, force: bool = False, floor: float = 0.0, building: float | None = None, building_model: str | None = None,
+         building_damping: float = DEFAULT_BUILDING_DAMPING) -> RockingResponse:
     """Exact rocking response of ``block`` to ``motion`` (Eq. 4.3, impacts by Eq. 4.8).
 
     Parameters
@@ -190,8 +197,13 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         Where a record id is looked up (default: the default suite).
     force : bool
         Start even when the estimated work is beyond the limits (:mod:`audit.engine.guards`).
+    floor, building, building_model, building_damping :
+        Where the object stands: z/H (0, the default, is the ground), the building's T1 [s],
+        ``shear:N`` or ``continuum:α0`` (default ``continuum:10``) and its damping ratio
+        (default 0.05); the object rocks on the floor's motion
+        (:mod:`audit.physics.building.floor_motion`).
     """
-    from audit.api.inputs import motion_of
+    from audit.api.inputs import on_floor_of
     from audit.engine import guards
     if isinstance(block, str):
         block = Block.parse(block)
@@ -200,7 +212,9 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
                          f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")
     block = within_limits(block, "block", "block")
     force = check.flag("force", force)
-    motion = motion_of(motion, records)
+    motion, floor_document = on_floor_of(motion, {
+        "floor": floor, "building": building, "building_model": building_model,
+        "building_damping": building_damping}, records)
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
     if friction is not None:
         friction = check.number("friction", friction, "a positive friction coefficient μ", 0,
@@ -217,7 +231,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         rigid, label = RigidBlock(rigid.p, rigid.alpha, model, rigid.g), str(model)
     guards.check(guards.estimate([motion], free_motion_s, blocks=1), force)
     return RockingResponse(block, motion, simulate(rigid, motion, free_motion_s, vertical=vertical),
-                           friction, label)
+                           friction, label, floor_document)
 
 
 __all__ = ["Block", "RockingResponse", "rock"]

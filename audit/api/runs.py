@@ -19,6 +19,7 @@ from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAUL
 from audit.api.inputs import settings_fields
 from audit.engine.design_site import SITE_FIELDS, DesignSite
 from audit.engine.runtime import Runtime
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 from audit.engine.settings import AUDIT_FIELDS, AuditSettings
 from audit.errors import InputWarning
 
@@ -156,7 +157,9 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
         robustness: float = DEFAULT_ROBUSTNESS, g: float = G, restitution=DEFAULT_RESTITUTION,
         vertical: bool = False, friction: float | None = None, sensitivity=(), site=None,
         site_override: bool = False, scale_to_site: bool = False,
-        anchor_period_s: float | None = None, ntc_site=None, skip_bad_records: bool = False,
+        anchor_period_s: float | None = None, ntc_site=None, floor: float = 0.0,
+        building: float | None = None, building_model: str | None = None,
+        building_damping: float = DEFAULT_BUILDING_DAMPING, skip_bad_records: bool = False,
         detail=(), out_dir=None, force: bool = False, jobs: int = DEFAULT_JOBS,
         scheduler=DEFAULT_SCHEDULER, partial_dir=None, resume: bool = False,
         progress=False) -> AuditResult:
@@ -206,6 +209,11 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
         Anchor period of the scaling [s] (1 s when not given).
     ntc_site : (float, float, float, str, str), optional
         NTC 2018 site a_g [g], F0 [-], T_C* [s], soil category A–E, topography T1–T4.
+    floor, building, building_model, building_damping :
+        Where the blocks stand: z/H in the building (0 the ground, the default), its
+        first-mode period T1 [s], its model (``shear:N`` or ``continuum:α0``, default
+        ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
+        motion, the blocks rock on the floor's (:mod:`audit.engine.floors`).
     skip_bad_records : bool
         Audit the readable records of the suite; the unreadable ones are warned about
         (:class:`~audit.errors.InputWarning`) and left out.
@@ -297,7 +305,9 @@ def load_result(folder) -> AuditResult:
 
 
 def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site: bool = False,
-                 anchor_period_s: float | None = None, ntc_site=None):
+                 anchor_period_s: float | None = None, ntc_site=None, floor: float = 0.0,
+                 building: float | None = None, building_model: str | None = None,
+                 building_damping: float = DEFAULT_BUILDING_DAMPING):
     """``suite`` with the design site and scaling of the fields of
     :class:`~audit.engine.design_site.DesignSite`.
 
@@ -307,6 +317,11 @@ def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site
     site, site_override, scale_to_site, anchor_period_s, ntc_site :
         As for :func:`run` (S_XS, S_X1 [g]; anchor period [s]; NTC 2018 a_g [g], F0, T_C* [s],
         soil, topography).
+    floor, building, building_model, building_damping :
+        Where the blocks stand: z/H in the building (0 the ground, the default), its
+        first-mode period T1 [s], its model (``shear:N`` or ``continuum:α0``, default
+        ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
+        motion, the blocks rock on the floor's (:mod:`audit.engine.floors`).
     """
     return DesignSite.parse(**settings_fields(locals(), SITE_FIELDS)).apply(suite)
 

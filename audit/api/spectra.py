@@ -9,17 +9,20 @@ from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_DESIGN_DAMPING_P
                                    DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, DEFAULT_PERIODS,
                                    DEFAULT_RESPONSE_FREE_MOTION_S, DEFAULT_RESTITUTION)
 from audit.errors import InputError
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 CODES = ("fema356", "ubc97", "ntc2018")
 
 
 def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUTION,
                      free_motion_s: float = DEFAULT_FREE_MOTION_S, vertical: bool = False,
-                     jobs: int = DEFAULT_JOBS, force: bool = False):
+                     jobs: int = DEFAULT_JOBS, force: bool = False, floor: float = 0.0, building: float | None = None,
+                     building_model: str | None = None,
+                     building_damping: float = DEFAULT_BUILDING_DAMPING):
     """The rocking spectrum of ``motion`` (ids, paths, GroundMotions, (array, dt): see
     :func:`audit.rock`) over sizes 2π/p [s] × slendernesses [degrees]: a DataFrame (one row per
     block; ``audit.physics.rocking.RockingSpectrum.to_frame``), the record's id in
-    ``.attrs["record"]``.
+    ``.attrs["record"]``, the floor in ``.attrs["floor"]``.
 
     Parameters
     ----------
@@ -39,17 +42,21 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
         Solver threads.
     force : bool
         Start even when the estimated work is beyond the limits.
+    floor, building, building_model, building_damping :
+        Where the block stands, as for :func:`audit.rock`.
     """
     import numpy as np
 
-    from audit.api.inputs import motion_of
+    from audit.api.inputs import on_floor_of
     from audit.engine import guards
     from audit.engine.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
     from audit.engine.grid import size_grid
     from audit.physics.block import Restitution
     from audit.physics.rocking import rocking_spectrum as spectrum
     force = check.flag("force", force)
-    motion = motion_of(motion)
+    motion, floor_document = on_floor_of(motion, {
+        "floor": floor, "building": building, "building_model": building_model,
+        "building_damping": building_damping})
     sizes = check.numbers("sizes_s", sizes_s, "positive block sizes 2π/p in s", 0, low_open=True)
     alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
                            45, low_open=True, high_open=True)
@@ -68,13 +75,17 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     frame = spectrum(motion, np.asarray(sizes), np.radians(alphas), impact,
                      free_motion_s=free_motion_s, jobs=jobs, vertical=vertical).to_frame()
     frame.attrs["record"] = motion.id
+    frame.attrs["floor"] = floor_document
     return frame
 
 
 def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
-                     free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False):
+                     free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False,
+                     floor: float = 0.0, building: float | None = None,
+                     building_model: str | None = None,
+                     building_damping: float = DEFAULT_BUILDING_DAMPING):
     """True response spectra of ``motion`` at periods [s] and damping ratios [%]: a DataFrame
-    (``audit.physics.response_spectra.ResponseSpectra.to_frame``).
+    (``audit.physics.response_spectra.ResponseSpectra.to_frame``); on a floor, the floor spectra, the floor in ``.attrs["floor"]``.
 
     Parameters
     ----------
@@ -88,15 +99,19 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
         Free vibration after the excitation [s].
     force : bool
         Start even when the estimated work is beyond the limits.
+    floor, building, building_model, building_damping :
+        Where the block stands, as for :func:`audit.rock`.
     """
     import numpy as np
 
-    from audit.api.inputs import motion_of
+    from audit.api.inputs import on_floor_of
     from audit.engine import guards
     from audit.engine.grid import size_grid
     from audit.physics.response_spectra import response_spectra as spectra
     force = check.flag("force", force)
-    motion = motion_of(motion)
+    motion, floor_document = on_floor_of(motion, {
+        "floor": floor, "building": building, "building_model": building_model,
+        "building_damping": building_damping})
     periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
     damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,
                             high_open=True)
@@ -108,6 +123,7 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
     frame = spectra(motion, np.asarray(periods), np.asarray(damping) / 100.0,
                     free_motion_s).to_frame()
     frame.attrs["record"] = motion.id
+    frame.attrs["floor"] = floor_document
     return frame
 
 

@@ -66,6 +66,7 @@ def add_parser(sub):
                         "sliding (tan α > μ, or records whose rocking needs more than μ) or "
                         "rocking; without it, no sliding is assumed and the friction the "
                         "records need is given")
+    options.add_floor_options(p)
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -116,7 +117,8 @@ def run(args) -> int:
     objects = objects_of(args)
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
-              "risk_target": args.risk_target, "friction": args.friction}
+              "risk_target": args.risk_target, "friction": args.friction,
+              **options.floor_values(args)}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:

@@ -22,6 +22,8 @@ FLAGS = {
     "ag_g": "--ag", "f0": "--f0", "tc_star_s": "--tc-star", "site_level": "--level",
     "hazard": "--hazard", "objects": "--objects", "site_location": "--site-location", "risk_target": "--risk-target",
     "hazard_imt": "--hazard-imt", "return_period": "--return-period", "poe": "--poe",
+    "floor": "--floor", "building": "--building", "building_model": "--building-model",
+    "building_damping": "--building-damping",
 }
 #: Where a command's flag for an argument differs from :data:`FLAGS`.
 COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}

@@ -48,6 +48,7 @@ def add_parser(sub):
                    help="hazard level of the --site values: mce (the CMR is over them) or "
                         "design (the CMR is over 1.5 × them, the MCE of ASCE 7)")
     options.add_scaling_options(p)
+    options.add_floor_options(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
     options.add_block_option(p)

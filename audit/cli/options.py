@@ -317,8 +317,9 @@ def add_hazard_options(parser):
 def design_site(args) -> dict:
     """The design-site arguments of the API from ``--site``, ``--site-override``,
     ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``, those the command has (the
-    one place the command line reads them)."""
-    site = {"site_override": getattr(args, "site_override", False),
+    one place the command line reads them), and the floor's flags."""
+    site = {**(floor_values(args) if hasattr(args, "floor") else {}),
+            "site_override": getattr(args, "site_override", False),
             "scale_to_site": getattr(args, "scale_to_site", False),
             "anchor_period_s": getattr(args, "anchor_period", None)}
     if args.ntc_site:
@@ -331,6 +332,34 @@ def design_site(args) -> dict:
         if len(site["site"]) != 2:
             raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
     return site
+
+
+def add_floor_options(parser):
+    """``--floor``, ``--building``, ``--building-model``, ``--building-damping``: the floor the
+    object stands on (:mod:`audit.engine.floors`)."""
+    from audit.engine.defaults import DEFAULT_BUILDING_DAMPING, DEFAULT_BUILDING_MODEL
+    parser.add_argument("--floor", type=number("must lie between 0 and 1", 0.0, 1.0),
+                        default=0.0, metavar="Z/H",
+                        help="relative height of the object's floor in the building: 0 the "
+                             "ground (no building), 1 the roof; the site scales the ground "
+                             "motion, the object rocks on the floor's")
+    parser.add_argument("--building", type=POSITIVE, metavar="T1",
+                        help="with --floor above 0: the building's first-mode period [s]")
+    parser.add_argument("--building-model", metavar="shear:N|continuum:ALPHA0",
+                        help="the linear building: a uniform shear building of N storeys, or "
+                             "Miranda & Taghavi's shear-flexure beam of lateral stiffness ratio "
+                             "α0 (0-2 walls, 5-20 frames); default "
+                             f"{DEFAULT_BUILDING_MODEL}")
+    parser.add_argument("--building-damping", type=number("must lie in (0, 1]", 0.0, 1.0,
+                                                          low_open=True),
+                        default=DEFAULT_BUILDING_DAMPING, metavar="ZETA",
+                        help="the building's damping ratio in every mode [-]")
+
+
+def floor_values(args) -> dict:
+    """The API keywords of the floor flags."""
+    return {"floor": args.floor, "building": args.building,
+            "building_model": args.building_model, "building_damping": args.building_damping}
 
 
 def site_location(text: str | None) -> tuple[float, float] | None:

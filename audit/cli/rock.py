@@ -38,6 +38,7 @@ def add_parser(sub):
     p.add_argument("--history", metavar="FILE.csv",
                    help="write time_s, theta_rad, theta_dot_rad_s, ground_acc_g at every solver "
                         "output point (sampling grid, turning points, both sides of each impact)")
+    options.add_floor_options(p)
     options.add_force_option(p)
     p.set_defaults(func=run)
 
@@ -65,7 +66,7 @@ def run(args) -> int:
                           size_s=args.size if args.size is not None else 2 * math.pi / args.p)
     response = api.rock(block, options.motion(args), free_motion_s=args.duration,
                         restitution=restitution, vertical=args.vertical, friction=args.friction,
-                        force=args.force)
+                        force=args.force, **options.floor_values(args))
     result = {**response.as_dict(),
               "block_m": args.block and f"{block.width_m:g}x{block.height_m:g}",
               "vertical": args.vertical}

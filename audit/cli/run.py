@@ -49,6 +49,7 @@ def add_parser(sub):
                    help="NTC 2018 site for every record: a_g [g], F0, T_C* [s], soil category "
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
                         "its demand off this code spectrum instead of the record's")
+    options.add_floor_options(p)
     options.add_restitution_option(p)
     options.add_ground_truth_options(p)
     options.add_force_option(p)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 from audit.cli import options, outputs
 from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_PERIODS, DEFAULT_RESPONSE_FREE_MOTION_S, alpha_text,
@@ -29,6 +31,7 @@ def add_parser(sub):
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS, help="threads")
     p.add_argument("--csv", metavar="FILE", help="CSV output (default: standard output)")
     p.add_argument("--plot", metavar="FILE.png", help="draw the spectra")
+    options.add_floor_options(p)
     options.add_force_option(p)
     p.set_defaults(func=run)
 
@@ -45,12 +48,16 @@ def run(args) -> int:
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)
         frame = api.response_spectra(options.motion(args), periods_s=periods,
                                      damping_pct=100.0 * damping, free_motion_s=args.free_motion,
-                                     force=args.force)
+                                     force=args.force, **options.floor_values(args))
     else:
         alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args.sizes)
         frame = api.rocking_spectrum(options.motion(args), sizes_s=sizes, alpha_deg=alphas,
                                      restitution=args.restitution, free_motion_s=args.free_motion,
-                                     vertical=args.vertical, jobs=args.jobs, force=args.force)
+                                     vertical=args.vertical, jobs=args.jobs, force=args.force,
+                                     **options.floor_values(args))
+    if frame.attrs["floor"]["building_model"]:
+        print(f"Spectra of the floor motion {frame.attrs['floor']['description']}",
+              file=sys.stderr)
     figure = {}
     if plot:  # matplotlib is loaded only for a figure
         from reports import figures

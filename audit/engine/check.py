@@ -42,6 +42,7 @@ from audit.engine.check_judgement import at_site, judge
 from audit.engine.component_checks import component_entries
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
                                       overturns_at, probability_at_site)
+from audit.engine.floors import floor_at_site
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
 from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.stripes import RecordStripes, StripeSettings, half_crossing, record_stripes
@@ -253,6 +254,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
     summary.update(design_im=design_im, site_hazard=site.as_dict(curve),
                    friction=settings.friction)
+    summary["floor"] = floor_at_site(suite, entries, intensity, site_im)
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)

@@ -19,6 +19,7 @@ import pandas as pd
 
 from audit.engine.check_words import sentence
 from audit.engine.csv_text import csv_bytes
+from audit.engine.floors import suite_floor
 from audit.engine.schemas import GUIDE
 
 #: What the site's numbers stand for, said in every output.
@@ -165,19 +166,25 @@ def run_summary(suite, entries, im, levels, site_im, procedures, restitution, wh
                      "hazard_level": HAZARD_LEVEL},
             "im": im.name, "im_unit": im.unit, "site_im": site_im, "levels": levels.tolist(),
             "records": [e.id for e in entries], "records_source": suite.description,
+            "floor": suite_floor(suite),
             "restitution": str(restitution), "scheduler": where,
             "procedures": [{"name": p.name, "title": p.title} for p in procedures]}
 
 
-def check_table(objects: list) -> pd.DataFrame:
-    """One row per object × procedure (the columns of ``check.csv``)."""
+def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
+    """One row per object × procedure (the columns of ``check.csv``), on ``floor`` (the run's
+    ``floor``; the ground when None)."""
+    floor = floor or {}
+    where = {"floor_z_over_h": floor.get("z_over_h", 0.0),
+             "building_period_s": floor.get("building_period_s"),
+             "building_model": floor.get("building_model") or ""}
     rows = []
     for obj in objects:
         exact, risk = obj["exact"], obj["risk"]
         for proc in obj["procedures"]:
             rows.append({
                 "object": obj["name"], "width_m": obj["width_m"], "height_m": obj["height_m"],
-                "alpha_deg": obj["alpha_deg"], "size_s": obj["size_s"],
+                "alpha_deg": obj["alpha_deg"], "size_s": obj["size_s"], **where,
                 "procedure": proc["name"], "verdict": proc["verdict"] or "",
                 "compares": proc["compares"] or "", "demand": proc["demand"],
                 "capacity": proc["capacity"], "unit": proc["unit"] or "",
@@ -196,14 +203,14 @@ def check_table(objects: list) -> pd.DataFrame:
                 "exact_required_width_m_risk": risk["required_width_m"] if risk else None})
     return pd.DataFrame(rows, columns=CSV_COLUMNS).astype(
         {c: float for c in CSV_COLUMNS if c not in ("object", "procedure", "verdict", "compares",
-                                                     "unit", "reason", "im")})
+                                                     "unit", "reason", "im", "building_model")})
 
 
 def check_data_files(run) -> dict[str, bytes]:
     """``check.json`` and ``check.csv`` of a :class:`~audit.engine.check.CheckRun`."""
     document = {**run.summary, "objects": run.objects}
     return {CHECK_JSON: json.dumps(document, indent=1, ensure_ascii=False).encode(),
-            CHECK_CSV: csv_bytes(check_table(run.objects), "%.6g")}
+            CHECK_CSV: csv_bytes(check_table(run.objects, run.summary.get("floor")), "%.6g")}
 
 
 __all__ = ["object_answer", "ObjectFindings", "CheckFrame", "run_summary", "check_table",

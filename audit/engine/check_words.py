@@ -3,6 +3,8 @@ summary printed on standard output (a paragraph, then per object its sentence an
 
 from __future__ import annotations
 
+from statistics import median
+
 from records.suite import counted_records
 
 #: Share of an annual rate from outside the stripes above which the sentence warns of it.
@@ -120,6 +122,13 @@ def summary_text(document: dict) -> str:
     site_hazard = document.get("site_hazard")
     if site_hazard and site_hazard.get("warning"):
         lines[-1:-1] = [f"Warning: {site_hazard['warning']}."]
+    floor = document.get("floor") or {}
+    if floor.get("building_model"):
+        peaks = list(floor["records"].values())
+        lines[-1:-1] = [f"The objects stand {floor['description']}: the site scales the ground "
+                        f"motion, the objects rock on the floor's (median over the records at the "
+                        f"site: PFA {median([p['pfa_g'] for p in peaks]):.3g} g, PFV "
+                        f"{median([p['pfv_m_s'] for p in peaks]):.3g} m/s)."]
     hazard = document.get("hazard")
     if hazard:
         lines[-1:-1] = [f"Risk from the hazard curve {hazard['source']}: target P ≤ "

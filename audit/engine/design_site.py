@@ -1,5 +1,7 @@
 """The design site of an audit, checked once: FEMA 356's site for the records, the FEMA P695
-scaling to its spectrum, and NTC 2018's site (:mod:`audit.engine.sites` does the work)."""
+scaling to its spectrum, NTC 2018's site (:mod:`audit.engine.sites` does the work), and the
+floor the objects stand on (:mod:`audit.engine.floors`: the ground motions, scaled, are filtered
+through the building last)."""
 
 from __future__ import annotations
 
@@ -7,7 +9,9 @@ from dataclasses import dataclass
 
 from audit.engine import fields as check
 from audit.engine.defaults import DEFAULT_ANCHOR_PERIOD_S
+from audit.engine.floors import FLOOR_DEFAULTS
 from audit.errors import InputError
+from audit.physics.building.floor import Floor
 
 #: Largest S_XS or S_X1 accepted [g]. The largest mapped MCE_R short-period values of the US
 #: maps are about 3 g (S_S near faults, where F_a ≤ 1.2) and the 1 s values lower, so no code
@@ -17,7 +21,7 @@ from audit.errors import InputError
 MAX_SITE_G = 5.0
 #: The fields :meth:`DesignSite.parse` takes, and their defaults.
 SITE_DEFAULTS = {"site": None, "site_override": False, "scale_to_site": False,
-                 "anchor_period_s": None, "ntc_site": None}
+                 "anchor_period_s": None, "ntc_site": None, **FLOOR_DEFAULTS}
 SITE_FIELDS = tuple(SITE_DEFAULTS)
 
 
@@ -38,6 +42,9 @@ class DesignSite:
         Anchor period [s] (1 s when not given); only with ``scale_to_site``.
     ntc_site : (float, float, float, str, str) or None
         NTC 2018 site a_g [g], F0 [-], T_C* [s], soil category A–E, topography T1–T4.
+    floor : Floor
+        Where the objects stand (keywords ``floor``, ``building``, ``building_model``,
+        ``building_damping``); the ground by default.
     """
 
     site: tuple | None = None
@@ -45,6 +52,7 @@ class DesignSite:
     scale_to_site: bool = False
     anchor_period_s: float | None = None
     ntc_site: tuple | None = None
+    floor: Floor = Floor()
 
     @classmethod
     def parse(cls, **values) -> DesignSite:
@@ -78,24 +86,25 @@ class DesignSite:
         if site is None and (override or scale):
             raise InputError("site_override and scale_to_site need site (S_XS, S_X1)",
                              "site_override", "scale_to_site", "site")
-        return cls(site, override, scale, anchor, ntc)
+        floor = Floor.parse(**{name: value[name] for name in FLOOR_DEFAULTS})
+        return cls(site, override, scale, anchor, ntc, floor)
 
     def apply(self, suite):
-        """``suite`` with these sites and scaling."""
+        """``suite`` with these sites and scaling, on this floor."""
+        from audit.engine.floors import on_floor
         from audit.engine.sites import scale_to_site, with_design_site, with_ntc_site
         if self.ntc_site is not None:
             try:
                 suite = with_ntc_site(suite, *self.ntc_site)
             except InputError as exc:  # the spectrum names its parameter
                 raise InputError(f"ntc_site: {exc}", "ntc_site") from None
-        if self.site is None:
-            return suite
-        sxs_g, sx1_g = self.site
-        suite = with_design_site(suite, sxs_g, sx1_g, override=self.site_override)
-        if self.scale_to_site:
-            suite = scale_to_site(suite, sxs_g, sx1_g, DEFAULT_ANCHOR_PERIOD_S
-                                  if self.anchor_period_s is None else self.anchor_period_s)
-        return suite
+        if self.site is not None:
+            sxs_g, sx1_g = self.site
+            suite = with_design_site(suite, sxs_g, sx1_g, override=self.site_override)
+            if self.scale_to_site:
+                suite = scale_to_site(suite, sxs_g, sx1_g, DEFAULT_ANCHOR_PERIOD_S
+                                      if self.anchor_period_s is None else self.anchor_period_s)
+        return on_floor(suite, self.floor)
 
 
 __all__ = ["DesignSite", "SITE_DEFAULTS", "SITE_FIELDS", "MAX_SITE_G"]

@@ -49,7 +49,9 @@ class IntensityMeasure:
         return "m/s" if self.kind == PGV else "g"
 
     def of_record(self, motion, free_motion_s: float) -> float:
-        """The intensity of a record (in :attr:`unit`)."""
+        """The intensity of a record (in :attr:`unit`): of its ground motion where it is the
+        motion of a floor (the hazard is at the ground)."""
+        motion = motion.ground if motion.ground is not None else motion
         if self.kind == PGA:
             return motion.pga_g
         if self.kind == PGV:

@@ -34,6 +34,7 @@ import pandas as pd
 
 from audit.engine.blocks import BlockList
 from audit.engine.csv_text import csv_bytes
+from audit.engine.floors import suite_floor
 from audit.engine.defaults import SITE_LEVELS
 from audit.engine.fragility import stripe_levels
 from audit.engine.margins_settings import MarginsSettings
@@ -183,7 +184,8 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
                "design_im": run.settings.design_im, "site_level": settings.site_level,
                "mce_im": run.mce_im, "records": [e.id for e in entries],
                "records_source": suite.description, "design_site": suite.design_site,
-               "scaling": suite.scaling, "restitution": str(run.settings.restitution),
+               "scaling": suite.scaling, "floor": suite_floor(suite),
+               "restitution": str(run.settings.restitution),
                "scheduler": run.where, "resumed": run.resumed,
                "procedures": [{"name": proc.name, "title": proc.title,
                                "reads": reading(proc, entries)} for proc in procedures],

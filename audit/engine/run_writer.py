@@ -20,6 +20,7 @@ import pandas as pd
 
 from audit import __version__
 from audit.engine.audit_run import AuditRun
+from audit.engine.floors import suite_floor
 from audit.engine.figure_data import (mechanics, sensitivity_facts, site_design_spectra,
                                       ubc97_design_spectrum)
 from audit.engine.ranking import LARGE_SUITE, ShownRecords
@@ -138,6 +139,7 @@ class RunWriter:
             "rejected_records": list(getattr(suite, "rejected", ())),
             "design_site": suite.design_site,
             "scaling": suite.scaling,
+            "floor": suite_floor(suite),
             "unauditable": self.unauditable,
             "grid": {"alpha_deg": list(settings.alpha_deg), "size_s": list(settings.size_s)},
             "settings": settings.described(),

@@ -236,6 +236,10 @@ GUIDE["check.csv"] = {
     "height_m": ("m", "full height of the object"),
     "alpha_deg": ("deg", "slenderness α = atan(width/height)"),
     "size_s": ("s", "size 2π/p"),
+    "floor_z_over_h": ("-", "relative height z/H of the object's floor (0: the ground)"),
+    "building_period_s": ("s", "first-mode period T1 of the building (empty on the ground)"),
+    "building_model": ("text", "the building model, shear:N or continuum:α0 (empty on the "
+                               "ground)"),
     "procedure": ("text", "guideline procedure"),
     "verdict": ("text", "passes (it predicts overturning for at most half the records it can "
                         "evaluate at the site's intensity), fails, or empty where it cannot "

@@ -91,8 +91,8 @@ class Floor:
             # On the ground the building does not matter, whatever was said of it.
             return cls()
         if building is None:
-            raise InputError("building: a floor above the ground needs the building's first-mode "
-                             "period T1 [s]", "building")
+            raise InputError("building: a floor above the ground needs T1, the first-mode period "
+                             "[s] of the structure it is in", "building")
         period_s = real("building", building, 0.0, 20.0, low_open=True)
         model = BuildingModel.parse(DEFAULT_BUILDING_MODEL if building_model is None
                                     else building_model)

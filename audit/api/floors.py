@@ -1,0 +1,84 @@
+"""``audit.floor_motion``: the motion of a floor of a linear building under a record, what
+``python -m audit floor-motion`` writes.
+
+    import audit
+    floor = audit.floor_motion("rsn1111_nis000", records="p695-far-field", building=1.0,
+                               building_model="shear:10", floor=1.0)
+    floor.pfa_g, floor.pfv_m_s, floor.spectrum_peak_g
+    floor.csv()            # time_s,acceleration_g
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from audit import G
+from audit.engine.defaults import DEFAULT_PERIODS
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+
+#: Damping of the floor spectrum whose peak is reported [-].
+SPECTRUM_DAMPING = 0.05
+
+
+class FloorMotion:
+    """A floor's absolute acceleration and its peaks.
+
+    Attributes
+    ----------
+    motion : records.GroundMotion
+        The floor motion (its ``ground`` the record), [m/s²].
+    floor : dict
+        The floor and the building (:func:`audit.engine.floors.floor_document`).
+    pfa_g, pfv_m_s : float
+        Peak floor acceleration [g] and velocity [m/s].
+    spectrum_peak_g, spectrum_peak_period_s : float
+        The peak of the floor motion's 5 %-damped absolute-acceleration spectrum [g] over the
+        periods of ``audit spectrum`` (0.02–10 s), and where it is [s].
+    """
+
+    def __init__(self, motion, floor: dict):
+        from audit.engine.floors import floor_peaks
+        from audit.engine.grid import size_grid
+        from audit.physics.response_spectra import response_spectra
+        self.motion, self.floor = motion, floor
+        peaks = floor_peaks(motion)
+        self.pfa_g, self.pfv_m_s = peaks["pfa_g"], peaks["pfv_m_s"]
+        periods = size_grid(*DEFAULT_PERIODS)
+        sa = response_spectra(motion, periods, [SPECTRUM_DAMPING], 0.0).sa[0]
+        peak = int(np.argmax(sa))
+        self.spectrum_peak_g = float(sa[peak]) / G
+        self.spectrum_peak_period_s = float(periods[peak])
+
+    def csv(self) -> bytes:
+        """``time_s,acceleration_g``, one row per sample."""
+        rows = np.column_stack((self.motion.time, self.motion.acceleration / G))
+        return ("time_s,acceleration_g\n" + "".join(f"{t:.8g},{a:.8g}\n" for t, a in rows)
+                ).encode()
+
+    def as_dict(self) -> dict:
+        return {"record": self.motion.id, "floor": self.floor, "pfa_g": self.pfa_g,
+                "pfv_m_s": self.pfv_m_s, "spectrum_peak_g": self.spectrum_peak_g,
+                "spectrum_peak_period_s": self.spectrum_peak_period_s,
+                "dt_s": self.motion.dt, "samples": int(self.motion.acceleration.size)}
+
+    def __repr__(self) -> str:
+        return (f"FloorMotion({self.motion.id} {self.floor['description']}: PFA = "
+                f"{self.pfa_g:.3g} g, PFV = {self.pfv_m_s:.3g} m/s)")
+
+
+def floor_motion(record, records=None, *, building: float, floor: float = 1.0,
+                 building_model: str | None = None,
+                 building_damping: float = DEFAULT_BUILDING_DAMPING) -> FloorMotion:
+    """The absolute acceleration of the floor at z/H = ``floor`` of a building of first-mode
+    period ``building`` [s] under ``record`` (as for :func:`audit.rock`: an id of ``records``,
+    a file, a GroundMotion or (acceleration [m/s²], dt [s])); the model ``shear:N`` or
+    ``continuum:α0`` (default ``continuum:10``), damping ``building_damping`` in every mode
+    (:mod:`audit.physics.building.floor_motion`)."""
+    from audit.api.inputs import on_floor_of
+    motion, document = on_floor_of(record, {
+        "floor": floor, "building": building, "building_model": building_model,
+        "building_damping": building_damping}, records)
+    return FloorMotion(motion, document)
+
+
+__all__ = ["floor_motion", "FloorMotion"]
