@@ -172,7 +172,8 @@ class RockingResponse(Files):
 
 def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
          restitution=None, vertical: bool = False, friction: float | None = None,
-         records=None, force: bool = False, floor: float = 0.0, building: float | None = None, building_model: str | None = None,
+         records=None, force: bool = False, floor: float = 0.0, building: float | None = None,
+         building_model: str | None = None,
          building_damping: float = DEFAULT_BUILDING_DAMPING) -> RockingResponse:
     """Exact rocking response of ``block`` to ``motion`` (Eq. 4.3, impacts by Eq. 4.8).
 

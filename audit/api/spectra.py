@@ -16,7 +16,8 @@ CODES = ("fema356", "ubc97", "ntc2018")
 
 def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUTION,
                      free_motion_s: float = DEFAULT_FREE_MOTION_S, vertical: bool = False,
-                     jobs: int = DEFAULT_JOBS, force: bool = False, floor: float = 0.0, building: float | None = None,
+                     jobs: int = DEFAULT_JOBS, force: bool = False, floor: float = 0.0,
+                     building: float | None = None,
                      building_model: str | None = None,
                      building_damping: float = DEFAULT_BUILDING_DAMPING):
     """The rocking spectrum of ``motion`` (ids, paths, GroundMotions, (array, dt): see
@@ -85,7 +86,8 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
                      building_model: str | None = None,
                      building_damping: float = DEFAULT_BUILDING_DAMPING):
     """True response spectra of ``motion`` at periods [s] and damping ratios [%]: a DataFrame
-    (``audit.physics.response_spectra.ResponseSpectra.to_frame``); on a floor, the floor spectra, the floor in ``.attrs["floor"]``.
+    (``audit.physics.response_spectra.ResponseSpectra.to_frame``); on a floor, the floor
+    spectra, the floor in ``.attrs["floor"]``.
 
     Parameters
     ----------
