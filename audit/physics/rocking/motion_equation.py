@@ -150,17 +150,18 @@ def _rk4(theta, omega, t, h, side, p2, alpha, g, kind, a0, slope, t0, amp, omega
 
 
 @kernel()
-def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
+def _locate(which, target, lo, hi, hi_value, theta, omega, t, side, p2, alpha, g,
             kind, a0, slope, t0, amp, omega_p, v0, vslope):
-    """Step length τ in [lo, hi] at which θ (which=0) or θ' (which=1) equals ``target``.
+    """Step length τ in [lo, hi] at which θ (which=0) or θ' (which=1) equals ``target``;
+    ``hi_value`` is that θ or θ' at the end of the step of length ``hi``, which the caller has
+    taken already.
 
     The bracket must hold a sign change of (value − target). Newton steps use the exact
     derivative of the continuous Runge–Kutta trajectory (θ' or Eq. 4.3), with bisection
     whenever Newton leaves the bracket. Returns (τ, θ(τ), θ'(τ)).
     """
-    th, om = _rk4(theta, omega, t, hi, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p,
-                  v0, vslope)
-    hi_positive = ((th if which == 0 else om) - target) > 0.0
+    hi_positive = (hi_value - target) > 0.0
+    th, om = theta, omega
     tau = 0.5 * (lo + hi)
     for _ in range(100):
         th, om = _rk4(theta, omega, t, tau, side, p2, alpha, g, kind, a0, slope, t0, amp,
