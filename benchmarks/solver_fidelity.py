@@ -3,7 +3,7 @@ today's solver against those of the step it replaced (``benchmarks/four_libm_ste
 every outcome that changed shown to be knife-edge.
 
     python benchmarks/solver_fidelity.py [--records p695-far-field] [--jobs 2] [--first N]
-                                         [--out fidelity.npz] [--from fidelity.npz]
+        [--out fidelity.npz] [--from fidelity.npz]
 
 The grid is the one ``margins all --records p695-far-field --site 1.5,0.9 --scale-to-site``
 solves for its stripes (the default stripes, α and sizes: 98,208 outcomes), computed as that
@@ -12,9 +12,11 @@ step. An outcome that changed is knife-edge when the step it replaced changes it
 relative change of the record's scale factor of at most 1e-6: the smallest such change (of 25
 from 1e-12 to 1e-6, even in ln, each way; outcomes this close to their edge flip back and forth
 in it, so a coarser search can miss them) is printed for each. ``--from`` takes the outcomes of
-an earlier run's ``--out`` instead of solving the grid again. Both solvers are the product's kernels,
-the one compiled again around the old step; that this recompilation gives the product's
-answers bit for bit with today's step is checked first, on the first record.
+an earlier run's ``--out`` instead of solving the grid again; ``--first N`` scales only N
+records to the site (FEMA P695 scales the set as a whole), so its outcomes are not the grid's.
+Both solvers are the product's kernels, the one compiled again around the old step; that this
+recompilation gives the product's answers bit for bit with today's step is checked first, on
+the first record.
 """
 
 from __future__ import annotations

@@ -1,6 +1,7 @@
 """Nanoseconds per Runge–Kutta step of the exact solver: today's step (one libm sin and cos, the
 stages turned by angle addition) against the step it replaced (a libm sin and cos at each of
-the four stages, kept in benchmarks/four_libm_step.py only), and one libm sin and cos on their own for reference.
+the four stages, kept in benchmarks/four_libm_step.py only), and one libm sin and cos on their
+own for reference.
 
     python benchmarks/solver_step.py [--rounds 15] [--steps 2000000]
 
@@ -8,9 +9,9 @@ Both steps march the same block (p = 2 rad/s, α = 15°, h = 1/(40 p)) under the
 ground motion (a sine of 1.5 g tan α, linear between samples; the pivot switches where θ
 changes sign and the block is set back at rest where it would overturn, so it rocks
 throughout). The three loops run in alternation in one process, rounds apart, and the medians
-are printed with the load average. Each loop is timed by the CPU time of its thread, not
-the wall clock, so that the other processes of a loaded machine do not count; the largest difference of θ between the two marches shows
-they integrate the same motion to rounding.
+are printed with the load average. Each loop is timed by the CPU time of its thread, not the
+wall clock, so that the other processes of a loaded machine do not count; the largest
+difference of θ between the two marches shows they integrate the same motion to rounding.
 """
 
 from __future__ import annotations
