@@ -6,8 +6,9 @@ The equation of motion (Eq. 4.3)
 
 is integrated with a classical fixed-step Runge–Kutta scheme inside each interval on which the
 ground acceleration is smooth (between two samples of a record, where it is linear, or inside an
-analytic pulse, evaluated in closed form). Every event is located inside its step rather than
-stepped across:
+analytic pulse, evaluated in closed form). A step takes one libm sin and cos: its later stages
+turn the moment of Eq. 4.3 by angle addition, exact to rounding. Every event is located inside
+its step rather than stepped across:
 
 - uplift, when |üg| first exceeds g·tan α (a positive üg starts a negative rotation);
 - impact, when θ returns to zero: the crossing time is found by safeguarded Newton iteration on

@@ -154,8 +154,9 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
             lo = 0.0
             if omega * om_n < 0.0:
                 # a peak of |θ| inside the step
-                tau, th_e, om_e = _locate(1, 0.0, 0.0, h, theta, omega, t, side, p2, alpha, g,
-                                          seg_kind, a0, slope, t0, amp, omega_p, v0, vslope)
+                tau, th_e, om_e = _locate(1, 0.0, 0.0, h, om_n, theta, omega, t, side, p2,
+                                          alpha, g, seg_kind, a0, slope, t0, amp, omega_p, v0,
+                                          vslope)
                 lo = tau
                 if abs(th_e) >= alpha:
                     th_n = th_e  # overturned before the turning point: handled below
@@ -171,8 +172,9 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                     if after and abs(th_e) > peak_after:
                         peak_after = abs(th_e)
             if side * th_n >= alpha:
-                tau, th_o, om_o = _locate(0, side * alpha, 0.0, h, theta, omega, t, side, p2, alpha,
-                                          g, seg_kind, a0, slope, t0, amp, omega_p, v0, vslope)
+                tau, th_o, om_o = _locate(0, side * alpha, 0.0, h, th_n, theta, omega, t, side,
+                                          p2, alpha, g, seg_kind, a0, slope, t0, amp, omega_p,
+                                          v0, vslope)
                 overturned = True
                 t_over = t + tau
                 peak = alpha
@@ -184,8 +186,9 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                 break
             if side * th_n < 0.0:
                 # impact: θ returns to zero inside the step (after the turning point, if any)
-                tau, th_i, om_i = _locate(0, 0.0, lo, h, theta, omega, t, side, p2, alpha, g,
-                                          seg_kind, a0, slope, t0, amp, omega_p, v0, vslope)
+                tau, th_i, om_i = _locate(0, 0.0, lo, h, th_n, theta, omega, t, side, p2,
+                                          alpha, g, seg_kind, a0, slope, t0, amp, omega_p, v0,
+                                          vslope)
                 if abs(om_i) > peak_omega:
                     peak_omega = abs(om_i)
                 t_imp = t + tau

@@ -22,13 +22,46 @@ def _ground(t, kind, a0, slope, t0, amp, omega_p):
 
 
 @kernel(inline="always")
+def _moment(sin_phi, cos_phi, ug, g_uv):
+    """M(φ) = (g + üv) sin φ + üg cos φ: the moment of the weight and the ground's inertia force
+    about the pivot per m·R, with φ = sα − θ (s the side of the current pivot) and ``g_uv`` the
+    gravity g + üv under a vertical ground acceleration üv. Eq. 4.3 is θ'' = −(p²/g) M(φ)
+    (g → g + üv in its moment of the weight; p² = 3g/(4R) keeps the nominal g); without
+    vertical motion g + 0 is g exactly, so the horizontal-only response is the same as without
+    the term to the last bit. dM/dφ is (g + üv) cos φ − üg sin φ."""
+    return g_uv * sin_phi + ug * cos_phi
+
+
+@kernel(inline="always")
 def _theta_acc(theta, ug, uv, side, p2, alpha, g):
-    """Eq. 4.3 with sgn(θ) replaced by the side of the current pivot, and gravity g + üv under
-    a vertical ground acceleration üv (Eq. 4.3 with g → g + üv in its moment of the weight;
-    p² = 3g/(4R) keeps the nominal g). Without vertical motion üv = 0 and (1 + 0/g)·sin φ is
-    sin φ exactly, so the horizontal-only response is unchanged to the last bit."""
+    """Eq. 4.3 with sgn(θ) replaced by the side of the current pivot (:func:`_moment`)."""
     phi = side * alpha - theta
-    return -p2 * ((1.0 + uv / g) * math.sin(phi) + ug / g * math.cos(phi))
+    return -p2 / g * _moment(math.sin(phi), math.cos(phi), ug, g + uv)
+
+
+#: Largest |δ| for which :func:`_turned_moment` uses its polynomials: their first omitted
+#: terms, δ⁹/9! and δ¹⁰/10!, are below 1e-19 there, far under the rounding of φ itself
+#: (~1e-17). A step of h ≤ 1/(40 p) turns φ by |h θ'| < 0.02 on the seed records, scaled × 3
+#: too; beyond the bound libm takes over.
+_SHORT_TURN = 1.0 / 32.0
+# Taylor coefficients of sin δ (δ³ … δ⁷) and cos δ − 1 (δ² … δ⁸).
+_S3, _S5, _S7 = -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0
+_C2, _C4, _C6, _C8 = -0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40320.0
+
+
+@kernel(inline="always")
+def _turned_moment(moment, moment_slope, phi, delta, ug, g_uv):
+    """M(φ + δ) = M(φ) cos δ + M'(φ) sin δ (angle addition) from M = :func:`_moment` and
+    M' = dM/dφ at φ, with sin δ and cos δ − 1 as short polynomials in δ (Estrin's scheme, for a
+    short chain of dependent operations: a solve is one such chain). Exact to rounding for
+    |δ| ≤ :data:`_SHORT_TURN`; libm beyond."""
+    if abs(delta) > _SHORT_TURN:
+        return _moment(math.sin(phi + delta), math.cos(phi + delta), ug, g_uv)
+    d2 = delta * delta
+    d4 = d2 * d2
+    sin_d = delta + delta * d2 * ((_S3 + _S5 * d2) + _S7 * d4)
+    cos_d1 = d2 * ((_C2 + _C4 * d2) + d4 * (_C6 + _C8 * d2))
+    return moment + (moment * cos_d1 + moment_slope * sin_d)
 
 
 @kernel(inline="always")
@@ -83,37 +116,52 @@ def _friction_ratio(horizontal, vertical):
 @kernel()
 def _rk4(theta, omega, t, h, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p, v0, vslope):
     """One classical Runge–Kutta step of length h from (θ, θ') at t; the vertical ground
-    acceleration is v0 + vslope·(t − t0) on the interval (zero without vertical motion)."""
+    acceleration is v0 + vslope·(t − t0) on the interval (zero without vertical motion).
+
+    One libm sin and cos per step: the later stages' angles φ − δ differ from the step's
+    φ = sα − θ by θ's stage increments δ = h/2·k1, h/2·k2, h·k3, and their moments are turned
+    from φ's (:func:`_turned_moment`)."""
     u1 = _ground(t, kind, a0, slope, t0, amp, omega_p)
     u2 = _ground(t + 0.5 * h, kind, a0, slope, t0, amp, omega_p)
     u3 = _ground(t + h, kind, a0, slope, t0, amp, omega_p)
-    w1 = v0 + vslope * (t - t0)
-    w2 = v0 + vslope * (t + 0.5 * h - t0)
-    w3 = v0 + vslope * (t + h - t0)
+    w1 = g + (v0 + vslope * (t - t0))
+    w2 = g + (v0 + vslope * (t + 0.5 * h - t0))
+    w3 = g + (v0 + vslope * (t + h - t0))
+    to_acc = -p2 / g
+    phi = side * alpha - theta
+    sin_phi = math.sin(phi)
+    cos_phi = math.cos(phi)
+    # M and dM/dφ at φ under the ground of each time the stages read
+    m1 = _moment(sin_phi, cos_phi, u1, w1)
+    m2 = _moment(sin_phi, cos_phi, u2, w2)
+    m2_slope = _moment(cos_phi, -sin_phi, u2, w2)
+    m3 = _moment(sin_phi, cos_phi, u3, w3)
+    m3_slope = _moment(cos_phi, -sin_phi, u3, w3)
     k1t = omega
-    k1w = _theta_acc(theta, u1, w1, side, p2, alpha, g)
+    k1w = to_acc * m1
     k2t = omega + 0.5 * h * k1w
-    k2w = _theta_acc(theta + 0.5 * h * k1t, u2, w2, side, p2, alpha, g)
+    k2w = to_acc * _turned_moment(m2, m2_slope, phi, -0.5 * h * k1t, u2, w2)
     k3t = omega + 0.5 * h * k2w
-    k3w = _theta_acc(theta + 0.5 * h * k2t, u2, w2, side, p2, alpha, g)
+    k3w = to_acc * _turned_moment(m2, m2_slope, phi, -0.5 * h * k2t, u2, w2)
     k4t = omega + h * k3w
-    k4w = _theta_acc(theta + h * k3t, u3, w3, side, p2, alpha, g)
+    k4w = to_acc * _turned_moment(m3, m3_slope, phi, -h * k3t, u3, w3)
     return (theta + h / 6.0 * (k1t + 2.0 * k2t + 2.0 * k3t + k4t),
             omega + h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w))
 
 
 @kernel()
-def _locate(which, target, lo, hi, theta, omega, t, side, p2, alpha, g,
+def _locate(which, target, lo, hi, hi_value, theta, omega, t, side, p2, alpha, g,
             kind, a0, slope, t0, amp, omega_p, v0, vslope):
-    """Step length τ in [lo, hi] at which θ (which=0) or θ' (which=1) equals ``target``.
+    """Step length τ in [lo, hi] at which θ (which=0) or θ' (which=1) equals ``target``;
+    ``hi_value`` is that θ or θ' at the end of the step of length ``hi``, which the caller has
+    taken already.
 
     The bracket must hold a sign change of (value − target). Newton steps use the exact
     derivative of the continuous Runge–Kutta trajectory (θ' or Eq. 4.3), with bisection
     whenever Newton leaves the bracket. Returns (τ, θ(τ), θ'(τ)).
     """
-    th, om = _rk4(theta, omega, t, hi, side, p2, alpha, g, kind, a0, slope, t0, amp, omega_p,
-                  v0, vslope)
-    hi_positive = ((th if which == 0 else om) - target) > 0.0
+    hi_positive = (hi_value - target) > 0.0
+    th, om = theta, omega
     tau = 0.5 * (lo + hi)
     for _ in range(100):
         th, om = _rk4(theta, omega, t, tau, side, p2, alpha, g, kind, a0, slope, t0, amp,
