@@ -145,7 +145,9 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
         default ``sa:1.0``), ``restitution``, ``free_motion_s``, ``g``, ``seed`` (of the
         bootstrap over records), ``hazard`` (a hazard curve or its file: the risk; its IMT
         sets ``im``), ``site_location`` (lon, lat [degrees] in a file of several sites),
-        ``risk_target`` (probability of overturning in 50 years, default 0.01); how:
+        ``risk_target`` (probability of overturning in 50 years, default 0.01),
+        ``limit_state`` (``SLV``, ``SLC`` or ``both``, the default: the limit state the site's
+        values are for, of a guideline that names its own, NTC 2018); how:
         ``jobs``, ``scheduler``.
 
     Returns
@@ -170,8 +172,10 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *, ntc
                          f"how), got {progress!r}", "progress")
     runtime = Runtime.parse(**how, progress=progress if callable(progress) else None)
     chosen = procedures_of(procedures)
+    # each record is scaled on its own to the site and the stripes (audit.engine.check), so no
+    # suite scaling first: the records as given
     suite = design_suite(suite_of(records), site=(sxs_g, sx1_g), site_override=True,
-                         scale_to_site=True, ntc_site=ntc_site)
+                         scale_to_site=False, ntc_site=ntc_site)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, settings,

@@ -52,6 +52,10 @@ def add_parser(sub):
                    help=f"intensity measure (default {DEFAULT_IM}, or the --hazard file's IMT): "
                         "the true 5 %%-damped spectral acceleration at T [g] (the site's "
                         "intensity: its design spectrum at T; S_X1 at 1 s) or PGA (0.4 S_XS)")
+    p.add_argument("--limit-state", default="both", metavar="SLV|SLC|both",
+                   help="the limit state the --site values are for, of a guideline that names "
+                        "its own (NTC 2018: SLV, d ≤ 0.4 d₀; SLC, d ≤ 0.6 d₀); 'both' reports "
+                        "each")
     options.add_hazard_options(p)
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
@@ -108,7 +112,7 @@ def run(args) -> int:
     objects = objects_of(args)
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
-              "risk_target": args.risk_target}
+              "risk_target": args.risk_target, "limit_state": args.limit_state}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:

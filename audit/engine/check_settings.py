@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 from audit import G
 from audit.engine import fields as check
+from audit.engine.check_limits import BOTH, LIMIT_STATES
 from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_RESTITUTION,
                                    DEFAULT_RISK_TARGET)
 from audit.engine.intensity import IntensityMeasure
@@ -15,7 +16,8 @@ from audit.physics.block import Restitution
 #: The fields :meth:`CheckSettings.parse` takes, and their defaults.
 CHECK_DEFAULTS = {"im": DEFAULT_IM, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
-                  "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET}
+                  "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET,
+                  "limit_state": BOTH}
 CHECK_FIELDS = tuple(CHECK_DEFAULTS)
 
 
@@ -37,6 +39,9 @@ class CheckSettings:
         object as each guideline would size it, and the exact width for ``risk_target``.
     risk_target : float
         Probability of overturning in 50 years [-].
+    limit_state : str
+        The limit state the site's S_XS, S_X1 are for, of a guideline that names its own
+        (NTC 2018): ``SLV``, ``SLC`` or ``both`` (each reported).
 
     Build it with :meth:`parse`, which checks every field once.
     """
@@ -48,6 +53,7 @@ class CheckSettings:
     seed: int | None = None
     hazard: object = None
     risk_target: float = DEFAULT_RISK_TARGET
+    limit_state: str = BOTH
 
     @classmethod
     def parse(cls, **values) -> CheckSettings:
@@ -67,6 +73,8 @@ class CheckSettings:
             Longitude, latitude [degrees] of the site in a hazard file of several sites.
         risk_target : float
             In (0, 1).
+        limit_state : str
+            ``SLV``, ``SLC`` or ``both`` (any case).
         """
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
@@ -86,6 +94,13 @@ class CheckSettings:
         if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)
                                  or seed < 0):
             raise InputError(f"seed: expected a whole number ≥ 0, got {seed!r}", "seed")
+        limit_state = value["limit_state"]
+        choices = (*LIMIT_STATES, BOTH)
+        if not isinstance(limit_state, str) or limit_state.upper() not in (
+                c.upper() for c in choices):
+            raise InputError(f"limit_state: expected {', '.join(choices)}, got {limit_state!r}",
+                             "limit_state")
+        limit_state = limit_state.upper() if limit_state.upper() in LIMIT_STATES else BOTH
         return cls(
             im=im,
             restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
@@ -93,7 +108,8 @@ class CheckSettings:
             free_motion_s=check.number("free_motion_s", value["free_motion_s"],
                                        "a duration ≥ 0 s", 0),
             g=check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True),
-            seed=seed, hazard=hazard, risk_target=float(value["risk_target"]))
+            seed=seed, hazard=hazard, risk_target=float(value["risk_target"]),
+            limit_state=limit_state)
 
 
 __all__ = ["CheckSettings", "CHECK_DEFAULTS", "CHECK_FIELDS"]

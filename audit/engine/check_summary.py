@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from audit.engine.check_entries import ExactRotations, procedure_entries
 from audit.engine.check_words import sentence
 from audit.engine.csv_text import csv_bytes
 from audit.engine.schemas import GUIDE
@@ -27,6 +28,8 @@ HAZARD_LEVEL = ("the hazard level of the S_XS, S_X1 given (e.g. ASCE 41's BSE-1E
 CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
+TEXT_COLUMNS = ("object", "procedure", "limit_state", "verdict", "compares", "unit", "basis",
+                "reason", "im")
 
 
 def _number(value) -> float | None:
@@ -34,50 +37,18 @@ def _number(value) -> float | None:
     return float(value) if value is not None and math.isfinite(value) else None
 
 
-def _procedure_answer(proc, judgements, line, width, b: int, first_entry,
-                      risk_p50: float | None) -> dict:
-    answer = {"name": proc.name, "title": proc.title, "verdict": None, "compares": None,
-              "demand": None, "capacity": None, "unit": None, "share_predicting_overturn": None,
-              "records_judged": len(judgements), "required_width_m": None,
-              "guideline_im": _number(line), "reason": None, "risk_p50": risk_p50}
-    if not judgements:
-        answer["reason"] = (proc.unmet_requirements(first_entry)
-                            or "it can evaluate no record of the suite")
-        return answer
-    share = float(np.mean([j.overturns[b] for j in judgements]))
-    # over the records where it gives a number (a rotation iteration may settle on none)
-    demands = np.array([j.demand[b] for j in judgements])
-    demand = float(np.median(demands[~np.isnan(demands)])) if (~np.isnan(demands)).any() \
-        else math.nan
-    reasons = []
-    if math.isinf(demand):
-        reasons.append("its rotation estimate reaches α (overturning)"
-                       + (" for most records" if len(judgements) > 1 else "")
-                       + ": no rotation to compare")
-    elif math.isnan(demand):
-        reasons.append("its iteration settles on no rotation for any record")
-    if math.isinf(width):
-        reasons.append("no width up to 0.99 × the height passes it (restrain the object)")
-    answer.update(verdict="passes" if share <= 0.5 else "fails",
-                  compares=judgements[0].quantity[b], unit=judgements[0].unit[b],
-                  demand=_number(demand),
-                  capacity=_number(float(np.median([j.capacity[b] for j in judgements]))),
-                  share_predicting_overturn=share, required_width_m=_number(width),
-                  reason="; ".join(reasons) or None)
-    return answer
-
-
 @dataclass(frozen=True)
 class CheckFrame:
     """What every object of a check shares: the stripes [unit of ``im``], the site's intensity,
-    the intensity measure, the records' ids, and the first record (whose unmet requirements
-    say why a procedure judged none)."""
+    the intensity measure, the records' ids, the first record (whose unmet requirements
+    say why a procedure judged none), and the limit state asked for (SLV, SLC or both)."""
 
     levels: np.ndarray
     site_im: float
     im: object
     record_ids: list
     first_entry: object
+    limit_state: str = "both"
 
 
 @dataclass
@@ -98,11 +69,15 @@ class ObjectFindings:
         Exact widths for P(overturn) ≤ 10 % and ≤ 50 % at the site [m], then for the risk target
         with a hazard curve.
     judged : list
-        Per procedure, (procedure, its judgements, its line on the stripes, its required width).
+        Per procedure, (procedure, its judgements, its line on the stripes, its required width
+        by the median rule, its widths by limit state for another rule, whether it reads only
+        the site).
     risk : dict or None
         :func:`~audit.engine.check_risk.object_risk`, with a hazard curve.
     guideline_p50 : dict
         P in 50 years at each guideline's width, by procedure name (with a hazard curve).
+    theta_rad : numpy.ndarray or None
+        Exact peak rotations, shaped (record, stripe) [rad].
     """
 
     obj: object
@@ -114,6 +89,7 @@ class ObjectFindings:
     judged: list
     risk: dict | None = None
     guideline_p50: dict = field(default_factory=dict)
+    theta_rad: np.ndarray | None = None
 
 
 def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
@@ -127,6 +103,8 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
         p_site = 1.0 if overturned.all() else 0.0
     low, high = boot.probability_band(site_im)
     curve = site_im * np.geomspace(0.2, 5.0, 61)
+    theta = found.theta_rad if found.theta_rad is not None else np.zeros(overturned.shape)
+    exact = ExactRotations(theta, overturned, levels, site_im, p_site)
     curve_low, curve_high = boot.probability_band(curve)
     answer = {
         "name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
@@ -146,9 +124,10 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                               "records": int(overturned.shape[0])},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
                                  "high": curve_high.tolist()}},
-        "procedures": [_procedure_answer(proc, mine, line, width, b, frame.first_entry,
-                                         found.guideline_p50.get(proc.name))
-                       for proc, mine, line, width in found.judged],
+        "procedures": [entry for proc, mine, line, width, rule_widths, site_only in found.judged
+                       for entry in procedure_entries(
+                           proc, mine, line, width, rule_widths, b, exact, frame.limit_state,
+                           site_only, frame.first_entry, found.guideline_p50.get(proc.name))],
         "risk": found.risk}
     answer["sentence"] = sentence(answer, im)
     return answer
@@ -178,10 +157,12 @@ def check_table(objects: list) -> pd.DataFrame:
             rows.append({
                 "object": obj["name"], "width_m": obj["width_m"], "height_m": obj["height_m"],
                 "alpha_deg": obj["alpha_deg"], "size_s": obj["size_s"],
-                "procedure": proc["name"], "verdict": proc["verdict"] or "",
-                "compares": proc["compares"] or "", "demand": proc["demand"],
-                "capacity": proc["capacity"], "unit": proc["unit"] or "",
-                "share_predicting_overturn": proc["share_predicting_overturn"],
+                "procedure": proc["key"], "limit_state": proc["limit_state"],
+                "verdict": proc["verdict"], "compares": proc["quantity"] or "",
+                "demand": proc["demand"], "capacity": proc["capacity"],
+                "unit": proc["unit"] or "", "basis": proc["basis"] or "",
+                "share_of_records_overturning": proc["share_of_records_overturning"],
+                "exact_p_exceed": proc["exact_p_exceed"],
                 "required_width_m": proc["required_width_m"],
                 "guideline_im": proc["guideline_im"], "reason": proc["reason"] or "",
                 "im": exact["im"], "site_im": exact["site_im_g"],
@@ -195,8 +176,7 @@ def check_table(objects: list) -> pd.DataFrame:
                 "annual_rate": risk["annual_rate"] if risk else None,
                 "exact_required_width_m_risk": risk["required_width_m"] if risk else None})
     return pd.DataFrame(rows, columns=CSV_COLUMNS).astype(
-        {c: float for c in CSV_COLUMNS if c not in ("object", "procedure", "verdict", "compares",
-                                                     "unit", "reason", "im")})
+        {c: float for c in CSV_COLUMNS if c not in TEXT_COLUMNS})
 
 
 def check_data_files(run) -> dict[str, bytes]:
