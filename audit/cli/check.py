@@ -50,7 +50,7 @@ def add_parser(sub):
                         "scaled to the site's intensity and to stripes around it")
     p.add_argument("--im", default=None, metavar="pga|sa:T",
                    help=f"intensity measure (default {DEFAULT_IM}, or the --hazard file's IMT): "
-                        "the true 5 %%-damped spectral acceleration at T [g] (the site's "
+                        "the 5 %%-damped pseudo-spectral acceleration ω²·S_d at T [g] (the site's "
                         "intensity: its design spectrum at T; S_X1 at 1 s) or PGA (0.4 S_XS)")
     p.add_argument("--limit-state", default="both", metavar="SLV|SLC|both",
                    help="the limit state the --site values are for, of a guideline that names "

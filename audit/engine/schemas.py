@@ -168,7 +168,8 @@ GUIDE["stripes.csv"] = {
     "size_s": ("s", "block size 2π/p"),
     "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
                      "empty for a block of the α × size grid"),
-    "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped true Sa [g])"),
+    "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped "
+                   "pseudo-spectral acceleration ω²·S_d [g])"),
     "im_level": ("g or m/s", "the stripe's intensity, in the unit of im"),
     "scale_factor": ("-", "factor the record as read (before any scaling to the site) is "
                           "scaled by to reach the stripe"),
@@ -259,7 +260,7 @@ GUIDE["check.csv"] = {
     "guideline_im": ("g", "intensity from which it predicts overturning for half the records "
                           "(its line on the fragility curve)"),
     "reason": ("text", "why the verdict or a number is empty"),
-    "im": ("text", "intensity measure: sa:T (5 %-damped true Sa [g]) or pga [g]"),
+    "im": ("text", "intensity measure: sa:T (5 %-damped pseudo-spectral acceleration ω²·S_d [g]) or pga [g]"),
     "site_im": ("g", "the site's intensity at the hazard level of the S_XS, S_X1 given"),
     "p_overturn_at_site": ("-", "exact P(overturn) at site_im, from the lognormal fitted to the "
                                 "stripes"),
