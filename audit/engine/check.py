@@ -38,6 +38,7 @@ from audit.engine.check_limits import MEDIAN, limit_readings, suite_rule
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
                                       overturns_at, probability_at_site)
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
+from audit.engine.width_family import width_answer
 from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.stripes import RecordStripes, StripeSettings, half_crossing, record_stripes
 from audit.engine.risk import LognormalFragility, StripeFragility
@@ -178,7 +179,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                + (" and for the risk target" if curve is not None else ""))
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
         family = Family(entries, levels, intensity, settings, jobs, executor)
-        widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure)
+        solved = []
+        widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure,
+                                       solved)
         contexts = {}  # records scaled to the site, on the spectra their parts computed
 
         def site_context(i: int):
@@ -203,6 +206,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     answers = []
     for b, obj in enumerate(objects):
         over = exact_over[:, :, b]  # (record, stripe)
+        family_widths = _family_widths(obj, over, solved, levels, site_im)
         try:
             fit = fit_lognormal(levels, np.full(levels.size, len(entries)), over.sum(axis=0))
         except ValueError:
@@ -218,13 +222,26 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                float(width) if math.isfinite(width) else None)
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
-                           guideline_p50.get(b, {}), exact_theta[:, :, b]), frame))
+                           guideline_p50.get(b, {}), exact_theta[:, :, b], family_widths),
+            frame))
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)
+
+
+def _family_widths(obj, over, solved, levels, site_im):
+    """The object's height as one fragility family (:mod:`audit.engine.width_family`), fitted on
+    the object's own outcomes and every width solved at its height."""
+    widths, outcomes = [obj.width_m], [over[:, :, None]]
+    for heights, solved_widths, overturned in solved:
+        mine = heights == obj.height_m
+        widths += solved_widths[mine].tolist()
+        outcomes.append(overturned[:, :, mine])
+    return width_answer(widths, levels, np.concatenate(outcomes, axis=2), site_im, TARGETS,
+                        obj.height_m)
 
 
 def _stage(progress, text: str) -> None:

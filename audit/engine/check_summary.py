@@ -37,6 +37,30 @@ def _number(value) -> float | None:
     return float(value) if value is not None and math.isfinite(value) else None
 
 
+def _family_widths(family, searched, height_m: float) -> dict:
+    """The 10 % and 50 % widths read from the fragility family with their bands (null beyond
+    0.95 × the height, where the family is not fitted), its curve, and the widths the search
+    found on the counted P(w) (which is not monotone: its jumps are the records')."""
+    out = {"required_width_m_10pct_searched": _number(searched[0]),
+           "required_width_m_50pct_searched": _number(searched[1])}
+    if family is None:
+        return {**out, "required_width_m_10pct": _number(searched[0]),
+                "required_width_m_50pct": _number(searched[1]), "width_curve": None,
+                "required_width_m_10pct_band": None, "required_width_m_50pct_band": None}
+    out["width_curve"] = family.curve
+    out["width_family"] = {"median_intercept": family.family.intercept,
+                           "median_width_exponent": family.family.slope,
+                           "beta": family.family.beta,
+                           "model": "P = Φ((ln im − a − c ln w)/β), fitted on every width "
+                                    "solved at this height"}
+    for target, name in ((0.10, "10pct"), (0.50, "50pct")):
+        width = family.widths[target]
+        inside = math.isfinite(width) and width <= 0.95 * height_m
+        out[f"required_width_m_{name}"] = width if inside else None
+        out[f"required_width_m_{name}_band"] = family.bands[target] if inside else None
+    return out
+
+
 @dataclass(frozen=True)
 class CheckFrame:
     """What every object of a check shares: the stripes [unit of ``im``], the site's intensity,
@@ -78,6 +102,9 @@ class ObjectFindings:
         P in 50 years at each guideline's width, by procedure name (with a hazard curve).
     theta_rad : numpy.ndarray or None
         Exact peak rotations, shaped (record, stripe) [rad].
+    family : audit.engine.width_family.WidthAnswer or None
+        The object's height as one fragility family: P(width) at the site, the 10 % and 50 %
+        widths read from it with their bootstrap bands.
     """
 
     obj: object
@@ -90,6 +117,7 @@ class ObjectFindings:
     risk: dict | None = None
     guideline_p50: dict = field(default_factory=dict)
     theta_rad: np.ndarray | None = None
+    family: object = None
 
 
 def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
@@ -115,8 +143,7 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                   "p_band_method": f"bootstrap over records, {len(boot.medians)} resamples, "
                                    f"{boot.confidence:.0%} percentile band",
                   "site_im_g": site_im,
-                  "required_width_m_10pct": _number(found.widths[0]),
-                  "required_width_m_50pct": _number(found.widths[1]),
+                  **_family_widths(found.family, found.widths, obj.height_m),
                   "records_overturning_at_site": [r for r, o in zip(frame.record_ids,
                                                                     overturned[:, site]) if o],
                   "stripes": {"im": levels.tolist(),

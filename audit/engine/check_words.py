@@ -17,6 +17,17 @@ def im_words(im, site_im: float) -> str:
     return f"PGA = 0.4 S_XS = {site_im:.3g} g"
 
 
+def exact_width_words(exact: dict, target: str) -> str:
+    """The exact width for P(overturn) ≤ ``target`` % with its 90 % band over records, to the
+    precision the band supports, or why there is none."""
+    from audit.engine.width_family import quoted
+    width = exact[f"required_width_m_{target}pct"]
+    if width is None:
+        return "none ≤ 0.95 h (restrain it)"
+    band = exact.get(f"required_width_m_{target}pct_band")
+    return quoted(width, band) if band else f"{width:.2f} m"
+
+
 def _names(titles) -> str:
     return titles[0] if len(titles) == 1 else ", ".join(titles[:-1]) + " and " + titles[-1]
 
@@ -63,8 +74,8 @@ def sentence(answer: dict, im) -> str:
     if w10 is None:
         text += "; no width up to 0.95 × its height brings it to 10 % (restrain it)"
     else:
-        text += (f"; it needs {w10:.2f} m of base width for 10 %"
-                 + (f" ({w50:.2f} m for 50 %)" if w50 is not None else ""))
+        text += (f"; it needs {exact_width_words(exact, '10')} of base width for 10 %"
+                 + (f" ({exact_width_words(exact, '50')} for 50 %)" if w50 is not None else ""))
     risk = answer["risk"]
     if risk is None:
         return text + "."
@@ -149,10 +160,8 @@ def summary_text(document: dict) -> str:
                         + ((_percent(proc["risk_p50"]),) if hazard else ()))
         exact = obj["exact"]
         for target in ("10", "50"):
-            width = exact[f"required_width_m_{target}pct"]
             rows.append((f"exact, P(overturn) ≤ {target} %", "overturning", "", "",
-                         f"{width:.2f} m" if width is not None
-                         else "none ≤ 0.95 h (restrain it)", "")
+                         exact_width_words(exact, target), "")
                         + (("",) if hazard else ()))
         if hazard:
             width = obj["risk"]["required_width_m"]
