@@ -22,7 +22,7 @@ from audit.engine.check_risk import quiet_risk
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
-from reports.html_parts import number, page_templates
+from reports.html_parts import PAGE_STYLE, number, page_templates
 from reports.margins_figures import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
 from reports.plots import _axis, _layout, to_json
@@ -164,7 +164,7 @@ def render_check_page(folder) -> str:
                for obj in document["objects"]]
     return page_templates().get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs(),
-        im_words=im_name(document["im"]),
+        im_words=im_name(document["im"]), page_style=PAGE_STYLE,
         records_words=counted_records(len(document["records"]), document["records_source"]))
 
 
