@@ -37,6 +37,7 @@ from audit.engine.check_judgement import at_site, judge
 from audit.engine.check_limits import MEDIAN, limit_readings, suite_rule
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
                                       overturns_at, probability_at_site)
+from audit.engine.check_other_im import other_im_answers
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
 from audit.engine.width_family import width_answer
 from audit.engine.lognormal_fit import fit_lognormal
@@ -182,6 +183,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         solved = []
         widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure,
                                        solved)
+        _stage(progress, "the exact P(overturn) at the other standard intensity measure")
+        others = other_im_answers(family, objects, suite.design_site, check_levels)
         contexts = {}  # records scaled to the site, on the spectra their parts computed
 
         def site_context(i: int):
@@ -222,7 +225,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                float(width) if math.isfinite(width) else None)
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
-                           guideline_p50.get(b, {}), exact_theta[:, :, b], family_widths),
+                           guideline_p50.get(b, {}), exact_theta[:, :, b], family_widths,
+                           others[b]),
             frame))
     if curve is not None:
         _warn_truncated(answers, curve)

@@ -103,6 +103,7 @@ def procedure_entries(proc, judgements, line: float, width: float, rule_widths: 
             basis=basis(rule, len(readings), readings[0].unit), share_of_records_overturning=share,
             exact_p_exceed=exact.p_exceed(readings[0].theta_limit_rad),
             required_width_m=_number(required), quantity=readings[0].quantity,
+            factors=readings[0].factors,
             records_judged=len(readings), guideline_im=_number(line),
             reason="; ".join(reasons) or None,
             risk_p50=risk_p50 if rule in (None, MEDIAN) else None)

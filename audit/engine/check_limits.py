@@ -29,7 +29,7 @@ The share of records whose own demand exceeds the capacity stays beside it, as i
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -64,6 +64,8 @@ class LimitReading:
         (α for overturning).
     quantity : str
         What is compared, in words.
+    factors : dict
+        Named factors of the check, e.g. the period the demand was read at (``T_LS_s``).
     """
 
     limit_state: str
@@ -72,6 +74,7 @@ class LimitReading:
     unit: str
     theta_limit_rad: float
     quantity: str
+    factors: dict = field(default_factory=dict)
 
 
 def _first(values) -> float:
@@ -95,11 +98,12 @@ def limit_readings(evaluation, alpha_rad: float) -> list[LimitReading]:
                 continue
             if bool(np.ravel(check.passes)[0]) and demand > capacity:
                 demand = 0.0  # passes on its other rule: the block does not uplift
-            limit = _first(check.theta_limit_rad)
+            limit, period = _first(check.theta_limit_rad), _first(check.period_s)
             readings.append(LimitReading(
                 check.limit_state, demand, capacity, unit,
                 limit if math.isfinite(limit) else alpha_rad,
-                f"{words} against {check.limit_state} capacity"))
+                f"{words} against {check.limit_state} capacity",
+                {"T_LS_s": period} if math.isfinite(period) else {}))
             break
     if evaluation.estimate is not None and not any(r.unit == "m" for r in readings):
         estimate = evaluation.estimate

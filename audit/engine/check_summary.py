@@ -102,6 +102,9 @@ class ObjectFindings:
         P in 50 years at each guideline's width, by procedure name (with a hazard curve).
     theta_rad : numpy.ndarray or None
         Exact peak rotations, shaped (record, stripe) [rad].
+    other_im : dict or None
+        Its exact P(overturn) at the site at the other standard IM
+        (:mod:`audit.engine.check_other_im`).
     family : audit.engine.width_family.WidthAnswer or None
         The object's height as one fragility family: P(width) at the site, the 10 % and 50 %
         widths read from it with their bootstrap bands.
@@ -118,6 +121,7 @@ class ObjectFindings:
     guideline_p50: dict = field(default_factory=dict)
     theta_rad: np.ndarray | None = None
     family: object = None
+    other_im: dict | None = None
 
 
 def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
@@ -144,6 +148,7 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                                    f"{boot.confidence:.0%} percentile band",
                   "site_im_g": site_im,
                   **_family_widths(found.family, found.widths, obj.height_m),
+                  "other_im": found.other_im,
                   "records_overturning_at_site": [r for r, o in zip(frame.record_ids,
                                                                     overturned[:, site]) if o],
                   "stripes": {"im": levels.tolist(),

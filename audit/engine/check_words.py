@@ -177,7 +177,14 @@ def summary_text(document: dict) -> str:
                   + (f"exact fragility: median {exact['median_g']:.3g} {exact['im_unit']}, "
                      f"β = {exact['beta']:.2f})" if exact["median_g"] else
                      "no lognormal fits the stripes: no record overturns it at any stripe, or "
-                     "every record at every one)"), ""]
+                     "every record at every one)")]
+        other = exact.get("other_im")
+        if other:
+            lines += [f"  (at the other standard intensity measure, the records scaled to "
+                      f"{im_words(_intensity(other['im']), other['site_im'])} instead: exact "
+                      f"P(overturn) {100 * other['p_overturn_at_site']:.0f} %; use the IM of "
+                      "your hazard, see docs/check.md)"]
+        lines += [""]
         lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."
                   for proc in obj["procedures"] if proc["basis"]
                   and proc["basis"].startswith("applied record by record")] + [""]
