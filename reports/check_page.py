@@ -19,6 +19,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from audit.engine.check_risk import quiet_risk
+from audit.engine.check_words import exact_width_words
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
@@ -160,7 +161,11 @@ def render_check_page(folder) -> str:
     colours = _colours(document)
     objects = [{**obj, "drawing": to_json(_drawing(obj, colours)),
                 "fragility": to_json(_fragility(obj, document, colours)),
-                "risk_figure": to_json(_risk(obj, document)) if obj["risk"] else None}
+                "risk_figure": to_json(_risk(obj, document)) if obj["risk"] else None,
+                "width_10": exact_width_words(obj["exact"], "10"),
+                "width_50": exact_width_words(obj["exact"], "50"),
+                "other_im_name": (im_name(obj["exact"]["other_im"]["im"])
+                                  if obj["exact"].get("other_im") else None)}
                for obj in document["objects"]]
     return page_templates().get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs(),
