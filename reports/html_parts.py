@@ -18,7 +18,8 @@ PAGE_STYLE = """
          margin: 0 auto; padding: 0 1.2em 3em; line-height: 1.45; font-size: 15px; }
   h2 { border-bottom: 2px solid #444; padding-bottom: 0.15em; margin-top: 2em; }
   .meta { color: #555; font-size: 0.9em; }
-  .quote { background: #f7f7f0; border-left: 4px solid #b58900; padding: 0.6em 1em; margin: 0.6em 0; }
+  .quote { background: #f7f7f0; border-left: 4px solid #b58900; padding: 0.6em 1em;
+           margin: 0.6em 0; }
   table { border-collapse: collapse; font-size: 0.88em; margin: 0.8em 0; }
   th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: right; vertical-align: top; }
   th { background: #eee; }

@@ -33,8 +33,8 @@ def add_parser(sub):
     options.add_records_option(p)
     p.add_argument("--im", metavar="pga|pgv|sa:T",
                    help=f"intensity measure: PGA [g], PGV [m/s] or the 5 %%-damped "
-                        f"pseudo-spectral acceleration ω²·S_d at T [g] (default: {DEFAULT_IM}, or the "
-                        "--hazard file's IMT)")
+                        f"pseudo-spectral acceleration ω²·S_d at T [g] (default: {DEFAULT_IM}, "
+                        "or the --hazard file's IMT)")
     p.add_argument("--stripes", metavar="IM,...",
                    help="intensity levels (unit of --im); default 24 levels, geometric, "
                         "0.2–5 × the site's design intensity (or the suite's median)")

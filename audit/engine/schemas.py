@@ -260,7 +260,8 @@ GUIDE["check.csv"] = {
     "guideline_im": ("g", "intensity from which it predicts overturning for half the records "
                           "(its line on the fragility curve)"),
     "reason": ("text", "why the verdict or a number is empty"),
-    "im": ("text", "intensity measure: sa:T (5 %-damped pseudo-spectral acceleration ω²·S_d [g]) or pga [g]"),
+    "im": ("text", "intensity measure: sa:T (5 %-damped pseudo-spectral acceleration "
+                   "ω²·S_d [g]) or pga [g]"),
     "site_im": ("g", "the site's intensity at the hazard level of the S_XS, S_X1 given"),
     "p_overturn_at_site": ("-", "exact P(overturn) at site_im, from the lognormal fitted to the "
                                 "stripes"),
