@@ -19,12 +19,12 @@ import numpy as np
 from scipy.special import ndtr
 
 from audit.engine.check_risk import quiet_risk
-from audit.engine.check_words import metres
+from audit.engine.check_words import exact_width_words, metres
 from audit.engine.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
 from reports.floor_section import floor_spectra_figure
-from reports.html_parts import number, page_templates
+from reports.html_parts import PAGE_STYLE, number, page_templates
 from reports.margins_figures import fragility_axes, vertical_line
 from reports.palette import _EXTRA_COLOURS
 from reports.plots import _axis, _layout, to_json
@@ -39,6 +39,11 @@ SITE_COLOUR = "#b58900"
 def _colours(document) -> dict:
     return {p["name"]: PROCEDURE_COLOURS[i % len(PROCEDURE_COLOURS)]
             for i, p in enumerate(document["procedures"])}
+
+
+def im_name(name: str) -> str:
+    """An intensity measure in words, e.g. ``S_a(1 s)`` for ``sa:1``, ``PGA`` for ``pga``."""
+    return f"S_a({float(name[3:]):g} s)" if name.startswith("sa:") else name.upper()
 
 
 def _outline(x0, width, height, colour, dash, fill=None) -> dict:
@@ -62,8 +67,9 @@ def _drawing(obj, colours) -> dict:
                         SITE_COLOUR, "solid", None))
     for proc in obj["procedures"]:
         if proc["required_width_m"] is not None:
-            columns.append((proc["title"], proc["required_width_m"], colours[proc["name"]],
-                            "dash", None))
+            label = (proc["procedure"] if proc["limit_state"] == "overturning"
+                     else f"{proc['procedure']} {proc['limit_state']}")
+            columns.append((label, proc["required_width_m"], colours[proc["key"]], "dash", None))
     gap = 0.35 * height
     shapes, notes, x = [], [], 0.0
     for label, width, colour, dash, fill in columns:
@@ -97,7 +103,8 @@ def _fragility(obj, document, colours) -> dict:
             {"type": "scatter", "mode": "markers", "x": levels.tolist(),
              "y": (np.asarray(stripes["overturned"]) / stripes["records"]).tolist(),
              "name": "exact, share of records at each stripe", "marker": {"color": "#000"},
-             "hovertemplate": f"{im} = %{{x:.3g}} {unit}: %{{y:.0%}} overturn<extra></extra>"}]
+             "hovertemplate": (f"{im_name(im)} = %{{x:.3g}} {unit}: %{{y:.0%}} overturn"
+                               "<extra></extra>")}]
     if exact["median_g"]:
         x = np.asarray(band["im"])
         data.append({"type": "scatter", "mode": "lines", "x": x.tolist(),
@@ -108,21 +115,24 @@ def _fragility(obj, document, colours) -> dict:
     data.append({"type": "scatter", "mode": "markers", "x": [site],
                  "y": [exact["p_overturn_at_site"]], "marker": {"color": SITE_COLOUR, "size": 12,
                                                                 "symbol": "star"},
-                 "name": f"at the site, {im} = {site:.3g} {unit}: P = "
+                 "name": f"at the site, {im_name(im)} = {site:.3g} "
+                         f"{unit}: P = "
                          f"{exact['p_overturn_at_site']:.0%} "
                          f"[{exact['p_band'][0]:.0%}–{exact['p_band'][1]:.0%}]"})
     shapes = [vertical_line(site, SITE_COLOUR, "dot")]
+    drawn = set()
     for proc in obj["procedures"]:
         line = proc["guideline_im"]
-        if line is None:
+        if line is None or proc["key"] in drawn:
             continue
-        shapes.append(vertical_line(line, colours[proc["name"]], "dash"))
+        drawn.add(proc["key"])
+        shapes.append(vertical_line(line, colours[proc["key"]], "dash"))
         data.append({"type": "scatter", "mode": "lines", "x": [line, line], "y": [0, 1],
-                     "line": {"color": colours[proc["name"]], "dash": "dash"},
-                     "name": f"{proc['title']}: predicts overturning for half the records from "
-                             f"{line:.3g} {unit}"})
+                     "line": {"color": colours[proc["key"]], "dash": "dash"},
+                     "name": f"{proc['procedure']}: predicts overturning for half the records "
+                             f"from {line:.3g} {unit}"})
     layout = _layout(470, shapes=shapes)
-    fragility_axes(layout, f"{im} [{unit}]", min(band["im"]), max(band["im"]), 170, 560)
+    fragility_axes(layout, f"{im_name(im)} [{unit}]", min(band["im"]), max(band["im"]), 170, 560)
     return {"data": data, "layout": layout}
 
 
@@ -152,12 +162,17 @@ def render_check_page(folder) -> str:
     colours = _colours(document)
     objects = [{**obj, "drawing": to_json(_drawing(obj, colours)),
                 "fragility": to_json(_fragility(obj, document, colours)),
-                "risk_figure": to_json(_risk(obj, document)) if obj["risk"] else None}
+                "risk_figure": to_json(_risk(obj, document)) if obj["risk"] else None,
+                "width_10": exact_width_words(obj["exact"], "10"),
+                "width_50": exact_width_words(obj["exact"], "50"),
+                "other_im_name": (im_name(obj["exact"]["other_im"]["im"])
+                                  if obj["exact"].get("other_im") else None)}
                for obj in document["objects"]]
     return page_templates().get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs(),
         floor_figure=floor_spectra_figure(document.get("floor") or {}),
+        im_words=im_name(document["im"]), page_style=PAGE_STYLE,
         records_words=counted_records(len(document["records"]), document["records_source"]))
 
 
-__all__ = ["render_check_page", "CHECK_JSON"]
+__all__ = ["render_check_page", "im_name", "CHECK_JSON"]

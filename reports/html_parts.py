@@ -12,6 +12,26 @@ from jinja2 import Environment, FileSystemBytecodeCache, PackageLoader, select_a
 from reports.plots import to_json
 
 
+#: The look every page shares (check.html, validation.html).
+PAGE_STYLE = """
+  body { font-family: "DejaVu Sans", Helvetica, Arial, sans-serif; color: #222; max-width: 1100px;
+         margin: 0 auto; padding: 0 1.2em 3em; line-height: 1.45; font-size: 15px; }
+  h2 { border-bottom: 2px solid #444; padding-bottom: 0.15em; margin-top: 2em; }
+  .meta { color: #555; font-size: 0.9em; }
+  .quote { background: #f7f7f0; border-left: 4px solid #b58900; padding: 0.6em 1em;
+           margin: 0.6em 0; }
+  table { border-collapse: collapse; font-size: 0.88em; margin: 0.8em 0; }
+  th, td { border: 1px solid #ccc; padding: 0.25em 0.5em; text-align: right; vertical-align: top; }
+  th { background: #eee; }
+  td.l, th.l { text-align: left; }
+  .fails { color: #b2182b; font-weight: bold; }
+  .passes { color: #1b7837; font-weight: bold; }
+  .records { columns: 3; font-size: 0.85em; }
+  figure { margin: 1em 0; }
+  figcaption { font-size: 0.88em; color: #444; }
+"""
+
+
 def number(value, fmt: str = "{:.3g}") -> str:
     """``value`` formatted, "—" where it is missing (None or NaN)."""
     return "—" if value is None or (isinstance(value, float) and math.isnan(value)) \

@@ -101,9 +101,9 @@ def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -
              "(the hazard curve interpolated log–log), and P = 1 − exp(−50 λ_ov) in 50 years, "
              f"against the risk target {target:.2%} in 50 years (λ = "
              f"{hazard['target_annual_rate']:.3g}/yr). The records' {html.escape(hazard['im'])} "
-             "is the true 5 %-damped spectral acceleration of the component as audited; a "
-             "hazard curve's is the one its ground-motion models predict (often RotD50 "
-             "pseudo-acceleration).</p>"]
+             "is the 5 %-damped pseudo-spectral acceleration ω²·S_d of the component as "
+             "audited; a hazard curve's is the one its ground-motion models predict (often of "
+             "RotD50, the orientation-independent median of two horizontal components).</p>"]
     named = risk[risk["block_m"] != ""]
     if len(named):
         parts.append("<p>Per named block: the site's hazard curve (top), the block's exact "

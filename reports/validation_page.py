@@ -18,6 +18,7 @@ import pandas as pd
 from audit.engine.validation_baselines import VectorLogistic
 from audit.engine.validation_cv import MODEL, PGA, PGV, VECTOR
 from audit.engine.validation_run import FITS_CSV, SCORES_CSV, TESTS_CSV, methods_statement
+from reports.html_parts import PAGE_STYLE, html_table
 from reports.plots import to_json
 
 VALIDATION_HTML = "validation.html"
@@ -130,17 +131,23 @@ def _failures(tests: pd.DataFrame) -> str:
     by_pga = known.groupby(["specimen", "PGA [g]"], observed=True).agg(
         tests=("wrong", "size"), wrong=("wrong", "sum"), missed_overturning=("missed", "sum"),
         observed_overturned=("observed", lambda v: int(v.sum()))).reset_index()
+    by_pga["PGA [g]"] = by_pga["PGA [g]"].astype(str)
     return (f"<h3>By PGA (cross-validated classification at P ≥ 0.5)</h3>"
-            f"{by_pga.to_html(index=False)}"
+            f"{html_table(by_pga)}"
             f"<h3>Ground motions with the most wrong predictions</h3>"
-            f"{worst.to_html(index=False, float_format=lambda v: f'{v:.3g}')}")
+            f"{html_table(worst)}")
 
 
 def _fits_table(fits: pd.DataFrame) -> str:
     """Fitted values with their 95 % intervals, beside what the geometry gives."""
     def span(row, name, digits, bounds=None):
         low, high = (getattr(row, (bounds or name) + end) for end in ("_low", "_high"))
-        return f"{getattr(row, name):.{digits}f} ({low:.{digits}f}–{high:.{digits}f})"
+        value = getattr(row, name)
+        if pd.isna(value):
+            return "—"
+        if pd.isna(low) or pd.isna(high):
+            return f"{value:.{digits}f}"
+        return f"{value:.{digits}f} ({low:.{digits}f}–{high:.{digits}f})"
     rows = [{"specimen": row.specimen, "tests fitted": row.n_tests,
              "α̂ [°] (95 %)": span(row, "alpha_deg", 2),
              "σ of ln α (95 %)": span(row, "sigma_ln_alpha", 3, "sigma"),
@@ -155,8 +162,9 @@ def _fits_table(fits: pd.DataFrame) -> str:
              else f"{row.geometry_alpha_deg:g}",
              "geometry p [rad/s]": "" if pd.isna(row.geometry_p_rad_s)
              else f"{row.geometry_p_rad_s:g}",
-             "geometry note": row.geometry_note} for row in fits.itertuples()]
-    return pd.DataFrame(rows).to_html(index=False)
+             "geometry note": "" if pd.isna(row.geometry_note) else row.geometry_note}
+            for row in fits.itertuples()]
+    return html_table(pd.DataFrame(rows))
 
 
 def render_validation_page(folder, title: str, solves: int) -> str:
@@ -174,10 +182,8 @@ def render_validation_page(folder, title: str, solves: int) -> str:
                            f'<script>(s => Plotly.newPlot("f{len(figures)}", s.data, '
                            f's.layout))({to_json(spec)});</script>')
         verdicts.append(f"<p>{html.escape(_verdict(scores, row.specimen))}</p>")
-    number = lambda v: f"{v:.3g}"  # noqa: E731
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(title)}"
-            f"</title><script>{get_plotlyjs()}</script><style>body{{font-family:sans-serif;"
-            f"max-width:1300px}} td,th{{padding:2px 6px}}</style></head><body>"
+            f"</title><script>{get_plotlyjs()}</script><style>{PAGE_STYLE}</style></head><body>"
             f"<h1>{html.escape(title)}</h1>"
             f"<p>Each specimen's equivalent 2-D rigid block (median slenderness α̂ with a "
             f"test-to-test lognormal dispersion σ, frequency parameter p, restitution factor f "
@@ -195,7 +201,7 @@ def render_validation_page(folder, title: str, solves: int) -> str:
             f"motions) show how far α̂, p and f move between subsets: where that range is "
             f"wider, p and f trade off and the range is the more honest uncertainty.</p>"
             f"<h2>Cross-validated scores</h2>"
-            f"{scores.rename(columns=_SCORE_HEADINGS).to_html(index=False, float_format=number)}"
+            f"{html_table(scores.rename(columns=_SCORE_HEADINGS))}"
             f"<h2>Figures</h2>{''.join(figures)}"
             f"<h2>Where the model fails</h2>{_failures(tests)}"
             f"<h2>Limits</h2><p>{html.escape(methods_statement(fits, scores))}</p>"

@@ -59,10 +59,13 @@ def test_check_json_has_the_fields_of_the_issue(result, tmp_path):
         assert {"median_g", "beta", "p_overturn_at_site", "p_band", "im", "site_im_g",
                 "required_width_m_10pct", "required_width_m_50pct"} <= set(obj["exact"])
         assert obj["exact"]["site_im_g"] == pytest.approx(0.4 * 1.5)
-        assert [p["name"] for p in obj["procedures"]] == ["fema356", "housner1963"]
+        assert [(p["key"], p["limit_state"]) for p in obj["procedures"]] == [
+            ("fema356", "overturning"), ("housner1963", "overturning")]
         for proc in obj["procedures"]:
-            assert {"name", "verdict", "demand", "capacity", "required_width_m", "reason",
-                    "risk_p50"} <= set(proc)
+            assert {"procedure", "key", "limit_state", "verdict", "demand", "capacity", "unit",
+                    "basis", "share_of_records_overturning", "factors",
+                    "anchorage_force_over_weight", "exact_p_exceed", "required_width_m",
+                    "reason", "risk_p50"} <= set(proc)
             assert proc["verdict"] in ("passes", "fails")
     csv = (tmp_path / "check.csv").read_text().splitlines()
     assert csv[0].split(",") == CSV_COLUMNS and len(csv) == 1 + 2 * 2

@@ -24,6 +24,7 @@ from audit.engine import fields as check_field
 from audit.engine.check_objects import object_by_slenderness, parse_block_text, read_objects
 from audit.engine.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER)
+from audit.engine.check_limits import BOTH
 from audit.errors import InputError
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
@@ -125,7 +126,8 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           skip_bad_records: bool = False, jobs: int = DEFAULT_JOBS,
           scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False, floor: float = 0.0,
           building: float | None = None, building_model: str | None = None,
-          building_damping: float = DEFAULT_BUILDING_DAMPING) -> CheckResult:
+          building_damping: float = DEFAULT_BUILDING_DAMPING,
+          limit_state: str = BOTH) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check_risk`).
@@ -202,6 +204,9 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         :mod:`audit.physics.building`.
     building_damping : float
         ζ in every mode of the building [-] (default 0.05).
+    limit_state : str
+        The limit state the site's values are for, of a guideline that names its own (NTC
+        2018): ``SLV``, ``SLC`` or ``both`` (the default: each reported).
 
     Returns
     -------
@@ -222,7 +227,9 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
                             progress=progress if callable(progress) else None)
     if site is None:
         raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
-    site = DesignSite.parse(site=site, site_override=True, scale_to_site=True,
+    # each record is scaled on its own to the site and the stripes (audit.engine.check), so no
+    # suite scaling first: the records as given
+    site = DesignSite.parse(site=site, site_override=True, scale_to_site=False,
                             ntc_site=ntc_site, floor=floor, building=building,
                             building_model=building_model, building_damping=building_damping)
     chosen = procedures_of(procedures)

@@ -50,8 +50,12 @@ def add_parser(sub):
                         "scaled to the site's intensity and to stripes around it")
     p.add_argument("--im", default=None, metavar="pga|sa:T",
                    help=f"intensity measure (default {DEFAULT_IM}, or the --hazard file's IMT): "
-                        "the true 5 %%-damped spectral acceleration at T [g] (the site's "
+                        "the 5 %%-damped pseudo-spectral acceleration ω²·S_d at T [g] (the site's "
                         "intensity: its design spectrum at T; S_X1 at 1 s) or PGA (0.4 S_XS)")
+    p.add_argument("--limit-state", default="both", metavar="SLV|SLC|both",
+                   help="the limit state the --site values are for, of a guideline that names "
+                        "its own (NTC 2018: SLV, d ≤ 0.4 d₀; SLC, d ≤ 0.6 d₀); 'both' reports "
+                        "each")
     options.add_hazard_options(p)
     p.add_argument("--return-period", type=options.number("must be more than 1 year", 1.0,
                                                           low_open=True),
@@ -118,7 +122,7 @@ def run(args) -> int:
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
               "risk_target": args.risk_target, "friction": args.friction,
-              **options.floor_values(args)}
+              "limit_state": args.limit_state, **options.floor_values(args)}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:

@@ -30,9 +30,9 @@ def add_parser(sub):
     p.add_argument("procedure", help="registered procedure name ({registered}), or 'all'")
     options.add_records_option(p)
     p.add_argument("--im", metavar="pga|pgv|sa:T",
-                   help=f"intensity measure: PGA [g], PGV [m/s] or the true 5 %%-damped "
-                        f"spectral acceleration at T [g] (default: {DEFAULT_IM}, or the "
-                        "--hazard file's IMT)")
+                   help=f"intensity measure: PGA [g], PGV [m/s] or the 5 %%-damped "
+                        f"pseudo-spectral acceleration ω²·S_d at T [g] (default: {DEFAULT_IM}, "
+                        "or the --hazard file's IMT)")
     p.add_argument("--stripes", metavar="IM,...",
                    help="intensity levels (unit of --im); default 24 levels, geometric, "
                         "0.2–5 × the site's design intensity (or the suite's median)")

@@ -12,11 +12,11 @@ site, not its whole grid. From it, per object:
 * the exact multiple-stripe fragility (:func:`~audit.engine.lognormal_fit.fit_lognormal`) and its
   P(overturn) at the site's intensity, with a band from a bootstrap over records
   (:func:`~audit.engine.fragility_bootstrap.bootstrap_lognormal`);
-* per procedure, its verdict at the site (it accepts the object when it predicts overturning for
-  at most half the records it can evaluate, as the required-slenderness search reads it; a
-  procedure reading only the site's design spectrum gives one answer for all), the numbers it
-  compares (its rotation estimate against α, or its overturning check's demand and capacity,
-  the median over records), and where it draws its line on the stripes;
+* per procedure and limit state, its verdict at the site by its own acceptance criterion,
+  demand against capacity (:mod:`audit.engine.check_limits`: NTC 2018's SLV and SLC on d/d₀,
+  θ against α, Housner's energy check; the records' demands made one by the guideline's rule
+  for a suite), the exact P at the site of exceeding that same limit, and where it draws its
+  line on the stripes;
 * the friction each record needs at the site and, on a base of friction μ, which mode governs
   (:mod:`audit.engine.check_sliding`);
 * the width each guideline requires at the object's height, against the exact widths for
@@ -35,15 +35,19 @@ import numpy as np
 from audit.engine.blocks import BlockList
 from audit.engine.check_risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check_settings import CheckSettings
+from audit.engine.check_entries import rule_width
 from audit.engine.check_site import site_intensity
 from audit.engine.check_sliding import required_friction, sliding_answer
 from audit.engine.check_words import sentence
 from audit.engine.check_judgement import at_site, judge
-from audit.engine.component_checks import component_entries
+from audit.engine.check_limits import MEDIAN, limit_readings, suite_rule
 from audit.engine.check_widths import (Family, accepted_width, exact_required_widths,
                                       overturns_at, probability_at_site)
+from audit.engine.check_other_im import other_im_answers
+from audit.engine.component_checks import component_entries
 from audit.engine.floors import floor_at_site
 from audit.engine.fragility_bootstrap import bootstrap_lognormal
+from audit.engine.width_family import width_answer
 from audit.engine.lognormal_fit import fit_lognormal
 from audit.engine.stripes import RecordStripes, StripeSettings, half_crossing, record_stripes
 from audit.engine.risk import LognormalFragility, StripeFragility
@@ -195,7 +199,11 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                + (" and for the risk target" if curve is not None else ""))
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
         family = Family(entries, levels, intensity, settings, jobs, executor, progress)
-        widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure)
+        solved = []
+        widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure,
+                                       solved)
+        _stage(progress, "the exact P(overturn) at the other standard intensity measure")
+        others = other_im_answers(family, objects, suite.design_site, check_levels)
         contexts = {}  # records scaled to the site, on the spectra their parts computed
 
         def site_context(i: int):
@@ -210,14 +218,17 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                        and p.unmet_requirements(site_context(0)[0]) is None}
         _stage(progress, "the width each guideline requires at each object's height")
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
+        exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
         judged = [[_guideline(proc, b, obj, parts, levels, site_judged, site_context, settings)
                    for proc in procedures] for b, obj in enumerate(objects)]
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
                          else {})
-    frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0])
+    frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],
+                       settings.limit_state)
     answers = []
     for b, obj in enumerate(objects):
         over = exact_over[:, :, b]  # (record, stripe)
+        family_widths = _family_widths(obj, over, solved, levels, site_im)
         try:
             fit = fit_lognormal(levels, np.full(levels.size, len(entries)), over.sum(axis=0))
         except ValueError:
@@ -233,7 +244,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                float(width) if math.isfinite(width) else None)
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
-                           guideline_p50.get(b, {})), frame))
+                           guideline_p50.get(b, {}), exact_theta[:, :, b], family_widths,
+                           others[b]),
+            frame))
         sliding = sliding_answer([part.required_friction[b] for part in parts], frame.record_ids,
                                  obj.alpha_deg, settings.friction)
         answer = answers[-1]
@@ -260,6 +273,18 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     return CheckRun(answers, summary)
 
 
+def _family_widths(obj, over, solved, levels, site_im):
+    """The object's height as one fragility family (:mod:`audit.engine.width_family`), fitted on
+    the object's own outcomes and every width solved at its height."""
+    widths, outcomes = [obj.width_m], [over[:, :, None]]
+    for heights, solved_widths, overturned in solved:
+        mine = heights == obj.height_m
+        widths += solved_widths[mine].tolist()
+        outcomes.append(overturned[:, :, mine])
+    return width_answer(widths, levels, np.concatenate(outcomes, axis=2), site_im, TARGETS,
+                        obj.height_m)
+
+
 def _stage(progress, text: str) -> None:
     if progress is not None and hasattr(progress, "stage"):
         progress.stage(text)
@@ -267,7 +292,9 @@ def _stage(progress, text: str) -> None:
 
 def _guideline(proc, b, obj, parts, levels, site_judged, site_context, settings) -> tuple:
     """(procedure, its judgements of object ``b``, its line on the stripes, its required
-    width [m])."""
+    width [m] by the median of the records, by limit state the width of an entry whose suite
+    rule is another (:func:`~audit.engine.check_entries.rule_width`), whether it reads only
+    the site)."""
     records = ([0] if proc.name in site_judged else
                [i for i, part in enumerate(parts) if proc.name in part.judged])
     mine = ([site_judged[proc.name]] if proc.name in site_judged
@@ -285,14 +312,37 @@ def _guideline(proc, b, obj, parts, levels, site_judged, site_context, settings)
                     for k, w in zip(which, widths)]
         width = accepted_width([j.width_low[b] for j in mine],
                                [j.width_high[b] for j in mine], refine)
-    return proc, mine, line, width
+    rule_widths = {}
+    rule = suite_rule(proc.name, len(records))
+    if mine and proc.name not in site_judged and rule != MEDIAN:
+        for state in {r.limit_state for r in mine[0].readings[b]}:
+            rule_widths[state] = rule_width(
+                lambda w, state=state: _state_readings(proc, state, obj, w, records,
+                                                       site_context, settings), obj, rule)
+    return proc, mine, line, width, rule_widths, proc.name in site_judged
+
+
+def _state_readings(proc, state, obj, width_m, records, site_context, settings):
+    """The records' demands at limit state ``state`` of the object made ``width_m`` wide, and
+    its capacity."""
+    block = obj.with_width(width_m)
+    alpha = math.radians(block.alpha_deg)
+    p = np.array([2.0 * math.pi / block.size_s])
+    readings = []
+    for i in records:
+        entry, context = site_context(i)
+        evaluation = proc.evaluate_for_verdict(entry, p, alpha,
+                                               float(settings.restitution.r(alpha)),
+                                               context.on_demand(), settings.g)
+        readings += [r for r in limit_readings(evaluation, alpha) if r.limit_state == state]
+    return [r.demand for r in readings], readings[0].capacity
 
 
 def _guideline_risk(family: Family, objects, judged, curve) -> dict:
     """P in 50 years of each object at the width each guideline requires, {object: {procedure
     name: P}}: every such block solved together."""
     pairs = [(b, proc.name, width) for b, row in enumerate(judged)
-             for proc, _, _, width in row if math.isfinite(width) and width > 0]
+             for proc, _, _, width, _, _ in row if math.isfinite(width) and width > 0]
     out = {b: {} for b in range(len(objects))}
     if pairs:
         overturned = family.overturned([objects[b].height_m for b, _, _ in pairs],

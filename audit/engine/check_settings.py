@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from audit import G
 from audit.engine import fields as check
+from audit.engine.check_limits import BOTH, LIMIT_STATES
 from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_RESTITUTION,
                                    DEFAULT_RISK_TARGET)
 from audit.engine.intensity import IntensityMeasure
@@ -18,7 +19,8 @@ from audit.physics.block import Restitution
 CHECK_DEFAULTS = {"im": None, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
                   "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET,
-                  "hazard_imt": None, "return_period": None, "poe": None, "friction": None}
+                  "hazard_imt": None, "return_period": None, "poe": None, "friction": None,
+                  "limit_state": BOTH}
 CHECK_FIELDS = tuple(CHECK_DEFAULTS)
 
 
@@ -46,6 +48,9 @@ class CheckSettings:
     friction : float or None
         Friction coefficient μ of the object's base [-]: which mode governs, sliding or rocking
         (:mod:`audit.engine.check_sliding`); None: no sliding assumed.
+    limit_state : str
+        The limit state the site's S_XS, S_X1 are for, of a guideline that names its own
+        (NTC 2018): ``SLV``, ``SLC`` or ``both`` (each reported).
 
     Build it with :meth:`parse`, which checks every field once.
     """
@@ -59,6 +64,7 @@ class CheckSettings:
     risk_target: float = DEFAULT_RISK_TARGET
     site_return_period_years: float | None = None
     friction: float | None = None
+    limit_state: str = BOTH
 
     @classmethod
     def parse(cls, **values) -> CheckSettings:
@@ -87,6 +93,8 @@ class CheckSettings:
             The same as a probability of exceedance in 50 years (0.02 or '2%').
         friction : float, optional
             Friction coefficient μ > 0 of the object's base.
+        limit_state : str
+            ``SLV``, ``SLC`` or ``both`` (any case).
         """
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
@@ -121,6 +129,13 @@ class CheckSettings:
         if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)
                                  or seed < 0):
             raise InputError(f"seed: expected a whole number ≥ 0, got {seed!r}", "seed")
+        limit_state = value["limit_state"]
+        choices = (*LIMIT_STATES, BOTH)
+        if not isinstance(limit_state, str) or limit_state.upper() not in (
+                c.upper() for c in choices):
+            raise InputError(f"limit_state: expected {', '.join(choices)}, got {limit_state!r}",
+                             "limit_state")
+        limit_state = limit_state.upper() if limit_state.upper() in LIMIT_STATES else BOTH
         return cls(
             im=im,
             restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
@@ -130,7 +145,7 @@ class CheckSettings:
             g=check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True),
             seed=seed, hazard=hazard, risk_target=risk_target,
             site_return_period_years=site_return_period(value["return_period"], value["poe"]),
-            friction=friction)
+            friction=friction, limit_state=limit_state)
 
 
 def site_return_period(return_period, poe) -> float | None:

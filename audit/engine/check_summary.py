@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from audit.engine.check_entries import ExactRotations, procedure_entries
 from audit.engine.check_words import sentence
 from audit.engine.csv_text import csv_bytes
 from audit.engine.floors import suite_floor
@@ -28,6 +29,8 @@ HAZARD_LEVEL = ("the hazard level of the S_XS, S_X1 given (e.g. ASCE 41's BSE-1E
 CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
+TEXT_COLUMNS = ("object", "procedure", "limit_state", "verdict", "compares", "unit", "basis",
+                "reason", "im")
 
 
 def _number(value) -> float | None:
@@ -35,50 +38,42 @@ def _number(value) -> float | None:
     return float(value) if value is not None and math.isfinite(value) else None
 
 
-def _procedure_answer(proc, judgements, line, width, b: int, first_entry,
-                      risk_p50: float | None) -> dict:
-    answer = {"name": proc.name, "title": proc.title, "verdict": None, "compares": None,
-              "demand": None, "capacity": None, "unit": None, "share_predicting_overturn": None,
-              "records_judged": len(judgements), "required_width_m": None,
-              "guideline_im": _number(line), "reason": None, "risk_p50": risk_p50}
-    if not judgements:
-        answer["reason"] = (proc.unmet_requirements(first_entry)
-                            or "it can evaluate no record of the suite")
-        return answer
-    share = float(np.mean([j.overturns[b] for j in judgements]))
-    # over the records where it gives a number (a rotation iteration may settle on none)
-    demands = np.array([j.demand[b] for j in judgements])
-    demand = float(np.median(demands[~np.isnan(demands)])) if (~np.isnan(demands)).any() \
-        else math.nan
-    reasons = []
-    if math.isinf(demand):
-        reasons.append("its rotation estimate reaches α (overturning)"
-                       + (" for most records" if len(judgements) > 1 else "")
-                       + ": no rotation to compare")
-    elif math.isnan(demand):
-        reasons.append("its iteration settles on no rotation for any record")
-    if math.isinf(width):
-        reasons.append("no width up to 0.99 × the height passes it (restrain the object)")
-    answer.update(verdict="passes" if share <= 0.5 else "fails",
-                  compares=judgements[0].quantity[b], unit=judgements[0].unit[b],
-                  demand=_number(demand),
-                  capacity=_number(float(np.median([j.capacity[b] for j in judgements]))),
-                  share_predicting_overturn=share, required_width_m=_number(width),
-                  reason="; ".join(reasons) or None)
-    return answer
+def _family_widths(family, searched, height_m: float) -> dict:
+    """The 10 % and 50 % widths read from the fragility family with their bands (null beyond
+    0.95 × the height, where the family is not fitted), its curve, and the widths the search
+    found on the counted P(w) (which is not monotone: its jumps are the records')."""
+    out = {"required_width_m_10pct_searched": _number(searched[0]),
+           "required_width_m_50pct_searched": _number(searched[1])}
+    if family is None:
+        return {**out, "required_width_m_10pct": _number(searched[0]),
+                "required_width_m_50pct": _number(searched[1]), "width_curve": None,
+                "required_width_m_10pct_band": None, "required_width_m_50pct_band": None}
+    out["width_curve"] = family.curve
+    out["width_family"] = {"median_intercept": family.family.intercept,
+                           "median_width_exponent": family.family.slope,
+                           "beta": family.family.beta,
+                           "model": "P = Φ((ln im − a − c ln w)/β), fitted on every width "
+                                    "solved at this height"}
+    for target, name in ((0.10, "10pct"), (0.50, "50pct")):
+        width = family.widths[target]
+        inside = math.isfinite(width) and width <= 0.95 * height_m
+        out[f"required_width_m_{name}"] = width if inside else None
+        out[f"required_width_m_{name}_band"] = family.bands[target] if inside else None
+    return out
 
 
 @dataclass(frozen=True)
 class CheckFrame:
     """What every object of a check shares: the stripes [unit of ``im``], the site's intensity,
-    the intensity measure, the records' ids, and the first record (whose unmet requirements
-    say why a procedure judged none)."""
+    the intensity measure, the records' ids, the first record (whose unmet requirements
+    say why a procedure judged none), and the limit state asked for (SLV, SLC or both)."""
 
     levels: np.ndarray
     site_im: float
     im: object
     record_ids: list
     first_entry: object
+    limit_state: str = "both"
 
 
 @dataclass
@@ -99,11 +94,21 @@ class ObjectFindings:
         Exact widths for P(overturn) ≤ 10 % and ≤ 50 % at the site [m], then for the risk target
         with a hazard curve.
     judged : list
-        Per procedure, (procedure, its judgements, its line on the stripes, its required width).
+        Per procedure, (procedure, its judgements, its line on the stripes, its required width
+        by the median rule, its widths by limit state for another rule, whether it reads only
+        the site).
     risk : dict or None
         :func:`~audit.engine.check_risk.object_risk`, with a hazard curve.
     guideline_p50 : dict
         P in 50 years at each guideline's width, by procedure name (with a hazard curve).
+    theta_rad : numpy.ndarray or None
+        Exact peak rotations, shaped (record, stripe) [rad].
+    other_im : dict or None
+        Its exact P(overturn) at the site at the other standard IM
+        (:mod:`audit.engine.check_other_im`).
+    family : audit.engine.width_family.WidthAnswer or None
+        The object's height as one fragility family: P(width) at the site, the 10 % and 50 %
+        widths read from it with their bootstrap bands.
     """
 
     obj: object
@@ -115,6 +120,9 @@ class ObjectFindings:
     judged: list
     risk: dict | None = None
     guideline_p50: dict = field(default_factory=dict)
+    theta_rad: np.ndarray | None = None
+    family: object = None
+    other_im: dict | None = None
 
 
 def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
@@ -128,6 +136,8 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
         p_site = 1.0 if overturned.all() else 0.0
     low, high = boot.probability_band(site_im)
     curve = site_im * np.geomspace(0.2, 5.0, 61)
+    theta = found.theta_rad if found.theta_rad is not None else np.zeros(overturned.shape)
+    exact = ExactRotations(theta, overturned, levels, site_im, p_site)
     curve_low, curve_high = boot.probability_band(curve)
     answer = {
         "name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
@@ -138,8 +148,8 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                   "p_band_method": f"bootstrap over records, {len(boot.medians)} resamples, "
                                    f"{boot.confidence:.0%} percentile band",
                   "site_im_g": site_im,
-                  "required_width_m_10pct": _number(found.widths[0]),
-                  "required_width_m_50pct": _number(found.widths[1]),
+                  **_family_widths(found.family, found.widths, obj.height_m),
+                  "other_im": found.other_im,
                   "records_overturning_at_site": [r for r, o in zip(frame.record_ids,
                                                                     overturned[:, site]) if o],
                   "stripes": {"im": levels.tolist(),
@@ -147,9 +157,10 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                               "records": int(overturned.shape[0])},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
                                  "high": curve_high.tolist()}},
-        "procedures": [_procedure_answer(proc, mine, line, width, b, frame.first_entry,
-                                         found.guideline_p50.get(proc.name))
-                       for proc, mine, line, width in found.judged],
+        "procedures": [entry for proc, mine, line, width, rule_widths, site_only in found.judged
+                       for entry in procedure_entries(
+                           proc, mine, line, width, rule_widths, b, exact, frame.limit_state,
+                           site_only, frame.first_entry, found.guideline_p50.get(proc.name))],
         "risk": found.risk}
     answer["sentence"] = sentence(answer, im)
     return answer
@@ -185,10 +196,12 @@ def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
             rows.append({
                 "object": obj["name"], "width_m": obj["width_m"], "height_m": obj["height_m"],
                 "alpha_deg": obj["alpha_deg"], "size_s": obj["size_s"], **where,
-                "procedure": proc["name"], "verdict": proc["verdict"] or "",
-                "compares": proc["compares"] or "", "demand": proc["demand"],
-                "capacity": proc["capacity"], "unit": proc["unit"] or "",
-                "share_predicting_overturn": proc["share_predicting_overturn"],
+                "procedure": proc["key"], "limit_state": proc["limit_state"],
+                "verdict": proc["verdict"], "compares": proc["quantity"] or "",
+                "demand": proc["demand"], "capacity": proc["capacity"],
+                "unit": proc["unit"] or "", "basis": proc["basis"] or "",
+                "share_of_records_overturning": proc["share_of_records_overturning"],
+                "exact_p_exceed": proc["exact_p_exceed"],
                 "required_width_m": proc["required_width_m"],
                 "guideline_im": proc["guideline_im"], "reason": proc["reason"] or "",
                 "im": exact["im"], "site_im": exact["site_im_g"],
@@ -202,8 +215,7 @@ def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
                 "annual_rate": risk["annual_rate"] if risk else None,
                 "exact_required_width_m_risk": risk["required_width_m"] if risk else None})
     return pd.DataFrame(rows, columns=CSV_COLUMNS).astype(
-        {c: float for c in CSV_COLUMNS if c not in ("object", "procedure", "verdict", "compares",
-                                                     "unit", "reason", "im", "building_model")})
+        {c: float for c in CSV_COLUMNS if c not in TEXT_COLUMNS})
 
 
 def check_data_files(run) -> dict[str, bytes]:

@@ -199,13 +199,21 @@ class Family:
         return np.stack(parts)
 
 
-def exact_required_widths(family: Family, heights_m, targets, measure) -> np.ndarray:
+def exact_required_widths(family: Family, heights_m, targets, measure,
+                          solved: list | None = None) -> np.ndarray:
     """:func:`required_width` of the exact fragility: ``measure(overturned, levels)`` → what
     each target limits, per block (shaped (block,) or (block, target)), from the records'
-    outcomes at the stripes (:meth:`Family.overturned`); widths [m] shaped (height, target)."""
-    return required_width(
-        lambda heights, widths: measure(family.overturned(heights, widths), family.levels),
-        heights_m, targets)
+    outcomes at the stripes (:meth:`Family.overturned`); widths [m] shaped (height, target).
+    Every solve is appended to ``solved`` as (heights, widths, outcomes (record, stripe,
+    block)), for the family fit (:mod:`audit.engine.width_family`)."""
+    def measured(heights, widths):
+        overturned = family.overturned(heights, widths)
+        if solved is not None:
+            solved.append((np.asarray(heights, dtype=float), np.asarray(widths, dtype=float),
+                           overturned))
+        return measure(overturned, family.levels)
+
+    return required_width(measured, heights_m, targets)
 
 
 def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g: float) -> bool:

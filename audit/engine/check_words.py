@@ -30,34 +30,65 @@ def im_words(im, site_im: float, return_period_years: float | None = None) -> st
     return f"PGA = 0.4 S_XS = {site_im:.3g} g"
 
 
+def exact_width_words(exact: dict, target: str) -> str:
+    """The exact width for P(overturn) ≤ ``target`` % with its 90 % band over records, to the
+    precision the band supports, or why there is none."""
+    from audit.engine.width_family import quoted
+    width = exact[f"required_width_m_{target}pct"]
+    if width is None:
+        return "none ≤ 0.95 h (restrain it)"
+    band = exact.get(f"required_width_m_{target}pct_band")
+    return quoted(width, band) if band else f"{width:.2f} m"
+
+
 def _names(titles) -> str:
     return titles[0] if len(titles) == 1 else ", ".join(titles[:-1]) + " and " + titles[-1]
 
 
+def _judged(entries) -> str:
+    """Procedures with their limit states, e.g. ``NTC 2018 / Circolare 2019 (SLV, SLC)``."""
+    states = {}
+    for entry in entries:
+        states.setdefault(entry["procedure"], []).append(entry["limit_state"])
+    return _names([title if names == ["overturning"] else f"{title} ({', '.join(names)})"
+                   for title, names in states.items()])
+
+
+def p_words(exact: dict, records: int) -> str:
+    """The exact P(overturn) at the site with its band, or, where no record overturns the
+    object at any stripe, the 95 % upper bound that leaves (1 − 0.05^(1/n))."""
+    low, high = exact["p_band"]
+    overturned = exact["stripes"]["overturned"]
+    if exact["median_g"] is None and not any(overturned):
+        bound = 1.0 - 0.05 ** (1.0 / records)
+        return (f"< {100 * bound:.2g} % (95 % bound: no record overturns it at any stripe up "
+                f"to {max(exact['stripes']['im']):.3g} {exact['im_unit']})")
+    return f"{100 * exact['p_overturn_at_site']:.0f} % [{100 * low:.0f}–{100 * high:.0f} %]"
+
+
 def sentence(answer: dict, im) -> str:
-    """One sentence for a calculation note: the guidelines' verdicts, the exact P(overturn) at
-    the site with its band, the exact widths."""
-    by = {v: [p["title"] for p in answer["procedures"] if p["verdict"] == v]
-          for v in ("passes", "fails", None)}
+    """One sentence for a calculation note: the guidelines' verdicts by their own limit states,
+    the exact P(overturn) at the site with its band, the exact widths."""
+    by = {v: [p for p in answer["procedures"] if p["verdict"] == v]
+          for v in ("passes", "fails", "cannot judge")}
     parts = []
     if by["passes"]:
-        parts.append(f"{_names(by['passes'])} accept{'s' if len(by['passes']) == 1 else ''} it")
+        parts.append(f"{_judged(by['passes'])} accept{'s' if len(by['passes']) == 1 else ''} it")
     if by["fails"]:
-        parts.append(f"{_names(by['fails'])} reject{'s' if len(by['fails']) == 1 else ''} it")
-    if by[None]:
-        parts.append(f"{_names(by[None])} cannot judge it")
+        parts.append(f"{_judged(by['fails'])} reject{'s' if len(by['fails']) == 1 else ''} it")
+    if by["cannot judge"]:
+        parts.append(f"{_judged(by['cannot judge'])} cannot judge it")
     exact = answer["exact"]
-    low, high = exact["p_band"]
     text = (f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m "
             f"tall): " + "; ".join(parts) + f"; the exact P(overturn) at "
-            f"{im_words(im, exact['site_im_g'], exact.get('site_return_period_years'))} is {100 * exact['p_overturn_at_site']:.0f} % "
-            f"[{100 * low:.0f}–{100 * high:.0f} %]")
+            f"{im_words(im, exact['site_im_g'], exact.get('site_return_period_years'))} is "
+            f"{p_words(exact, exact['stripes']['records'])}")
     w10, w50 = exact["required_width_m_10pct"], exact["required_width_m_50pct"]
     if w10 is None:
         text += "; no width up to 0.95 × its height brings it to 10 % (restrain it)"
     else:
-        text += (f"; it needs {metres(w10)} of base width for 10 %"
-                 + (f" ({metres(w50)} for 50 %)" if w50 is not None else ""))
+        text += (f"; it needs {exact_width_words(exact, '10')} of base width for 10 %"
+                 + (f" ({exact_width_words(exact, '50')} for 50 %)" if w50 is not None else ""))
     risk = answer["risk"]
     if risk is None:
         return text + "."
@@ -76,19 +107,39 @@ def sentence(answer: dict, im) -> str:
                else "."))
 
 
-def _compared(proc: dict) -> str:
-    if proc["verdict"] is None:
-        return proc["reason"] or ""
-    unit = proc["unit"]
-    demand = "≥ α" if proc["demand"] is None and unit == "deg" else (
-        "—" if proc["demand"] is None else f"{proc['demand']:.3g}")
+def _compared(proc: dict, half_width_m: float) -> str:
+    """Demand against capacity in words: θ against α (no uplift where θ = 0), d against the
+    limit state's d_LS with d/d₀, or the check's numbers."""
+    if proc["verdict"] == "cannot judge":
+        return "cannot judge: " + (proc["reason"] or "")
+    unit, demand, capacity = proc["unit"], proc["demand"], proc["capacity"]
     if unit == "deg":
-        return f"θ {demand}{'°' if proc['demand'] is not None else ''} vs α {proc['capacity']:.3g}°"
-    return f"demand {demand} vs capacity {proc['capacity']:.3g} {unit}"
+        if demand is None:
+            return f"θ ≥ α {capacity:.3g}° (overturns)"
+        if demand == 0.0:
+            return f"no uplift (θ = 0) vs α {capacity:.3g}°"
+        return f"θ {demand:.3g}° vs α {capacity:.3g}°"
+    if demand is None:
+        return proc["reason"] or ""
+    if unit == "m":
+        words = (f"d {demand:.3g} m vs {capacity:.3g} m (d/d₀ {demand / half_width_m:.2f} vs "
+                 f"{capacity / half_width_m:.2g})")
+        return ("no uplift (d = 0) vs " + f"{capacity:.3g} m" if demand == 0.0 else words)
+    return f"demand {demand:.3g} vs capacity {capacity:.3g} {unit}"
 
 
 def _percent(p: float | None) -> str:
     return "—" if p is None else f"{100 * p:.2g} %"
+
+
+def _width_words(proc: dict) -> str:
+    """The width a guideline requires, or why there is none."""
+    width = proc["required_width_m"]
+    if width is not None:
+        return f"{width:.2f} m"
+    if proc["verdict"] == "cannot judge":
+        return "— (cannot judge)"
+    return "none ≤ 0.99 h (restrain it)"
 
 
 def _intensity(name: str):
@@ -136,39 +187,52 @@ def summary_text(document: dict) -> str:
                         "'P in 50 yr' is of the object at the width each row requires."]
     for obj in document["objects"]:
         lines += [obj["sentence"], ""]
-        rows = [("procedure", "verdict", "compares", "width needed")
-                + (("P in 50 yr",) if hazard else ())]
+        rows = [("procedure", "limit state", "verdict", "demand vs capacity", "width needed",
+                 "exact P(exceed)") + (("P in 50 yr",) if hazard else ())]
         for proc in obj["procedures"]:
-            width = proc["required_width_m"]
-            rows.append((proc["title"], proc["verdict"] or "—",
-                         _compared(proc) if proc["verdict"] else "cannot judge",
-                         metres(width) if width is not None else "—")
+            rows.append((proc["procedure"], proc["limit_state"], proc["verdict"],
+                         _compared(proc, obj["width_m"] / 2.0), _width_words(proc),
+                         _percent(proc["exact_p_exceed"]))
                         + ((_percent(proc["risk_p50"]),) if hazard else ()))
         for entry in obj.get("component_provisions", ()):  # static checks: no risk at a width
             width = entry["required_width_m"]
-            rows.append((f"{entry['procedure']} (static)", entry["verdict"],
+            rows.append((f"{entry['procedure']} (static)", entry["limit_state"],
+                         entry["verdict"],
                          f"F/W {entry['demand']:.3g} vs {entry['capacity']:.3g} g"
                          if entry["demand"] is not None else entry["basis"],
-                         f"{width:.2f} m" if width is not None else "—")
+                         metres(width) if width is not None else "—",
+                         _percent(entry["exact_p_exceed"]))
                         + (("",) if hazard else ()))
         exact = obj["exact"]
         for target in ("10", "50"):
-            width = exact[f"required_width_m_{target}pct"]
-            rows.append((f"exact, P(overturn) ≤ {target} %", "", "",
-                         metres(width) if width is not None else "none ≤ 0.95 h")
+            rows.append((f"exact, P(overturn) ≤ {target} %", "overturning", "", "",
+                         exact_width_words(exact, target), "")
                         + (("",) if hazard else ()))
         if hazard:
             width = obj["risk"]["required_width_m"]
-            rows.append((f"exact, P in 50 years ≤ {100 * hazard['target_p50']:g} %", "", "",
-                         metres(width) if width is not None else "none ≤ 0.95 h",
+            rows.append((f"exact, P in 50 years ≤ {100 * hazard['target_p50']:g} %",
+                         "overturning", "", "",
+                         metres(width) if width is not None else "none ≤ 0.95 h", "",
                          f"≤ {_percent(hazard['target_p50'])}" if width is not None else ""))
         sizes = [max(len(row[k]) for row in rows) for k in range(len(rows[0]))]
         lines += ["  " + "  ".join(cell.ljust(size) for cell, size in zip(row, sizes)).rstrip()
                   for row in rows]
-        lines += [f"  (object width {obj['width_m']:.3g} m; exact fragility: median "
-                  + (f"{exact['median_g']:.3g}" if exact["median_g"] else "—")
-                  + f" {exact['im_unit']}, β = "
-                  + (f"{exact['beta']:.2f}" if exact["beta"] else "—") + ")", ""]
+        lines += [f"  (object width {obj['width_m']:.3g} m; exact P(overturn) at the site "
+                  f"{p_words(exact, exact['stripes']['records'])}; "
+                  + (f"exact fragility: median {exact['median_g']:.3g} {exact['im_unit']}, "
+                     f"β = {exact['beta']:.2f})" if exact["median_g"] else
+                     "no lognormal fits the stripes: no record overturns it at any stripe, or "
+                     "every record at every one)")]
+        other = exact.get("other_im")
+        if other:
+            lines += [f"  (at the other standard intensity measure, the records scaled to "
+                      f"{im_words(_intensity(other['im']), other['site_im'])} instead: exact "
+                      f"P(overturn) {100 * other['p_overturn_at_site']:.0f} %; use the IM of "
+                      "your hazard, see docs/check.md)"]
+        lines += [""]
+        lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."
+                  for proc in obj["procedures"] if proc["basis"]
+                  and proc["basis"].startswith("applied record by record")] + [""]
     return "\n".join(lines).rstrip() + "\n"
 
 

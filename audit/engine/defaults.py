@@ -35,7 +35,8 @@ DEFAULT_FRAGILITY_RECORDS = "p695-far-field"
 DEFAULT_CHECK_RECORDS = "p695-far-field"
 #: The exact solver's impact model: Eq. 4.8 (Housner's).
 DEFAULT_RESTITUTION = "housner"
-#: Intensity measure of the design-level audit (``margins``): true 5 %-damped Sa at 1 s [g].
+#: Intensity measure of the design-level audit (``margins``): the 5 %-damped pseudo-spectral
+#: acceleration ω²·S_d at 1 s [g].
 DEFAULT_IM = "sa:1.0"
 #: Block sizes 2π/p of the design-level audit's grid: START, STOP (inclusive), STEP [s].
 DEFAULT_MARGINS_SIZES = (0.5, 8.0, 0.25)

@@ -168,7 +168,8 @@ GUIDE["stripes.csv"] = {
     "size_s": ("s", "block size 2π/p"),
     "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
                      "empty for a block of the α × size grid"),
-    "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped true Sa [g])"),
+    "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped "
+                   "pseudo-spectral acceleration ω²·S_d [g])"),
     "im_level": ("g or m/s", "the stripe's intensity, in the unit of im"),
     "scale_factor": ("-", "factor the record as read (before any scaling to the site) is "
                           "scaled by to reach the stripe"),
@@ -229,7 +230,8 @@ GUIDE["capacity.csv"] = {
                                "guideline_im"),
 }
 
-# one object, one site (``python -m audit check``): one row per object × procedure
+# one object, one site (``python -m audit check``): one row per object × procedure × limit
+# state
 GUIDE["check.csv"] = {
     "object": ("text", "the object's name (--block as typed, or the inventory's name)"),
     "width_m": ("m", "full base width of the object"),
@@ -240,24 +242,30 @@ GUIDE["check.csv"] = {
     "building_period_s": ("s", "first-mode period T1 of the building (empty on the ground)"),
     "building_model": ("text", "the building model, shear:N or continuum:α0 (empty on the "
                                "ground)"),
-    "procedure": ("text", "guideline procedure"),
-    "verdict": ("text", "passes (it predicts overturning for at most half the records it can "
-                        "evaluate at the site's intensity), fails, or empty where it cannot "
-                        "judge the object (see reason)"),
-    "compares": ("text", "what demand and capacity are: its peak rotation θ against α, or its "
-                         "overturning check"),
-    "demand": ("unit", "the median over the records of what it compares (empty where its "
-                       "rotation estimate reaches α)"),
+    "procedure": ("text", "guideline procedure (its registry key)"),
+    "limit_state": ("text", "the limit state judged: overturning, or the guideline's own (NTC "
+                            "2018's SLV, d ≤ 0.4 d₀, and SLC, d ≤ 0.6 d₀)"),
+    "verdict": ("text", "passes (demand ≤ capacity), fails, or cannot judge (see reason)"),
+    "compares": ("text", "what demand and capacity are, in words"),
+    "demand": ("unit", "the guideline's demand at the site: one value where it reads only the "
+                       "site, else the records' demands made one by its rule for a suite (see "
+                       "basis); empty where its rotation estimate reaches α"),
     "capacity": ("unit", "what the demand is compared with (α for a rotation)"),
     "unit": ("text", "unit of demand and capacity: deg, g, m/s or m"),
-    "share_predicting_overturn": ("-", "share of the records it can evaluate for which it "
-                                       "predicts overturning at the site's intensity"),
+    "basis": ("text", "how the verdict follows from demand and capacity, and how the records' "
+                      "demands become one"),
+    "share_of_records_overturning": ("-", "information only: share of the records it can "
+                                          "evaluate for which it predicts overturning"),
+    "exact_p_exceed": ("-", "exact P at site_im of the exact peak rotation reaching this limit "
+                            "(θ(d_LS) for a limit state on d, α for overturning), from a "
+                            "lognormal fitted to the stripes; ≥ p_overturn_at_site"),
     "required_width_m": ("m", "narrowest width at the object's height it passes (empty where "
                               "none up to 0.99 × the height)"),
     "guideline_im": ("g", "intensity from which it predicts overturning for half the records "
                           "(its line on the fragility curve)"),
     "reason": ("text", "why the verdict or a number is empty"),
-    "im": ("text", "intensity measure: sa:T (5 %-damped true Sa [g]) or pga [g]"),
+    "im": ("text", "intensity measure: sa:T (5 %-damped pseudo-spectral acceleration "
+                   "ω²·S_d [g]) or pga [g]"),
     "site_im": ("g", "the site's intensity at the hazard level of the S_XS, S_X1 given"),
     "p_overturn_at_site": ("-", "exact P(overturn) at site_im, from the lognormal fitted to the "
                                 "stripes"),

@@ -134,8 +134,10 @@ def scale_to_site(suite: RecordSuite, sxs_g: float, sx1_g: float,
                          "(site_override)", "site_override")
     normalisation = {entry.id: entry.metadata.get("p695_normalisation_factor", 1.0)
                      for entry in records}
+    # the pseudo-spectral acceleration ω²·S_d, as the design spectrum and hazard curves define it
     normalised_sa_g = {entry.id: normalisation[entry.id] * float(response_spectra(
-        entry.motion, anchor_period_s, SCALING_DAMPING).sa[0, 0]) / G for entry in records}
+        entry.motion, anchor_period_s, SCALING_DAMPING,
+        displacement_only=True).pseudo_acceleration[0, 0]) / G for entry in records}
     median_g = float(np.median(list(normalised_sa_g.values())))
     target_g = float(spectrum.acceleration(anchor_period_s, SCALING_DAMPING))
     suite_factor = target_g / median_g
@@ -151,7 +153,8 @@ def scale_to_site(suite: RecordSuite, sxs_g: float, sx1_g: float,
         entries.append(entry)
     scaling = {
         "method": "FEMA P695: each record × its P695 normalisation factor (1 where it has none), "
-                  "then one suite factor so the median 5 %-damped Sa at the anchor period equals "
+                  "then one suite factor so the median 5 %-damped pseudo-spectral acceleration "
+                  "ω²·S_d at the anchor period equals "
                   "the FEMA 356 design spectrum",
         "sxs_g": spectrum.sxs_g, "sx1_g": spectrum.sx1_g, "anchor_period_s": anchor_period_s,
         "damping_pct": 100 * SCALING_DAMPING, "target_sa_g": target_g,
