@@ -30,7 +30,7 @@ CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 TEXT_COLUMNS = ("object", "procedure", "limit_state", "verdict", "compares", "unit", "basis",
-                "reason", "im")
+                "reason", "im", "building_model")
 
 
 def _number(value) -> float | None:
