@@ -26,10 +26,10 @@ import numpy as np
 sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit.api import design_suite  # noqa: E402
-from audit.engine.check import run_check  # noqa: E402
-from audit.engine.blocks import Block  # noqa: E402
-from audit.engine.check_settings import CheckSettings  # noqa: E402
-from audit.engine.runtime import Runtime  # noqa: E402
+from audit.engine.check.pipeline import run_check  # noqa: E402
+from audit.engine.shared.blocks import Block  # noqa: E402
+from audit.engine.check.settings import CheckSettings  # noqa: E402
+from audit.engine.shared.runtime import Runtime  # noqa: E402
 from procedures import get_procedures  # noqa: E402
 from records import load_records  # noqa: E402
 

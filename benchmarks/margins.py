@@ -25,12 +25,12 @@ import numpy as np
 sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit.api import MarginsResult, design_suite  # noqa: E402
-from audit.engine.margins import run_margins  # noqa: E402
-from audit.engine.margins_scans import amplitude_scans  # noqa: E402
-from audit.engine.margins_settings import MarginsSettings  # noqa: E402
-from audit.engine.p695_acceptance import p695_acceptance  # noqa: E402
-from audit.engine.runtime import Runtime  # noqa: E402
-from audit.engine.required_alpha import required_alpha  # noqa: E402
+from audit.engine.design.margins import run_margins  # noqa: E402
+from audit.engine.design.scans import amplitude_scans  # noqa: E402
+from audit.engine.design.settings import MarginsSettings  # noqa: E402
+from audit.engine.design.p695_acceptance import p695_acceptance  # noqa: E402
+from audit.engine.shared.runtime import Runtime  # noqa: E402
+from audit.engine.design.required_alpha import required_alpha  # noqa: E402
 from audit.files import write_files_atomically  # noqa: E402
 from procedures import get_procedures  # noqa: E402
 from records import load_records  # noqa: E402

@@ -28,9 +28,9 @@ import numpy as np
 sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit import G  # noqa: E402
-from audit.engine.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES  # noqa: E402
-from audit.engine.grid import size_grid  # noqa: E402
-from audit.engine.verdicts import CHECK_VERDICTS, check_verdicts, exact_exceeded, names  # noqa: E402
+from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES  # noqa: E402
+from audit.engine.shared.grid import size_grid  # noqa: E402
+from audit.engine.shared.verdicts import CHECK_VERDICTS, check_verdicts, exact_exceeded, names  # noqa: E402
 from audit.physics.block import RigidBlock  # noqa: E402
 from audit.physics.overturning_criteria import (ONE_COSINE, ONE_SINE,  # noqa: E402
                                                 exact_minimum_amplitude,

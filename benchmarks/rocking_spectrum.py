@@ -19,8 +19,8 @@ import numpy as np
 from audit.physics.block import RigidBlock
 from audit.physics.reference import simulate_reference
 from audit.physics.rocking import rocking_spectrum, simulate
-from audit.engine.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
-from audit.engine.grid import size_grid
+from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
+from audit.engine.shared.grid import size_grid
 from records import load_records
 
 

@@ -7,7 +7,7 @@ every outcome that changed shown to be knife-edge.
 
 The grid is the one ``margins all --records p695-far-field --site 1.5,0.9 --scale-to-site``
 solves for its stripes (the default stripes, α and sizes: 98,208 outcomes), computed as that
-command computes it (:func:`audit.engine.margins.margins_stripes`, no procedure), once with each
+command computes it (:func:`audit.engine.design.margins.margins_stripes`, no procedure), once with each
 step. An outcome that changed is knife-edge when the step it replaced changes it too under a
 relative change of the record's scale factor of at most 1e-6: the smallest such change (of 25
 from 1e-12 to 1e-6, even in ln, each way; outcomes this close to their edge flip back and forth
@@ -36,10 +36,10 @@ sys.path.append(str(Path(__file__).resolve().parents[1]))
 from four_libm_step import StepSwapped, rk4_four_libm  # noqa: E402
 
 from audit.api import design_suite  # noqa: E402
-from audit.engine.blocks import BlockList  # noqa: E402
-from audit.engine.margins import margins_stripes  # noqa: E402
-from audit.engine.margins_settings import MarginsSettings  # noqa: E402
-from audit.engine.runtime import Runtime  # noqa: E402
+from audit.engine.shared.blocks import BlockList  # noqa: E402
+from audit.engine.design.margins import margins_stripes  # noqa: E402
+from audit.engine.design.settings import MarginsSettings  # noqa: E402
+from audit.engine.shared.runtime import Runtime  # noqa: E402
 from audit.physics.rocking import motion_equation, rocking_blocks  # noqa: E402
 from records import load_records  # noqa: E402
 

@@ -75,7 +75,7 @@ def load_suite(sources, site):
     suite = RecordSuite(entries, " + ".join(s.description for s in suites))
     if site:
         try:
-            from audit.engine.sites import with_design_site
+            from audit.engine.shared.sites import with_design_site
         except ImportError:
             print("# --site: this records package cannot set a design site; records keep their own",
                   file=sys.stderr)
@@ -109,9 +109,9 @@ def measure(mode, sources, site, workers, size, procedure_names):
     import tempfile
 
     from audit.api import run as run_api
-    from audit.engine.heap import return_freed_memory_promptly
-    from audit.engine.record_audit import audit_record
-    from audit.engine.settings import AuditSettings
+    from audit.engine.shared.heap import return_freed_memory_promptly
+    from audit.engine.run.record_audit import audit_record
+    from audit.engine.run.settings import AuditSettings
     from procedures import get_procedures
     return_freed_memory_promptly()  # as a run does, before this benchmark's cluster threads start
     suite = load_suite(sources, site)

@@ -8,7 +8,7 @@ import sys
 import time
 
 from audit.api import validate
-from audit.engine.validation_grid import ValidationSettings, band_passed, overturning_grid
+from audit.engine.validation.grid import ValidationSettings, band_passed, overturning_grid
 from records.campaign import read_campaign
 
 

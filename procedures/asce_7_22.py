@@ -19,7 +19,7 @@ An unanchored object is checked for overturning with the strength combination 0.
 ±0.2·S_DS·W_p for components, §13.3.1.2, also second-hand): F_p·h_cm ≤ (0.9 − 0.2·S_DS)·W·b.
 ``vertical_coefficient = 0`` drops E_v (the F_p·h_cm ≤ 0.9·W·b often quoted).
 
-Verified against a worked example computed by hand in ``tests/test_component_provisions.py``.
+Verified against a worked example computed by hand in ``tests/procedures/test_component_provisions.py``.
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ S_a/(α·S) = 3·2/2 − 0.5 = 2.5; on the ground, 1.
 An unanchored element is checked for overturning in the seismic design situation of EN 1990
 §6.4.3.4 (permanent actions at their characteristic value, γ = 1.0): F_a·h_cm ≤ W_a·b.
 
-Verified against a worked example computed by hand in ``tests/test_component_provisions.py``.
+Verified against a worked example computed by hand in ``tests/procedures/test_component_provisions.py``.
 """
 
 from __future__ import annotations

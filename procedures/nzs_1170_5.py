@@ -19,7 +19,7 @@ by default estimated from T1 as ten 3.5 m storeys per second (the rule T1 ≈ 0.
 An unanchored part is checked for overturning with the earthquake combination G + E_u of
 NZS 1170.0 §4.2.2 (G at 1.0): F_ph·h_cm ≤ W_p·b.
 
-Verified against a worked example computed by hand in ``tests/test_component_provisions.py``.
+Verified against a worked example computed by hand in ``tests/procedures/test_component_provisions.py``.
 """
 
 from __future__ import annotations

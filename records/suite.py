@@ -59,12 +59,12 @@ class RecordSuite:
     Attributes
     ----------
     design_site : dict
-        The FEMA 356 design site given to records without one (:func:`audit.engine.sites.with_design_site`),
+        The FEMA 356 design site given to records without one (:func:`audit.engine.shared.sites.with_design_site`),
         JSON-ready; empty where none was given.
     scaling : dict
-        The factors of :func:`audit.engine.sites.scale_to_site`, JSON-ready; empty where unscaled.
+        The factors of :func:`audit.engine.shared.sites.scale_to_site`, JSON-ready; empty where unscaled.
     floor : dict
-        Where the objects stand (:func:`audit.engine.floors.on_floor`), JSON-ready, with each
+        Where the objects stand (:func:`audit.engine.shared.floors.on_floor`), JSON-ready, with each
         record's peak floor acceleration and velocity; empty on the ground.
     """
 

@@ -18,9 +18,9 @@ from pathlib import Path
 import numpy as np
 from scipy.special import ndtr
 
-from audit.engine.check_risk import quiet_risk
-from audit.engine.check_words import exact_width_words, metres
-from audit.engine.risk import LognormalFragility, StripeFragility
+from audit.engine.check.risk import quiet_risk
+from audit.engine.check.words import exact_width_words, metres
+from audit.engine.design.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
 from reports.floor_section import floor_spectra_figure

@@ -1,5 +1,5 @@
 """The column guide of the documentation (``docs/columns.md``), generated from
-:mod:`audit.engine.schemas` (a test keeps the two in sync).
+:mod:`audit.engine.shared.schemas` (a test keeps the two in sync).
 
 ``python -m reports.guide`` prints it; ``python -m reports.guide docs/columns.md`` rewrites the
 generated part of that page, between its two markers.
@@ -10,7 +10,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from audit.engine.schemas import GUIDE
+from audit.engine.shared.schemas import GUIDE
 
 #: The lines between which a page holds the generated guide.
 START, END = "<!-- column guide: start -->", "<!-- column guide: end -->"

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from audit.engine.risk import block_fragilities, risk_integral
+from audit.engine.design.risk import block_fragilities, risk_integral
 from records.hazard import HazardCurve
 from reports.html_parts import html_table, plot_div
 from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m

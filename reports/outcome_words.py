@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from audit.engine.verdicts import ROCKING_FLOOR
+from audit.engine.shared.verdicts import ROCKING_FLOOR
 
 
 def describe_exact(row) -> str:

@@ -1,4 +1,4 @@
-"""The self-contained HTML audit report, rendered from a saved :class:`~audit.engine.audit_run.AuditRun`.
+"""The self-contained HTML audit report, rendered from a saved :class:`~audit.engine.run.audit_run.AuditRun`.
 
 Figures are plotly.js specifications drawn by the browser from data embedded in the page;
 plotly.js itself is inlined once, so the page references nothing outside itself, opens offline
@@ -15,10 +15,10 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.engine.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_key,
+from audit.engine.run.ranking import (LARGE_SUITE, WORST_CLASSES, WORST_ROWS, block_key,
                                   is_drawn, rank_worst)
-from audit.engine.schemas import GUIDE
-from audit.engine.verdicts import ROTATION_VERDICTS, UNSAFE_VERDICTS, VERDICTS, meanings
+from audit.engine.shared.schemas import GUIDE
+from audit.engine.shared.verdicts import ROTATION_VERDICTS, UNSAFE_VERDICTS, VERDICTS, meanings
 from reports.block_metres import describe_block
 from reports.frame_rows import row_dicts
 from reports.grid_figures import verdict_map_figure
@@ -211,8 +211,8 @@ def render_report(run, generated: datetime | None = None) -> str:
 
     Parameters
     ----------
-    run : audit.engine.audit_run.AuditRun
-        Results of ``run_audit`` or of ``audit.engine.results.load_run``.
+    run : audit.engine.run.audit_run.AuditRun
+        Results of ``run_audit`` or of ``audit.engine.run.results.load_run``.
     generated : datetime, optional
         Time stamp printed in the report (default: now, UTC).
     """

@@ -23,10 +23,10 @@ def risk_figure(curve, fragility, risk, counted=None, title: str | None = None) 
     Parameters
     ----------
     curve : records.hazard.HazardCurve
-    fragility : audit.engine.risk.LognormalFragility or StripeFragility
+    fragility : audit.engine.design.risk.LognormalFragility or StripeFragility
         The fragility ``risk`` integrated.
-    risk : audit.engine.risk.OverturningRisk
-    counted : audit.engine.risk.StripeFragility, optional
+    risk : audit.engine.design.risk.OverturningRisk
+    counted : audit.engine.design.risk.StripeFragility, optional
         The stripe shares, drawn as dots beside a fitted ``fragility``.
     title : str, optional
     """

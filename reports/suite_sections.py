@@ -9,7 +9,7 @@ from collections import Counter, defaultdict
 
 import numpy as np
 
-from audit.engine.verdicts import CHECK_VERDICTS, CLAIM_STATUSES, meanings, names
+from audit.engine.shared.verdicts import CHECK_VERDICTS, CLAIM_STATUSES, meanings, names
 from reports.grid_figures import grid_map_figure, ratio_band_figure
 from reports.history_figures import lines_figure, sensitivity_figure
 from reports.palette import CHECK_COLOURS
@@ -75,7 +75,7 @@ def suite_section(run, procedures, pending) -> dict | None:
         figure["caption"] = ("Share of the records for which each guideline is unsafe "
                              "(missed overturning or underestimate beyond the band), per block.")
         maps.append(figure)
-    # the quotable sentences of summary.json (audit.engine.suite.suite_summary), at α = 15°
+    # the quotable sentences of summary.json (audit.engine.run.suite.suite_summary), at α = 15°
     # where the grid has it
     quoted = run.summary.get("suite") or []
     for p in present:

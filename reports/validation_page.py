@@ -15,9 +15,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from audit.engine.validation_baselines import VectorLogistic
-from audit.engine.validation_cv import MODEL, PGA, PGV, VECTOR
-from audit.engine.validation_run import FITS_CSV, SCORES_CSV, TESTS_CSV, methods_statement
+from audit.engine.validation.baselines import VectorLogistic
+from audit.engine.validation.cross_validation import MODEL, PGA, PGV, VECTOR
+from audit.engine.validation.pipeline import FITS_CSV, SCORES_CSV, TESTS_CSV, methods_statement
 from reports.html_parts import PAGE_STYLE, html_table
 from reports.plots import to_json
 

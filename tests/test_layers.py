@@ -99,15 +99,15 @@ def test_imports_go_one_way_down_the_layers():
 
 def test_the_graph_sees_imports():
     # the checks above would pass on an empty graph: these edges are known to exist
-    assert "procedures.base" in GRAPH["audit.engine.verdicts"]
-    assert "audit.engine.record_audit" in GRAPH["audit.engine.scheduler"]
+    assert "procedures.base" in GRAPH["audit.engine.shared.verdicts"]
+    assert "audit.engine.run.record_audit" in GRAPH["audit.engine.shared.scheduler"]
     assert _layer("audit.cli.run") > _layer("audit.api") > _layer("reports.render")
 
 
 #: What the command line may import: the API, the defaults its help shows, the base modules,
 #: the records (read by the options) and the reports' figures; never the engine's internals,
 #: the physics or the procedures (a command is argparse → one API call → print).
-CLI_MAY_IMPORT = ("audit.api", "audit.cli", "audit.engine.defaults", "records", "reports")
+CLI_MAY_IMPORT = ("audit.api", "audit.cli", "audit.engine.shared.defaults", "records", "reports")
 
 
 def test_the_command_line_goes_through_the_api():

@@ -10,9 +10,9 @@ Angles are given in degrees and accelerations in g at this edge, as on the comma
 everything inside is SI. Every argument is checked before any work starts; a bad one raises
 :class:`audit.errors.InputError` naming it (the command line prints the same message with its
 flag in the argument's place). A run's settings are fields of settings objects
-(:class:`~audit.engine.settings.AuditSettings`,
-:class:`~audit.engine.margins_settings.MarginsSettings`,
-:class:`~audit.engine.design_site.DesignSite`, :class:`~audit.engine.runtime.Runtime`), given
+(:class:`~audit.engine.run.settings.AuditSettings`,
+:class:`~audit.engine.design.settings.MarginsSettings`,
+:class:`~audit.engine.shared.design_site.DesignSite`, :class:`~audit.engine.shared.runtime.Runtime`), given
 as keyword arguments.
 
 Each name is loaded from its module on first use, so that a command that needs one of them
@@ -42,9 +42,9 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           "validate": "audit.api.validation", "ValidationResult": "audit.api.validation",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
           # and its report, for the command line
-          "available_procedures": "procedures.registry", "size_grid": "audit.engine.grid",
-          "kept_parts": "audit.engine.partial", "PARTIAL_DIR": "audit.engine.partial",
-          "REPORT_HTML": "audit.engine.results"}
+          "available_procedures": "procedures.registry", "size_grid": "audit.engine.shared.grid",
+          "kept_parts": "audit.engine.shared.partial", "PARTIAL_DIR": "audit.engine.shared.partial",
+          "REPORT_HTML": "audit.engine.run.results"}
 
 
 def __getattr__(name):

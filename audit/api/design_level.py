@@ -7,12 +7,12 @@ from dataclasses import replace
 
 from audit import G
 from audit.api.result_shape import Files, with_page
-from audit.engine.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+from audit.engine.shared.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER,
                                    DEFAULT_SITE_LEVEL)
-from audit.engine.design_site import DesignSite
-from audit.engine.margins_settings import MARGINS_FIELDS, MarginsSettings
-from audit.engine.runtime import Runtime
+from audit.engine.shared.design_site import DesignSite
+from audit.engine.design.settings import MARGINS_FIELDS, MarginsSettings
+from audit.engine.shared.runtime import Runtime
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 
@@ -47,12 +47,12 @@ class MarginsResult(Files):
 
     def summary_text(self) -> str:
         """The lines ``audit margins`` prints."""
-        from audit.engine.margins_words import margins_summary_text
+        from audit.engine.design.words import margins_summary_text
         return margins_summary_text(self.margins, self.seconds)
 
     def files(self) -> dict[str, bytes]:
         """Every file of the audit, the page drawn from the CSV files as saved."""
-        from audit.engine.margins import margins_files
+        from audit.engine.design.margins import margins_files
         from reports.margins_page import MARGINS_HTML, render_margins_page
         return with_page(margins_files(self.margins), MARGINS_HTML, render_margins_page)
 
@@ -87,12 +87,12 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
             jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
             resume: bool = False, progress=False) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
-    procedure draws its line against it (see :mod:`audit.engine.margins`).
+    procedure draws its line against it (see :mod:`audit.engine.design.margins`).
 
     Every argument is checked before anything is read or computed (by
-    :meth:`MarginsSettings.parse <audit.engine.margins_settings.MarginsSettings.parse>`,
-    :meth:`DesignSite.parse <audit.engine.design_site.DesignSite.parse>` and
-    :meth:`Runtime.parse <audit.engine.runtime.Runtime.parse>`); a bad one raises
+    :meth:`MarginsSettings.parse <audit.engine.design.settings.MarginsSettings.parse>`,
+    :meth:`DesignSite.parse <audit.engine.shared.design_site.DesignSite.parse>` and
+    :meth:`Runtime.parse <audit.engine.shared.runtime.Runtime.parse>`); a bad one raises
     :class:`~audit.errors.InputError` naming it.
 
     Parameters
@@ -140,7 +140,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     skip_bad_records : bool
         Audit the readable records; the unreadable ones are warned about and left out.
     force : bool
-        Start even when the estimated work is beyond the limits (:mod:`audit.engine.guards`).
+        Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
     jobs, scheduler, partial_dir, resume, progress :
         How, as for :func:`audit.run`.
 
@@ -149,11 +149,11 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     MarginsResult
     """
     from audit.api.inputs import procedures_of, settings_fields, suite_of
-    from audit.engine import fields as check
-    from audit.engine import guards
-    from audit.engine.costs import margins_cost
-    from audit.engine.margins_audit import design_level_audit
-    from audit.engine.progress import Progress
+    from audit.engine.shared import fields as check
+    from audit.engine.shared import guards
+    from audit.engine.shared.costs import margins_cost
+    from audit.engine.design.pipeline import design_level_audit
+    from audit.engine.shared.progress import Progress
     given = locals()
     settings = MarginsSettings.parse(**settings_fields(given, MARGINS_FIELDS))
     # one design site: the audit is of that site

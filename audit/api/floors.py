@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from audit import G
-from audit.engine.defaults import DEFAULT_PERIODS
+from audit.engine.shared.defaults import DEFAULT_PERIODS
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 #: Damping of the floor spectrum whose peak is reported [-].
@@ -28,7 +28,7 @@ class FloorMotion:
     motion : records.GroundMotion
         The floor motion (its ``ground`` the record), [m/s²].
     floor : dict
-        The floor and the building (:func:`audit.engine.floors.floor_document`).
+        The floor and the building (:func:`audit.engine.shared.floors.floor_document`).
     pfa_g, pfv_m_s : float
         Peak floor acceleration [g] and velocity [m/s].
     spectrum_peak_g, spectrum_peak_period_s : float
@@ -37,8 +37,8 @@ class FloorMotion:
     """
 
     def __init__(self, motion, floor: dict):
-        from audit.engine.floors import floor_peaks
-        from audit.engine.grid import size_grid
+        from audit.engine.shared.floors import floor_peaks
+        from audit.engine.shared.grid import size_grid
         from audit.physics.response_spectra import response_spectra
         self.motion, self.floor = motion, floor
         peaks = floor_peaks(motion)

@@ -88,7 +88,7 @@ def suite_of(records, skip_bad_records: bool = False):
     import warnings
     from pathlib import Path
 
-    from audit.engine.fields import flag
+    from audit.engine.shared.fields import flag
     from audit.errors import InputWarning
     from records import RecordSuite, load_records
     skip = flag("skip_bad_records", skip_bad_records)
@@ -155,7 +155,7 @@ def on_floor_of(motion, floor: dict, records=None):
     """(the motion of :func:`motion_of` filtered to the object's floor, the floor's JSON
     document): ``floor`` holds the keywords ``floor``, ``building``, ``building_model``,
     ``building_damping`` (:class:`audit.physics.building.floor.Floor`), checked first."""
-    from audit.engine.floors import floor_document
+    from audit.engine.shared.floors import floor_document
     from audit.physics.building.floor import Floor
     from audit.physics.building.floor_motion import floor_motion
     where = Floor.parse(**floor)

@@ -20,11 +20,11 @@ import pandas as pd
 
 from audit import G
 from audit.api.result_shape import Files, with_page
-from audit.engine import fields as check_field
-from audit.engine.check_objects import object_by_slenderness, parse_block_text, read_objects
-from audit.engine.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+from audit.engine.shared import fields as check_field
+from audit.engine.check.objects import object_by_slenderness, parse_block_text, read_objects
+from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER)
-from audit.engine.check_limits import BOTH
+from audit.engine.check.limits import BOTH
 from audit.errors import InputError
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
@@ -48,7 +48,7 @@ class CheckResult(Files):
     PAGE = "check.html"
 
     def __init__(self, run):
-        from audit.engine.check_summary import check_table
+        from audit.engine.check.summary import check_table
         self.run = run
         self.summary: dict = run.summary
         self.document = {**run.summary, "objects": run.objects}
@@ -61,13 +61,13 @@ class CheckResult(Files):
 
     def summary_text(self) -> str:
         """The paragraph and per-object table ``audit check`` prints."""
-        from audit.engine.check_words import summary_text
+        from audit.engine.check.words import summary_text
         return summary_text(self.document)
 
     def files(self) -> dict[str, bytes]:
         """``check.json``, ``check.csv`` and ``check.html`` (the page drawn from the JSON as
         saved)."""
-        from audit.engine.check_summary import CHECK_HTML, check_data_files
+        from audit.engine.check.summary import CHECK_HTML, check_data_files
         from reports.check_page import render_check_page
         return with_page(check_data_files(self.run), CHECK_HTML, render_check_page)
 
@@ -85,8 +85,8 @@ class CheckResult(Files):
 
 
 def _objects(objects, g: float) -> list:
-    from audit.engine.blocks import Block, within_limits
-    from audit.engine.check_objects import checked_object, parse_block_text
+    from audit.engine.shared.blocks import Block, within_limits
+    from audit.engine.check.objects import checked_object, parse_block_text
     if isinstance(objects, (str, Block)):
         objects = [objects]
     if not isinstance(objects, (list, tuple)):
@@ -129,13 +129,13 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           building_damping: float = DEFAULT_BUILDING_DAMPING,
           limit_state: str = BOTH) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
-    intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check`);
-    with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check_risk`).
+    intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);
+    with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check.risk`).
 
     Every argument is checked before anything is read or computed (by
-    :meth:`CheckSettings.parse <audit.engine.check_settings.CheckSettings.parse>`,
-    :meth:`DesignSite.parse <audit.engine.design_site.DesignSite.parse>` and
-    :meth:`Runtime.parse <audit.engine.runtime.Runtime.parse>`); a bad one raises
+    :meth:`CheckSettings.parse <audit.engine.check.settings.CheckSettings.parse>`,
+    :meth:`DesignSite.parse <audit.engine.shared.design_site.DesignSite.parse>` and
+    :meth:`Runtime.parse <audit.engine.shared.runtime.Runtime.parse>`); a bad one raises
     :class:`~audit.errors.InputError` naming it.
 
     Parameters
@@ -194,7 +194,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         A progress bar on standard error, or ``progress(done, total, record_id, how)``.
     force : bool
         Start even when the work is estimated beyond the limits of
-        :mod:`audit.engine.guards` (as for :func:`audit.api.run`); InputError otherwise.
+        :mod:`audit.engine.shared.guards` (as for :func:`audit.api.run`); InputError otherwise.
     floor : float
         Where the objects stand: z/H in the building, 0 the ground (the default), 1 the roof.
     building : float, optional
@@ -213,13 +213,13 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     CheckResult
     """
     from audit.api.inputs import procedures_of, settings_fields, suite_of
-    from audit.engine import guards
-    from audit.engine.costs import check_cost
-    from audit.engine.check import run_check
-    from audit.engine.check_settings import CHECK_FIELDS, CheckSettings
-    from audit.engine.design_site import DesignSite
-    from audit.engine.progress import Progress
-    from audit.engine.runtime import Runtime
+    from audit.engine.shared import guards
+    from audit.engine.shared.costs import check_cost
+    from audit.engine.check.pipeline import run_check
+    from audit.engine.check.settings import CHECK_FIELDS, CheckSettings
+    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.progress import Progress
+    from audit.engine.shared.runtime import Runtime
     settings = CheckSettings.parse(**settings_fields(locals(), CHECK_FIELDS))
     chosen_objects = _objects(objects, settings.g)
     progress = check_field.callback("progress", progress, "progress(done, total, record_id, how)")
@@ -227,7 +227,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
                             progress=progress if callable(progress) else None)
     if site is None:
         raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
-    # each record is scaled on its own to the site and the stripes (audit.engine.check), so no
+    # each record is scaled on its own to the site and the stripes (audit.engine.check.pipeline), so no
     # suite scaling first: the records as given
     site = DesignSite.parse(site=site, site_override=True, scale_to_site=False,
                             ntc_site=ntc_site, floor=floor, building=building,

@@ -4,7 +4,7 @@ overturning fragility: :func:`fragility` and its :class:`FragilityResult`."""
 from __future__ import annotations
 
 from audit.api.result_shape import Files, table_html, with_page
-from audit.engine.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
+from audit.engine.shared.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 #: The page of the audit, drawn from its saved CSV files.
@@ -30,7 +30,7 @@ class FragilityResult(Files):
     def table(self):
         """One row per component of the procedure: its fragility against the exact one
         (``fragility-components.csv``)."""
-        from audit.engine.fragility_audit import COMPONENTS_CSV
+        from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
         return self.tables[COMPONENTS_CSV]
 
     @property
@@ -56,7 +56,7 @@ class FragilityResult(Files):
         """The audited components with their *exact* lognormal fragility (the maximum-likelihood
         fit to the exact stripes), in PGV [m/s]: NaN where no fit exists."""
         from procedures.probabilistic import FragilityComponent, LognormalFragility
-        from audit.engine.fragility_audit import COMPONENTS_CSV
+        from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
         return [FragilityComponent(row.component, row.description, "PGV",
                                    LognormalFragility(row.exact_median_m_s, row.exact_beta),
                                    2.0 * row.half_width_m, 2.0 * row.half_height_m)
@@ -64,8 +64,8 @@ class FragilityResult(Files):
 
     def pelicun_csv(self) -> bytes:
         """The exact fragilities in pelicun's FEMA P-58 library layout
-        (:mod:`audit.engine.pelicun_export`): peak floor velocity, median [m/s] and β."""
-        from audit.engine.pelicun_export import pelicun_fragility_csv
+        (:mod:`audit.engine.run.pelicun_export`): peak floor velocity, median [m/s] and β."""
+        from audit.engine.run.pelicun_export import pelicun_fragility_csv
         return pelicun_fragility_csv(self.exact_components())
 
     def _repr_html_(self) -> str:
@@ -81,7 +81,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
               building: float | None = None, building_model: str | None = None,
               building_damping: float = DEFAULT_BUILDING_DAMPING) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
-    multiple PGV stripes (:mod:`audit.engine.fragility_audit`).
+    multiple PGV stripes (:mod:`audit.engine.run.probabilistic_audit`).
 
     Parameters
     ----------
@@ -104,17 +104,17 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     FragilityResult
     """
     from audit.api.inputs import suite_of
-    from audit.engine.fragility_audit import audit_procedure
-    from audit.engine.progress import Progress
+    from audit.engine.run.probabilistic_audit import audit_procedure
+    from audit.engine.shared.progress import Progress
     from audit.errors import InputError
     from procedures.registry import available_procedures
-    from audit.engine import fields as check
+    from audit.engine.shared import fields as check
     found = available_procedures(probabilistic=True)
     progress = check.flag("progress", progress)
     if not isinstance(procedure, str) or procedure not in found:
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
-    from audit.engine.floors import on_floor
+    from audit.engine.shared.floors import on_floor
     from audit.physics.building.floor import Floor
     where = Floor.parse(floor=floor, building=building, building_model=building_model,
                         building_damping=building_damping)

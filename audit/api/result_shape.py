@@ -22,7 +22,7 @@ class Files:
 
     def write(self, out_dir) -> Path:
         """Write every file, the page too, into ``out_dir`` (atomically, together)."""
-        from audit.engine import fields
+        from audit.engine.shared import fields
         from audit.files import write_files_atomically
         out_dir = fields.path("out_dir", out_dir, "a folder")
         write_files_atomically(out_dir, self.files())
@@ -30,7 +30,7 @@ class Files:
 
     def report(self, path) -> Path:
         """Write the HTML page alone to ``path``."""
-        from audit.engine import fields
+        from audit.engine.shared import fields
         from audit.files import write_file_atomically
         path = fields.path("path", path, "a file name")
         write_file_atomically(path, self.files()[self.PAGE])

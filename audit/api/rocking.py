@@ -1,5 +1,5 @@
 """One block and one ground motion: :func:`rock` and its :class:`RockingResponse`; the block
-is the audit's one :class:`~audit.engine.blocks.Block`."""
+is the audit's one :class:`~audit.engine.shared.blocks.Block`."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import math
 
 from audit import G
 from audit.api.result_shape import Files
-from audit.engine import fields as check
-from audit.engine.blocks import Block, within_limits
-from audit.engine.defaults import DEFAULT_FREE_MOTION_S
+from audit.engine.shared import fields as check
+from audit.engine.shared.blocks import Block, within_limits
+from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError
 from audit.physics.block import Restitution, RigidBlock
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
@@ -42,11 +42,11 @@ class RockingResponse(Files):
 
     def __init__(self, block: Block, motion, response: RockingHistory, friction=None,
                  restitution: str = "", floor: dict | None = None):
-        from audit.engine.floors import floor_document
-        from audit.engine.ground_truth import slides
+        from audit.engine.shared.floors import floor_document
+        from audit.engine.shared.ground_truth import slides
         from audit.physics.building.floor import Floor
         self.block, self.motion, self.solution = block, motion, response
-        #: Where the block stands (:func:`audit.engine.floors.floor_document`).
+        #: Where the block stands (:func:`audit.engine.shared.floors.floor_document`).
         self.floor = floor or floor_document(Floor())
         self.overturned = bool(response.overturned)
         self.peak = float(response.peak_rotation)
@@ -121,7 +121,7 @@ class RockingResponse(Files):
         """What ``audit rock`` prints: the block, the excitation, and the response's numbers
         (peaks, impacts, cycles, the friction it needs); with ``show_dimensions`` the block is
         named by its full width × height [m] too."""
-        from audit.engine.rock_words import rocking_text
+        from audit.engine.shared.rock_words import rocking_text
         block_m = f"{self.block.width_m:g}x{self.block.height_m:g}" if show_dimensions else None
         return rocking_text(self.solution, self.motion, self.block.alpha_deg, block_m,
                             self.friction, self.slides)
@@ -181,7 +181,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
     ----------
     block : Block or str
         The block, or its full width and height typed ``WIDTHxHEIGHT`` [m] (``"0.8x2.0"``);
-        within the limits every command applies (:func:`audit.engine.blocks.within_limits`).
+        within the limits every command applies (:func:`audit.engine.shared.blocks.within_limits`).
     motion : str, path, records.GroundMotion, records.RecordEntry or (array, float)
         A record id (of ``records``), a record file, a motion, or ``(acceleration [m/s²],
         dt [s])``.
@@ -197,7 +197,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
     records : str, path or records.RecordSuite, optional
         Where a record id is looked up (default: the default suite).
     force : bool
-        Start even when the estimated work is beyond the limits (:mod:`audit.engine.guards`).
+        Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
     floor, building, building_model, building_damping :
         Where the object stands: z/H (0, the default, is the ground), the building's T1 [s],
         ``shear:N`` or ``continuum:α0`` (default ``continuum:10``) and its damping ratio
@@ -205,7 +205,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         (:mod:`audit.physics.building.floor_motion`).
     """
     from audit.api.inputs import on_floor_of
-    from audit.engine import guards
+    from audit.engine.shared import guards
     if isinstance(block, str):
         block = Block.parse(block)
     if not isinstance(block, Block):

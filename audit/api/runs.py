@@ -10,24 +10,24 @@ from pathlib import Path
 
 import pandas as pd
 
-from audit.engine import fields as check
-from audit.engine.audit_run import AuditRun
+from audit.engine.shared import fields as check
+from audit.engine.run.audit_run import AuditRun
 from audit import G
-from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
+from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_JOBS, DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS,
                                    DEFAULT_SCHEDULER)
 from audit.api.inputs import settings_fields
-from audit.engine.design_site import SITE_FIELDS, DesignSite
-from audit.engine.runtime import Runtime
+from audit.engine.shared.design_site import SITE_FIELDS, DesignSite
+from audit.engine.shared.runtime import Runtime
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
-from audit.engine.settings import AUDIT_FIELDS, AuditSettings
+from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
 from audit.errors import InputWarning
 
 
 def typed(table: pd.DataFrame, file_name: str) -> pd.DataFrame:
     """``table`` of ``file_name`` with its columns typed by the schema (the column guide):
     numbers as floats (NaN where empty), flags as booleans (NA where empty), text as text."""
-    from audit.engine.schemas import GUIDE
+    from audit.engine.shared.schemas import GUIDE
     table = table.copy()
     for column, (unit, _) in GUIDE[file_name].items():
         if column not in table:
@@ -63,14 +63,14 @@ class AuditResult:
     @functools.cached_property
     def summary(self) -> dict:
         """Everything of ``summary.json``, as saved."""
-        from audit.engine.results import read_summary
+        from audit.engine.run.results import read_summary
         return read_summary(self.folder)
 
     @functools.cached_property
     def run(self) -> AuditRun:
         """Everything the audit produced (also ``.spectra``, ``.rocking``, ``.histories``),
         read from its files."""
-        from audit.engine.results import load_run
+        from audit.engine.run.results import load_run
         return load_run(self.folder)
 
     results = property(lambda self: typed(self.run.results, "results.csv"),
@@ -108,14 +108,14 @@ class AuditResult:
     def summary_text(self) -> str:
         """The lines ``audit run`` prints: what was audited where, what could not be, and the
         count of each verdict."""
-        from audit.engine.audit_words import audit_summary_text
+        from audit.engine.run.words import audit_summary_text
         return audit_summary_text(self.summary)
 
     def write(self, out_dir) -> Path:
         """Write the result files and ``report.html`` into ``out_dir`` (atomically, together)."""
         import shutil
 
-        from audit.engine.results import COLUMNS_JSON, DATA_FILES, REPORT_HTML
+        from audit.engine.run.results import COLUMNS_JSON, DATA_FILES, REPORT_HTML
         from audit.files import staged_folder
         out_dir = check.path("out_dir", out_dir, "a folder")
         with staged_folder(out_dir) as staging:
@@ -127,7 +127,7 @@ class AuditResult:
     def report(self, path) -> Path:
         """Write only the self-contained HTML report to ``path``, drawn from the files as saved
         (the rows of the records it shows, read in bounded memory)."""
-        from audit.engine.results import load_run
+        from audit.engine.run.results import load_run
         from audit.files import write_file_atomically
         from reports import render_report
         path = check.path("path", path, "a file name")
@@ -166,9 +166,9 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
     """Audit guideline procedures on a suite of records over a grid of blocks.
 
     Every argument is checked before anything is read or computed (by
-    :meth:`AuditSettings.parse <audit.engine.settings.AuditSettings.parse>`,
-    :meth:`DesignSite.parse <audit.engine.design_site.DesignSite.parse>` and
-    :meth:`Runtime.parse <audit.engine.runtime.Runtime.parse>`); a bad one raises
+    :meth:`AuditSettings.parse <audit.engine.run.settings.AuditSettings.parse>`,
+    :meth:`DesignSite.parse <audit.engine.shared.design_site.DesignSite.parse>` and
+    :meth:`Runtime.parse <audit.engine.shared.runtime.Runtime.parse>`); a bad one raises
     :class:`~audit.errors.InputError` naming it.
 
     Parameters
@@ -213,7 +213,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
         Where the blocks stand: z/H in the building (0 the ground, the default), its
         first-mode period T1 [s], its model (``shear:N`` or ``continuum:α0``, default
         ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
-        motion, the blocks rock on the floor's (:mod:`audit.engine.floors`).
+        motion, the blocks rock on the floor's (:mod:`audit.engine.shared.floors`).
     skip_bad_records : bool
         Audit the readable records of the suite; the unreadable ones are warned about
         (:class:`~audit.errors.InputWarning`) and left out.
@@ -225,7 +225,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
         tables are read (``.results``, ``.run``). Default: the data files in a scratch folder
         kept with the result (``.write(out_dir)`` saves them later).
     force : bool
-        Start even when the estimated work is beyond the limits (:mod:`audit.engine.guards`).
+        Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
     jobs : int
         Threads of the exact solver, or worker processes with ``scheduler="dask"``.
     scheduler : str
@@ -242,11 +242,11 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
     AuditResult
     """
     from audit.api.inputs import procedures_of, suite_of
-    from audit.engine import guards
-    from audit.engine.costs import audit_cost
-    from audit.engine.progress import Progress
-    from audit.engine.results import REPORT_HTML
-    from audit.engine.suite_run import audit_suite, compiles_first
+    from audit.engine.shared import guards
+    from audit.engine.shared.costs import audit_cost
+    from audit.engine.shared.progress import Progress
+    from audit.engine.run.results import REPORT_HTML
+    from audit.engine.run.suite_run import audit_suite, compiles_first
     from audit.files import staged_folder
     given = locals()
     settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))
@@ -298,7 +298,7 @@ def load_result(folder) -> AuditResult:
     -------
     AuditResult
     """
-    from audit.engine.results import checked_summary
+    from audit.engine.run.results import checked_summary
     result = AuditResult(check.path("folder", folder, "the folder of an audit's files"))
     result.summary = checked_summary(result.folder)  # a folder without an audit is refused
     return result
@@ -309,7 +309,7 @@ def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site
                  building: float | None = None, building_model: str | None = None,
                  building_damping: float = DEFAULT_BUILDING_DAMPING):
     """``suite`` with the design site and scaling of the fields of
-    :class:`~audit.engine.design_site.DesignSite`.
+    :class:`~audit.engine.shared.design_site.DesignSite`.
 
     Parameters
     ----------
@@ -321,7 +321,7 @@ def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site
         Where the blocks stand: z/H in the building (0 the ground, the default), its
         first-mode period T1 [s], its model (``shear:N`` or ``continuum:α0``, default
         ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
-        motion, the blocks rock on the floor's (:mod:`audit.engine.floors`).
+        motion, the blocks rock on the floor's (:mod:`audit.engine.shared.floors`).
     """
     return DesignSite.parse(**settings_fields(locals(), SITE_FIELDS)).apply(suite)
 

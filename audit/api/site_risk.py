@@ -1,5 +1,5 @@
 """Risk at a site: hazard curves read from the files of the tools engineers run, and the
-annual rate of overturning of a block (:mod:`audit.engine.risk`)."""
+annual rate of overturning of a block (:mod:`audit.engine.design.risk`)."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ def read_hazard(hazard, site=None, imt: str | None = None):
     imt : str, optional
         ``PGA`` or ``SA(T)``: which curve of a USGS response.
     """
-    from audit.engine import fields as check
+    from audit.engine.shared import fields as check
     from records.hazard import HazardCurve
     from records.hazard import read_hazard as read_file
     if site is not None:
@@ -33,14 +33,14 @@ def read_hazard(hazard, site=None, imt: str | None = None):
 
 def risk(fragility, hazard, site=None, imt: str | None = None):
     """The mean annual rate of overturning of one block at a site, its probability in 50
-    years, and where it comes from (see :mod:`audit.engine.risk`).
+    years, and where it comes from (see :mod:`audit.engine.design.risk`).
 
     Parameters
     ----------
     fragility :
         ``(median_g, beta)``; a row of :attr:`MarginsResult.fragility` (its lognormal fit, of
-        its ``im``); or :class:`audit.engine.risk.LognormalFragility` /
-        :class:`~audit.engine.risk.StripeFragility`.
+        its ``im``); or :class:`audit.engine.design.risk.LognormalFragility` /
+        :class:`~audit.engine.design.risk.StripeFragility`.
     hazard : records.hazard.HazardCurve, str or pathlib.Path
         The curve, or its file (:func:`read_hazard`).
     site, imt :
@@ -48,11 +48,11 @@ def risk(fragility, hazard, site=None, imt: str | None = None):
 
     Returns
     -------
-    audit.engine.risk.OverturningRisk
+    audit.engine.design.risk.OverturningRisk
         ``.annual_rate`` [1/yr], ``.p50``, ``.im_range_90_g``, ``.deaggregation``, ...
     """
-    from audit.engine import fields as check
-    from audit.engine.risk import LognormalFragility, StripeFragility, risk_integral
+    from audit.engine.shared import fields as check
+    from audit.engine.design.risk import LognormalFragility, StripeFragility, risk_integral
     if not isinstance(fragility, (LognormalFragility, StripeFragility)):
         if hasattr(fragility, "get") and "median" in fragility:  # a fragility.csv row
             values, im = (fragility["median"], fragility["beta"]), fragility.get("im")

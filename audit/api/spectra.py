@@ -4,8 +4,8 @@ the design spectra of FEMA 356, UBC 97 and NTC 2018; what ``python -m audit spec
 
 from __future__ import annotations
 
-from audit.engine import fields as check
-from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_DESIGN_DAMPING_PCT,
+from audit.engine.shared import fields as check
+from audit.engine.shared.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_DESIGN_DAMPING_PCT,
                                    DEFAULT_FREE_MOTION_S, DEFAULT_JOBS, DEFAULT_PERIODS,
                                    DEFAULT_RESPONSE_FREE_MOTION_S, DEFAULT_RESTITUTION)
 from audit.errors import InputError
@@ -49,9 +49,9 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     import numpy as np
 
     from audit.api.inputs import on_floor_of
-    from audit.engine import guards
-    from audit.engine.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
-    from audit.engine.grid import size_grid
+    from audit.engine.shared import guards
+    from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
+    from audit.engine.shared.grid import size_grid
     from audit.physics.block import Restitution
     from audit.physics.rocking import rocking_spectrum as spectrum
     force = check.flag("force", force)
@@ -107,8 +107,8 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
     import numpy as np
 
     from audit.api.inputs import on_floor_of
-    from audit.engine import guards
-    from audit.engine.grid import size_grid
+    from audit.engine.shared import guards
+    from audit.engine.shared.grid import size_grid
     from audit.physics.response_spectra import response_spectra as spectra
     force = check.flag("force", force)
     motion, floor_document = on_floor_of(motion, {

@@ -1,10 +1,10 @@
 """Shake-table validation of the exact solver: :func:`validate` and its
-:class:`ValidationResult` (see :mod:`audit.engine.validation_run`)."""
+:class:`ValidationResult` (see :mod:`audit.engine.validation.pipeline`)."""
 
 from __future__ import annotations
 
 from audit.api.result_shape import Files, table_html, with_page
-from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
+from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
 
 
 class ValidationResult(Files):
@@ -36,7 +36,7 @@ class ValidationResult(Files):
     @property
     def methods_statement(self) -> str:
         """What a report's Methods says of this validation and its limits."""
-        from audit.engine.validation_run import methods_statement
+        from audit.engine.validation.pipeline import methods_statement
         return methods_statement(self.fits_table, self.scores)
 
     def summary_text(self) -> str:
@@ -82,17 +82,17 @@ def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
         Free rocking simulated after each test motion [s], ≥ 0.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, test_id)``.
-    settings : audit.engine.validation_grid.ValidationSettings, optional
+    settings : audit.engine.validation.grid.ValidationSettings, optional
         Every setting (grid, band-pass, lapse); overrides ``folds``, ``jobs``, ``free_motion_s``.
 
     Returns
     -------
     ValidationResult
     """
-    from audit.engine import fields as check
-    from audit.engine.progress import Progress
-    from audit.engine.validation_grid import ValidationSettings
-    from audit.engine.validation_run import run_validation
+    from audit.engine.shared import fields as check
+    from audit.engine.shared.progress import Progress
+    from audit.engine.validation.grid import ValidationSettings
+    from audit.engine.validation.pipeline import run_validation
     from audit.errors import InputError
     from records.campaign import campaign_geometry, read_campaign
     folder = check.path("folder", folder, "the campaign folder")

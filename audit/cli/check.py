@@ -7,7 +7,7 @@ import time
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
+from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
                                    DEFAULT_JOBS)
 from audit.errors import InputError
 

@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
+from audit.engine.shared.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
 
 
 def add_parser(sub):

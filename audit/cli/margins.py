@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
+from audit.engine.shared.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
                                    DEFAULT_MARGINS_SIZES, DEFAULT_SITE_LEVEL, SITE_LEVELS,
                                    alpha_text, sizes_text)
 from audit.errors import InputError

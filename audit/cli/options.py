@@ -14,7 +14,7 @@ import sys
 from typing import TYPE_CHECKING
 from pathlib import Path
 
-from audit.engine.defaults import DEFAULT_RISK_TARGET
+from audit.engine.shared.defaults import DEFAULT_RISK_TARGET
 from audit.errors import InputError
 
 if TYPE_CHECKING:  # numpy is imported where a grid is parsed, not at start-up
@@ -186,7 +186,7 @@ def add_scaling_options(parser):
 
 
 def add_restitution_option(parser):
-    from audit.engine.defaults import DEFAULT_RESTITUTION
+    from audit.engine.shared.defaults import DEFAULT_RESTITUTION
     parser.add_argument("--restitution", default=DEFAULT_RESTITUTION, metavar="housner|VALUE|xFACTOR",
                         help="impact model: Eq. 4.8 (housner, default), a fixed coefficient of "
                              "restitution r, or a multiple of Eq. 4.8 (e.g. x0.9)")
@@ -213,7 +213,7 @@ def add_ground_truth_options(parser):
 
 def add_scheduler_options(parser):
     """``--scheduler`` and ``--resume``, for commands whose unit of work is one record."""
-    from audit.engine.defaults import DEFAULT_SCHEDULER
+    from audit.engine.shared.defaults import DEFAULT_SCHEDULER
     parser.add_argument("--scheduler", default=DEFAULT_SCHEDULER,
                         metavar="local|dask|tcp://HOST:PORT",
                         help="where records are computed: this process, a Dask LocalCluster "
@@ -249,7 +249,7 @@ def interrupted(out_dir: Path, out_dir_existed: bool) -> int:
 def add_force_option(parser):
     parser.add_argument("--force", action="store_true",
                         help="start even when the estimated work is beyond the limits "
-                             "(see audit/engine/guards.py)")
+                             "(see audit/engine/shared/guards.py)")
 
 
 
@@ -336,8 +336,8 @@ def design_site(args) -> dict:
 
 def add_floor_options(parser):
     """``--floor``, ``--building``, ``--building-model``, ``--building-damping``: the floor the
-    object stands on (:mod:`audit.engine.floors`)."""
-    from audit.engine.defaults import DEFAULT_BUILDING_DAMPING, DEFAULT_BUILDING_MODEL
+    object stands on (:mod:`audit.engine.shared.floors`)."""
+    from audit.engine.shared.defaults import DEFAULT_BUILDING_DAMPING, DEFAULT_BUILDING_MODEL
     parser.add_argument("--floor", type=number("must lie between 0 and 1", 0.0, 1.0),
                         default=0.0, metavar="Z/H",
                         help="relative height of the object's floor in the building: 0 the "

@@ -7,7 +7,7 @@ import math
 import sys
 
 from audit.cli import options, outputs
-from audit.engine.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_RESTITUTION
+from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_RESTITUTION
 from audit.errors import InputError
 
 

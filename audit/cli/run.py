@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.defaults import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
 
 DEFAULT_OUT = "audit-out"

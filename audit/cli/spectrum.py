@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from audit.cli import options, outputs
-from audit.engine.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+from audit.engine.shared.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_PERIODS, DEFAULT_RESPONSE_FREE_MOTION_S, alpha_text,
                                    sizes_text)
 

@@ -89,7 +89,7 @@ class _UserWide(_StampedByAllKernels, caching.UserWideCacheLocator):
 # tried first, in numba's own order of places; any other function finds numba's locators as
 # before. The list is not public API (CacheImpl in recent numba, _CacheImpl in older ones): a
 # numba without it keeps its own stamps, as before this module, rather than fail to import
-# (tests/test_kernel_cache.py fails there, so that it is seen).
+# (tests/physics/test_kernel_cache.py fails there, so that it is seen).
 _IMPLEMENTATION = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
 _LOCATORS = getattr(_IMPLEMENTATION, "_locator_classes", None)
 if isinstance(_LOCATORS, list) and _InTree not in _LOCATORS:

@@ -20,7 +20,7 @@ These equations were not read from the paper (no copy was at hand): they were de
 the beam equation and its four boundary conditions, and checked against the two limits whose
 modes are textbook closed forms (α0 → 0: the flexural cantilever, 1 + cos γ cosh γ = 0;
 α0 → ∞: the shear cantilever, T_i/T_1 = 1/(2i − 1), Γ_i = 4(−1)^{i+1}/((2i − 1)π)) and against a
-finite-difference solution of the beam equation (tests/test_floors.py).
+finite-difference solution of the beam equation (tests/physics/test_floors.py).
 
 Everything is evaluated divided by cosh β (and with e^{β(x−1)} for the growing exponential), so
 that α0 up to 1000 neither overflows nor cancels.

@@ -1,0 +1,1 @@
+"""The check of objects at a site (``audit check``)."""

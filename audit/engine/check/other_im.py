@@ -1,0 +1,65 @@
+"""The exact P(overturn) at the site at the other standard intensity measure: S_a(1 s) beside
+PGA, PGA beside any S_a(T).
+
+P(overturn | site) depends on the IM the records are scaled on: scaled to one S_a(1 s) the
+records spread in PGA, and the reverse, so the same site gives a different P (three-fold for
+a slender block). The IM to use is that of the user's hazard (the hazard curve or the design
+value the site's intensity comes from); the other is shown so the difference is seen, not
+hidden. The records are scaled to the other IM's stripes around the design spectrum's value
+at it and solved exactly, as for the chosen IM.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from audit.engine.check.widths import Family
+from audit.engine.shared.intensity import IntensityMeasure
+from audit.engine.design.lognormal_fit import fit_lognormal
+
+#: The other standard IM of each kind.
+PGA_IM = IntensityMeasure("pga")
+SA1_IM = IntensityMeasure("sa", 1.0)
+
+
+def other_im(im: IntensityMeasure) -> IntensityMeasure:
+    """PGA beside an S_a(T); S_a(1 s) beside PGA."""
+    return SA1_IM if im.kind == "pga" else PGA_IM
+
+
+def other_im_answers(family: Family, objects, design_site: dict, levels_of) -> list[dict]:
+    """Per object, ``{im, site_im, p_overturn_at_site, median, beta}`` at the other IM.
+
+    Parameters
+    ----------
+    family : audit.engine.check.widths.Family
+        The check's records, ready to solve at any stripes.
+    objects : sequence of audit.engine.check.objects.CheckObject
+    design_site : dict
+        S_XS, S_X1 [g]: the site's intensity at the other IM.
+    levels_of : callable
+        ``levels_of(site_im)`` → the stripes around a site's intensity.
+    """
+    settings = family.settings
+    im = other_im(settings.im)
+    site_im = im.of_design_site(design_site)
+    levels = levels_of(site_im)
+    intensity = {e.id: im.of_record(e.motion, settings.free_motion_s) for e in family.entries}
+    theirs = replace(family, levels=levels, intensity=intensity)
+    overturned = theirs.overturned([o.height_m for o in objects], [o.width_m for o in objects])
+    out = []
+    for b in range(len(objects)):
+        counts = overturned[:, :, b].sum(axis=0)
+        try:
+            fit = fit_lognormal(levels, np.full(levels.size, overturned.shape[0]), counts)
+            p, median, beta = float(fit.probability(site_im)), fit.median, fit.beta
+        except ValueError:  # no stripe overturns it, or every record at every stripe does
+            p, median, beta = (1.0 if counts.min() == overturned.shape[0] else 0.0), None, None
+        out.append({"im": im.name, "im_unit": im.unit, "site_im": site_im,
+                    "p_overturn_at_site": p, "median": median, "beta": beta})
+    return out
+
+
+__all__ = ["other_im", "other_im_answers"]

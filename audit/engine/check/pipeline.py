@@ -1,0 +1,365 @@
+"""``audit check``: does this object, at this site, pass each guideline; how likely is it really
+to overturn; how wide must it be.
+
+For every object (:mod:`audit.engine.check.objects`) and a FEMA 356 site (S_XS, S_X1 at the
+hazard level the user assesses), the suite's records are each scaled to the site's intensity
+(S_X1 for the default S_a(1 s); the design spectrum at the intensity measure otherwise; with a
+hazard curve and a return period, the curve's, while the guidelines keep the design spectrum:
+:mod:`audit.engine.check.site`) and to :data:`SITE_STRIPES` stripes either side, a factor :data:`STRIPE_STEP` apart: the design-level
+audit's unit of work (:func:`audit.engine.design.stripes.record_stripes`) on a stripe set around the
+site, not its whole grid. From it, per object:
+
+* the exact multiple-stripe fragility (:func:`~audit.engine.design.lognormal_fit.fit_lognormal`) and its
+  P(overturn) at the site's intensity, with a band from a bootstrap over records
+  (:func:`~audit.engine.design.bootstrap.bootstrap_lognormal`);
+* per procedure and limit state, its verdict at the site by its own acceptance criterion,
+  demand against capacity (:mod:`audit.engine.check.limits`: NTC 2018's SLV and SLC on d/d₀,
+  θ against α, Housner's energy check; the records' demands made one by the guideline's rule
+  for a suite), the exact P at the site of exceeding that same limit, and where it draws its
+  line on the stripes;
+* the friction each record needs at the site and, on a base of friction μ, which mode governs
+  (:mod:`audit.engine.check.sliding`);
+* the width each guideline requires at the object's height, against the exact widths for
+  P(overturn) at the site ≤ 10 % and ≤ 50 % (:mod:`audit.engine.check.widths`): each record's
+  bracket found with its judgement, the brackets that matter halved after.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from audit.engine.shared.blocks import BlockList
+from audit.engine.check.risk import hazard_document, object_risk, p50_of_blocks
+from audit.engine.check.settings import CheckSettings
+from audit.engine.check.entries import rule_width
+from audit.engine.check.site import site_intensity
+from audit.engine.check.sliding import required_friction, sliding_answer
+from audit.engine.check.words import sentence
+from audit.engine.check.judgement import at_site, judge
+from audit.engine.check.limits import MEDIAN, limit_readings, suite_rule
+from audit.engine.check.widths import (Family, accepted_width, exact_required_widths,
+                                      overturns_at, probability_at_site)
+from audit.engine.check.other_im import other_im_answers
+from audit.engine.check.component_checks import component_entries
+from audit.engine.shared.floors import floor_at_site
+from audit.engine.design.bootstrap import bootstrap_lognormal
+from audit.engine.check.width_family import width_answer
+from audit.engine.design.lognormal_fit import fit_lognormal
+from audit.engine.design.stripes import RecordStripes, StripeSettings, half_crossing, record_stripes
+from audit.engine.design.risk import LognormalFragility, StripeFragility
+from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.scheduler import computed_parts, open_scheduler
+from audit.errors import InputError, InputWarning
+from audit.physics.building.floor import Floor
+from procedures.context import RecordContext
+from records.sites import NTC2018_SITE_KEYS
+
+#: Stripes either side of the site's intensity, and the ratio between neighbours: 0.25–4 ×.
+SITE_STRIPES = 4
+STRIPE_STEP = math.sqrt(2.0)
+#: Exact P(overturn) at the site that the exact required widths target.
+TARGETS = (0.10, 0.50)
+#: Intensities at which the bootstrap band is drawn, as multiples of the site's.
+BAND_SPAN = (0.2, 5.0)
+BAND_POINTS = 61
+
+
+def check_levels(site_im: float) -> np.ndarray:
+    """The stripes of a check: the site's intensity × STRIPE_STEP^k, |k| ≤ SITE_STRIPES (the
+    site's own level exactly at the middle)."""
+    return site_im * STRIPE_STEP ** np.arange(-SITE_STRIPES, SITE_STRIPES + 1)
+
+
+@dataclass(frozen=True)
+class CheckWork:
+    """What every record's part of a check depends on.
+
+    Attributes
+    ----------
+    stripes : audit.engine.design.stripes.StripeSettings
+        The stripes (the site's intensity its ``design_im``) and the objects as blocks.
+    objects : tuple of audit.engine.shared.blocks.Block
+    per_record : tuple of str
+        Procedures judged on every record (those reading the record); the others read only the
+        site and are judged once.
+    """
+
+    stripes: StripeSettings
+    objects: tuple
+    per_record: tuple
+
+    @property
+    def jobs(self) -> int:
+        return self.stripes.jobs
+
+    def with_jobs(self, jobs: int) -> CheckWork:
+        """This work with ``jobs`` solver threads (a Dask worker's one)."""
+        return replace(self, stripes=replace(self.stripes, jobs=jobs))
+
+    def as_dict(self) -> dict:
+        return {**self.stripes.as_dict(), "kind": "check", "per_record": list(self.per_record)}
+
+
+@dataclass
+class CheckRecord:
+    """One record's part of a check: its stripes, the judgements of the procedures that read
+    it (None where a procedure cannot evaluate the record), and its context, whose cached
+    spectra the width searches read again, and the friction each object's pure-rocking response
+    needs at the site's intensity (:mod:`audit.engine.check.sliding`)."""
+
+    stripes: RecordStripes
+    judged: dict
+    context: RecordContext
+    required_friction: np.ndarray | None = None
+
+
+def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
+    """The unit of work of a check: one record's stripes, then each record-reading procedure's
+    judgement at the site, on the same cached spectra. A check reads only verdicts, so its
+    displacement spectra are computed only where the iterations read them (at each object's
+    damping and, in the width search, at each width's)."""
+    margins = settings.stripes
+    context = RecordContext(entry, margins.free_motion_s, margins.jobs).on_demand()
+    stripes = record_stripes(entry, procedures, margins, context)
+    scaled, scaled_context = at_site(entry, context, stripes.intensity, margins.design_im)
+    judged = {}
+    for proc in procedures:
+        if proc.name in settings.per_record and proc.unmet_requirements(scaled) is None:
+            judged[proc.name] = judge(proc, scaled, scaled_context, settings.objects,
+                                      margins.restitution, margins.g)
+    site_level = margins.levels[len(margins.levels) // 2]  # the site's, mid-stripes
+    friction = required_friction(entry.motion, site_level / stripes.intensity, margins.blocks,
+                                 margins.restitution, margins.g, margins.free_motion_s,
+                                 margins.jobs)
+    return CheckRecord(stripes, judged, context, friction)
+
+
+@dataclass
+class CheckRun:
+    """What a check produced: per object, the exact answer and each procedure's (the fields of
+    ``check.json``), and the run's description."""
+
+    objects: list
+    summary: dict
+
+
+def run_check(procedures, suite, objects, settings: CheckSettings,
+              runtime: Runtime, floor: Floor = Floor()) -> CheckRun:
+    """Check every object at the suite's design site (see the module).
+
+    Parameters
+    ----------
+    procedures : list of procedures.Procedure
+    suite : records.RecordSuite
+        Its ``design_site`` (S_XS, S_X1 [g]) is the site.
+    objects : sequence of audit.engine.shared.blocks.Block
+    settings : audit.engine.check.settings.CheckSettings
+        With a hazard curve, also the risk (:mod:`audit.engine.check.risk`).
+    runtime : audit.engine.shared.runtime.Runtime
+        ``jobs``, ``scheduler`` and ``progress`` (a check keeps no parts to resume).
+    floor : audit.physics.building.floor.Floor
+        Where the objects stand, for the component provisions' static checks
+        (:mod:`audit.engine.check.component_checks`, ``component_provisions`` of each object).
+    """
+    from audit.engine.check.summary import (CheckFrame, ObjectFindings, object_answer,
+                                            run_summary)
+    entries = [entry for entry in suite if entry.motion is not None]
+    if not entries:
+        raise InputError(f"records: no record of {suite.description} has a file", "records")
+    im, restitution, g = settings.im, settings.restitution, settings.g
+    site = site_intensity(im, suite.design_site, settings.hazard,
+                          settings.site_return_period_years)
+    site_im, design_im = site.site_im, site.design_im  # the exact answer's; the guidelines'
+    levels = check_levels(site_im)
+    objects = tuple(objects)
+    jobs, progress = runtime.jobs, runtime.progress
+    per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
+    work = CheckWork(StripeSettings(im, tuple(levels.tolist()), design_im,
+                                    BlockList.of(named=objects), restitution, g,
+                                    settings.free_motion_s, jobs),
+                     objects, per_record)
+    curve = settings.hazard
+    targets = TARGETS + ((settings.risk_target,) if curve is not None else ())
+
+    def measure(overturned, levels):  # P at the site for TARGETS, P in 50 years for the risk
+        p_site = probability_at_site(overturned, levels, site_im)
+        if curve is None:
+            return p_site
+        return np.column_stack([p_site] * len(TARGETS) + [p50_of_blocks(overturned, levels,
+                                                                         curve)])
+
+    with open_scheduler(runtime.scheduler, jobs) as executor:
+        parts, _, where = computed_parts(check_record, entries, procedures, work, executor,
+                                         progress=progress)
+        _stage(progress, "the exact width for P(overturn) ≤ 10 % and ≤ 50 % at each height"
+               + (" and for the risk target" if curve is not None else ""))
+        intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
+        family = Family(entries, levels, intensity, settings, jobs, executor, progress)
+        solved = []
+        widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure,
+                                       solved)
+        _stage(progress, "the exact P(overturn) at the other standard intensity measure")
+        others = other_im_answers(family, objects, suite.design_site, check_levels)
+        contexts = {}  # records scaled to the site, on the spectra their parts computed
+
+        def site_context(i: int):
+            if i not in contexts:
+                contexts[i] = at_site(entries[i], parts[i].context, intensity[entries[i].id],
+                                      design_im)
+            return contexts[i]
+
+        # a procedure reading only the site: one answer for every record, judged on the first
+        site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
+                       for p in procedures if p.name not in per_record
+                       and p.unmet_requirements(site_context(0)[0]) is None}
+        _stage(progress, "the width each guideline requires at each object's height")
+        exact_over = np.stack([part.stripes.exact_overturned for part in parts])
+        exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
+        judged = [[_guideline(proc, b, obj, parts, levels, site_judged, site_context, settings)
+                   for proc in procedures] for b, obj in enumerate(objects)]
+        guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
+                         else {})
+    frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],
+                       settings.limit_state)
+    answers = []
+    for b, obj in enumerate(objects):
+        over = exact_over[:, :, b]  # (record, stripe)
+        family_widths = _family_widths(obj, over, solved, levels, site_im)
+        try:
+            fit = fit_lognormal(levels, np.full(levels.size, len(entries)), over.sum(axis=0))
+        except ValueError:
+            fit = None
+        boot = (bootstrap_lognormal(levels, over) if settings.seed is None
+                else bootstrap_lognormal(levels, over, seed=settings.seed))
+        risk = None
+        if curve is not None:
+            fitted = LognormalFragility(fit.median, fit.beta) if fit else None
+            counted = StripeFragility(levels, over.mean(axis=0))
+            width = widths[b][len(TARGETS)]
+            risk = object_risk(fitted, counted, curve, settings.risk_target,
+                               float(width) if math.isfinite(width) else None)
+        answers.append(object_answer(
+            ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
+                           guideline_p50.get(b, {}), exact_theta[:, :, b], family_widths,
+                           others[b]),
+            frame))
+        sliding = sliding_answer([part.required_friction[b] for part in parts], frame.record_ids,
+                                 obj.alpha_deg, settings.friction)
+        answer = answers[-1]
+        answer["exact"]["site_return_period_years"] = site.return_period_years
+        answer.update(sliding=sliding, sentence=f"{sentence(answer, im)} {sliding['text']}")
+    design_site = suite.design_site or {}
+    ntc = entries[0].site
+    ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
+                if all(ntc.get(key) is not None for key in NTC2018_SITE_KEYS) else None)
+    for obj, answer in zip(objects, answers):
+        answer["component_provisions"] = [
+            {**entry, "exact_p_exceed": answer["exact"]["p_overturn_at_site"]}
+            for entry in component_entries(obj.width_m, obj.height_m,
+                                           site=(design_site["sxs_g"], design_site["sx1_g"]),
+                                           ntc_site=ntc_site, floor=floor)]
+    if curve is not None:
+        _warn_truncated(answers, curve)
+    summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
+    summary.update(design_im=design_im, site_hazard=site.as_dict(curve),
+                   friction=settings.friction)
+    summary["floor"] = floor_at_site(suite, entries, intensity, site_im)
+    if curve is not None:
+        summary["hazard"] = hazard_document(curve, settings.risk_target)
+    return CheckRun(answers, summary)
+
+
+def _family_widths(obj, over, solved, levels, site_im):
+    """The object's height as one fragility family (:mod:`audit.engine.check.width_family`), fitted on
+    the object's own outcomes and every width solved at its height."""
+    widths, outcomes = [obj.width_m], [over[:, :, None]]
+    for heights, solved_widths, overturned in solved:
+        mine = heights == obj.height_m
+        widths += solved_widths[mine].tolist()
+        outcomes.append(overturned[:, :, mine])
+    return width_answer(widths, levels, np.concatenate(outcomes, axis=2), site_im, TARGETS,
+                        obj.height_m)
+
+
+def _stage(progress, text: str) -> None:
+    if progress is not None and hasattr(progress, "stage"):
+        progress.stage(text)
+
+
+def _guideline(proc, b, obj, parts, levels, site_judged, site_context, settings) -> tuple:
+    """(procedure, its judgements of object ``b``, its line on the stripes, its required
+    width [m] by the median of the records, by limit state the width of an entry whose suite
+    rule is another (:func:`~audit.engine.check.entries.rule_width`), whether it reads only
+    the site)."""
+    records = ([0] if proc.name in site_judged else
+               [i for i, part in enumerate(parts) if proc.name in part.judged])
+    mine = ([site_judged[proc.name]] if proc.name in site_judged
+            else [parts[i].judged[proc.name] for i in records])
+    evaluated = np.array([part.stripes.evaluated[proc.name] for part in parts])
+    fraction = (np.mean([part.stripes.predicted[proc.name][:, b]
+                         for part, ok in zip(parts, evaluated) if ok], axis=0)
+                if evaluated.any() else None)
+    line = half_crossing(levels, fraction) if fraction is not None else math.nan
+    width = math.nan
+    if mine:
+        def refine(which, widths):
+            return [overturns_at(proc, *site_context(records[k]), obj, float(w),
+                                 settings.restitution, settings.g)
+                    for k, w in zip(which, widths)]
+        width = accepted_width([j.width_low[b] for j in mine],
+                               [j.width_high[b] for j in mine], refine)
+    rule_widths = {}
+    rule = suite_rule(proc.name, len(records))
+    if mine and proc.name not in site_judged and rule != MEDIAN:
+        for state in {r.limit_state for r in mine[0].readings[b]}:
+            rule_widths[state] = rule_width(
+                lambda w, state=state: _state_readings(proc, state, obj, w, records,
+                                                       site_context, settings), obj, rule)
+    return proc, mine, line, width, rule_widths, proc.name in site_judged
+
+
+def _state_readings(proc, state, obj, width_m, records, site_context, settings):
+    """The records' demands at limit state ``state`` of the object made ``width_m`` wide, and
+    its capacity."""
+    block = obj.with_width(width_m)
+    alpha = math.radians(block.alpha_deg)
+    p = np.array([2.0 * math.pi / block.size_s])
+    readings = []
+    for i in records:
+        entry, context = site_context(i)
+        evaluation = proc.evaluate_for_verdict(entry, p, alpha,
+                                               float(settings.restitution.r(alpha)),
+                                               context.on_demand(), settings.g)
+        readings += [r for r in limit_readings(evaluation, alpha) if r.limit_state == state]
+    return [r.demand for r in readings], readings[0].capacity
+
+
+def _guideline_risk(family: Family, objects, judged, curve) -> dict:
+    """P in 50 years of each object at the width each guideline requires, {object: {procedure
+    name: P}}: every such block solved together."""
+    pairs = [(b, proc.name, width) for b, row in enumerate(judged)
+             for proc, _, _, width, _, _ in row if math.isfinite(width) and width > 0]
+    out = {b: {} for b in range(len(objects))}
+    if pairs:
+        overturned = family.overturned([objects[b].height_m for b, _, _ in pairs],
+                                       [w for _, _, w in pairs])
+        for (b, name, _), p50 in zip(pairs, p50_of_blocks(overturned, family.levels, curve)):
+            out[b][name] = float(p50)
+    return out
+
+
+def _warn_truncated(answers, curve) -> None:
+    truncated = [a["name"] for a in answers if a["risk"]["truncated"]]
+    if truncated:
+        warnings.warn(f"hazard: {curve.source}: the curve stops below the fragility's median "
+                      f"of {', '.join(truncated)}: their annual rate is a lower bound "
+                      "(check.json risk.annual_rate_upper bounds it)", InputWarning,
+                      stacklevel=3)
+
+
+__all__ = ["run_check", "CheckRun", "CheckWork", "check_record", "check_levels",
+           "SITE_STRIPES", "STRIPE_STEP", "TARGETS"]

@@ -1,0 +1,281 @@
+"""How wide an object of a given height must be: the exact width for a target P(overturn) at
+the site, and the width each guideline accepts.
+
+Exact: the objects of one height and any width form a family; each member's multiple-stripe
+fragility (the suite's records scaled to the check's stripes, a lognormal fitted to the counts)
+gives P(overturn) at the site's intensity, P(w). The required width for a target is the
+smallest width above which P(w) stays within the target on a scan of widths geometric from
+:data:`SCAN_FRACTIONS` of the height, its last crossing then bisected (in ln w, every record
+solved at each midpoint) to :data:`WIDTH_TOLERANCE`: a root of P(w) = target, not a point of
+an α grid.
+
+Guideline: per record scaled to the site's intensity, the narrowest width c_r the guideline does
+not predict overturning for (its answer is taken as monotone in width for one record); it accepts
+a width when it predicts overturning for at most half the records it can evaluate, so its
+required width is the ⌈n/2⌉-th smallest c_r. Each c_r is first bracketed by stepping out from
+the object's width (:func:`guideline_bracket`); only the brackets that can hold that order
+statistic are then halved (:func:`accepted_width`): each try of a procedure whose damping
+depends on α (Priestley's β(r(α))) reads a new spectrum of the record.
+"""
+
+from __future__ import annotations
+
+import math
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.stats import norm
+
+from audit.engine.design.lognormal_fit import lognormal_fits
+from audit.engine.shared.scheduler import computed_parts
+from audit.physics.rocking import rocking_blocks
+from procedures.overturning import overturning_predictions
+
+#: Widths scanned, as fractions of the height: the first and last, and how many in between.
+SCAN_FRACTIONS = (0.03, 0.95)
+SCAN_WIDTHS = 12
+#: Relative precision of a required width (0.5 %).
+WIDTH_TOLERANCE = 0.005
+#: Step of the guideline's search out from the object's width, as a ratio of widths, and the
+#: relative precision of its bisection (2 %): each step of a procedure whose damping depends on
+#: α (Priestley's β(r(α))) reads a new spectrum of the record.
+GUIDELINE_STEP = 1.5
+GUIDELINE_TOLERANCE = 0.02
+#: Blocks (each solved at every stripe) from which a pass of the width search reports each
+#: record done: a long inventory's passes take minutes, a few objects' a moment.
+PROGRESS_BLOCKS = 1000
+
+
+@dataclass(frozen=True)
+class FamilySettings:
+    """Blocks given one by one (``size_s[i]``, ``alpha_deg[i]``) at every stripe of a check.
+
+    ``intensity`` holds each record's intensity (record id, value), so each record is scaled to
+    the stripes exactly as for the object's own fragility.
+    """
+
+    size_s: tuple
+    alpha_deg: tuple
+    levels: tuple
+    intensity: tuple
+    restitution: object
+    g: float
+    free_motion_s: float
+    jobs: int
+
+
+def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
+    """Exact overturning of the blocks of ``settings`` under one record scaled to each stripe,
+    shaped (stripe, block). The stripes share ``settings.jobs`` threads as the blocks of each
+    do: a bisection solves one or two blocks, which alone would leave all threads but one
+    idle (every block is solved alone, so the values do not depend on it)."""
+    intensity = dict(settings.intensity)[entry.id]
+
+    def overturned(level):
+        return rocking_blocks(entry.motion.scaled(float(level / intensity)), settings.size_s,
+                              np.radians(settings.alpha_deg), r=settings.restitution,
+                              g=settings.g, free_motion_s=settings.free_motion_s,
+                              jobs=settings.jobs).overturned
+
+    pool = ThreadPoolExecutor(max(1, settings.jobs))
+    try:
+        return np.stack(list(pool.map(overturned, settings.levels)))
+    finally:  # on an interrupt nothing waits for the stripes not started
+        pool.shutdown(wait=False, cancel_futures=True)
+
+
+def probability_at_site(overturned, levels, site_im: float) -> np.ndarray:
+    """P(overturn) at ``site_im`` of each block's fitted fragility; ``overturned`` is shaped
+    (record, stripe, block)."""
+    counts = overturned.sum(axis=0).T  # (block, stripe)
+    medians, betas = lognormal_fits(levels, overturned.shape[0], counts)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = norm.cdf(np.log(site_im / medians) / betas)
+    return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, p))
+
+
+def required_width(measure, heights_m, targets, scan=SCAN_FRACTIONS, count=SCAN_WIDTHS,
+                   tolerance=WIDTH_TOLERANCE) -> np.ndarray:
+    """The smallest width above which the measure stays ≤ each target, per height (see the
+    module).
+
+    Parameters
+    ----------
+    measure : callable
+        ``measure(heights_m, widths_m)`` → what each target limits (P(overturn) at the site, or
+        P in 50 years) for each (height, width) pair (arrays of one length), shaped (pair,) when
+        one measure serves every target or (pair, target); the expensive step: called once for
+        the scan and once per halving, with every open bracket together.
+    heights_m : array
+        Heights of the families [m].
+    targets : sequence of float
+        Target probabilities [-].
+    scan, count, tolerance :
+        Scanned widths (fractions of the height, first and last, and how many) and the
+        relative precision of the answer.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shaped (height, target) [m]: the narrowest scanned width where the measure is already
+        within the target there; NaN where it exceeds the target still at the widest.
+    """
+    heights = np.asarray(heights_m, dtype=float)
+    fractions = np.geomspace(scan[0], scan[1], count)
+    widths = heights[:, None] * fractions[None, :]
+
+    def measured(h, w):
+        values = np.asarray(measure(h, w), dtype=float)
+        return np.broadcast_to(values.reshape(len(w), -1), (len(w), len(targets)))
+
+    p = measured(np.repeat(heights, count), widths.ravel()).reshape(*widths.shape, len(targets))
+    pairs = [(h, t) for h in range(heights.size) for t in range(len(targets))]
+    low = np.full(len(pairs), np.nan)
+    high = np.full(len(pairs), np.nan)
+    for k, (h, t) in enumerate(pairs):
+        over = np.flatnonzero(p[h, :, t] > targets[t])
+        if over.size == 0:
+            high[k] = widths[h, 0]
+        elif over[-1] < count - 1:
+            low[k], high[k] = widths[h, over[-1]], widths[h, over[-1] + 1]
+    limit = np.array([targets[t] for _, t in pairs])
+    height_of = np.array([heights[h] for h, _ in pairs])
+    target_of = np.array([t for _, t in pairs])
+    while True:
+        open_ = np.flatnonzero(np.isfinite(low) & (high / low > 1.0 + tolerance))
+        if not open_.size:
+            break
+        middle = np.sqrt(low[open_] * high[open_])
+        values = measured(height_of[open_], middle)[np.arange(open_.size), target_of[open_]]
+        above = values > limit[open_]
+        low[open_[above]] = middle[above]
+        high[open_[~above]] = middle[~above]
+    return high.reshape(heights.size, len(targets))
+
+
+@dataclass(frozen=True)
+class Family:
+    """The records of a check, ready to solve any object of any width at every stripe.
+
+    Attributes
+    ----------
+    entries : list of records.RecordEntry
+    levels : numpy.ndarray
+        The check's stripes [unit of its intensity measure].
+    intensity : dict
+        Each record's intensity (record id → value), so each is scaled to the stripes exactly
+        as for the object's own fragility.
+    settings : audit.engine.check.settings.CheckSettings
+    jobs : int
+    scheduler :
+        An open scheduler (:func:`~audit.engine.shared.scheduler.open_scheduler`).
+    progress : callable, optional
+        ``progress(done, total, record_id, how)`` after each record of a pass of
+        :data:`PROGRESS_BLOCKS` blocks or more.
+    """
+
+    entries: list
+    levels: np.ndarray
+    intensity: dict
+    settings: object
+    jobs: int
+    scheduler: object
+    progress: object = None
+
+    def overturned(self, heights_m, widths_m) -> np.ndarray:
+        """Exact overturning of the block of each (height, width) pair [m] under every record at
+        every stripe, shaped (record, stripe, block)."""
+        from audit.engine.shared.blocks import Block
+        g = self.settings.g
+        blocks = [Block.of_dimensions(w, h, g=g) for h, w in zip(heights_m, widths_m)]
+        work = FamilySettings(tuple(b.size_s for b in blocks),
+                              tuple(b.alpha_deg for b in blocks), tuple(self.levels),
+                              tuple(self.intensity.items()), self.settings.restitution, g,
+                              self.settings.free_motion_s, self.jobs)
+        parts, _, _ = computed_parts(record_family, self.entries, [], work, self.scheduler,
+                                     progress=(self.progress if len(blocks) >= PROGRESS_BLOCKS
+                                               else None))
+        return np.stack(parts)
+
+
+def exact_required_widths(family: Family, heights_m, targets, measure,
+                          solved: list | None = None) -> np.ndarray:
+    """:func:`required_width` of the exact fragility: ``measure(overturned, levels)`` → what
+    each target limits, per block (shaped (block,) or (block, target)), from the records'
+    outcomes at the stripes (:meth:`Family.overturned`); widths [m] shaped (height, target).
+    Every solve is appended to ``solved`` as (heights, widths, outcomes (record, stripe,
+    block)), for the family fit (:mod:`audit.engine.check.width_family`)."""
+    def measured(heights, widths):
+        overturned = family.overturned(heights, widths)
+        if solved is not None:
+            solved.append((np.asarray(heights, dtype=float), np.asarray(widths, dtype=float),
+                           overturned))
+        return measure(overturned, family.levels)
+
+    return required_width(measured, heights_m, targets)
+
+
+def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g: float) -> bool:
+    """Whether ``procedure`` predicts overturning for the object made ``width_m`` wide under
+    ``entry`` (a record scaled to the site, ``context`` its spectra)."""
+    block = obj.with_width(width_m)
+    alpha = math.radians(block.alpha_deg)
+    # the verdict alone: the iteration reads the record's spectrum at this α's damping only
+    # where it goes (a new damping at every width tried)
+    return bool(overturning_predictions(
+        procedure, [(entry, context.on_demand())], np.array([2.0 * math.pi / block.size_s]),
+        [(alpha, np.array([0]), float(restitution.r(alpha)))], g)[0, 0])
+
+
+def guideline_bracket(overturns, obj, object_overturns: bool) -> tuple[float, float]:
+    """Widths (low, high) [m] at the object's height with ``overturns(low)`` and not
+    ``overturns(high)``, high/low ≤ :data:`GUIDELINE_STEP`: stepped out from the object's width
+    (whose answer is ``object_overturns``). (0.99 h, +inf) when it predicts overturning up to
+    0.99 × the height; (0, 0.01 h) when it predicts none down to 1 % of the height."""
+    lowest, highest = 0.01 * obj.height_m, 0.99 * obj.height_m
+    if object_overturns:
+        low = obj.width_m
+        while low < highest:
+            high = min(low * GUIDELINE_STEP, highest)
+            if not overturns(high):
+                return low, high
+            low = high
+        return highest, math.inf
+    high = obj.width_m
+    while high > lowest:
+        low = max(high / GUIDELINE_STEP, lowest)
+        if overturns(low):
+            return low, high
+        high = low
+    return 0.0, lowest
+
+
+def accepted_width(low, high, refine, tolerance: float = GUIDELINE_TOLERANCE) -> float:
+    """The narrowest width a guideline accepts over records: the ⌈n/2⌉-th smallest of the
+    records' narrowest widths c_r (it accepts w when at most half the records have c_r > w),
+    each known within its bracket (low_r, high_r]. Only the brackets that straddle the
+    order statistic's own bracket are halved (``refine(records, widths)`` → whether each record
+    predicts overturning at its width), until it is known to ``tolerance``; +inf when that
+    record predicts overturning at every width."""
+    low, high = np.array(low, dtype=float), np.array(high, dtype=float)
+    k = math.ceil(low.size / 2) - 1
+    while True:
+        bound_low, bound_high = np.sort(low)[k], np.sort(high)[k]
+        if not math.isfinite(bound_high) or bound_high <= bound_low * (1.0 + tolerance):
+            return float(bound_high)
+        straddle = np.flatnonzero((high > bound_low) & (low < bound_high)
+                                  & (high > low * (1.0 + tolerance)) & (low > 0.0)
+                                  & np.isfinite(high))
+        if not straddle.size:
+            return float(bound_high)
+        middle = np.sqrt(low[straddle] * high[straddle])
+        over = np.asarray(refine(straddle, middle), dtype=bool)
+        low[straddle[over]] = middle[over]
+        high[straddle[~over]] = middle[~over]
+
+
+__all__ = ["required_width", "exact_required_widths", "Family", "overturns_at", "guideline_bracket",
+           "accepted_width", "probability_at_site",
+           "record_family", "FamilySettings", "SCAN_FRACTIONS", "SCAN_WIDTHS",
+           "WIDTH_TOLERANCE"]

@@ -1,0 +1,1 @@
+"""The reproduction checklist of the reference report's claims."""

@@ -1,0 +1,230 @@
+"""The design-level audit: how likely is a block to overturn, and where each guideline draws
+its line, the FEMA P695 way.
+
+For every block of the grid, the suite's records are scaled to a set of intensity levels
+(stripes, :mod:`audit.engine.design.fragility`); the exact response at every record × stripe gives the
+fraction that overturns at each level, and a lognormal fragility fitted to those counts. Each
+procedure is evaluated at the same stripes, on the same scaled records (and on its site's design
+spectrum scaled to the same level, for one that reads a design spectrum): the fraction of
+records for which it predicts overturning is its fragility (a step, for a procedure that reads
+only the site). Per procedure and block:
+
+* the guideline's overturning intensity: where the fraction it predicts first reaches one half
+  (interpolated in ln IM between stripes; a step's level for a site-based procedure);
+* its ratio to the exact fragility's median;
+* the achieved probability of overturning there, from the exact fit and from the nearest
+  stripe's count;
+* the FEMA P695 collapse margin ratio CMR = exact median / the site's MCE intensity (the
+  site's values are taken as MCE-level, or as design-level and × 1.5: :data:`SITE_LEVELS`); a
+  median beyond the stripes is an extrapolation and its CMR a bound.
+
+A procedure predicts overturning for a block when its estimate is ``overturn`` or one of its
+checks of limit state ``overturning`` fails. One record's part is
+:func:`~audit.engine.design.stripes.record_stripes`; the tables are built in
+:mod:`audit.engine.design.tables`.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from audit.engine.shared.blocks import BlockList
+from audit.engine.shared.csv_text import csv_bytes
+from audit.engine.shared.floors import suite_floor
+from audit.engine.shared.defaults import SITE_LEVELS
+from audit.engine.design.fragility import stripe_levels
+from audit.engine.design.settings import MarginsSettings
+from audit.engine.design.tables import (capacity_rows, fragility_rows, reading, site_factor,
+                                         step_levels, stripe_rows)
+from audit.engine.shared.partial import PartialStore
+from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.scheduler import computed_parts
+from audit.engine.design.stripes import StripeSettings, record_stripes
+from audit.errors import InputError
+
+
+@dataclass
+class MarginsRun:
+    """Everything the design-level audit produced (``stripes.csv``, ``fragility.csv``,
+    ``capacity.csv``, ``scan.csv`` and ``summary``)."""
+
+    stripes: pd.DataFrame
+    fragility: pd.DataFrame
+    capacity: pd.DataFrame
+    summary: dict = field(default_factory=dict)
+    #: ``required_alpha.csv`` (:func:`~audit.engine.design.required_alpha.required_alpha`), None when
+    #: not computed.
+    required_alpha: pd.DataFrame | None = None
+    #: ``scan.csv`` (:func:`~audit.engine.design.scans.amplitude_scans`), None when not
+    #: computed.
+    scan: pd.DataFrame | None = None
+    #: ``risk.csv``, ``risk_alpha.csv`` and ``hazard.csv`` at a site
+    #: (:func:`~audit.engine.design.margins_risk.margins_risk`), None without a hazard curve.
+    risk: pd.DataFrame | None = None
+    risk_alpha: pd.DataFrame | None = None
+    hazard: pd.DataFrame | None = None
+    #: ``acceptance.csv`` (:func:`~audit.engine.design.p695_acceptance.p695_acceptance`), None
+    #: without the required slenderness or a design site.
+    acceptance: pd.DataFrame | None = None
+
+
+@dataclass
+class MarginsStripes:
+    """Every record's part of the design-level audit together (:func:`margins_stripes`):
+    arrays shaped (record, stripe, block).
+
+    Attributes
+    ----------
+    entries : list of records.RecordEntry
+        The records with a file, in the suite's order.
+    settings : audit.engine.design.stripes.StripeSettings
+        The stripes (ascending), the blocks, and how they were solved.
+    mce_im : float or None
+        The site's MCE intensity (the CMR's denominator) [unit of the intensity measure].
+    intensities : numpy.ndarray
+        Each record's intensity as given.
+    exact_overturned, exact_theta_rad : numpy.ndarray
+    predicted, evaluated : dict
+        Per procedure name, as in :class:`~audit.engine.design.stripes.RecordStripes`, stacked.
+    resumed : list of str
+    where : str
+        The records' parts reused, and where the others were computed.
+    """
+
+    entries: list
+    settings: StripeSettings
+    mce_im: float | None
+    intensities: np.ndarray
+    exact_overturned: np.ndarray
+    exact_theta_rad: np.ndarray
+    predicted: dict
+    evaluated: dict
+    resumed: list
+    where: str
+
+
+def margins_stripes(procedures, suite, settings: MarginsSettings,
+                    runtime: Runtime) -> MarginsStripes:
+    """Every record of ``suite`` scaled to the stripes, with the exact response of every block
+    and each procedure's prediction there (the arguments of :func:`run_margins`)."""
+    im, levels, alpha_deg = settings.im, settings.stripes, settings.alpha_deg
+    size_s, named_blocks, g = settings.size_s, settings.blocks, settings.g
+    restitution, free_motion_s, jobs = settings.restitution, settings.free_motion_s, runtime.jobs
+    partial_dir, resume = runtime.partial_dir, runtime.resume
+    entries = [entry for entry in suite if entry.motion is not None]
+    if not entries:
+        raise InputError(f"records: no record of {suite.description} has a file", "records")
+    intensities = {entry.id: im.of_record(entry.motion, free_motion_s) for entry in entries}
+    zero = [record_id for record_id, intensity in intensities.items() if not intensity > 0]
+    if zero:
+        raise InputError(f"records: {zero[0]} has zero intensity ({im.name} = 0: an all-zero "
+                         f"record), so no stripe can be reached by scaling it; leave it out"
+                         + (f" ({len(zero) - 1} other record(s) too)" if len(zero) > 1 else ""),
+                         "records")
+    design = im.of_design_site(suite.design_site)
+    if levels is None:
+        centre = design if design else float(np.median(list(intensities.values())))
+        levels = stripe_levels(centre)
+    blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
+    if not len(blocks):
+        raise InputError("sizes_s, alpha_deg, blocks: no block to audit", "sizes_s",
+                         "alpha_deg", "blocks")
+    settings_of_stripes = StripeSettings(
+        im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()), design, blocks,
+        restitution, float(g), float(free_motion_s), int(jobs))
+    store = (PartialStore(partial_dir, procedures, settings_of_stripes, resume) if partial_dir
+             else None)
+    parts, resumed, where = computed_parts(record_stripes, entries, procedures,
+                                           settings_of_stripes, runtime.scheduler, store,
+                                           runtime.progress)
+    return MarginsStripes(
+        entries, settings_of_stripes,
+        design * SITE_LEVELS[settings.site_level] if design else None,
+        np.array([part.intensity for part in parts]),
+        np.stack([part.exact_overturned for part in parts]),
+        np.stack([part.exact_theta_rad for part in parts]),
+        {proc.name: np.stack([part.predicted[proc.name] for part in parts])
+         for proc in procedures},
+        {proc.name: np.array([part.evaluated[proc.name] for part in parts])
+         for proc in procedures},
+        resumed, where)
+
+
+def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
+    """Multiple-stripe exact fragility of every block and each procedure's line against it.
+
+    Parameters
+    ----------
+    procedures : list of procedures.Procedure
+    suite : records.RecordSuite
+        Its ``design_site`` gives the design intensity.
+    settings : MarginsSettings
+        The intensity measure, the stripes (default
+        :func:`~audit.engine.design.fragility.stripe_levels` around the design intensity, else the
+        suite's median intensity), the grid and the named blocks, the impact model, gravity
+        and the free motion.
+    runtime : Runtime
+        Solver threads (worker processes of ``scheduler="dask"``), where records are computed,
+        the folder of parts kept as they complete and whether to reuse them, progress.
+    """
+    run = margins_stripes(procedures, suite, settings, runtime)
+    entries, im, blocks = run.entries, settings.im, run.settings.blocks
+    levels, exact_over = np.asarray(run.settings.levels), run.exact_overturned
+    site_factors = np.array([site_factor(suite, e.id) for e in entries])
+    stripes = stripe_rows(run, site_factors)
+    fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, run.mce_im)
+    steps = step_levels(procedures, entries, run.settings, run.predicted, run.evaluated)
+    capacity = capacity_rows(procedures, run, fits, boots, steps)
+    named_blocks = settings.blocks
+    summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
+               "design_im": run.settings.design_im, "site_level": settings.site_level,
+               "mce_im": run.mce_im, "records": [e.id for e in entries],
+               "records_source": suite.description, "design_site": suite.design_site,
+               "scaling": suite.scaling, "floor": suite_floor(suite),
+               "restitution": str(run.settings.restitution),
+               "scheduler": run.where, "resumed": run.resumed,
+               "procedures": [{"name": proc.name, "title": proc.title,
+                               "reads": reading(proc, entries)} for proc in procedures],
+               "grid": {"alpha_deg": [float(a) for a in settings.alpha_deg],
+                        "size_s": np.asarray(settings.size_s if settings.size_s is not None
+                                             else (), dtype=float).tolist()},
+               "blocks": [{"block_m": b.label, "width_m": b.width_m, "height_m": b.height_m,
+                           "alpha_deg": b.alpha_deg, "size_s": b.size_s}
+                          for b in named_blocks]}
+    return MarginsRun(stripes, fragility, capacity, summary)
+
+
+def margins_files(run: MarginsRun) -> dict[str, bytes]:
+    """The files of a design-level audit, as bytes (columns in ``columns.json``)."""
+    from audit.engine.run.results import json_ready
+    from audit.engine.shared.schemas import column_guide
+    files = {"stripes.csv": csv_bytes(run.stripes, "%.8g"),
+             "fragility.csv": csv_bytes(run.fragility, "%.6g"),
+             "capacity.csv": csv_bytes(run.capacity, "%.6g")}
+    if run.required_alpha is not None:
+        files["required_alpha.csv"] = csv_bytes(run.required_alpha, "%.4g")
+    if run.scan is not None:
+        files["scan.csv"] = csv_bytes(run.scan, "%.8g")
+    if run.acceptance is not None:
+        files["acceptance.csv"] = csv_bytes(run.acceptance, "%.6g")
+    guides = column_guide()
+    if run.risk is not None:
+        from audit.engine.design.risk_schema import RISK_GUIDE
+        files.update({"risk.csv": csv_bytes(run.risk, "%.6g"),
+                      "risk_alpha.csv": csv_bytes(run.risk_alpha, "%.6g"),
+                      "hazard.csv": csv_bytes(run.hazard, "%.8g")})
+        guides.update({name: {column: {"unit": unit, "meaning": meaning}
+                              for column, (unit, meaning) in columns.items()}
+                       for name, columns in RISK_GUIDE.items()})
+    guide = {name: columns for name, columns in guides.items() if name in files}
+    return {**files,
+            "summary.json": json.dumps(json_ready(run.summary), indent=1,
+                                       ensure_ascii=False).encode(),
+            "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
+
+
+__all__ = ["run_margins", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]

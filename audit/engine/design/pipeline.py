@@ -1,0 +1,58 @@
+"""The design-level audit from start to end: the stripes (:mod:`audit.engine.design.margins`), the
+required slenderness of each size (:mod:`audit.engine.design.required_alpha`), the fine amplitude
+scans, on one scheduler, and the risk at the site where a hazard curve is given
+(:mod:`audit.engine.design.margins_risk`)."""
+
+from __future__ import annotations
+
+from contextlib import nullcontext
+from dataclasses import replace
+
+from audit.engine.shared.defaults import DEFAULT_STRIPES
+from audit.engine.design.margins import MarginsRun, run_margins
+from audit.engine.design.scans import amplitude_scans
+from audit.engine.design.margins_risk import hazard_summary, hazard_table, margins_risk
+from audit.engine.design.settings import MarginsSettings
+from audit.engine.design.p695_acceptance import p695_acceptance
+from audit.engine.design.required_alpha import required_alpha
+from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.scheduler import open_scheduler
+
+
+def design_level_audit(procedures, suite, settings: MarginsSettings,
+                       runtime: Runtime) -> MarginsRun:
+    """Everything of the design-level audit, its tables in a :class:`MarginsRun`.
+
+    A ``runtime.progress`` with a ``stage(text)`` method (:class:`audit.engine.shared.progress.Progress`)
+    is told each stage.
+    """
+    stage = getattr(runtime.progress, "stage", lambda text: None)
+    blocks = len(settings.size_s) * len(settings.alpha_deg) + len(settings.blocks)
+    stripes = DEFAULT_STRIPES if settings.stripes is None else len(settings.stripes)
+    stage(f"exact fragility of {blocks} blocks on {len(suite)} records × {stripes} stripes of "
+          f"{settings.im.name}; {', '.join(p.name for p in procedures)} at the same stripes"
+          + ("; then the required slenderness of each size" if settings.required else ""))
+    with (open_scheduler(runtime.scheduler, runtime.jobs) if isinstance(runtime.scheduler, str)
+          else nullcontext(runtime.scheduler)) as executor:
+        on = replace(runtime, scheduler=executor)
+        run = run_margins(procedures, suite, settings, on)
+        if settings.required:
+            stage("required slenderness of each size: α from 2° to 40°, 2° apart, the exact "
+                  "curves bisected")
+            run.required_alpha = required_alpha(procedures, suite, settings,
+                                                replace(on, partial_dir=None, resume=False))
+            if run.summary["mce_im"]:
+                stage("FEMA P695 acceptance: the exact fragility of the blocks each guideline "
+                      "sizes, with the impact model × 0.9 and × 0.8 for the modelling "
+                      "uncertainty")
+                run.acceptance, run.summary["acceptance"] = p695_acceptance(
+                    suite, settings, on, run.required_alpha)
+    run.scan = amplitude_scans(run, suite, settings, runtime)
+    if settings.hazard is not None:
+        run.risk, run.risk_alpha = margins_risk(run, settings.hazard, settings.risk_target)
+        run.hazard = hazard_table(settings.hazard)
+        run.summary["hazard"] = hazard_summary(settings.hazard, settings.risk_target)
+    return run
+
+
+__all__ = ["design_level_audit"]

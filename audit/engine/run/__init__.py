@@ -1,0 +1,1 @@
+"""The audit run (``audit run``): every record, every procedure, every block of the grid."""

@@ -1,0 +1,91 @@
+"""The blocks of a record worth a time history, and their simulated histories.
+
+Each procedure's worst blocks per class (:data:`~audit.engine.run.ranking.WORST_CLASSES`) and
+representative rocking blocks at α ≈ 15° (Figures 8.2, 8.5, …): the report draws these.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from audit.engine.run.ranking import WORST_CLASSES, rank_worst
+from audit.engine.run.settings import HISTORY_POINTS, AuditSettings
+from audit.physics.block import RigidBlock
+from audit.physics.rocking import simulate
+
+def _representative_sizes(spectrum, alpha_index: int, count: int = 2) -> list[float]:
+    """Sizes of blocks that rock and survive, spread over the range."""
+    rocking = (spectrum.uplifted[alpha_index] & ~spectrum.overturned[alpha_index]
+               & (spectrum.theta_ratio[alpha_index] > 0.05))
+    sizes = spectrum.size_s[rocking]
+    if sizes.size == 0:
+        return []
+    picks = np.unique(np.quantile(np.arange(sizes.size), np.linspace(0.25, 0.75, count))
+                      .round().astype(int))
+    return [float(sizes[i]) for i in picks]
+
+
+def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 1) -> list[dict]:
+    """The blocks of one record worth a time history.
+
+    Returns
+    -------
+    list of dict
+        ``alpha_deg``, ``size_s`` and ``reason`` (why it was picked; reasons of a block picked
+        several times are joined with "; "), in order of first pick.
+    """
+    picks = {}
+
+    def pick(alpha, size, reason):
+        key = (round(float(alpha), 9), round(float(size), 9))
+        picks.setdefault(key, []).append(reason)
+
+    for procedure, rows in results.groupby("procedure", sort=False):
+        for verdict, column, largest, reason in WORST_CLASSES:
+            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest).head(per_class)
+            for alpha, size in zip(hits["alpha_deg"], hits["size_s"]):
+                pick(alpha, size, f"{reason}, {procedure}")
+    alpha_index = int(np.argmin(np.abs(np.asarray(alpha_deg) - 15.0)))
+    for size in _representative_sizes(spectrum, alpha_index):
+        pick(alpha_deg[alpha_index], size, "representative")
+    return [{"alpha_deg": alpha, "size_s": size, "reason": "; ".join(reasons)}
+            for (alpha, size), reasons in picks.items()]
+
+
+def simulate_histories(entry, results: pd.DataFrame, exact, alpha_deg, settings: AuditSettings):
+    """The time histories of :func:`history_blocks` under the record ``entry``.
+
+    Returns
+    -------
+    frames : list of pandas.DataFrame
+        ``histories.csv`` rows, :data:`~audit.engine.run.settings.HISTORY_POINTS` samples at most each.
+    meta : list of dict
+        Per history: the pick, rocking cycles, first and last impacts, peak θ/α, overturning.
+    """
+    frames, meta = [], []
+    for pick in history_blocks(results, exact, alpha_deg):
+        block = RigidBlock.from_size(pick["size_s"], np.radians(pick["alpha_deg"]), g=settings.g)
+        response = simulate(block, entry.motion, settings.free_motion_s)
+        stride = max(1, response.time.size // HISTORY_POINTS)
+        frames.append(pd.DataFrame({
+            "record": entry.id, "alpha_deg": pick["alpha_deg"], "size_s": pick["size_s"],
+            "time_s": response.time[::stride],
+            "theta_ratio": response.theta[::stride] / response.block.alpha,
+            "omega_rad_s": response.omega[::stride]}))
+        impacts = response.impact_times
+        meta.append({
+            # arrays (8 bytes a value, not a float object): the driver keeps every record's
+            # drawn histories until summary.json is written
+            "record": entry.id, **pick, "cycle_starts_s": response.cycle_starts,
+            "cycle_durations_s": response.cycle_durations,
+            "first_impact_s": float(impacts[0]) if response.n_impacts else None,
+            "last_impact_s": float(impacts[-1]) if response.n_impacts else None,
+            "peak_rotation_ratio": response.peak_rotation_ratio,
+            "overturned": bool(response.overturned),
+            "overturn_time_s": float(response.overturn_time) if response.overturned else None,
+            "excitation_end_s": response.excitation_end})
+    return frames, meta
+
+
+__all__ = ["history_blocks", "simulate_histories"]

@@ -1,0 +1,90 @@
+"""The audit of a probabilistic procedure on a record suite: one table per file it writes.
+
+For every component with a block (b = depth/2, h = height/2), the exact outcomes of the records
+scaled to each PGV stripe (:func:`audit.engine.design.fragility.stripe_outcomes`), the lognormal fitted
+to them, and the procedure's probability at each scaled intensity scored against the outcomes.
+Components without dimensions (FEMA P-58's PGA rows) have no block and are not audited.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from audit import G
+from audit.engine.run.calibration import PGV_LEVELS_M_S, brier_score, calibration, log_likelihood
+from audit.engine.design.fragility import stripe_outcomes
+from audit.engine.design.lognormal_fit import fit_lognormal
+from audit.errors import InputError
+from audit.physics.defaults import DEFAULT_FREE_MOTION_S
+from audit.physics.block import RigidBlock
+from procedures.probabilistic import LognormalFragility
+
+#: The files of the audit, written together into the output folder.
+COMPONENTS_CSV = "fragility-components.csv"
+STRIPES_CSV = "fragility-stripes.csv"
+OUTCOMES_CSV = "fragility-outcomes.csv"
+CALIBRATION_CSV = "fragility-calibration.csv"
+
+
+def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -> dict:
+    """The tables of the audit of ``procedure`` (a :class:`procedures.probabilistic.ProbabilisticProcedure`)
+    on the records: file name → :class:`pandas.DataFrame`."""
+    levels = np.asarray(levels_m_s, dtype=float)
+    zero = [record_id for record_id, motion in zip(record_ids, motions) if not motion.pgv > 0]
+    if zero:
+        raise InputError(f"records: {zero[0]} has zero intensity (PGV = 0: an all-zero record), "
+                         "so no PGV stripe can be reached by scaling it; leave it out"
+                         + (f" ({len(zero) - 1} other record(s) too)" if len(zero) > 1 else ""),
+                         "records")
+    components, stripes, outcomes, bins = [], [], [], []
+    for component in procedure.components:
+        if not (component.has_block and component.intensity_measure == "PGV"):
+            continue
+        block = RigidBlock.from_dimensions(component.depth_m / 2, component.height_m / 2)
+        overturned = np.array([stripe_outcomes(motion, levels / motion.pgv, [block.size_s],
+                                               [block.alpha], G, DEFAULT_FREE_MOTION_S)[0][:, 0, 0]
+                               for motion in motions])
+        counts = overturned.sum(axis=0)
+        try:
+            fit = fit_lognormal(levels, np.full(levels.size, len(motions)), counts)
+            median, beta = fit.median, fit.beta
+        except ValueError:  # no stripe or every stripe overturns it: no fit exists
+            median, beta = math.nan, math.nan
+        predicted = np.broadcast_to(component.fragility.probability(levels), overturned.shape)
+        exact_predicted = (np.broadcast_to(LognormalFragility(median, beta).probability(levels),
+                                           overturned.shape)
+                           if math.isfinite(median) else np.full(overturned.shape, np.nan))
+        components.append({
+            "component": component.id, "description": component.description,
+            "half_width_m": block.half_width, "half_height_m": block.half_height,
+            "alpha_deg": math.degrees(block.alpha), "p_rad_s": block.p,
+            "procedure_median_m_s": component.fragility.median,
+            "procedure_beta": component.fragility.beta,
+            "exact_median_m_s": median, "exact_beta": beta,
+            "median_ratio": component.fragility.median / median,
+            "conservative_at_median": component.fragility.median <= median,
+            "brier": brier_score(predicted, overturned),
+            "log_likelihood": log_likelihood(predicted, overturned),
+            "exact_fit_brier": brier_score(exact_predicted, overturned),
+            "exact_fit_log_likelihood": log_likelihood(exact_predicted, overturned),
+            "outcomes": overturned.size})
+        for level, count, probability in zip(levels, counts, predicted[0]):
+            stripes.append({"component": component.id, "pgv_m_s": level,
+                            "records": len(motions), "overturned": int(count),
+                            "procedure_probability": probability})
+        for record, row in zip(record_ids, overturned):
+            for level, outcome, probability in zip(levels, row, predicted[0]):
+                outcomes.append({"component": component.id, "record": record, "pgv_m_s": level,
+                                 "exact_overturned": bool(outcome),
+                                 "procedure_probability": probability})
+        table = calibration(predicted, overturned)
+        for values in zip(table.lower, table.upper, table.count, table.mean_predicted,
+                          table.observed_frequency):
+            bins.append(dict(zip(("component", "predicted_lower", "predicted_upper", "outcomes",
+                                  "mean_predicted", "observed_frequency"),
+                                 (component.id, *values))))
+    return {COMPONENTS_CSV: pd.DataFrame(components), STRIPES_CSV: pd.DataFrame(stripes),
+            OUTCOMES_CSV: pd.DataFrame(outcomes), CALIBRATION_CSV: pd.DataFrame(bins)}

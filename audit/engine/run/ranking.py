@@ -1,0 +1,115 @@
+"""Which blocks a procedure gets most wrong: the ranking the drawn time histories, the worst-cases
+table and the bottom line's worst case all share, and which records the report shows (light:
+pandas only, no solver)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from audit.engine.shared.verdicts import UNSAFE_VERDICTS
+
+#: Above this many records the suite statistics come first and per-record detail is given only
+#: for the records asked for (``summary["detail"]``) or the :data:`WORST_RECORDS` worst ones.
+LARGE_SUITE = 10
+WORST_RECORDS = 3
+#: Rows per procedure and class in the worst-cases table.
+WORST_ROWS = 5
+
+#: The worst blocks drawn as time histories, per procedure: (verdict, column ranked, largest
+#: first?, reason). Missed overturnings rank by how small the procedure's rotation is.
+WORST_CLASSES = (("unconservative", "ratio", False, "largest underestimate"),
+                 ("missed-overturn", "approx_theta_rad", False, "missed overturning"),
+                 ("conservative", "ratio", True, "largest overestimate"))
+
+
+def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
+    """``rows`` worst first by ``column``, blocks with a robust exact verdict before fragile ones
+    (a missed overturning that a 3 % change of the record undoes is a weaker case); NaN last,
+    ties in the rows' order."""
+    fragile = rows["exact_fragile"].eq(True).to_numpy()
+    value = rows[column].to_numpy(dtype=float)
+    missing = np.isnan(value)
+    # numpy's lexsort is stable, as pandas' sort_values on these keys is, at a fraction of
+    # its cost (the bottom line ranks every record's rows)
+    return rows.take(np.lexsort((np.where(missing, 0.0, -value if largest else value),
+                                 missing, fragile)))
+
+
+def worst_case(rows: pd.DataFrame):
+    """The block a procedure's bottom line names: a missed overturning where the procedure's
+    rotation is smallest (robust before fragile), else the largest underestimate, else the
+    largest overestimate; None when there is none."""
+    order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
+    for verdict, column, largest, _ in order:
+        hits = rows[rows["verdict"] == verdict]
+        if len(hits):
+            return rank_worst(hits, column, largest).iloc[0]
+    return None
+
+
+def block_key(record, alpha_deg, size_s) -> tuple:
+    """A block of a record, as the drawn time histories name it."""
+    return record, round(float(alpha_deg), 6), round(float(size_s), 6)
+
+
+def is_drawn(results: pd.DataFrame, metas: list[dict]) -> np.ndarray:
+    """Which rows of ``results`` are blocks whose time history was drawn (``metas``)."""
+    keys = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
+    return np.array([block_key(*key) in keys for key in zip(
+        results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())],
+        dtype=bool)
+
+
+class ShownRecords:
+    """What the report shows of a large suite, folded over the records one part at a time: the
+    records with the most unsafe blocks, and the worst drawn blocks of each procedure and class
+    (the worst-cases table). The report then ranks the rows of those blocks' records again and
+    finds the same blocks, with no need for the other records.
+
+    Parameters
+    ----------
+    procedures : list of str
+        Procedure names.
+    """
+
+    _COLUMNS = ["record", "alpha_deg", "size_s", "ratio", "approx_theta_rad", "exact_fragile"]
+
+    def __init__(self, procedures):
+        self._unsafe = {}  # record → unsafe blocks, in the suite's order
+        self._worst = {(name, verdict): pd.DataFrame(columns=self._COLUMNS)
+                       for name in procedures for verdict, *_ in WORST_CLASSES}
+
+    def add(self, results: pd.DataFrame, metas: list[dict]) -> None:
+        """Fold one record's ``results.csv`` rows and the time histories drawn for it."""
+        for record, n in results.loc[results["verdict"].isin(UNSAFE_VERDICTS),
+                                     "record"].value_counts(sort=False).items():
+            self._unsafe[record] = self._unsafe.get(record, 0) + int(n)
+        # only the rows of the ranked classes can enter the table
+        results = results[results["verdict"].isin([verdict for verdict, *_ in WORST_CLASSES])]
+        results = results[is_drawn(results, metas)]
+        for verdict, column, largest, _ in WORST_CLASSES:
+            hits = results[results["verdict"] == verdict]
+            for name in hits["procedure"].unique():
+                kept = (name, verdict)
+                if kept in self._worst:
+                    both = pd.concat([self._worst[kept],
+                                      hits.loc[hits["procedure"] == name, self._COLUMNS]],
+                                     ignore_index=True)
+                    self._worst[kept] = rank_worst(both, column, largest).head(WORST_ROWS)
+
+    def worst_records(self) -> list[str]:
+        """The :data:`WORST_RECORDS` records with the most unsafe blocks (suite order on ties)."""
+        ranked = sorted(self._unsafe.items(), key=lambda item: -item[1])
+        return [record for record, n in ranked[:WORST_RECORDS] if n]
+
+    def table_blocks(self) -> list[list]:
+        """``[record, α, size]`` of the blocks of the worst-cases table (each once)."""
+        blocks = {block_key(*key): list(key) for frame in self._worst.values()
+                  for key in zip(frame["record"], frame["alpha_deg"].astype(float),
+                                 frame["size_s"].astype(float))}
+        return list(blocks.values())
+
+
+__all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst",
+           "worst_case", "block_key", "is_drawn", "ShownRecords"]

@@ -1,0 +1,253 @@
+"""Verdict statistics across the records of a suite (``suite.csv``, ``summary["suite"]``).
+
+The question a code committee asks is not "what happens under Pacoima" but "over a suite of
+records consistent with the design, how often is the guideline unsafe, for which blocks, and by
+how much". For every procedure × α × size the records audited are counted, each verdict class
+as a fraction of them, and the approx/exact ratio where both survive as a median and a
+16–84 % band.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from audit.engine.run.ranking import worst_case
+from audit.engine.shared.schemas import SUITE_COLUMNS, verdict_column
+from audit.engine.shared.verdicts import (CHECK_VERDICTS, UNECONOMIC_CHECK_VERDICTS, UNECONOMIC_VERDICTS,
+                                   UNSAFE_CHECK_VERDICTS, UNSAFE_VERDICTS, VERDICTS, names)
+
+#: Percentiles of approx/exact written to ``suite.csv`` [%].
+RATIO_PERCENTILES = (16, 50, 84)
+_KEYS = ["procedure", "alpha_deg", "size_s"]
+
+
+class SuiteStatistics:
+    """:func:`suite_statistics` folded over the records one part at a time, so that a suite of
+    thousands of records is never held whole: the verdict counts per group are summed as they
+    come, and only the finite approx/exact ratios (for the percentiles) are kept, with their
+    group number (12 bytes each); the rest of each part is dropped."""
+
+    def __init__(self):
+        self._groups = {}  # (procedure, α, size) → number, in order of first appearance
+        self._counts = np.zeros((0, len(VERDICTS)), dtype=np.int64)  # group × verdict
+        self._group, self._ratio = [], []
+
+    def add(self, results: pd.DataFrame) -> "SuiteStatistics":
+        """Fold ``results.csv`` rows (columns ``procedure, alpha_deg, size_s, verdict, ratio``)."""
+        unknown = set(results["verdict"]) - set(VERDICTS)
+        if unknown:
+            raise ValueError(f"suite statistics: unknown verdicts {sorted(unknown)}")
+        keys = zip(results["procedure"], results["alpha_deg"].astype(float),
+                   results["size_s"].astype(float))
+        group = np.fromiter((self._groups.setdefault(key, len(self._groups)) for key in keys),
+                            dtype=np.int32, count=len(results))
+        verdict = results["verdict"].map(_VERDICT_CODE).to_numpy(dtype=np.int64)
+        if len(self._groups) > len(self._counts):
+            self._counts = np.vstack([self._counts, np.zeros(
+                (len(self._groups) - len(self._counts), len(VERDICTS)), dtype=np.int64)])
+        np.add.at(self._counts, (group, verdict), 1)
+        ratio = results["ratio"].to_numpy(dtype=float)
+        finite = np.isfinite(ratio)
+        self._group.append(group[finite])
+        self._ratio.append(ratio[finite])
+        return self
+
+    def frame(self) -> pd.DataFrame:
+        """The table of :func:`suite_statistics` over every row folded so far."""
+        if not self._groups:
+            return pd.DataFrame(columns=SUITE_COLUMNS)
+        records = self._counts.sum(axis=1)
+        table = pd.DataFrame(list(self._groups), columns=_KEYS)
+        table["records"] = records
+        for code, v in enumerate(VERDICTS):
+            table[verdict_column(v)] = self._counts[:, code] / records
+        table["frac_unsafe"] = table[[verdict_column(v) for v in UNSAFE_VERDICTS]].sum(axis=1)
+        grouped = pd.Series(np.concatenate(self._ratio)).groupby(np.concatenate(self._group))
+        for q in RATIO_PERCENTILES:
+            table[f"ratio_p{q}"] = grouped.quantile(q / 100.0).reindex(table.index)
+        return table[SUITE_COLUMNS]
+
+
+_VERDICT_CODE = {v: code for code, v in enumerate(VERDICTS)}
+
+
+def suite_statistics(results: pd.DataFrame) -> pd.DataFrame:
+    """Verdict fractions and approx/exact percentiles per procedure × α × size.
+
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``results.csv`` rows (columns ``procedure, alpha_deg, size_s, verdict, ratio``), one
+        per record for each procedure × α × size.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`~audit.engine.shared.schemas.SUITE_COLUMNS`: ``records`` counted, the fraction
+        of them in each verdict class (the fractions sum to 1), ``frac_unsafe`` (missed
+        overturning + unconservative), and the 16th/50th/84th percentiles of approx/exact over
+        the records where both survive (linear interpolation between order statistics; NaN
+        where there is none). Groups keep the order of first appearance.
+    """
+    return SuiteStatistics().add(results).frame()
+
+
+def suite_summary(suite: pd.DataFrame, titles: dict | None = None) -> list[dict]:
+    """Per procedure and α: mean unsafe fraction, worst size, and a sentence to quote.
+
+    Parameters
+    ----------
+    suite : pandas.DataFrame
+        Output of :func:`suite_statistics`.
+    titles : dict, optional
+        Procedure name → title used in the sentence (default: the name).
+
+    Returns
+    -------
+    list of dict
+        ``procedure, alpha_deg, records, blocks, mean_unsafe, worst_size_s, worst_unsafe,
+        sentence``; ``mean_unsafe`` is the unsafe fraction over every record × size (blocks
+        weighted by their record count), ``worst_size_s`` the size 2π/p [s] with the largest
+        unsafe fraction (the smallest such size on ties; None when never unsafe).
+    """
+    titles = titles or {}
+    summary = []
+    for (procedure, alpha), group in suite.groupby(["procedure", "alpha_deg"], sort=False):
+        records = int(group["records"].max())
+        counts = group["records"].to_numpy(dtype=float)
+        unsafe = group["frac_unsafe"].to_numpy(dtype=float)
+        mean_unsafe = float(np.sum(unsafe * counts) / np.sum(counts))
+        worst = int(np.argmax(unsafe))
+        worst_size = float(group["size_s"].iloc[worst]) if unsafe[worst] > 0 else None
+        title = titles.get(procedure, procedure)
+        over = f"over {records} record{'s' if records != 1 else ''}"
+        sentence = (f"{over}, {title} is unsafe for {100 * mean_unsafe:.0f} % of blocks with "
+                    f"α = {alpha:g}°, worst at 2π/p ≈ {worst_size:.3g} s "
+                    f"({100 * unsafe[worst]:.0f} % of records)" if worst_size is not None else
+                    f"{over}, {title} is never unsafe for blocks with α = {alpha:g}° "
+                    f"(2π/p = {group['size_s'].min():g}–{group['size_s'].max():g} s)")
+        summary.append({"procedure": procedure, "alpha_deg": float(alpha), "records": records,
+                        "blocks": int(counts.sum()), "mean_unsafe": mean_unsafe,
+                        "worst_size_s": worst_size, "worst_unsafe": float(unsafe[worst]),
+                        "sentence": sentence})
+    return summary
+
+
+#: Where pure rocking stops being valid: results column → name in the bottom line (None there
+#: when the flag was not checked: the column is empty).
+_FLAGS = {"exact_slides": "slides", "exact_model_sensitive": "model_sensitive"}
+
+
+class BottomLine:
+    """:func:`bottom_line` folded over the records one part at a time: per procedure the verdict
+    and flag counts, the finite ratios (for the median), the records seen, the check counts
+    per limit state and the worst block so far (the worst of the worst is the suite's: the
+    ranking is a stable sort, and the parts come in the suite's order)."""
+
+    def __init__(self, procedures):
+        self._lines = {p.name: {"count": dict.fromkeys(VERDICTS, 0), "ratios": [],
+                                "records": set(), "worst": None, "checks": {}, "jumps": 0,
+                                "flags": {flag: [0, 0, False] for flag in _FLAGS.values()}}
+                       for p in procedures}
+
+    def add(self, results: pd.DataFrame, checks: pd.DataFrame) -> "BottomLine":
+        """Fold ``results.csv`` and ``checks.csv`` rows."""
+        # each table split by procedure once, not masked once per procedure
+        results_of = dict(tuple(results.groupby("procedure", sort=False)))
+        checks_of = dict(tuple(checks.groupby("procedure", sort=False)))
+        for name, line in self._lines.items():
+            rows = results_of.get(name, results.iloc[:0])
+            mine = checks_of.get(name, checks.iloc[:0])
+            verdict = rows["verdict"]
+            for value, n in verdict.value_counts(sort=False).items():
+                line["count"][value] += int(n)
+            ratios = rows["ratio"].to_numpy(dtype=float)
+            line["ratios"].append(ratios[np.isfinite(ratios)])
+            line["records"].update(rows["record"].unique())
+            line["records"].update(mine["record"].unique())
+            worst = worst_case(rows)
+            if worst is not None:  # the worst of (the worst so far, this part's): the same
+                # block as ranking them all, since the ranking is a stable sort
+                line["worst"] = worst if line["worst"] is None else worst_case(
+                    pd.DataFrame([line["worst"], worst]))
+            # (limit state, verdict) pairs come in order of first appearance, so the limit
+            # states do too
+            for (state, value), n in mine.groupby(["limit_state", "verdict"],
+                                                  sort=False).size().items():
+                tally = line["checks"].setdefault(state, dict.fromkeys(names(CHECK_VERDICTS), 0))
+                tally[value] += int(n)
+            line["jumps"] += int(rows["exact_jumps"].eq(True).sum())
+            unsafe = verdict.isin(UNSAFE_VERDICTS)
+            for column, flag in _FLAGS.items():
+                flagged = rows[column].eq(True)
+                tally = line["flags"][flag]
+                tally[0] += int(flagged.sum())
+                tally[1] += int((flagged & unsafe).sum())
+                tally[2] |= bool(rows[column].isin((True, False)).any())
+        return self
+
+    def lines(self) -> list[dict]:
+        """The bottom line of every row folded so far (see :func:`bottom_line`)."""
+        out = []
+        for name, line in self._lines.items():
+            count = line["count"]
+            total = sum(count.values())
+            unsafe = sum(count[v] for v in UNSAFE_VERDICTS)
+            uneconomic = sum(count[v] for v in UNECONOMIC_VERDICTS)
+            ratios = np.concatenate(line["ratios"]) if line["ratios"] else np.empty(0)
+            worst = line["worst"]
+            flags = {}
+            for flag, (flagged, flagged_unsafe, checked) in line["flags"].items():
+                flags[flag] = flagged if checked else None
+                flags[f"{flag}_unsafe"] = flagged_unsafe if checked else None
+            out.append({
+                "name": name, "blocks": total, "records": len(line["records"]),
+                "count": count, "pct": {v: 100.0 * n / total if total else 0.0
+                                        for v, n in count.items()},
+                "unsafe": unsafe, "uneconomic": uneconomic,
+                "unsafe_pct": 100.0 * unsafe / total if total else 0.0,
+                "uneconomic_pct": 100.0 * uneconomic / total if total else 0.0,
+                "median_ratio": float(np.median(ratios)) if len(ratios) else None,
+                "worst": None if worst is None else worst.to_dict(),
+                "checks": [_check_line(state, tally) for state, tally in line["checks"].items()],
+                "jumps": line["jumps"], **flags})
+        return out
+
+
+def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list[dict]:
+    """Per procedure: how many blocks it gets wrong on each side, and its worst case.
+
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``results.csv`` rows (blocks with an exact response).
+    checks : pandas.DataFrame
+        ``checks.csv`` rows.
+    procedures : list of procedures.Procedure
+
+    Returns
+    -------
+    list of dict
+        ``name, blocks, records, count`` (per verdict), ``pct`` (per verdict, % of blocks),
+        ``unsafe, uneconomic, unsafe_pct, uneconomic_pct, median_ratio`` (approx/exact where
+        both survive), ``worst`` (the row of :func:`~audit.engine.run.ranking.worst_case`, or
+        None), ``checks``: per limit state, ``limit_state, blocks, count`` (per check
+        verdict), ``unsafe_pct`` (passed blocks the exact response exceeds, % of blocks) and
+        ``uneconomic_pct``; and where pure rocking stops being valid, counted apart (their
+        verdicts stay in ``count``): ``jumps``, ``slides`` and ``slides_unsafe`` (None without
+        ``--friction``), ``model_sensitive`` and ``model_sensitive_unsafe`` (verdicts that change
+        under an alternative ground-truth model; None without ``--sensitivity``).
+    """
+    return BottomLine(procedures).add(results, checks).lines()
+
+
+def _check_line(state: str, count: dict) -> dict:
+    blocks = sum(count.values())
+    return {"limit_state": state, "blocks": blocks, "count": count,
+            "unsafe_pct": 100.0 * sum(count[v] for v in UNSAFE_CHECK_VERDICTS) / blocks,
+            "uneconomic_pct": 100.0 * sum(count[v] for v in UNECONOMIC_CHECK_VERDICTS) / blocks}
+
+
+__all__ = ["suite_statistics", "suite_summary", "bottom_line", "SuiteStatistics",
+           "BottomLine", "RATIO_PERCENTILES"]

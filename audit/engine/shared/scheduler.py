@@ -1,0 +1,261 @@
+"""Where the records of an audit are computed: this process, or a Dask cluster.
+
+The unit of work is one record: :func:`~audit.engine.run.record_audit.audit_record` for an audit
+(every procedure, the whole grid), a record's stripes for the design-level audit
+(:mod:`audit.engine.design.margins`); records are independent, so a suite spreads over workers with no other
+communication. ``local`` runs them in this process, two at a time, handed back in order (the
+exact solver uses ``jobs`` threads); ``dask`` starts a ``dask.distributed`` LocalCluster of ``jobs``
+single-threaded worker processes; ``tcp://HOST:PORT`` uses an existing Dask cluster. The
+result of a record does not depend on where it was computed (the solver's threads only split
+the grid), so every scheduler gives the same values.
+
+Workers get a record by reference where they can read its file
+(:mod:`audit.engine.shared.record_references`), otherwise by value.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager, nullcontext
+from dataclasses import replace
+
+from audit.engine.run.record_audit import audit_record
+from audit.engine.shared.record_references import by_reference, resolve
+from audit.engine.shared.runtime import DASK, LOCAL, check_scheduler
+from audit.errors import InputError
+
+
+def timed(task, item, *args):
+    """``task(entry, *args)`` on one record (entry or reference): ``(part, seconds)``, or None
+    if the reference cannot be resolved."""
+    entry = resolve(item)
+    if entry is None:
+        return None
+    start = time.perf_counter()
+    part = task(entry, *args)
+    return part, time.perf_counter() - start
+
+
+#: Records a local run computes at once: the next one starts while the last is finished, so
+#: that one record's Python work (guidelines' iterations, rows, files), which holds the GIL,
+#: runs beside the other's compiled kernels, which release it.
+RECORDS_IN_FLIGHT = 2
+
+
+class LocalScheduler:
+    """Records in this process, two at a time and handed back in order; the solver uses
+    ``settings.jobs`` threads."""
+
+    description = "this process"
+    #: Solver threads of a task: None keeps the settings' ``jobs``.
+    solver_threads = None
+
+    def map(self, task, entries, *args):
+        """Yield ``(index, task(entry, *args), seconds)`` for each entry, in order."""
+        pool = ThreadPoolExecutor(RECORDS_IN_FLIGHT)
+        try:
+            futures = deque(pool.submit(timed, task, entry, *args)
+                            for entry in entries[:RECORDS_IN_FLIGHT])
+            for index in range(len(entries)):
+                done = futures.popleft().result()
+                if index + RECORDS_IN_FLIGHT < len(entries):
+                    futures.append(pool.submit(timed, task, entries[index + RECORDS_IN_FLIGHT],
+                                               *args))
+                yield (index, *done)
+        finally:  # on an interrupt or an error nothing waits for the records still queued
+            pool.shutdown(wait=False, cancel_futures=True)
+
+    def audit(self, entries, procedures, settings):
+        """Yield ``(index, RecordAudit, seconds)`` for each entry, in order."""
+        return self.map(audit_record, entries, procedures, settings)
+
+
+#: Records queued or running per worker thread of a Dask cluster: enough that a worker never
+#: waits for the driver, few enough that the records sent by value stay a small, fixed term.
+TASKS_PER_THREAD = 2
+
+
+class DaskScheduler:
+    """Records as tasks of a Dask cluster, yielded as they complete.
+
+    Parameters
+    ----------
+    client : distributed.Client
+    description : str
+    """
+
+    #: Each task runs the solver on one thread: the cluster's workers are the parallelism.
+    solver_threads = 1
+
+    def __init__(self, client, description: str):
+        self.client, self.description = client, description
+        #: Ids of the records sent by value (no file the workers could read back).
+        self.by_value = []
+
+    def map(self, task, entries, *args):
+        """Yield ``(index, task(entry, *args), seconds)`` in order of completion.
+
+        ``args`` (procedures, settings) are scattered once to every worker. Records are
+        submitted as earlier ones complete, :data:`TASKS_PER_THREAD` per worker thread of the
+        cluster as it is then (so a cluster that grows gets more): a record sent by value is
+        held by the scheduler only while queued or running, and the driver's memory does not
+        grow with the suite. A record sent by reference that a worker cannot read back is sent
+        again by value. A worker lost mid-run needs nothing here: the Dask scheduler gives its
+        tasks to the other workers (up to ``distributed.scheduler.allowed-failures`` deaths per
+        task); ``retries=`` would only re-run a task that raised, which for a deterministic
+        record raises again (tests/cli/test_dask_cluster.py).
+        """
+        from distributed import as_completed
+        # an empty list (the check's width search has no procedures) has nothing to scatter;
+        # keys of their own (hash=False): the same procedures scattered by an earlier call
+        # would share its key, and its release lose them under this call's tasks
+        args = [arg if isinstance(arg, list) and not arg
+                else self.client.scatter(arg, broadcast=True, hash=False) for arg in args]
+        waiting = iter(enumerate(entries))
+        index_of = {}
+        pending = as_completed()
+
+        def submit(index, item):
+            future = self.client.submit(timed, task, item, *args, pure=False)
+            index_of[future.key] = index
+            pending.add(future)
+
+        def fill():
+            threads = max(1, sum(self.client.nthreads().values()))
+            for index, entry in waiting:
+                item = by_reference(entry)
+                if item is entry:
+                    self.by_value.append(entry.id)
+                submit(index, item)
+                if pending.count() >= TASKS_PER_THREAD * threads:
+                    return
+
+        fill()
+        for future in pending:
+            index, outcome = index_of.pop(future.key), future.result()
+            future.release()
+            if outcome is None:
+                self.by_value.append(entries[index].id)
+                submit(index, entries[index])
+            else:
+                yield (index, *outcome)
+            fill()
+
+    def audit(self, entries, procedures, settings):
+        """Yield ``(index, RecordAudit, seconds)`` in order of completion."""
+        return self.map(audit_record, entries, list(procedures),
+                        replace(settings, jobs=self.solver_threads))
+
+
+@contextmanager
+def open_scheduler(spec: str, jobs: int):
+    """The scheduler named by ``spec`` (see :func:`check_scheduler`), closed on exit.
+
+    Parameters
+    ----------
+    spec : str
+        ``local``, ``dask`` or ``tcp://HOST:PORT``.
+    jobs : int
+        Worker processes of the ``dask`` LocalCluster (ignored otherwise).
+    """
+    spec = check_scheduler(spec)
+    if spec == LOCAL:
+        yield LocalScheduler()
+        return
+    try:
+        import logging
+
+        from distributed import Client, LocalCluster
+    except ImportError:
+        raise InputError(f"scheduler {spec}: needs dask[distributed] "
+                         "(pip install 'dask[distributed]')", "scheduler") from None
+    if spec == DASK:
+        with LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
+                          dashboard_address=None, silence_logs=logging.ERROR) as cluster, \
+                Client(cluster) as client:
+            yield DaskScheduler(client, f"a Dask LocalCluster of {jobs} worker processes")
+        return
+    try:
+        client = Client(spec, timeout="10s")
+    except (OSError, TimeoutError) as exc:
+        raise InputError(f"scheduler {spec}: cannot connect: {exc}", "scheduler") from None
+    with client:
+        workers = len(client.scheduler_info()["workers"])
+        yield DaskScheduler(client, f"the Dask cluster at {spec} ({workers} workers)")
+
+
+def _with_jobs(settings, jobs: int):
+    """``settings`` with ``jobs`` solver threads: a dataclass with a ``jobs`` field, or one that
+    says how (:meth:`~audit.engine.check.pipeline.CheckWork.with_jobs`, whose threads are its stripes')."""
+    with_jobs = getattr(settings, "with_jobs", None)
+    return with_jobs(jobs) if with_jobs is not None else replace(settings, jobs=jobs)
+
+
+def computed_parts(task, entries, procedures, settings, scheduler: str, store=None,
+                   progress=None, consume=None):
+    """``task(entry, procedures, settings)`` of every entry, where ``scheduler`` says, each part
+    stored as it completes and reused from ``store`` when resuming.
+
+    Parameters
+    ----------
+    task : callable
+        The unit of work of one record (module level, so that Dask can send it).
+    entries : list of records.RecordEntry
+    procedures : list of procedures.Procedure
+    settings : dataclass with ``jobs``
+        The run's settings (their ``jobs`` also sizes a ``dask`` LocalCluster).
+    scheduler : str or LocalScheduler or DaskScheduler
+        ``local``, ``dask`` or ``tcp://HOST:PORT`` (opened for this call and closed), or a
+        scheduler already open (:func:`open_scheduler`), for several calls.
+    store : audit.engine.shared.partial.PartialStore, optional
+        Where each part is kept as it completes; with its ``resume``, the matching parts
+        already there are reused.
+    progress : callable, optional
+        ``progress(done, total, record_id, how)`` after each record.
+    consume : callable, optional
+        ``consume(index, part)`` of each part as it completes or is reused (not in order on a
+        Dask cluster; reused ones first), which is then dropped: a suite of thousands of
+        records is never held whole, and ``parts`` is None. Default: return the parts.
+
+    Returns
+    -------
+    parts : list or None
+        One per entry, in order.
+    resumed : list of str
+        Ids of the records whose parts came from ``store``.
+    description : str
+        Where the parts were computed.
+    """
+    progress = progress or (lambda done, total, record_id, how: None)
+    parts = [None] * len(entries)
+
+    def take(index, part):
+        if consume is not None:
+            consume(index, part)
+        parts[index] = part if consume is None else True  # True: done, not held
+
+    for i, entry in enumerate(entries):
+        if store and store.resume and (part := store.load(entry)) is not None:
+            take(i, part)
+    resumed = [entry.id for entry, part in zip(entries, parts) if part is not None]
+    for count, record_id in enumerate(resumed, start=1):
+        progress(count, len(entries), record_id, "reused from an interrupted run")
+    todo = [i for i, part in enumerate(parts) if part is None]
+    with (open_scheduler(scheduler, settings.jobs) if isinstance(scheduler, str)
+          else nullcontext(scheduler)) as executor:
+        threads = executor.solver_threads
+        task_settings = settings if threads is None else _with_jobs(settings, threads)
+        for count, (k, part, seconds) in enumerate(
+                executor.map(task, [entries[i] for i in todo], list(procedures), task_settings),
+                start=len(resumed) + 1):
+            if store:
+                store.save(entries[todo[k]], part)
+            progress(count, len(entries), entries[todo[k]].id, f"computed in {seconds:.1f} s")
+            take(todo[k], part)
+    return (parts if consume is None else None), resumed, executor.description
+
+
+__all__ = ["computed_parts", "open_scheduler", "check_scheduler", "LocalScheduler", "DaskScheduler",
+           "timed"]

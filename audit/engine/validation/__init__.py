@@ -1,0 +1,1 @@
+"""Validation of the exact solver against shake-table campaigns (``audit validate``)."""

@@ -1,0 +1,171 @@
+"""Property: every public function of the API, given one argument of a wrong type (text with
+units where a number is expected, None, a dict, a one-element or one-string pair, a number
+where a path is expected, ...), raises InputError naming that argument, at the front door.
+
+The work each function would start is replaced by a sentinel that raises: a wrong value that
+slipped through the front door shows as that sentinel (or as a TypeError from inside), never as
+a long computation."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import audit
+from audit.errors import InputError
+
+UNIT_TEXTS = st.sampled_from(["0.01 s", "0.95 g", "1.5,0.9", "", " ", ".", "yes", "nan",
+                              "1e400", "2 m"])
+TEXTS = UNIT_TEXTS | st.text(max_size=6)
+JUNK = st.sampled_from([{"a": 1}, {"median": "x"}, object(), 1 + 2j, b"0.5", Ellipsis])
+NUMBERS = st.integers(-3, 3) | st.floats(allow_nan=False, allow_infinity=False, width=32)
+
+NUMBER = TEXTS | JUNK | st.booleans() | st.lists(NUMBERS, min_size=1, max_size=2)
+NUMBER_OR_NONE = NUMBER | st.none()
+SEQUENCE = TEXTS | JUNK | st.booleans() | st.lists(TEXTS, min_size=1, max_size=2)
+PAIR = (TEXTS | JUNK | NUMBERS | st.booleans() | st.tuples(NUMBERS)
+        | st.tuples(NUMBERS, NUMBERS, NUMBERS) | st.tuples(UNIT_TEXTS, NUMBERS)
+        | st.tuples(NUMBERS, UNIT_TEXTS))
+FLAG = TEXTS | JUNK | st.none() | st.floats(0.1, 0.9) | st.just(2)
+WHOLE = TEXTS | JUNK | st.none() | st.booleans() | st.floats(0.1, 0.9)
+PATH = JUNK | NUMBERS | st.booleans() | st.lists(NUMBERS, min_size=1, max_size=2)
+CALLBACK = TEXTS | JUNK | NUMBERS | st.none()
+CHOICE = JUNK | NUMBERS | st.lists(st.just("pga"), min_size=1, max_size=2)
+OBJECTS = st.none() | NUMBERS | JUNK
+FRAGILITY = TEXTS | JUNK | st.none() | st.tuples(UNIT_TEXTS, NUMBERS) | st.tuples(NUMBERS)
+NTC = TEXTS | JUNK | NUMBERS | st.tuples(UNIT_TEXTS, NUMBERS, NUMBERS, st.just("B"),
+                                         st.just("T1"))
+
+
+class Started(Exception):
+    """The work began: the argument passed the front door."""
+
+
+def _start(*args, **kwargs):
+    raise Started
+
+
+@pytest.fixture(autouse=True)
+def _no_work(monkeypatch):
+    """The work of every function raises :class:`Started` instead."""
+    import audit.api.rocking
+    import audit.engine.check.pipeline
+    import audit.engine.run.probabilistic_audit
+    import audit.engine.design.pipeline
+    import audit.engine.run.suite_run
+    import audit.engine.validation.pipeline
+    import audit.physics.response_spectra
+    import audit.physics.rocking
+    import records.campaign
+    for module, name in ((audit.engine.check.pipeline, "run_check"),
+                         (audit.engine.run.suite_run, "audit_suite"),
+                         (audit.engine.design.pipeline, "design_level_audit"),
+                         (audit.engine.validation.pipeline, "run_validation"),
+                         (audit.engine.run.probabilistic_audit, "audit_procedure"),
+                         (audit.api.rocking, "simulate"),
+                         (audit.physics.rocking, "rocking_spectrum"),
+                         (audit.physics.response_spectra, "response_spectra"),
+                         (records.campaign, "read_campaign")):
+        monkeypatch.setattr(module, name, _start)
+
+
+def _pulse():
+    import records
+    return records.one_pulse("cosine", 0.3, 1.0)
+
+
+SITE = (1.5, 0.9)
+RUN = {"procedures": "fema356", "records": "pulses"}
+#: function → (valid arguments, {argument: values of a wrong type}).
+CASES = {
+    "check": (audit.check, {"objects": ["0.6x1.8"], "site": SITE, "records": "pulses"}, {
+        "objects": OBJECTS, "site": PAIR, "procedures": OBJECTS, "records": PATH,
+        "im": CHOICE, "free_motion_s": NUMBER, "g": NUMBER, "seed": WHOLE.filter(lambda v: v is not None), "hazard": PATH,
+        "risk_target": NUMBER, "ntc_site": NTC, "skip_bad_records": FLAG, "jobs": WHOLE,
+        "scheduler": CHOICE, "progress": CALLBACK}),
+    "check with a hazard": (audit.check, {"objects": ["0.6x1.8"], "site": SITE,
+                                          "records": "pulses", "hazard": "missing.csv"},
+                            {"site_location": PAIR}),
+    "run": (audit.run, RUN, {
+        "procedures": OBJECTS, "records": PATH, "alpha_deg": SEQUENCE, "sizes_s": SEQUENCE,
+        "free_motion_s": NUMBER, "agree_band": NUMBER, "robustness": NUMBER, "g": NUMBER,
+        "restitution": JUNK, "vertical": FLAG, "friction": NUMBER, "sensitivity": CHOICE,
+        "site": PAIR, "site_override": FLAG, "scale_to_site": FLAG, "ntc_site": NTC,
+        "skip_bad_records": FLAG, "detail": JUNK | NUMBERS, "out_dir": PATH, "force": FLAG,
+        "jobs": WHOLE, "scheduler": CHOICE, "partial_dir": PATH, "resume": FLAG,
+        "progress": CALLBACK}),
+    "run scaled": (audit.run, {**RUN, "site": SITE, "scale_to_site": True},
+                   {"anchor_period_s": NUMBER}),
+    "margins": (audit.margins, RUN, {
+        "procedures": OBJECTS, "records": PATH, "im": CHOICE, "stripes": SEQUENCE,
+        "alpha_deg": SEQUENCE, "sizes_s": SEQUENCE, "restitution": JUNK,
+        "free_motion_s": NUMBER, "required": FLAG, "g": NUMBER, "site_level": CHOICE,
+        "hazard": PATH, "risk_target": NUMBER, "site": PAIR, "ntc_site": NTC,
+        "skip_bad_records": FLAG, "force": FLAG, "jobs": WHOLE, "scheduler": CHOICE,
+        "partial_dir": PATH, "resume": FLAG, "progress": CALLBACK}),
+    "rock": (audit.rock, {"block": audit.Block(alpha_deg=15.0, size_s=2.0), "motion": _pulse()},
+             {"block": OBJECTS | TEXTS, "motion": OBJECTS, "free_motion_s": NUMBER,
+              "restitution": JUNK, "vertical": FLAG, "friction": NUMBER, "force": FLAG}),
+    "rock by id": (audit.rock, {"block": audit.Block(alpha_deg=15.0, size_s=2.0),
+                                "motion": "pacoima_dam_1971"}, {"records": PATH}),
+    "Block": (audit.Block, {"alpha_deg": 15.0, "size_s": 2.0},
+              {"alpha_deg": NUMBER_OR_NONE, "size_s": NUMBER_OR_NONE, "r": NUMBER,
+               "g": NUMBER_OR_NONE}),
+    "Block.from_dimensions": (audit.Block.from_dimensions, {"width_m": 0.6, "height_m": 1.8},
+                              {"width_m": NUMBER_OR_NONE, "height_m": NUMBER_OR_NONE,
+                               "r": NUMBER, "g": NUMBER_OR_NONE}),
+    "fragility": (audit.fragility, {"records": "pulses"},
+                  {"procedure": CHOICE, "records": PATH, "skip_bad_records": FLAG,
+                   "progress": FLAG}),
+    "validate": (audit.validate, {"folder": "campaign"},
+                 {"folder": PATH | st.none(), "geometry": PATH, "folds": WHOLE, "jobs": WHOLE,
+                  "free_motion_s": NUMBER, "progress": CALLBACK,
+                  "settings": JUNK | TEXTS | NUMBERS}),
+    "rocking_spectrum": (audit.rocking_spectrum, {"motion": _pulse(), "sizes_s": [1.0],
+                                                  "alpha_deg": [15.0]},
+                         {"motion": OBJECTS, "sizes_s": SEQUENCE | st.none(),
+                          "alpha_deg": SEQUENCE | st.none(), "restitution": JUNK,
+                          "free_motion_s": NUMBER, "vertical": FLAG, "jobs": WHOLE,
+                          "force": FLAG}),
+    "response_spectra": (audit.response_spectra, {"motion": _pulse(), "periods_s": [1.0]},
+                         {"motion": OBJECTS, "periods_s": SEQUENCE | st.none(),
+                          "damping_pct": SEQUENCE | st.none(), "free_motion_s": NUMBER,
+                          "force": FLAG}),
+    "design_suite": (audit.design_suite, {"suite": None, "site": SITE},
+                     {"site": PAIR, "site_override": FLAG, "scale_to_site": FLAG,
+                      "ntc_site": NTC}),
+    "design_spectrum": (audit.design_spectrum, {"code": "fema356", "periods_s": [0.5],
+                                                "sxs_g": 1.5, "sx1_g": 0.9},
+                        {"code": CHOICE, "periods_s": SEQUENCE | st.none(),
+                         "damping_pct": SEQUENCE | st.none(), "sxs_g": NUMBER,
+                         "sx1_g": NUMBER}),
+    "read_hazard": (audit.read_hazard, {"hazard": "missing.csv"},
+                    {"hazard": PATH | st.none(), "site": PAIR, "imt": CHOICE}),
+    "risk": (audit.risk, {"fragility": (0.5, 0.4), "hazard": "missing.csv"},
+             {"fragility": FRAGILITY, "hazard": PATH | st.none(), "site": PAIR}),
+    "load_result": (audit.load_result, {"folder": "audit-out"}, {"folder": PATH | st.none()}),
+}
+
+
+@pytest.mark.parametrize(("case", "argument"),
+                         [(case, argument) for case, (_, _, wrong) in CASES.items()
+                          for argument in wrong])
+@settings(max_examples=12, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_a_wrong_type_is_refused_naming_the_argument(case, argument, data):
+    function, valid, wrong = CASES[case]
+    value = data.draw(wrong[argument], label=argument)
+    with pytest.raises(InputError) as caught:
+        function(**{**valid, argument: value})
+    assert argument in caught.value.fields, (case, argument, value, str(caught.value))
+    assert str(caught.value).startswith(argument), str(caught.value)
+
+
+def test_every_public_function_is_covered():
+    """A public function added to ``audit`` without a case here fails this test."""
+    functions = {name for name in dir(audit)
+                 if callable(getattr(audit, name)) and not name[0].isupper()}
+    covered = {case.split()[0] for case in CASES}
+    assert functions <= covered | {"Block"}, functions - covered

@@ -1,0 +1,103 @@
+"""The pelicun export of exact fragilities, loaded by pelicun itself (the ``pelicun`` extra)."""
+
+from __future__ import annotations
+
+import math
+from io import BytesIO
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy.stats import lognorm
+
+from audit.api.probabilistic import FragilityResult
+from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
+from audit.engine.run.pelicun_export import PELICUN_COLUMNS, pelicun_fragility_csv
+from procedures.fema_p58 import FEMAP58
+from procedures.probabilistic import FragilityComponent, LognormalFragility
+
+BOOKCASE = FragilityComponent("E.20.22.106a", "Bookcase, 6 shelves", "PGV",
+                              LognormalFragility(0.3172843, 0.4137))
+RACK = FragilityComponent("RA.rack", "Server rack 0.6 x 2.0 m", "PGA",
+                          LognormalFragility(6.4871, 0.5523))
+NO_FIT = FragilityComponent("RA.squat", "never overturned", "PGV",
+                            LognormalFragility(math.nan, math.nan))
+
+
+def test_layout_is_the_p58_librarys():
+    table = pd.read_csv(BytesIO(pelicun_fragility_csv([BOOKCASE, RACK, NO_FIT])),
+                        float_precision="round_trip")
+    assert tuple(table.columns) == PELICUN_COLUMNS
+    assert list(table["Demand-Type"]) == ["Peak Floor Velocity", "Peak Floor Acceleration",
+                                          "Peak Floor Velocity"]
+    assert list(table["Demand-Unit"]) == ["mps", "mps2", "mps"]
+    assert list(table["Incomplete"]) == [0, 0, 1]
+    # full precision: the median written is the median
+    assert table["LS1-Theta_0"][0] == 0.3172843 and table["LS1-Theta_1"][1] == 0.5523
+
+
+def test_fragility_result_exports_the_exact_fit():
+    table = pd.DataFrame([{"component": "E.20.22.106a", "description": "Bookcase",
+                           "half_width_m": 0.16, "half_height_m": 1.03,
+                           "exact_median_m_s": 0.3172843, "exact_beta": 0.4137}])
+    result = FragilityResult(FEMAP58(), {COMPONENTS_CSV: table}, "test")
+    (component,) = result.exact_components()
+    assert (component.fragility.median, component.fragility.beta) == (0.3172843, 0.4137)
+    assert component.depth_m == pytest.approx(0.32) and component.intensity_measure == "PGV"
+    assert result.pelicun_csv() == pelicun_fragility_csv([component])
+
+
+def test_pelicun_loads_the_export_and_reproduces_p(tmp_path):
+    pytest.importorskip("pelicun")
+    from pelicun import uq
+    from pelicun.assessment import Assessment
+    path = tmp_path / "fragility.csv"
+    path.write_bytes(pelicun_fragility_csv([BOOKCASE, RACK, NO_FIT]))
+    assessment = Assessment({"PrintLog": False, "Seed": 1, "Verbose": False})
+    assessment.damage.load_model_parameters([str(path)], cmp_set={BOOKCASE.id, RACK.id, NO_FIT.id},
+                                            warn_missing=False)
+    params = assessment.damage.ds_model.damage_params
+    assert NO_FIT.id not in params.index  # Incomplete rows are dropped by pelicun
+    for component, demands in ((BOOKCASE, [0.1, 0.3172843, 0.9]), (RACK, [2.0, 6.5, 15.0])):
+        theta = params.loc[component.id, ("LS1", "Theta_0")], \
+            params.loc[component.id, ("LS1", "Theta_1")]
+        assert params.loc[component.id, ("LS1", "Family")] == "lognormal"
+        p_pelicun = uq.LogNormalRandomVariable("ls1", theta=np.array(theta)).cdf(
+            np.array(demands))
+        p_scipy = lognorm(s=component.fragility.beta, scale=component.fragility.median).cdf(demands)
+        np.testing.assert_allclose(p_pelicun, p_scipy, rtol=0, atol=1e-6)
+        assert not np.allclose(p_scipy, p_scipy[0])  # three distinct probabilities
+
+
+def test_export_takes_precedence_over_the_p58_library(tmp_path):
+    pytest.importorskip("pelicun")
+    from pelicun.assessment import Assessment
+    path = tmp_path / "fragility.csv"
+    path.write_bytes(pelicun_fragility_csv([BOOKCASE]))
+    assessment = Assessment({"PrintLog": False, "Seed": 1, "Verbose": False})
+    assessment.damage.load_model_parameters(
+        [str(path), "PelicunDefault/FEMA P-58/fragility.csv"],
+        cmp_set={BOOKCASE.id, "E.20.22.114a"}, warn_missing=False)
+    params = assessment.damage.ds_model.damage_params
+    # ours replaces P-58's 0.251 m/s; the filing cabinet keeps P-58's 0.498 m/s
+    assert params.loc[BOOKCASE.id, ("LS1", "Theta_0")] == 0.3172843
+    assert params.loc["E.20.22.114a", ("LS1", "Theta_0")] == pytest.approx(0.498)
+
+
+def test_fragility_audit_exports_its_exact_fits():
+    import audit
+    from records import RecordEntry, RecordSuite, one_pulse
+    pulses = RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
+                                                                       record_id=f"c{t:g}"))
+                               for t in (0.3, 0.6, 1.0, 2.0)), "four one-cosine pulses")
+    result = audit.fragility("femap58", pulses)
+    exported = pd.read_csv(BytesIO(result.pelicun_csv()),
+                           float_precision="round_trip").set_index("ID")
+    components = result.tables[COMPONENTS_CSV].set_index("component")
+    assert list(exported.index) == list(components.index)  # the audited PGV components
+    for component_id, row in components.iterrows():
+        fitted = math.isfinite(row["exact_median_m_s"])
+        assert exported.loc[component_id, "Incomplete"] == (0 if fitted else 1)
+        if fitted:
+            assert exported.loc[component_id, "LS1-Theta_0"] == row["exact_median_m_s"]
+            assert exported.loc[component_id, "LS1-Theta_1"] == row["exact_beta"]

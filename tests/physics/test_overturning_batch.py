@@ -1,0 +1,251 @@
+"""Procedures evaluated for many scaled records and slendernesses at once (issue 35): the batch
+must answer exactly what one evaluation per case answers, the slow path kept as the reference.
+
+The compiled ``interp`` is checked against ``numpy.interp`` bit for bit (nodes, between them,
+beyond both ends); the compiled iteration against the array one on spectra that are not
+tabulated (a lambda); the batched predictions against ``Procedure.evaluate`` called case by case on a
+real record scaled to several levels, where chaotic and cycling iterations make any difference
+in the last bit of an iterate show. The same holds for spectra computed only where the
+iteration reads them (``RecordContext.on_demand``), against the whole spectra of
+``response_spectra``.
+"""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from audit.physics.block import coefficient_of_restitution
+from audit.physics.design_spectra import DesignDisplacement, FEMA356Spectrum
+from procedures import get_procedures
+from audit.physics.response_spectra import response_spectra
+from procedures.base import SPECTRUM_PERIODS_S
+from procedures.context import RecordContext
+from procedures.tabulated import TabulatedOnDemand
+from procedures.iteration import (MAX_ITERATIONS, OVERTURN, iterate_rotation,
+                                  iterate_tabulated)
+from procedures.overturning import overturning_predictions, predicts_overturning
+from procedures.rotation_map import map_scale
+from procedures.iteration_kernels import interp
+from records.sites import scaled_site
+
+PERIODS = np.concatenate(([0.0], np.geomspace(0.01, 100.0, 60)))
+#: Levels a record is scaled to: where it overturns some blocks and not others.
+FACTORS = (0.3, 0.55, 0.8, 1.0, 1.4)
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_compiled_interp_is_numpy_interp_bit_for_bit(seed):
+    rng = np.random.default_rng(seed)
+    table = rng.lognormal(size=PERIODS.size)
+    # between nodes, on nodes, at both ends and beyond them
+    x = np.concatenate((rng.uniform(0.0, 120.0, 300), PERIODS, [-1.0, 100.0, 150.0, np.inf]))
+    np.testing.assert_array_equal([interp(value, PERIODS, table) for value in x],
+                                  np.interp(x, PERIODS, table))
+
+
+def test_tabulated_iteration_is_one_iteration_per_spectrum():
+    """Spectra with fixed points and overturning, iterated compiled and together, and apart by
+    the array iteration (a lambda, which it cannot read as a table)."""
+    rng = np.random.default_rng(3)
+    tables = np.abs(rng.normal(0.05, 0.04, size=(4, PERIODS.size))).cumsum(axis=1) / 10.0
+    p = np.tile(2.0 * np.pi / np.array([1.0, 2.5, 4.0, 6.0]), 4)
+    rows = np.repeat(np.arange(4), 4)
+    alpha = math.radians(12.0)
+    together = iterate_tabulated(PERIODS, tables, rows, p, map_scale(p, alpha, 9.81))
+    for row in range(4):
+        mine = rows == row
+        table = tables[row]
+        apart = iterate_rotation(lambda period: np.interp(period, PERIODS, table), p[mine],
+                                 alpha)
+        for got, expected in zip(together, apart):
+            np.testing.assert_array_equal(got[mine], expected)
+    assert {"converged", "overturn"} <= set(together[1])
+
+
+def _same_bits(got, expected):
+    for a, b in zip(got, expected):
+        if a.dtype.kind == "f":
+            np.testing.assert_array_equal(a.view(np.int64), b.view(np.int64))
+        else:
+            np.testing.assert_array_equal(a, b)
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_fema_356_iteration_compiled_is_the_array_iteration(seed):
+    """FEMA 356's spectrum iterated compiled, on one site and on a site per block, against the
+    array iteration (a lambda, which it cannot read as FEMA 356's), bit for bit; the blocks'
+    sites spread about the step to overturning, where the iteration is slowest and may not
+    settle."""
+    rng = np.random.default_rng(seed)
+    alpha, beta = math.radians(rng.uniform(4.0, 30.0)), rng.uniform(0.0, 0.4)
+    p = 2.0 * np.pi / np.geomspace(0.3, 8.0, 12)
+    one = DesignDisplacement(FEMA356Spectrum(rng.uniform(0.2, 3.0), rng.uniform(0.1, 2.0)), beta)
+    _same_bits(iterate_rotation(one, p, alpha), iterate_rotation(lambda t: one(t), p, alpha))
+    # each block's site scaled in a geometric spread across 0.05-20: some converge slowly, some
+    # overturn after many iterations, some reach the cap
+    scale = np.geomspace(0.05, 20.0, 400)
+    sites = FEMA356Spectrum(one.spectrum.sxs_g * scale, one.spectrum.sx1_g * scale)
+    blocks = np.resize(p, scale.size)
+
+    def of(index):
+        return DesignDisplacement(replace(sites, sxs_g=sites.sxs_g[index],
+                                          sx1_g=sites.sx1_g[index]), beta)
+    compiled = iterate_rotation(of, blocks, alpha, blockwise=True)
+    _same_bits(compiled, iterate_rotation(lambda index: (lambda t, spectrum=of(index):
+                                                         spectrum(t)),
+                                          blocks, alpha, blockwise=True))
+    assert {"converged", "overturn"} <= set(compiled[1])
+
+
+def test_fema_356_iteration_reaches_its_cap_near_the_step():
+    """At the step to overturning the map is nearly tangent to θ: iterations run to the cap
+    and are reported so, the same compiled as in the array iteration."""
+    alpha, beta = math.radians(15.0), 0.1
+    p = 2.0 * np.pi / np.array([0.5, 2.0, 7.0])
+
+    def over(factor):
+        spectrum = DesignDisplacement(FEMA356Spectrum(1.5 * factor, 0.9 * factor), beta)
+        return iterate_rotation(spectrum, p, alpha)[1] == OVERTURN
+    low, high = np.full(p.size, 0.01), np.full(p.size, 20.0)
+    for _ in range(45):
+        middle = np.sqrt(low * high)
+        for k in range(p.size):
+            high[k], low[k] = ((middle[k], low[k]) if over(middle[k])[k]
+                               else (high[k], middle[k]))
+    factor = np.concatenate([low * (1.0 - 10.0 ** -np.arange(4, 12)[:, None]),
+                             high * (1.0 + 10.0 ** -np.arange(4, 12)[:, None])]).ravel()
+    sites = FEMA356Spectrum(1.5 * factor, 0.9 * factor)
+
+    def of(index):
+        return DesignDisplacement(replace(sites, sxs_g=sites.sxs_g[index],
+                                          sx1_g=sites.sx1_g[index]), beta)
+    blocks = np.tile(p, factor.size // p.size)
+    compiled = iterate_rotation(of, blocks, alpha, blockwise=True)
+    _same_bits(compiled, iterate_rotation(lambda index: (lambda t, spectrum=of(index):
+                                                         spectrum(t)),
+                                          blocks, alpha, blockwise=True))
+    assert "not-converged" in set(compiled[1]) and compiled[2].max() == MAX_ITERATIONS
+
+
+def scaled_cases(entry, base):
+    cases = []
+    for factor in FACTORS:
+        scaled = replace(entry, motion=entry.motion.scaled(factor),
+                         site=scaled_site(entry.site, factor))
+        cases.append((scaled, base.scaled(scaled, factor)))
+    return cases
+
+
+@pytest.fixture(scope="module")
+def pacoima_cases(seed_suite):
+    return scaled_cases(seed_suite.get("pacoima_dam_1971"),
+                        RecordContext(seed_suite.get("pacoima_dam_1971"), 10.0))
+
+
+@pytest.fixture
+def pacoima_on_demand(seed_suite):
+    """The cases of ``pacoima_cases`` on a new context (no spectrum cached) read on demand."""
+    entry = seed_suite.get("pacoima_dam_1971")
+    return [(scaled, context.on_demand())
+            for scaled, context in scaled_cases(entry, RecordContext(entry, 10.0))]
+
+
+@pytest.mark.parametrize("damping", [0.02, 0.1])
+def test_spectrum_on_demand_is_the_whole_spectrum_bit_for_bit(seed_suite, pacoima_on_demand,
+                                                              damping):
+    """Each value read on demand, of the record scaled or not, is the whole spectrum's (scaled
+    as a scaled context scales it), and only the values read are computed."""
+    whole = response_spectra(seed_suite.get("pacoima_dam_1971").motion, SPECTRUM_PERIODS_S,
+                             [damping], 10.0, displacement_only=True)
+    periods = np.array([0.0, 0.004, 0.05, 0.5, 0.5012, 3.0, 40.0, 150.0])
+    for factor_index in (0, 3, 4):
+        context = pacoima_on_demand[factor_index][1]
+        spectrum = context.true_displacement(damping)
+        assert isinstance(spectrum, TabulatedOnDemand)
+        expected = whole.scaled(FACTORS[factor_index]).sd[0]
+        np.testing.assert_array_equal(spectrum(periods),
+                                      np.interp(periods, SPECTRUM_PERIODS_S, expected))
+        known = spectrum.known
+        np.testing.assert_array_equal(spectrum.sd_m[known], expected[known])
+        assert known.sum() <= 2 * periods.size
+
+
+def test_batched_predictions_are_the_evaluations_case_by_case(pacoima_cases, pacoima_on_demand):
+    sizes = np.linspace(0.5, 9.0, 18)
+    alphas = np.radians([8.0, 14.0, 20.0])
+    p = np.tile(2.0 * np.pi / sizes, alphas.size)
+    groups = [(alpha, np.arange(i * sizes.size, (i + 1) * sizes.size),
+               float(coefficient_of_restitution(alpha))) for i, alpha in enumerate(alphas)]
+    for procedure in get_procedures("all"):
+        usable = [case for case in pacoima_cases if procedure.unmet_requirements(case[0]) is None]
+        batch = overturning_predictions(procedure, usable, p, groups, 9.81)
+        on_demand = [case for case in pacoima_on_demand
+                     if procedure.unmet_requirements(case[0]) is None]
+        np.testing.assert_array_equal(
+            overturning_predictions(procedure, on_demand, p, groups, 9.81), batch,
+            err_msg=procedure.name)
+        slow = np.zeros_like(batch)
+        for c, (entry, context) in enumerate(usable):
+            for alpha, index, r in groups:
+                slow[c, index] = predicts_overturning(
+                    procedure.evaluate(entry, p[index], alpha, r, context, 9.81))
+        np.testing.assert_array_equal(batch, slow, err_msg=procedure.name)
+        if procedure.name == "priestley1978":
+            # the record at these levels overturns some blocks and not others
+            assert 0 < batch.sum() < batch.size
+
+
+def test_evaluation_for_a_verdict_is_the_evaluation_without_its_report(pacoima_cases,
+                                                                       pacoima_on_demand):
+    """``evaluate_for_verdict`` on spectra read on demand: every field of ``evaluate``'s
+    estimate and checks but the fixed points (empty) and the stored spectrum (None)."""
+    p = 2.0 * np.pi / np.linspace(0.5, 9.0, 12)
+    alpha = math.radians(11.0)
+    r = float(coefficient_of_restitution(alpha))
+    for procedure in get_procedures("all"):
+        for (entry, context), (_, on_demand) in zip(pacoima_cases, pacoima_on_demand):
+            if procedure.unmet_requirements(entry) is not None:
+                continue
+            full = procedure.evaluate(entry, p, alpha, r, context, 9.81)
+            verdict = procedure.evaluate_for_verdict(entry, p, alpha, r, on_demand, 9.81)
+            assert len(verdict.checks) == len(full.checks)
+            for got, expected in zip(verdict.checks, full.checks):
+                np.testing.assert_array_equal(got.passes, expected.passes)
+                np.testing.assert_array_equal(got.demand_m, expected.demand_m)
+            if full.estimate is None:
+                assert verdict.estimate is None
+                continue
+            for field in ("theta", "period_s", "iterations", "outcome", "detail", "cycle"):
+                np.testing.assert_array_equal(getattr(verdict.estimate, field),
+                                              getattr(full.estimate, field),
+                                              err_msg=f"{procedure.name} {field}")
+            if procedure.name == "priestley1978":
+                assert verdict.spectrum_sd_m is None
+                assert not any(verdict.estimate.fixed_points)
+                assert any(full.estimate.fixed_points)
+
+
+def test_compiled_iteration_on_a_record_cycles_and_chaos_included(pacoima_cases,
+                                                                  pacoima_on_demand):
+    """Pacoima Dam as recorded, α = 10°: fixed points, overturning, a 2-cycle (2π/p = 6 s,
+    tests/physics/test_fixed_points.py) and unsettled iterations, compiled (on the whole table and on
+    demand) and by arrays."""
+    entry, context = pacoima_cases[3]
+    alpha = math.radians(10.0)
+    beta = float(get_procedures("priestley1978")[0].damping(coefficient_of_restitution(alpha)))
+    spectrum = context.true_displacement(beta)
+    p = 2.0 * np.pi / np.concatenate(([6.0], np.linspace(0.3, 12.0, 80)))
+    compiled = iterate_rotation(spectrum, p, alpha)
+    by_arrays = iterate_rotation(lambda period: spectrum(period), p, alpha)
+    on_demand = iterate_rotation(pacoima_on_demand[3][1].true_displacement(beta), p, alpha)
+    for got, on_demand_got, expected in zip(compiled, on_demand, by_arrays):
+        np.testing.assert_array_equal(got, expected)
+        np.testing.assert_array_equal(on_demand_got, expected)
+    assert compiled[4][0] and "2-cycle" in compiled[3][0]
+    assert {"converged", "overturn", "not-converged"} <= set(compiled[1])
