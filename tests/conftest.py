@@ -21,6 +21,8 @@ REQUIRE_RECORDS = "ROCKING_AUDIT_REQUIRE_RECORDS"
 REQUIRE_CHROMIUM = "ROCKING_AUDIT_REQUIRE_CHROMIUM"
 #: Set to 1 by .ci/run, which installs the docs extra: the documentation test must run.
 REQUIRE_DOCS = "ROCKING_AUDIT_REQUIRE_DOCS"
+#: Set to 1 by .ci/run in its environment with the pelicun extra: the pelicun tests must run.
+REQUIRE_PELICUN = "ROCKING_AUDIT_REQUIRE_PELICUN"
 
 
 def unavailable(required_by: str, reason: str):

@@ -170,3 +170,15 @@ def test_no_api_name_is_shadowed_by_a_module_of_the_api_package():
     shadowed = [name for name in audit.api.__all__ if inspect.ismodule(getattr(audit, name, None))
                 or inspect.ismodule(getattr(audit.api, name))]
     assert not shadowed
+
+
+def test_no_engine_folder_holds_three_modules_of_one_name_prefix():
+    """Modules that share a name prefix (``check_*``) are a room of their own: a sub-package.
+    Counted on the first word of each module's name in every folder of the engine."""
+    from collections import Counter
+    crowded = {}
+    for folder in [REPO / "audit" / "engine", *(REPO / "audit" / "engine").glob("*/")]:
+        words = Counter(path.stem.split("_")[0] for path in folder.glob("*.py")
+                        if path.stem != "__init__")
+        crowded.update({f"{folder.name}/{word}_*": n for word, n in words.items() if n >= 3})
+    assert not crowded

@@ -66,16 +66,16 @@ class FloorMotion:
                 f"{self.pfa_g:.3g} g, PFV = {self.pfv_m_s:.3g} m/s)")
 
 
-def floor_motion(record, records=None, *, building: float, floor: float = 1.0,
+def floor_motion(motion, records=None, *, building: float, floor: float = 1.0,
                  building_model: str | None = None,
                  building_damping: float = DEFAULT_BUILDING_DAMPING) -> FloorMotion:
     """The absolute acceleration of the floor at z/H = ``floor`` of a building of first-mode
-    period ``building`` [s] under ``record`` (as for :func:`audit.rock`: an id of ``records``,
+    period ``building`` [s] under ``motion`` (as for :func:`audit.rock`: an id of ``records``,
     a file, a GroundMotion or (acceleration [m/s²], dt [s])); the model ``shear:N`` or
     ``continuum:α0`` (default ``continuum:10``), damping ``building_damping`` in every mode
     (:mod:`audit.physics.building.floor_motion`)."""
     from audit.api.inputs import on_floor_of
-    motion, document = on_floor_of(record, {
+    motion, document = on_floor_of(motion, {
         "floor": floor, "building": building, "building_model": building_model,
         "building_damping": building_damping}, records)
     return FloorMotion(motion, document)

@@ -277,7 +277,7 @@ def test_ten_thousand_objects_refused_with_the_estimate_and_force(workdir, capsy
 
 def test_long_width_search_passes_report_each_record(monkeypatch):
     import records
-    from audit.engine.check.pipeline import widths as check_widths
+    from audit.engine.check import widths as check_widths
     from audit.engine.check.settings import CheckSettings
     monkeypatch.setattr(check_widths, "PROGRESS_BLOCKS", 2)  # 1,000 blocks, made small
     pulse = records.one_pulse("cosine", 0.3, 1.0)

@@ -112,7 +112,7 @@ def test_check_on_a_floor_names_it_and_reports_each_records_peaks(far_field):
         on_floor = floor_motion(entry.motion.scaled(factor),
                                 Floor.parse(floor=1.0, building=1.0, building_model="shear:10"))
         assert floor["records"][entry.id]["pfa_g"] == pytest.approx(on_floor.pga_g, rel=1e-9)
-    assert "z/H = 1" in result.summary() and "shear:10" in result.summary()
+    assert "z/H = 1" in result.summary_text() and "shear:10" in result.summary_text()
     on_ground = audit.check(["0.8x2.0"], site=(1.0, 0.6), procedures="fema356", records=two)
     assert on_ground.document["floor"]["z_over_h"] == 0.0
     files = result.files()

@@ -99,9 +99,6 @@ class CheckSettings:
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
         im = value["im"]
-        risk_target = check.number("risk_target", value["risk_target"],
-                                   "a probability in 50 years in (0, 1)", 0, 1, low_open=True,
-                                   high_open=True)
         if value["site_location"] is not None and value["hazard"] is None:
             raise InputError("site_location: a site of the hazard file; no hazard given",
                              "site_location")

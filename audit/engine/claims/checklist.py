@@ -39,7 +39,8 @@ def load_claims(path=None) -> list[dict]:
         or tolerance kind is unknown.
     """
     if path is None:
-        text = resources.files("audit.engine").joinpath(CLAIMS_FILE).read_text(encoding="utf-8")
+        text = (resources.files("audit.engine.claims").joinpath(CLAIMS_FILE)
+                .read_text(encoding="utf-8"))
         where = CLAIMS_FILE
     else:
         text, where = open(path, encoding="utf-8").read(), str(path)

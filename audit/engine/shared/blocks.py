@@ -42,6 +42,12 @@ MAX_SIZE_S = 10.0
 MILLIMETRES_HINT_WIDTH_M = 10.0
 
 
+def _check_r_g(r, g) -> None:
+    if r is not None:
+        check.number("r", r, "a coefficient of restitution in (0, 1]", 0, 1, low_open=True)
+    check.number("g", g, "a positive acceleration in m/s²", 0, low_open=True)
+
+
 @dataclass(frozen=True, kw_only=True)
 class Block:
     """A free-standing rectangular block, by its slenderness and size (keyword arguments only:
@@ -78,10 +84,7 @@ class Block:
         check.number("alpha_deg", self.alpha_deg, "a slenderness between 0 and 45 degrees", 0,
                      45, low_open=True, high_open=True)
         check.number("size_s", self.size_s, "a positive size 2π/p in s", 0, low_open=True)
-        if self.r is not None:
-            check.number("r", self.r, "a coefficient of restitution in (0, 1]", 0, 1,
-                         low_open=True)
-        check.number("g", self.g, "a positive acceleration in m/s²", 0, low_open=True)
+        _check_r_g(self.r, self.g)
         rigid = self.rigid
         for field, worked in (("width_m", 2.0 * rigid.half_width),
                               ("height_m", 2.0 * rigid.half_height)):
@@ -99,6 +102,7 @@ class Block:
         within the limits every command applies (:func:`within_limits`)."""
         for field, value in (("width_m", width_m), ("height_m", height_m)):
             check.number(field, value, "a positive number of metres", 0, low_open=True)
+        _check_r_g(r, g)  # named as the arguments, before the solver's block checks them
         if width_m >= height_m:
             raise InputError(f"width_m, height_m: a rocking block is taller than it is wide "
                              f"(α < 45°), got width {width_m:g} m ≥ height {height_m:g} m",

@@ -67,7 +67,7 @@ def test_return_period_sets_the_exact_answers_intensity_from_the_curve(hazard_di
     site_hazard = document["site_hazard"]
     assert site_hazard["return_period_years"] == 2475
     assert "+" not in site_hazard["warning"] and "-15 %" in site_hazard["warning"]
-    assert "hazard curve at 2,475 years" in result.summary()
+    assert "hazard curve at 2,475 years" in result.summary_text()
     # 2 % in 50 years is a return period of −50/ln(0.98) = 2474.9 years
     by_poe = CheckSettings.parse(hazard=path, site_location=(0.0, -0.3), poe="2%")
     assert by_poe.site_return_period_years == pytest.approx(-50.0 / math.log(0.98))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib.util
 import math
 from io import BytesIO
 
@@ -9,6 +10,8 @@ import numpy as np
 import pandas as pd
 import pytest
 from scipy.stats import lognorm
+
+from conftest import REQUIRE_PELICUN, unavailable
 
 from audit.api.probabilistic import FragilityResult
 from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
@@ -20,8 +23,14 @@ BOOKCASE = FragilityComponent("E.20.22.106a", "Bookcase, 6 shelves", "PGV",
                               LognormalFragility(0.3172843, 0.4137))
 RACK = FragilityComponent("RA.rack", "Server rack 0.6 x 2.0 m", "PGA",
                           LognormalFragility(6.4871, 0.5523))
+
 NO_FIT = FragilityComponent("RA.squat", "never overturned", "PGV",
                             LognormalFragility(math.nan, math.nan))
+
+
+def _needs_pelicun():
+    if importlib.util.find_spec("pelicun") is None:
+        unavailable(REQUIRE_PELICUN, "pelicun is not installed (the pelicun extra)")
 
 
 def test_layout_is_the_p58_librarys():
@@ -48,7 +57,7 @@ def test_fragility_result_exports_the_exact_fit():
 
 
 def test_pelicun_loads_the_export_and_reproduces_p(tmp_path):
-    pytest.importorskip("pelicun")
+    _needs_pelicun()
     from pelicun import uq
     from pelicun.assessment import Assessment
     path = tmp_path / "fragility.csv"
@@ -70,7 +79,7 @@ def test_pelicun_loads_the_export_and_reproduces_p(tmp_path):
 
 
 def test_export_takes_precedence_over_the_p58_library(tmp_path):
-    pytest.importorskip("pelicun")
+    _needs_pelicun()
     from pelicun.assessment import Assessment
     path = tmp_path / "fragility.csv"
     path.write_bytes(pelicun_fragility_csv([BOOKCASE]))
