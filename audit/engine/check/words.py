@@ -129,7 +129,8 @@ def _compared(proc: dict, half_width_m: float) -> str:
 
 
 def _percent(p: float | None) -> str:
-    return "—" if p is None else f"{100 * p:.2g} %"
+    """Two significant figures, in fixed notation: "100 %", never "1e+02 %"."""
+    return "—" if p is None else f"{float(f'{100 * p:.2g}'):g} %"
 
 
 def _width_words(proc: dict) -> str:
