@@ -74,10 +74,9 @@ def floor_motion(motion, records=None, *, building: float, floor: float = 1.0,
     a file, a GroundMotion or (acceleration [m/s²], dt [s])); the model ``shear:N`` or
     ``continuum:α0`` (default ``continuum:10``), damping ``building_damping`` in every mode
     (:mod:`audit.physics.building.floor_motion`)."""
-    from audit.api.inputs import on_floor_of
-    motion, document = on_floor_of(motion, {
-        "floor": floor, "building": building, "building_model": building_model,
-        "building_damping": building_damping}, records)
+    from audit.api.inputs import on_floor_of, settings_fields
+    from audit.engine.shared.floors import FLOOR_FIELDS
+    motion, document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records)
     return FloorMotion(motion, document)
 
 

@@ -48,16 +48,15 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     """
     import numpy as np
 
-    from audit.api.inputs import on_floor_of
+    from audit.api.inputs import on_floor_of, settings_fields
+    from audit.engine.shared.floors import FLOOR_FIELDS
     from audit.engine.shared import guards
     from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
     from audit.engine.shared.grid import size_grid
     from audit.physics.block import Restitution
     from audit.physics.rocking import rocking_spectrum as spectrum
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, {
-        "floor": floor, "building": building, "building_model": building_model,
-        "building_damping": building_damping})
+    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS))
     sizes = check.numbers("sizes_s", sizes_s, "positive block sizes 2π/p in s", 0, low_open=True)
     alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
                            45, low_open=True, high_open=True)
@@ -106,14 +105,13 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
     """
     import numpy as np
 
-    from audit.api.inputs import on_floor_of
+    from audit.api.inputs import on_floor_of, settings_fields
+    from audit.engine.shared.floors import FLOOR_FIELDS
     from audit.engine.shared import guards
     from audit.engine.shared.grid import size_grid
     from audit.physics.response_spectra import response_spectra as spectra
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, {
-        "floor": floor, "building": building, "building_model": building_model,
-        "building_damping": building_damping})
+    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS))
     periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
     damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,
                             high_open=True)
