@@ -35,21 +35,19 @@ import numpy as np
 from audit.engine.shared.blocks import BlockList
 from audit.engine.check.risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check.settings import CheckSettings
-from audit.engine.check.entries import rule_width
 from audit.engine.check.site import site_intensity
 from audit.engine.check.sliding import required_friction, sliding_answer
 from audit.engine.check.words import sentence
 from audit.engine.check.judgement import at_site, judge
-from audit.engine.check.limits import MEDIAN, limit_readings, suite_rule
-from audit.engine.check.widths import (Family, accepted_width, exact_required_widths,
-                                      overturns_at, probability_at_site)
+from audit.engine.check.guideline_widths import GuidelineWidths
+from audit.engine.check.widths import Family, exact_required_widths, probability_at_site
 from audit.engine.check.other_im import other_im_answers
 from audit.engine.check.component_checks import component_entries
 from audit.engine.shared.floors import floor_at_site
 from audit.engine.design.bootstrap import bootstrap_lognormal
 from audit.engine.check.width_family import width_answer
 from audit.engine.design.lognormal_fit import fit_lognormal
-from audit.engine.design.stripes import RecordStripes, StripeSettings, half_crossing, record_stripes
+from audit.engine.design.stripes import RecordStripes, StripeSettings, record_stripes
 from audit.engine.design.risk import LognormalFragility, StripeFragility
 from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts, open_scheduler
@@ -219,8 +217,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         _stage(progress, "the width each guideline requires at each object's height")
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
         exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
-        judged = [[_guideline(proc, b, obj, parts, levels, site_judged, site_context, settings)
-                   for proc in procedures] for b, obj in enumerate(objects)]
+        search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
+        judged = [[search.of(proc, b, obj) for proc in procedures]
+                  for b, obj in enumerate(objects)]
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
                          else {})
     frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],
@@ -288,54 +287,6 @@ def _family_widths(obj, over, solved, levels, site_im):
 def _stage(progress, text: str) -> None:
     if progress is not None and hasattr(progress, "stage"):
         progress.stage(text)
-
-
-def _guideline(proc, b, obj, parts, levels, site_judged, site_context, settings) -> tuple:
-    """(procedure, its judgements of object ``b``, its line on the stripes, its required
-    width [m] by the median of the records, by limit state the width of an entry whose suite
-    rule is another (:func:`~audit.engine.check.entries.rule_width`), whether it reads only
-    the site)."""
-    records = ([0] if proc.name in site_judged else
-               [i for i, part in enumerate(parts) if proc.name in part.judged])
-    mine = ([site_judged[proc.name]] if proc.name in site_judged
-            else [parts[i].judged[proc.name] for i in records])
-    evaluated = np.array([part.stripes.evaluated[proc.name] for part in parts])
-    fraction = (np.mean([part.stripes.predicted[proc.name][:, b]
-                         for part, ok in zip(parts, evaluated) if ok], axis=0)
-                if evaluated.any() else None)
-    line = half_crossing(levels, fraction) if fraction is not None else math.nan
-    width = math.nan
-    if mine:
-        def refine(which, widths):
-            return [overturns_at(proc, *site_context(records[k]), obj, float(w),
-                                 settings.restitution, settings.g)
-                    for k, w in zip(which, widths)]
-        width = accepted_width([j.width_low[b] for j in mine],
-                               [j.width_high[b] for j in mine], refine)
-    rule_widths = {}
-    rule = suite_rule(proc.name, len(records))
-    if mine and proc.name not in site_judged and rule != MEDIAN:
-        for state in {r.limit_state for r in mine[0].readings[b]}:
-            rule_widths[state] = rule_width(
-                lambda w, state=state: _state_readings(proc, state, obj, w, records,
-                                                       site_context, settings), obj, rule)
-    return proc, mine, line, width, rule_widths, proc.name in site_judged
-
-
-def _state_readings(proc, state, obj, width_m, records, site_context, settings):
-    """The records' demands at limit state ``state`` of the object made ``width_m`` wide, and
-    its capacity."""
-    block = obj.with_width(width_m)
-    alpha = math.radians(block.alpha_deg)
-    p = np.array([2.0 * math.pi / block.size_s])
-    readings = []
-    for i in records:
-        entry, context = site_context(i)
-        evaluation = proc.evaluate_for_verdict(entry, p, alpha,
-                                               float(settings.restitution.r(alpha)),
-                                               context.on_demand(), settings.g)
-        readings += [r for r in limit_readings(evaluation, alpha) if r.limit_state == state]
-    return [r.demand for r in readings], readings[0].capacity
 
 
 def _guideline_risk(family: Family, objects, judged, curve) -> dict:

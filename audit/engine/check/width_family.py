@@ -22,6 +22,10 @@ from scipy.stats import norm
 RESAMPLES = 200
 CONFIDENCE = 0.90
 SEED = 20260
+#: Newton's method of :func:`fit_width_families`: most iterations, and the relative size of
+#: the last step at which a fit has settled (far below the widths' printed precision).
+NEWTON_ITERATIONS = 100
+NEWTON_TOLERANCE = 1e-10
 
 
 @dataclass(frozen=True)
@@ -44,7 +48,10 @@ class WidthFamily:
 
 
 def fit_width_family(widths_m, levels, overturned, start=None) -> WidthFamily:
-    """Maximum-likelihood :class:`WidthFamily` of outcomes shaped (record, stripe, width).
+    """Maximum-likelihood :class:`WidthFamily` of outcomes shaped (record, stripe, width), by
+    Nelder–Mead on (a, ln c, ln β): the slow path, for a family whose likelihood has no
+    interior maximum (outcomes separated by a line in (ln im, ln w)), and the referee of
+    :func:`fit_width_families` in the tests.
 
     Parameters
     ----------
@@ -54,6 +61,8 @@ def fit_width_family(widths_m, levels, overturned, start=None) -> WidthFamily:
         The stripes [unit of the IM].
     overturned : numpy.ndarray of bool
         Exact outcomes, (record, stripe, width).
+    start : tuple of float, optional
+        (a, ln c, ln β) to start from.
     """
     widths = np.log(np.asarray(widths_m, dtype=float))
     ln_levels = np.log(np.asarray(levels, dtype=float))
@@ -74,6 +83,97 @@ def fit_width_family(widths_m, levels, overturned, start=None) -> WidthFamily:
     return WidthFamily(float(intercept), math.exp(log_slope), math.exp(log_beta))
 
 
+def _probit_log_likelihood(eta, counts, records):
+    return np.sum(counts * log_ndtr(eta) + (records - counts) * log_ndtr(-eta), axis=-1)
+
+
+def _mills(x):
+    """φ(x)/Φ(x), without overflow in either tail."""
+    return np.exp(-0.5 * x * x - 0.5 * math.log(2.0 * math.pi) - log_ndtr(x))
+
+
+def fit_width_families(widths_m, levels, counts, records: int, start=None):
+    """:class:`WidthFamily` of many sets of counts at once, each by maximum likelihood.
+
+    In θ = (−a/β, 1/β, −c/β) the family is a probit model, P = Φ(θ₀ + θ₁ ln im + θ₂ ln w),
+    whose log-likelihood is concave: Newton's method with step halving climbs to its one
+    maximum, every set of counts (a bootstrap's resamples) in the same array operations. A set
+    whose maximum is not interior with β, c > 0 (Newton does not settle within
+    :data:`NEWTON_ITERATIONS`, or lands outside) is refitted by :func:`fit_width_family`.
+
+    Parameters
+    ----------
+    widths_m : array
+        The widths solved [m], shaped (width,).
+    levels : array
+        The stripes [unit of the IM], shaped (stripe,).
+    counts : numpy.ndarray
+        Records overturned, shaped (set, stripe, width).
+    records : int
+        Records behind every count.
+    start : WidthFamily, optional
+        Where Newton starts (a fit of nearby counts); else a = mean ln im − mean ln w, c = 1,
+        β = 0.4.
+
+    Returns
+    -------
+    list of WidthFamily
+        One per set.
+    """
+    ln_w = np.log(np.asarray(widths_m, dtype=float))
+    ln_im = np.log(np.asarray(levels, dtype=float))
+    counts = np.asarray(counts, dtype=float)
+    sets = counts.shape[0]
+    x = np.stack(np.broadcast_arrays(np.ones((ln_im.size, ln_w.size)), ln_im[:, None],
+                                     ln_w[None, :]), axis=-1).reshape(-1, 3)  # (cell, 3)
+    k = counts.reshape(sets, -1)
+    if start is None:
+        start = WidthFamily(float(np.mean(ln_im) - np.mean(ln_w)), 1.0, 0.4)
+    theta = np.tile([-start.intercept / start.beta, 1.0 / start.beta,
+                     -start.slope / start.beta], (sets, 1))
+    log_likelihood = _probit_log_likelihood(theta @ x.T, k, records)
+    settled = np.zeros(sets, dtype=bool)
+    for _ in range(NEWTON_ITERATIONS):
+        eta = theta @ x.T  # (set, cell)
+        up, down = _mills(eta), _mills(-eta)
+        gradient = np.einsum("sc,cj->sj", k * up - (records - k) * down, x)
+        curvature = k * up * (eta + up) + (records - k) * down * (down - eta)
+        hessian = np.einsum("sc,ci,cj->sij", curvature, x, x)
+        # the pseudo-inverse: one width alone leaves ln w collinear with the constant
+        step = np.einsum("sij,sj->si", np.linalg.pinv(hessian), gradient)
+        step[settled] = 0.0
+        for _ in range(40):  # halve each step that does not climb
+            trial = theta + step
+            value = _probit_log_likelihood(trial @ x.T, k, records)
+            worse = ~(value >= log_likelihood)
+            if not worse.any():
+                break
+            step[worse] *= 0.5
+        theta, log_likelihood = np.where(worse[:, None], theta, trial), \
+            np.where(worse, log_likelihood, value)
+        settled |= np.all(np.abs(step) <= NEWTON_TOLERANCE * (1.0 + np.abs(theta)), axis=1)
+        if settled.all():
+            break
+    beta = 1.0 / theta[:, 1]
+    slope = -theta[:, 2] * beta
+    fits = []
+    for j in range(sets):
+        if settled[j] and np.isfinite(theta[j]).all() and beta[j] > 0 and slope[j] > 0:
+            fits.append(WidthFamily(float(-theta[j, 0] * beta[j]), float(slope[j]),
+                                    float(beta[j])))
+        else:
+            fits.append(_fit_counts(ln_w, ln_im, counts[j], records, start))
+    return fits
+
+
+def _fit_counts(ln_w, ln_im, counts, records, start) -> WidthFamily:
+    """:func:`fit_width_family` of counts (stripe, width) out of ``records``: outcomes rebuilt
+    with the same counts (the likelihood reads only the counts)."""
+    overturned = np.arange(records)[:, None, None] < counts[None, :, :]
+    return fit_width_family(np.exp(ln_w), np.exp(ln_im), overturned,
+                            (start.intercept, math.log(start.slope), math.log(start.beta)))
+
+
 @dataclass(frozen=True)
 class WidthAnswer:
     """The family's width curve at the site and its target widths with bootstrap bands."""
@@ -89,16 +189,15 @@ def width_answer(widths_m, levels, overturned, site_im: float, targets, height_m
     """The family fitted on ``overturned`` (record, stripe, width); its P at the site on 40
     widths from 3 % to 95 % of the height; the width of each target with its band (the
     central ``CONFIDENCE`` of the widths the resampled families give)."""
-    family = fit_width_family(widths_m, levels, overturned)
+    records = overturned.shape[0]
+    family, = fit_width_families(widths_m, levels, overturned.sum(axis=0)[None], records)
     grid = height_m * np.geomspace(0.03, 0.95, 40)
     curve = [[float(w), float(p)] for w, p in zip(grid, family.probability(site_im, grid))]
     rng = np.random.default_rng(seed)
-    start = (family.intercept, math.log(family.slope), math.log(family.beta))
-    resampled = []
-    for _ in range(resamples):
-        rows = rng.integers(0, overturned.shape[0], overturned.shape[0])
-        fit = fit_width_family(widths_m, levels, overturned[rows], start)
-        resampled.append([fit.width_for(t, site_im) for t in targets])
+    rows = [rng.integers(0, records, records) for _ in range(resamples)]
+    counts = np.stack([overturned[r].sum(axis=0) for r in rows])
+    resampled = [[fit.width_for(t, site_im) for t in targets]
+                 for fit in fit_width_families(widths_m, levels, counts, records, family)]
     resampled = np.array(resampled)
     tail = 100 * (1 - CONFIDENCE) / 2
     widths, bands = {}, {}
@@ -117,5 +216,5 @@ def quoted(width_m: float, band) -> str:
     return f"{width_m:.{decimals}f} m [{band[0]:.{decimals}f}–{band[1]:.{decimals}f}]"
 
 
-__all__ = ["WidthFamily", "fit_width_family", "width_answer", "WidthAnswer", "quoted",
+__all__ = ["WidthFamily", "fit_width_family", "fit_width_families", "width_answer", "WidthAnswer", "quoted",
            "RESAMPLES", "CONFIDENCE"]
