@@ -33,7 +33,9 @@ def number(field: str, value, what: str = "a number", low: float | None = None,
     what : str
         What is expected, with its unit (``"a duration ≥ 0 s"``), for the message.
     low, high : float, optional
-        Bounds, in the field's unit; ``low_open``/``high_open`` exclude them.
+        Bounds, in the field's unit.
+    low_open, high_open : bool
+        Whether ``low`` and ``high`` themselves are refused.
     """
     number_ = _real(field, value, what)
     below = low is not None and (number_ <= low if low_open else number_ < low)
