@@ -34,8 +34,8 @@ class ExactRotations:
     p_overturn: float
 
     def p_exceed(self, limit_rad: float) -> float:
-        """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or overturning):
-        :func:`~audit.engine.check.limits.p_exceed_at_site` of these rotations.
+        """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or
+        overturning): :func:`~audit.engine.check.limits.p_exceed_at_site` of these rotations.
 
         Parameters
         ----------
