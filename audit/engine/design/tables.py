@@ -214,12 +214,12 @@ def step_levels(procedures, entries, settings: StripeSettings, predicted, evalua
         The procedures audited.
     entries : sequence of records.RecordEntry
         The records.
+    settings : StripeSettings
+        The blocks, stripes and solver settings.
     predicted : dict
         Procedure name → predictions shaped (record, stripe, block).
     evaluated : dict
         Procedure name → whether it evaluated each record.
-    settings : StripeSettings
-        The blocks, stripes and solver settings.
     """
     levels = np.asarray(settings.levels)
     steps = {}
