@@ -34,6 +34,14 @@ class ExactRotations:
     p_overturn: float
 
     def p_exceed(self, limit_rad: float) -> float:
+        """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or
+        overturning): :func:`~audit.engine.check.limits.p_exceed_at_site` of these rotations.
+
+        Parameters
+        ----------
+        limit_rad : float
+            The limit rotation [rad].
+        """
         return p_exceed_at_site(self.theta_rad, self.overturned, self.levels, self.site_im,
                                 limit_rad, self.p_overturn)
 
@@ -54,6 +62,8 @@ def procedure_entries(proc, judgements, line: float, width: float, rule_widths: 
 
     Parameters
     ----------
+    proc : procedures.base.Procedure
+        The guideline.
     judgements : list of audit.engine.check.judgement.Judgement
         One per record it judged (one for a procedure reading only the site).
     line : float
@@ -63,10 +73,18 @@ def procedure_entries(proc, judgements, line: float, width: float, rule_widths: 
         required width of a median-rule entry.
     rule_widths : dict
         Required width [m] by limit state, of an entry whose suite rule is not the median.
+    b : int
+        The object's index in the judgements.
+    exact : ExactRotations
+        The object's exact response at the stripes.
     chosen : str
         The limit state asked for (SLV, SLC or both).
     site_only : bool
         It reads only the site's design spectrum.
+    first_entry : records.RecordEntry
+        The suite's first record, asked why the guideline cannot evaluate it when it judged none.
+    risk_p50 : float or None
+        P of overturning in 50 years at the required width [-], reported on a median-rule entry.
     """
     if not judgements:
         entry = _blank(proc, "overturning")
@@ -116,7 +134,20 @@ def rule_width(demand_capacity, obj, rule: str,
     """The narrowest width at the object's height [m] whose suite demand (by ``rule``) is at
     most its capacity, bisected in ln w between 1 % and 99 % of the height (the demand taken
     as falling against the capacity as the width grows). ``demand_capacity(width)`` → the
-    records' (demands, capacity) there. +inf where even 0.99 h fails."""
+    records' (demands, capacity) there. +inf where even 0.99 h fails.
+
+    Parameters
+    ----------
+    demand_capacity : callable
+        ``demand_capacity(width_m)`` → (each record's demand, the capacity) at that width, in the
+        entry's unit.
+    obj : Block
+        The object; its height stays.
+    rule : str
+        How the records' demands are made one: ``mean``, ``median`` or ``max``.
+    tolerance : float
+        Relative precision of the width [-].
+    """
     def passes(width: float) -> bool:
         demands, capacity = demand_capacity(width)
         return suite_demand(demands, rule) <= capacity

@@ -39,7 +39,16 @@ class GuidelineWidths:
         """(procedure, its judgements of object ``b``, its line on the stripes, its required
         width [m] by the median of the records, by limit state the width of an entry whose
         suite rule is another (:func:`~audit.engine.check.entries.rule_width`), whether it
-        reads only the site)."""
+        reads only the site).
+
+        Parameters
+        ----------
+        proc : procedures.Procedure
+        b : int
+            The object's index in the check.
+        obj : audit.engine.shared.blocks.Block
+            The object.
+        """
         parts, settings, site_context = self.parts, self.settings, self.site_context
         site_only = proc.name in self.site_judged
         records = ([0] if site_only else

@@ -38,7 +38,23 @@ class Judgement:
 
 
 def judge(procedure, entry, context, objects, restitution: Restitution, g: float) -> Judgement:
-    """``procedure``'s :class:`Judgement` of every object under ``entry`` (scaled to the site)."""
+    """``procedure``'s :class:`Judgement` of every object under ``entry`` (scaled to the site).
+
+    Parameters
+    ----------
+    procedure : procedures.base.Procedure
+        The guideline.
+    entry : records.RecordEntry
+        The record, scaled to the site.
+    context : procedures.context.RecordContext
+        Its spectra, scaled alike.
+    objects : sequence of Block
+        The objects checked.
+    restitution : Restitution
+        The impact model.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     out = Judgement(np.zeros(len(objects), dtype=bool), *np.full((2, len(objects)), np.nan), [])
     for i, obj in enumerate(objects):
         alpha = math.radians(obj.alpha_deg)
@@ -54,7 +70,23 @@ def judge(procedure, entry, context, objects, restitution: Restitution, g: float
 
 
 def at_site(entry, context, intensity: float, site_im: float):
-    """The record scaled to the site's intensity, and its context (the cached spectra scaled)."""
+    """The record scaled to the site's intensity, and its context (the cached spectra scaled).
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    context : procedures.context.RecordContext
+        Its cached spectra.
+    intensity : float
+        The record's intensity as it stands (in the IM's unit, e.g. [g]).
+    site_im : float
+        The site's intensity, in the same unit.
+
+    Returns
+    -------
+    tuple of (records.RecordEntry, procedures.context.RecordContext)
+    """
     factor = site_im / intensity
     scaled = replace(entry, motion=entry.motion.scaled(float(factor)))
     return scaled, context.scaled(scaled, float(factor))

@@ -83,7 +83,15 @@ def _first(values) -> float:
 
 def limit_readings(evaluation, alpha_rad: float) -> list[LimitReading]:
     """The :class:`LimitReading` of each limit state ``evaluation`` (one block) checks (see the
-    module)."""
+    module).
+
+    Parameters
+    ----------
+    evaluation : procedures.base.Evaluation
+        The procedure's evaluation of one block.
+    alpha_rad : float
+        The block's slenderness α [rad] (the rotation limit where a check states none).
+    """
     readings = []
     states = {check.limit_state for check in evaluation.checks}
     for check in evaluation.checks:
@@ -115,19 +123,43 @@ def limit_readings(evaluation, alpha_rad: float) -> list[LimitReading]:
 
 
 def wanted(limit_state: str, chosen: str) -> bool:
-    """Whether an entry of ``limit_state`` is reported when ``chosen`` (SLV, SLC or both)."""
+    """Whether an entry of ``limit_state`` is reported when ``chosen`` (SLV, SLC or both).
+
+    Parameters
+    ----------
+    limit_state : str
+        The entry's limit state (``SLV``, ``SLC``, or another procedure's).
+    chosen : str
+        The limit states asked for: ``SLV``, ``SLC`` or ``both``.
+    """
     return chosen == BOTH or limit_state not in LIMIT_STATES or limit_state == chosen
 
 
 def suite_rule(key: str, records: int) -> str:
-    """How procedure ``key`` makes ``records`` records' demands one: mean, median or max."""
+    """How procedure ``key`` makes ``records`` records' demands one: mean, median or max.
+
+    Parameters
+    ----------
+    key : str
+        The procedure's name.
+    records : int
+        Number of records.
+    """
     rule = SUITE_RULES.get(key, MEDIAN)
     return "max" if rule == MEAN and records < NTC_MEAN_RECORDS else rule
 
 
 def suite_demand(demands, rule: str) -> float:
     """The records' demands made one by ``rule`` (mean, max, or median: the ⌈n/2⌉-th smallest,
-    so a demand of +inf counts as any other)."""
+    so a demand of +inf counts as any other).
+
+    Parameters
+    ----------
+    demands : array_like of float
+        Each record's demand.
+    rule : str
+        ``mean``, ``median`` or ``max``.
+    """
     values = np.sort(np.asarray(demands, dtype=float))
     if rule == MEAN:
         return float(values.mean())
@@ -137,7 +169,17 @@ def suite_demand(demands, rule: str) -> float:
 
 
 def basis(rule: str | None, records: int, unit: str) -> str:
-    """How an entry's verdict follows from its demand and capacity, in one sentence."""
+    """How an entry's verdict follows from its demand and capacity, in one sentence.
+
+    Parameters
+    ----------
+    rule : str or None
+        ``mean``, ``median`` or ``max``; None for an entry that reads only the design spectrum.
+    records : int
+        Number of records.
+    unit : str
+        Unit of the entry's demand (``deg`` for a rotation).
+    """
     compare = ("passes when θ stays below α (no overturning)" if unit == "deg"
                else "passes when the demand is at most the capacity")
     if rule is None:
@@ -152,7 +194,13 @@ def basis(rule: str | None, records: int, unit: str) -> str:
 
 
 def verdict(demand: float, capacity: float) -> str:
-    """What demand against capacity says (NaN either: cannot judge)."""
+    """What demand against capacity says (NaN either: cannot judge).
+
+    Parameters
+    ----------
+    demand, capacity : float
+        In the same unit.
+    """
     if math.isnan(demand) or math.isnan(capacity):
         return "cannot judge"
     return "passes" if demand <= capacity else "fails"
@@ -163,7 +211,23 @@ def p_exceed_at_site(theta_rad, overturned, levels, site_im: float, limit_rad: f
     """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or
     overturning), from the records' exact peaks at the stripes (shaped (record, stripe)): a
     lognormal fitted to the counts, as P(overturn) is. Exceeding a limit ≤ α includes
-    overturning, so the answer is at least ``p_overturn`` even where the two fits cross."""
+    overturning, so the answer is at least ``p_overturn`` even where the two fits cross.
+
+    Parameters
+    ----------
+    theta_rad : array_like of float
+        Exact peak rotations [rad], shaped (record, stripe).
+    overturned : array_like of bool
+        Whether each record overturns the block at each stripe, shaped alike.
+    levels : array_like of float
+        The stripes' intensities (in the IM's unit, e.g. [g]).
+    site_im : float
+        The site's intensity, in the same unit.
+    limit_rad : float
+        The limit rotation [rad].
+    p_overturn : float
+        P(overturn) at the site [-], the least the answer can be.
+    """
     from audit.engine.design.lognormal_fit import fit_lognormal
     exceeded = np.asarray(overturned, dtype=bool) | (np.asarray(theta_rad) >= limit_rad)
     counts = exceeded.sum(axis=0)

@@ -25,7 +25,13 @@ SA1_IM = IntensityMeasure("sa", 1.0)
 
 
 def other_im(im: IntensityMeasure) -> IntensityMeasure:
-    """PGA beside an S_a(T); S_a(1 s) beside PGA."""
+    """PGA beside an S_a(T); S_a(1 s) beside PGA.
+
+    Parameters
+    ----------
+    im : IntensityMeasure
+        The check's intensity measure.
+    """
     return SA1_IM if im.kind == "pga" else PGA_IM
 
 

@@ -68,7 +68,13 @@ BAND_POINTS = 61
 
 def check_levels(site_im: float) -> np.ndarray:
     """The stripes of a check: the site's intensity × STRIPE_STEP^k, |k| ≤ SITE_STRIPES (the
-    site's own level exactly at the middle)."""
+    site's own level exactly at the middle).
+
+    Parameters
+    ----------
+    site_im : float
+        The site's intensity (in the IM's unit, e.g. [g]).
+    """
     return site_im * STRIPE_STEP ** np.arange(-SITE_STRIPES, SITE_STRIPES + 1)
 
 
@@ -95,7 +101,13 @@ class CheckWork:
         return self.stripes.jobs
 
     def with_jobs(self, jobs: int) -> CheckWork:
-        """This work with ``jobs`` solver threads (a Dask worker's one)."""
+        """This work with ``jobs`` solver threads (a Dask worker's one).
+
+        Parameters
+        ----------
+        jobs : int
+            Solver threads.
+        """
         return replace(self, stripes=replace(self.stripes, jobs=jobs))
 
     def as_dict(self) -> dict:
@@ -119,7 +131,17 @@ def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
     """The unit of work of a check: one record's stripes, then each record-reading procedure's
     judgement at the site, on the same cached spectra. A check reads only verdicts, so its
     displacement spectra are computed only where the iterations read them (at each object's
-    damping and, in the width search, at each width's)."""
+    damping and, in the width search, at each width's).
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    procedures : sequence of procedures.base.Procedure
+        The guidelines.
+    settings : CheckWork
+        The check's work: stripes, objects and the procedures judged record by record.
+    """
     margins = settings.stripes
     context = RecordContext(entry, margins.free_motion_s, margins.jobs).on_demand()
     stripes = record_stripes(entry, procedures, margins, context)

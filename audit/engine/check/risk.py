@@ -25,7 +25,19 @@ from audit.errors import InputWarning
 
 def fragilities(overturned, levels):
     """The fitted (None where no lognormal fits) and counted fragility of one block from its
-    outcomes shaped (record, stripe)."""
+    outcomes shaped (record, stripe).
+
+    Parameters
+    ----------
+    overturned : numpy.ndarray of bool
+        Whether each record overturns the block at each stripe, shaped (record, stripe).
+    levels : array_like of float
+        The stripes' intensities [g].
+
+    Returns
+    -------
+    tuple of (LognormalFragility or None, StripeFragility)
+    """
     levels = np.asarray(levels, dtype=float)
     counted = StripeFragility(levels, np.asarray(overturned, dtype=float).mean(axis=0))
     (median,), (beta,) = lognormal_fits(levels, overturned.shape[0],
@@ -38,7 +50,19 @@ def fragilities(overturned, levels):
 
 def quiet_risk(fragility, curve):
     """:func:`~audit.engine.design.risk.risk_integral` without its truncation warning (the caller says
-    it once, for all the blocks it concerns)."""
+    it once, for all the blocks it concerns).
+
+    Parameters
+    ----------
+    fragility : LognormalFragility or StripeFragility
+        The block's fragility.
+    curve : records.hazard.HazardCurve
+        The site's hazard curve.
+
+    Returns
+    -------
+    OverturningRisk
+    """
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", InputWarning)
         return risk_integral(fragility, curve)
@@ -46,7 +70,17 @@ def quiet_risk(fragility, curve):
 
 def p50_of_blocks(overturned, levels, curve) -> np.ndarray:
     """P of overturning in 50 years of each block, outcomes shaped (record, stripe, block): the
-    fitted fragility's, the counted one's where none fits."""
+    fitted fragility's, the counted one's where none fits.
+
+    Parameters
+    ----------
+    overturned : numpy.ndarray of bool
+        Outcomes shaped (record, stripe, block).
+    levels : array_like of float
+        The stripes' intensities [g].
+    curve : records.hazard.HazardCurve
+        The site's hazard curve.
+    """
     out = np.empty(overturned.shape[2])
     for b in range(out.size):
         fitted, counted = fragilities(overturned[:, :, b], levels)
@@ -57,7 +91,15 @@ def p50_of_blocks(overturned, levels, curve) -> np.ndarray:
 def shares_outside(risk, low_g: float, high_g: float) -> tuple[float, float]:
     """Shares of λ_ov from intensities below ``low_g`` and above ``high_g`` (the stripes'
     range, outside which a fitted fragility is extrapolated), the tail above the curve's last
-    level counted above."""
+    level counted above.
+
+    Parameters
+    ----------
+    risk : OverturningRisk
+        The block's risk, with its deaggregation.
+    low_g, high_g : float
+        The lowest and highest stripe [g].
+    """
     if not risk.annual_rate > 0:
         return 0.0, 0.0
     x, density = np.log(risk.density_im_g), risk.density
@@ -76,7 +118,21 @@ def shares_outside(risk, low_g: float, high_g: float) -> tuple[float, float]:
 def object_risk(fitted, counted, curve, target_p50: float, width_m: float | None) -> dict:
     """The ``risk`` entry of ``check.json`` for one object: its fitted fragility (None where
     none fits) and its counted one; ``width_m`` is the exact width for the target (None where
-    no width up to 0.95 × the height meets it)."""
+    no width up to 0.95 × the height meets it).
+
+    Parameters
+    ----------
+    fitted : LognormalFragility or None
+        The lognormal fitted to the stripes, None where none fits.
+    counted : StripeFragility
+        The fractions overturning at the stripes.
+    curve : records.hazard.HazardCurve
+        The site's hazard curve.
+    target_p50 : float
+        The target P of overturning in 50 years [-].
+    width_m : float or None
+        The exact width meeting the target [m].
+    """
     risk = quiet_risk(fitted or counted, curve)
     by_stripes = quiet_risk(counted, curve)
     below, above = shares_outside(risk, float(counted.levels_g[0]), float(counted.levels_g[-1]))
@@ -92,7 +148,15 @@ def object_risk(fitted, counted, curve, target_p50: float, width_m: float | None
 
 
 def hazard_document(curve, target_p50: float) -> dict:
-    """What ``check.json`` says of the site's hazard curve (the curve itself, for the page)."""
+    """What ``check.json`` says of the site's hazard curve (the curve itself, for the page).
+
+    Parameters
+    ----------
+    curve : records.hazard.HazardCurve
+        The site's hazard curve.
+    target_p50 : float
+        The target P of overturning in 50 years [-].
+    """
     return {"source": curve.source, "im": curve.im_name, "site": curve.site,
             "target_p50": target_p50, "years": YEARS,
             "target_annual_rate": annual_rate_for(target_p50),

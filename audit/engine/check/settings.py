@@ -147,7 +147,15 @@ class CheckSettings:
 
 def site_return_period(return_period, poe) -> float | None:
     """The return period [years] of ``return_period`` or ``poe`` (in 50 years, Poisson:
-    T = −50 / ln(1 − P)), at most one of them given; None when neither is."""
+    T = −50 / ln(1 − P)), at most one of them given; None when neither is.
+
+    Parameters
+    ----------
+    return_period : float or None
+        Return period of the site's hazard level [years].
+    poe : float or str or None
+        Its probability of exceedance in 50 years (``0.1`` or ``"10%"``) [-].
+    """
     if return_period is not None and poe is not None:
         raise InputError("return_period and poe: give one of them (both say the site's "
                          "hazard level)", "return_period", "poe")

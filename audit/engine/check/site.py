@@ -48,7 +48,13 @@ class SiteIntensity:
     warning: str | None = None
 
     def as_dict(self, curve=None) -> dict:
-        """``site_hazard`` of ``check.json`` (None when the site is the design spectrum's)."""
+        """``site_hazard`` of ``check.json`` (None when the site is the design spectrum's).
+
+        Parameters
+        ----------
+        curve : records.hazard.HazardCurve, optional
+            The hazard curve read, for its source.
+        """
         if self.return_period_years is None:
             return None
         years = self.return_period_years
@@ -65,7 +71,19 @@ def site_intensity(im, design_site: dict | None, curve=None,
     """The site's intensities of a check (see the module): ``design_site`` (S_XS, S_X1 [g]) at
     ``im``, and ``curve`` at ``return_period_years`` when both are given; a warning
     (:class:`~audit.errors.InputWarning`) when they disagree by more than
-    :data:`DISAGREEMENT`."""
+    :data:`DISAGREEMENT`.
+
+    Parameters
+    ----------
+    im : IntensityMeasure
+        The check's intensity measure.
+    design_site : dict or None
+        FEMA 356 design site, ``sxs_g`` and ``sx1_g`` [g].
+    curve : records.hazard.HazardCurve, optional
+        The site's hazard curve.
+    return_period_years : float, optional
+        The site's return period [years].
+    """
     design_im = im.of_design_site(design_site)
     if not design_im:
         raise InputError("site: the check needs the site's S_XS,S_X1 [g]", "site")

@@ -35,7 +35,25 @@ ROCKING, SLIDING, SLIDE_ROCK, REST = "rocking", "sliding", "rocking, sliding in 
 def required_friction(motion, factor: float, blocks, restitution, g: float,
                       free_motion_s: float, jobs: int) -> np.ndarray:
     """max |H|/V [-] of each block's pure-rocking response to ``motion`` × ``factor`` (the
-    record at the site's intensity), inf where the block would jump."""
+    record at the site's intensity), inf where the block would jump.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+        The record.
+    factor : float
+        Scale factor to the site's intensity [-].
+    blocks : BlockList
+        The blocks.
+    restitution : Restitution
+        The impact model.
+    g : float
+        Acceleration of gravity [m/s²].
+    free_motion_s : float
+        Free-motion time after the record [s].
+    jobs : int
+        Solver threads.
+    """
     alpha_rad = np.empty(len(blocks))
     for alpha, index in blocks.groups():
         alpha_rad[index] = alpha

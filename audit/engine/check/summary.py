@@ -126,7 +126,15 @@ class ObjectFindings:
 
 
 def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
-    """The entry of ``check.json`` for one object (see the module)."""
+    """The entry of ``check.json`` for one object (see the module).
+
+    Parameters
+    ----------
+    found : ObjectFindings
+        What the check found of the object.
+    frame : CheckFrame
+        What every object shares: stripes, site intensity, IM, records.
+    """
     obj, b, fit, boot, overturned = found.obj, found.index, found.fit, found.boot, found.overturned
     levels, site_im, im = frame.levels, frame.site_im, frame.im
     site = int(np.argmin(np.abs(levels - site_im)))
@@ -169,7 +177,27 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
 
 
 def run_summary(suite, entries, im, levels, site_im, procedures, restitution, where) -> dict:
-    """The part of ``check.json`` that describes the run."""
+    """The part of ``check.json`` that describes the run.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+        The records, with their design site and floor.
+    entries : sequence of records.RecordEntry
+        The records used.
+    im : IntensityMeasure
+        The check's intensity measure.
+    levels : numpy.ndarray
+        The stripes (in the IM's unit, e.g. [g]).
+    site_im : float
+        The site's intensity, in the same unit.
+    procedures : sequence of procedures.base.Procedure
+        The guidelines checked.
+    restitution : Restitution
+        The impact model.
+    where : str
+        Where the records were solved (the scheduler).
+    """
     from audit import __version__
     site = suite.design_site or {}
     return {"version": __version__,
@@ -184,7 +212,15 @@ def run_summary(suite, entries, im, levels, site_im, procedures, restitution, wh
 
 def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
     """One row per object × procedure (the columns of ``check.csv``), on ``floor`` (the run's
-    ``floor``; the ground when None)."""
+    ``floor``; the ground when None).
+
+    Parameters
+    ----------
+    objects : list of dict
+        The objects' entries of ``check.json`` (:func:`object_answer`).
+    floor : dict, optional
+        The run's ``floor`` (:func:`~audit.engine.shared.floors.floor_document`).
+    """
     floor = floor or {}
     where = {"floor_z_over_h": floor.get("z_over_h", 0.0),
              "building_period_s": floor.get("building_period_s"),
@@ -219,7 +255,18 @@ def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
 
 
 def check_data_files(run) -> dict[str, bytes]:
-    """``check.json`` and ``check.csv`` of a :class:`~audit.engine.check.pipeline.CheckRun`."""
+    """``check.json`` and ``check.csv`` of a :class:`~audit.engine.check.pipeline.CheckRun`.
+
+    Parameters
+    ----------
+    run : CheckRun
+        The finished check.
+
+    Returns
+    -------
+    dict of str to bytes
+        File name → contents.
+    """
     document = {**run.summary, "objects": run.objects}
     return {CHECK_JSON: json.dumps(document, indent=1, ensure_ascii=False).encode(),
             CHECK_CSV: csv_bytes(check_table(run.objects, run.summary.get("floor")), "%.6g")}

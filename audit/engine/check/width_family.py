@@ -37,12 +37,28 @@ class WidthFamily:
     beta: float
 
     def probability(self, im, width_m):
-        """P(overturn) at intensity ``im`` of the member ``width_m`` wide."""
+        """P(overturn) at intensity ``im`` of the member ``width_m`` wide.
+
+        Parameters
+        ----------
+        im : float or array_like of float
+            Intensity [g].
+        width_m : float or array_like of float
+            Full base width [m].
+        """
         median = self.intercept + self.slope * np.log(width_m)
         return norm.cdf((np.log(im) - median) / self.beta)
 
     def width_for(self, target: float, im: float) -> float:
-        """The width whose P(overturn) at ``im`` is ``target`` [m]."""
+        """The width whose P(overturn) at ``im`` is ``target`` [m].
+
+        Parameters
+        ----------
+        target : float
+            P(overturn) [-].
+        im : float
+            Intensity [g].
+        """
         return math.exp((math.log(im) - self.intercept - self.beta * norm.ppf(target))
                         / self.slope)
 
@@ -61,8 +77,9 @@ def fit_width_family(widths_m, levels, overturned, start=None) -> WidthFamily:
         The stripes [unit of the IM].
     overturned : numpy.ndarray of bool
         Exact outcomes, (record, stripe, width).
-    start : tuple of float, optional
-        (a, ln c, ln β) to start from.
+    start : sequence of three float, optional
+        Starting point (intercept, ln slope, ln β) of the minimisation; the mean ln stripe less
+        the mean ln width, 0 and ln 0.4 when not given.
     """
     widths = np.log(np.asarray(widths_m, dtype=float))
     ln_levels = np.log(np.asarray(levels, dtype=float))
@@ -188,7 +205,27 @@ def width_answer(widths_m, levels, overturned, site_im: float, targets, height_m
                  resamples: int = RESAMPLES, seed: int = SEED) -> WidthAnswer:
     """The family fitted on ``overturned`` (record, stripe, width); its P at the site on 40
     widths from 3 % to 95 % of the height; the width of each target with its band (the
-    central ``CONFIDENCE`` of the widths the resampled families give)."""
+    central ``CONFIDENCE`` of the widths the resampled families give).
+
+    Parameters
+    ----------
+    widths_m : array_like of float
+        Full base width of each block solved [m].
+    levels : array_like of float
+        The stripes [g].
+    overturned : numpy.ndarray of bool
+        Outcomes shaped (record, stripe, width).
+    site_im : float
+        The site's intensity [g].
+    targets : sequence of float
+        Target P(overturn) at the site [-].
+    height_m : float
+        The object's full height [m].
+    resamples : int
+        Bootstrap resamples over records.
+    seed : int
+        Seed of the resampling.
+    """
     records = overturned.shape[0]
     family, = fit_width_families(widths_m, levels, overturned.sum(axis=0)[None], records)
     grid = height_m * np.geomspace(0.03, 0.95, 40)
@@ -210,7 +247,15 @@ def width_answer(widths_m, levels, overturned, site_im: float, targets, height_m
 
 def quoted(width_m: float, band) -> str:
     """A width to the precision its band supports: rounded to the power of ten below the band's
-    half-width (at least 1 mm), with the band, e.g. ``0.56 m [0.51–0.63]``."""
+    half-width (at least 1 mm), with the band, e.g. ``0.56 m [0.51–0.63]``.
+
+    Parameters
+    ----------
+    width_m : float
+        The width [m].
+    band : sequence of two float
+        Its band (low, high) [m].
+    """
     half = max((band[1] - band[0]) / 2.0, 1e-3)
     decimals = max(0, -math.floor(math.log10(half)))
     return f"{width_m:.{decimals}f} m [{band[0]:.{decimals}f}–{band[1]:.{decimals}f}]"

@@ -69,7 +69,18 @@ def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
     """Exact overturning of the blocks of ``settings`` under one record scaled to each stripe,
     shaped (stripe, block). The stripes share ``settings.jobs`` threads as the blocks of each
     do: a bisection solves one or two blocks, which alone would leave all threads but one
-    idle (every block is solved alone, so the values do not depend on it)."""
+    idle (every block is solved alone, so the values do not depend on it).
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    procedures : list
+        Unused (none: the exact solver alone), for the scheduler's ``task(entry, procedures,
+        settings)``.
+    settings : FamilySettings
+        The blocks, stripes and solver settings.
+    """
     intensity = dict(settings.intensity)[entry.id]
 
     def overturned(level):
@@ -87,7 +98,17 @@ def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
 
 def probability_at_site(overturned, levels, site_im: float) -> np.ndarray:
     """P(overturn) at ``site_im`` of each block's fitted fragility; ``overturned`` is shaped
-    (record, stripe, block)."""
+    (record, stripe, block).
+
+    Parameters
+    ----------
+    overturned : numpy.ndarray of bool
+        Outcomes shaped (record, stripe, block).
+    levels : array_like of float
+        The stripes [g].
+    site_im : float
+        The site's intensity [g].
+    """
     counts = overturned.sum(axis=0).T  # (block, stripe)
     medians, betas = lognormal_fits(levels, overturned.shape[0], counts)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -185,7 +206,13 @@ class Family:
 
     def overturned(self, heights_m, widths_m) -> np.ndarray:
         """Exact overturning of the block of each (height, width) pair [m] under every record at
-        every stripe, shaped (record, stripe, block)."""
+        every stripe, shaped (record, stripe, block).
+
+        Parameters
+        ----------
+        heights_m, widths_m : array_like of float
+            Full height and full base width of each block [m].
+        """
         from audit.engine.shared.blocks import Block
         g = self.settings.g
         blocks = [Block.of_dimensions(w, h, g=g) for h, w in zip(heights_m, widths_m)]
@@ -205,7 +232,21 @@ def exact_required_widths(family: Family, heights_m, targets, measure,
     each target limits, per block (shaped (block,) or (block, target)), from the records'
     outcomes at the stripes (:meth:`Family.overturned`); widths [m] shaped (height, target).
     Every solve is appended to ``solved`` as (heights, widths, outcomes (record, stripe,
-    block)), for the family fit (:mod:`audit.engine.check.width_family`)."""
+    block)), for the family fit (:mod:`audit.engine.check.width_family`).
+
+    Parameters
+    ----------
+    family : Family
+        The records, ready to solve.
+    heights_m : array_like of float
+        The objects' full heights [m].
+    targets : sequence of float
+        The limits of the measure (e.g. P(overturn) at the site [-]).
+    measure : callable
+        ``measure(overturned, levels)`` → the measure per block.
+    solved : list, optional
+        Where each solve is appended.
+    """
     def measured(heights, widths):
         overturned = family.overturned(heights, widths)
         if solved is not None:
@@ -218,7 +259,25 @@ def exact_required_widths(family: Family, heights_m, targets, measure,
 
 def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g: float) -> bool:
     """Whether ``procedure`` predicts overturning for the object made ``width_m`` wide under
-    ``entry`` (a record scaled to the site, ``context`` its spectra)."""
+    ``entry`` (a record scaled to the site, ``context`` its spectra).
+
+    Parameters
+    ----------
+    procedure : procedures.base.Procedure
+        The guideline.
+    entry : records.RecordEntry
+        The record, scaled to the site.
+    context : procedures.context.RecordContext
+        Its spectra.
+    obj : Block
+        The object; its height stays.
+    width_m : float
+        Full base width tried [m].
+    restitution : Restitution
+        The impact model.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     block = obj.with_width(width_m)
     alpha = math.radians(block.alpha_deg)
     # the verdict alone: the iteration reads the record's spectrum at this α's damping only
@@ -232,7 +291,17 @@ def guideline_bracket(overturns, obj, object_overturns: bool) -> tuple[float, fl
     """Widths (low, high) [m] at the object's height with ``overturns(low)`` and not
     ``overturns(high)``, high/low ≤ :data:`GUIDELINE_STEP`: stepped out from the object's width
     (whose answer is ``object_overturns``). (0.99 h, +inf) when it predicts overturning up to
-    0.99 × the height; (0, 0.01 h) when it predicts none down to 1 % of the height."""
+    0.99 × the height; (0, 0.01 h) when it predicts none down to 1 % of the height.
+
+    Parameters
+    ----------
+    overturns : callable
+        ``overturns(width_m)`` → whether the guideline predicts overturning at that width.
+    obj : Block
+        The object.
+    object_overturns : bool
+        The guideline's answer at the object's own width.
+    """
     lowest, highest = 0.01 * obj.height_m, 0.99 * obj.height_m
     if object_overturns:
         low = obj.width_m
@@ -257,7 +326,18 @@ def accepted_width(low, high, refine, tolerance: float = GUIDELINE_TOLERANCE) ->
     each known within its bracket (low_r, high_r]. Only the brackets that straddle the
     order statistic's own bracket are halved (``refine(records, widths)`` → whether each record
     predicts overturning at its width), until it is known to ``tolerance``; +inf when that
-    record predicts overturning at every width."""
+    record predicts overturning at every width.
+
+    Parameters
+    ----------
+    low, high : array_like of float
+        Each record's bracket of its narrowest accepted width [m].
+    refine : callable
+        ``refine(records, widths)`` → whether each of those records predicts overturning at its
+        width.
+    tolerance : float
+        Relative precision of the width [-].
+    """
     low, high = np.array(low, dtype=float), np.array(high, dtype=float)
     k = math.ceil(low.size / 2) - 1
     while True:

@@ -13,13 +13,29 @@ EXTRAPOLATED_SHARE = 0.10
 
 def metres(value: float) -> str:
     """A width in metres: to the centimetre from 10 cm, to two significant figures below, so
-    that a small object's width is not printed "0.00 m"."""
+    that a small object's width is not printed "0.00 m".
+
+    Parameters
+    ----------
+    value : float
+        The width [m].
+    """
     return f"{value:.2f} m" if value >= 0.1 else f"{value:.2g} m"
 
 
 def im_words(im, site_im: float, return_period_years: float | None = None) -> str:
     """The site's intensity in words, e.g. ``S_a(1 s) = S_X1 = 0.9 g``, or ``S_a(1 s) =
-    0.764 g of the hazard curve at 2,475 years`` where the hazard curve sets it."""
+    0.764 g of the hazard curve at 2,475 years`` where the hazard curve sets it.
+
+    Parameters
+    ----------
+    im : IntensityMeasure
+        The check's intensity measure.
+    site_im : float
+        The site's intensity [g].
+    return_period_years : float, optional
+        The hazard curve's return period [years], where it sets the intensity.
+    """
     if return_period_years is not None:
         name = f"S_a({im.period_s:g} s)" if im.kind == "sa" else "PGA"
         return (f"{name} = {site_im:.3g} g of the hazard curve at {return_period_years:,.0f} "
@@ -32,7 +48,15 @@ def im_words(im, site_im: float, return_period_years: float | None = None) -> st
 
 def exact_width_words(exact: dict, target: str) -> str:
     """The exact width for P(overturn) ≤ ``target`` % with its 90 % band over records, to the
-    precision the band supports, or why there is none."""
+    precision the band supports, or why there is none.
+
+    Parameters
+    ----------
+    exact : dict
+        The object's ``exact`` entry of ``check.json``.
+    target : str
+        The target P(overturn) in per cent, ``"10"`` or ``"50"``.
+    """
     from audit.engine.check.width_family import quoted
     width = exact[f"required_width_m_{target}pct"]
     if width is None:
@@ -56,7 +80,15 @@ def _judged(entries) -> str:
 
 def p_words(exact: dict, records: int) -> str:
     """The exact P(overturn) at the site with its band, or, where no record overturns the
-    object at any stripe, the 95 % upper bound that leaves (1 − 0.05^(1/n))."""
+    object at any stripe, the 95 % upper bound that leaves (1 − 0.05^(1/n)).
+
+    Parameters
+    ----------
+    exact : dict
+        The object's ``exact`` entry of ``check.json``.
+    records : int
+        Number of records.
+    """
     low, high = exact["p_band"]
     overturned = exact["stripes"]["overturned"]
     if exact["median_g"] is None and not any(overturned):
@@ -68,7 +100,15 @@ def p_words(exact: dict, records: int) -> str:
 
 def sentence(answer: dict, im) -> str:
     """One sentence for a calculation note: the guidelines' verdicts by their own limit states,
-    the exact P(overturn) at the site with its band, the exact widths."""
+    the exact P(overturn) at the site with its band, the exact widths.
+
+    Parameters
+    ----------
+    answer : dict
+        The object's entry of ``check.json``.
+    im : IntensityMeasure
+        The check's intensity measure.
+    """
     by = {v: [p for p in answer["procedures"] if p["verdict"] == v]
           for v in ("passes", "fails", "cannot judge")}
     parts = []
@@ -162,7 +202,13 @@ def _scaled_to(document: dict) -> str:
 
 
 def summary_text(document: dict) -> str:
-    """The summary on standard output: one paragraph, then per object its sentence and table."""
+    """The summary on standard output: one paragraph, then per object its sentence and table.
+
+    Parameters
+    ----------
+    document : dict
+        ``check.json``.
+    """
     site = document["site"]
     source = document["records_source"].split(":")[0]
     lines = [f"Site S_XS = {site['sxs_g']:g} g, S_X1 = {site['sx1_g']:g} g, at the hazard level "

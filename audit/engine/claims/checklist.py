@@ -32,6 +32,11 @@ TOLERANCE_KINDS = ("relative", "absolute", "at_least", "at_most", "exact")
 def load_claims(path=None) -> list[dict]:
     """The claims of ``claims.toml`` (or of ``path``), checked for the required fields.
 
+    Parameters
+    ----------
+    path : str or pathlib.Path, optional
+        A claims file; the shipped ``claims.toml`` when not given.
+
     Raises
     ------
     InputError
@@ -69,7 +74,18 @@ def load_claims(path=None) -> list[dict]:
 # ------------------------------------------------------------------------------ grading
 
 def grade(tool_value, reference, tolerance: dict) -> str:
-    """``agrees``, ``close`` or ``differs`` for a tool value against the report's value."""
+    """``agrees``, ``close`` or ``differs`` for a tool value against the report's value.
+
+    Parameters
+    ----------
+    tool_value : float, int, bool or None
+        What the tool computes.
+    reference : float, int or bool
+        The report's value.
+    tolerance : dict
+        The claim's ``tolerance``: ``kind`` (``exact``, ``absolute``, ``relative``, ``at_least``,
+        ``at_most``), ``agree`` and ``close``, in the value's unit (a fraction for ``relative``).
+    """
     if tool_value is None or (isinstance(tool_value, float) and math.isnan(tool_value)):
         return "differs"
     kind = tolerance["kind"]
@@ -114,7 +130,13 @@ class ClaimContext:
         self._procedures = None
 
     def require(self, record_id: str) -> None:
-        """CannotCheck unless the run holds ``record_id`` with a file, as recorded."""
+        """CannotCheck unless the run holds ``record_id`` with a file, as recorded.
+
+        Parameters
+        ----------
+        record_id : str
+            The record.
+        """
         self.require_unscaled()
         item = self.records.get(record_id)
         if item is None:
@@ -130,14 +152,26 @@ class ClaimContext:
                               "report's claims are about the records as recorded")
 
     def entry(self, record_id: str):
-        """The suite's entry of a record with a file, or None without a suite."""
+        """The suite's entry of a record with a file, or None without a suite.
+
+        Parameters
+        ----------
+        record_id : str
+            The record.
+        """
         self.require(record_id)
         if self.suite is None:
             return None
         return self.suite.get(record_id)
 
     def record_context(self, entry) -> RecordContext:
-        """The procedures' cache of one record's spectra (shared by the claims)."""
+        """The procedures' cache of one record's spectra (shared by the claims).
+
+        Parameters
+        ----------
+        entry : records.RecordEntry
+            The record.
+        """
         if entry.id not in self._contexts:
             self._contexts[entry.id] = RecordContext(entry, self.free_motion_s)
         return self._contexts[entry.id]
@@ -150,7 +184,13 @@ class ClaimContext:
 
     def procedure(self, name: str):
         """An instance of the registered procedure ``name`` (the registry, whose plug-ins are
-        found by scanning the installed distributions, read once for all the claims)."""
+        found by scanning the installed distributions, read once for all the claims).
+
+        Parameters
+        ----------
+        name : str
+            The procedure's registered name.
+        """
         if self._procedures is None:
             self._procedures = available_procedures()
         return self._procedures[name]()
@@ -159,7 +199,15 @@ class ClaimContext:
 # ------------------------------------------------------------------------------ checklist
 
 def evaluate_claim(ctx: ClaimContext, claim: dict) -> dict:
-    """One row of the checklist (columns :data:`audit.engine.shared.schemas.CLAIM_COLUMNS`)."""
+    """One row of the checklist (columns :data:`audit.engine.shared.schemas.CLAIM_COLUMNS`).
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    claim : dict
+        One claim of :func:`load_claims`.
+    """
     row = {key: claim[key] for key in ("id", "section", "claim", "reference_value")}
     notes = [claim["note"]] if claim["note"] else []
     try:
@@ -184,7 +232,13 @@ def evaluate_claim(ctx: ClaimContext, claim: dict) -> dict:
 
 def claimed_records(claims: list[dict] | None = None) -> set[str]:
     """Ids of the records the claims (default: every claim of ``claims.toml``) are about: the
-    only records whose rows :func:`evaluate_claims` reads."""
+    only records whose rows :func:`evaluate_claims` reads.
+
+    Parameters
+    ----------
+    claims : list of dict, optional
+        Claims of :func:`load_claims`.
+    """
     return {record for claim in (load_claims() if claims is None else claims)
             for record in claim["records"]}
 

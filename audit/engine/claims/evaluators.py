@@ -16,7 +16,17 @@ from audit.engine.claims.value import Value
 
 
 def ratio(ctx, numerator: dict, denominator: dict, percent_change: bool = False) -> Value:
-    """numerator/denominator of two other evaluations, or 100·(ratio − 1) [%]."""
+    """numerator/denominator of two other evaluations, or 100·(ratio − 1) [%].
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    numerator, denominator : dict
+        Two claim methods (``name`` and parameters).
+    percent_change : bool
+        Give 100·(ratio − 1) [%] instead of the ratio [-].
+    """
     top, bottom = evaluate_method(ctx, numerator), evaluate_method(ctx, denominator)
     note = "; ".join(v.note for v in (top, bottom) if v.note)
     if top.value is None or bottom.value is None or bottom.value == 0:
@@ -31,6 +41,14 @@ EVALUATORS = {f.__name__: f for f in (closed_form, pulse_block, oscillator_pulse
 
 
 def evaluate_method(ctx, method: dict) -> Value:
-    """Run the evaluator a claim's ``method`` names, with its parameters."""
+    """Run the evaluator a claim's ``method`` names, with its parameters.
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    method : dict
+        The claim's ``method``: the evaluator's ``name`` and its parameters.
+    """
     params = {k: v for k, v in method.items() if k != "name"}
     return EVALUATORS[method["name"]](ctx, **params)

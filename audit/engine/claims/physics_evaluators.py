@@ -25,7 +25,20 @@ PULSE_FREE_MOTION_S = 8.0
 
 
 def closed_form(ctx, quantity: str, **params) -> Value:
-    """A value of the report's closed forms (Eqs. 4.8, 7.9, 7.10, 9.1, R = 3g/(4p²))."""
+    """A value of the report's closed forms (Eqs. 4.8, 7.9, 7.10, 9.1, R = 3g/(4p²)).
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run (its ``g`` [m/s²]).
+    quantity : str
+        ``restitution``, ``half_height_m``, ``half_width_m``, ``radius_m``, ``tan``, ``radians``,
+        ``damping_priestley_pct``, ``damping_fema_pct``, ``fema_to_priestley_damping`` or
+        ``eq79_max_deviation``.
+    **params
+        What the quantity reads: ``alpha_deg`` [degrees], ``p_rad_s`` [rad/s], ``size_s`` [s],
+        ``theta0_ratio`` (θ0/α [-]) and ``n_impacts``.
+    """
     alpha = np.radians(params.get("alpha_deg", 0.0))
     r = coefficient_of_restitution(alpha)
     if quantity == "restitution":
@@ -66,6 +79,19 @@ def pulse_block(ctx, quantity: str, p_rad_s: float, alpha_deg: float,
     turning point after the pulse); ``first_free_cycle_s`` (first full cycle, two impacts,
     after the pulse [s]); ``fraction_cycles_shortening`` (share of successive free cycles no
     longer than the one before).
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run.
+    quantity : str
+        One of the quantities above.
+    p_rad_s : float
+        Frequency parameter p [rad/s].
+    alpha_deg : float
+        Slenderness α [degrees].
+    amplitude_g : float
+        Pulse amplitude [g].
     """
     response = _pulse_response(p_rad_s, alpha_deg, amplitude_g)
     end = response.excitation_end
@@ -90,7 +116,19 @@ def pulse_block(ctx, quantity: str, p_rad_s: float, alpha_deg: float,
 
 
 def oscillator_pulse(ctx, period_s: float, damping_pct: float, amplitude_g: float) -> Value:
-    """Peak |u| [m] of the linear oscillator (Eq. 3.2) under the pulse of Figure 7.2."""
+    """Peak |u| [m] of the linear oscillator (Eq. 3.2) under the pulse of Figure 7.2.
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run.
+    period_s : float
+        Oscillator period [s].
+    damping_pct : float
+        Damping ratio [%].
+    amplitude_g : float
+        Pulse amplitude [g].
+    """
     motion = one_pulse("cosine", amplitude_g, PULSE_PERIOD_S)
     spectra = response_spectra(motion, [period_s], [damping_pct / 100.0], PULSE_FREE_MOTION_S)
     return Value(float(spectra.sd[0, 0]))
@@ -98,7 +136,21 @@ def oscillator_pulse(ctx, period_s: float, damping_pct: float, amplitude_g: floa
 
 def free_rocking(ctx, alpha_deg: float, size_s: float, theta0_ratio: float,
                  n_impacts: int) -> Value:
-    """Simulated θn/α of free rocking from θ0 at rest, over Housner's Eq. 7.5, minus 1."""
+    """Simulated θn/α of free rocking from θ0 at rest, over Housner's Eq. 7.5, minus 1.
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run (its ``g`` [m/s²]).
+    alpha_deg : float
+        Slenderness α [degrees].
+    size_s : float
+        Size 2π/p [s].
+    theta0_ratio : float
+        Initial rotation θ0/α [-].
+    n_impacts : int
+        The impact n after which θn is read.
+    """
     block = RigidBlock.from_size(size_s, math.radians(alpha_deg), g=ctx.g)
     # enough time for n impacts: each half-cycle is shorter than a quarter of T(θ0) × 2
     duration = (n_impacts + 2) * float(housner_period(theta0_ratio, block.p))

@@ -27,7 +27,17 @@ SIZE_MATCH_S = 1e-6
 
 
 def record_peak(ctx, quantity: str, record: str) -> Value:
-    """PGA [g] or PGV [m/s] of a record's file (the processing of ``SOURCES.md``)."""
+    """PGA [g] or PGV [m/s] of a record's file (the processing of ``SOURCES.md``).
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    quantity : str
+        ``pga_g`` or ``pgv_m_s``.
+    record : str
+        The record's id.
+    """
     entry = ctx.entry(record)
     if entry is not None:
         return Value(entry.motion.pga_g if quantity == "pga_g" else entry.motion.pgv)
@@ -48,7 +58,21 @@ def _grid_row(frame: pd.DataFrame, size_s: float, what: str, **equal) -> pd.Seri
 
 def exact_block(ctx, quantity: str, record: str, alpha_deg: float, size_s: float) -> Value:
     """Exact response of one block to a record: ``theta_rad``, ``overturned`` or
-    ``max_cycle_s`` (longest full rocking cycle, every second impact [s])."""
+    ``max_cycle_s`` (longest full rocking cycle, every second impact [s]).
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    quantity : str
+        ``theta_rad``, ``overturned`` or ``max_cycle_s``.
+    record : str
+        The record's id.
+    alpha_deg : float
+        Slenderness α [degrees].
+    size_s : float
+        Size 2π/p [s].
+    """
     entry = ctx.entry(record)
     if entry is None:
         if quantity == "max_cycle_s":
@@ -78,6 +102,21 @@ def procedure_block(ctx, quantity: str, procedure: str, record: str, alpha_deg: 
     Where the iteration settles on a cycle instead of a fixed point, the answer is the cycle's
     branches: the claim is graded on the branch nearest the report's number, and at best
     ``close``, since the report reads that branch as converged.
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    quantity : str
+        ``theta_rad`` or ``period_s``.
+    procedure : str
+        The procedure's registered name.
+    record : str
+        The record's id.
+    alpha_deg : float
+        Slenderness α [degrees].
+    size_s : float
+        Size 2π/p [s].
     """
     entry = ctx.entry(record)
     alpha = math.radians(alpha_deg)
@@ -132,6 +171,21 @@ def exact_region(ctx, quantity: str, record: str, alpha_deg: list[float], size_m
     ``fraction_theta_ratio_at_least`` (θ/α ≥ ``threshold``, overturning counts as 1),
     ``max_theta_ratio`` (of the surviving blocks; None if one overturns), and
     ``small_survives_large_overturns`` (yes/no).
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    quantity : str
+        One of the quantities above.
+    record : str
+        The record's id.
+    alpha_deg : list of float
+        Slendernesses of the region [degrees].
+    size_min, size_max : float
+        Sizes 2π/p bounding the region [s].
+    threshold : float
+        θ/α of ``fraction_theta_ratio_at_least`` [-].
     """
     rows = _exact_curve(ctx, record, alpha_deg, size_min, size_max)
     overturned = rows["overturned"].astype(bool).to_numpy()
@@ -160,6 +214,19 @@ def exact_compare(ctx, quantity: str, record_a: str, alpha_a: float, record_b: s
 
     ``fraction_exceeds``: share of the sizes where θ_a ≥ θ_b; ``mean_ratio``: mean θ_a over
     mean θ_b in the window.
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    quantity : str
+        ``fraction_exceeds`` or ``mean_ratio``.
+    record_a, record_b : str
+        The two records' ids.
+    alpha_a, alpha_b : float
+        Their slendernesses α [degrees].
+    size_min, size_max : float
+        Sizes 2π/p bounding the window [s].
     """
     def curve(record, alpha):
         rows = _exact_curve(ctx, record, [alpha], size_min, size_max)
@@ -187,6 +254,21 @@ def procedure_region(ctx, quantity: str, procedure: str, records: list[str],
     ``count_false_overturn``, ``fraction_good`` (within ±25 % or both overturn),
     ``fraction_gross_overestimate`` (of the exact survivors: overturning predicted or approx
     ≥ 2× exact). ``fraction_approx_overturned`` counts every block, with or without a file.
+
+    Parameters
+    ----------
+    ctx : ClaimContext
+        The run and the records.
+    quantity : str
+        One of the quantities above.
+    procedure : str
+        The procedure's registered name.
+    records : list of str
+        The records' ids.
+    alpha_deg : list of float
+        Slendernesses of the region [degrees].
+    size_min, size_max : float
+        Sizes 2π/p bounding the region [s].
     """
     results = ctx.estimates
     if results.empty or not (results["procedure"] == procedure).any():

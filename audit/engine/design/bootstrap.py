@@ -36,7 +36,13 @@ class BootstrapFits:
     confidence: float
 
     def probabilities(self, im) -> np.ndarray:
-        """P(overturn | IM = im) of every resample's fit, shaped (resample, *im)."""
+        """P(overturn | IM = im) of every resample's fit, shaped (resample, *im).
+
+        Parameters
+        ----------
+        im : float or array_like of float
+            Intensity, in the unit of the stripes (e.g. [g]).
+        """
         im = np.asarray(im, dtype=float)
         medians = self.medians.reshape(-1, *([1] * im.ndim))
         betas = self.betas.reshape(medians.shape)
@@ -45,7 +51,18 @@ class BootstrapFits:
         return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, norm.cdf(z)))
 
     def probability_band(self, im) -> tuple[np.ndarray, np.ndarray]:
-        """Percentile band of P(overturn | IM = im) at :attr:`confidence` over the resamples."""
+        """Percentile band of P(overturn | IM = im) at :attr:`confidence` over the resamples.
+
+        Parameters
+        ----------
+        im : float or array_like of float
+            Intensity, in the unit of the stripes (e.g. [g]).
+
+        Returns
+        -------
+        low, high : numpy.ndarray
+            The band's ends [-], shaped as ``im``.
+        """
         tail = 50.0 * (1.0 - self.confidence)
         low, high = np.percentile(self.probabilities(im), [tail, 100.0 - tail], axis=0)
         return low, high

@@ -23,7 +23,17 @@ from audit.physics.rocking import rocking_spectrum
 
 def stripe_levels(centre, count: int = DEFAULT_STRIPES, span=DEFAULT_SPAN) -> np.ndarray:
     """Intensity levels of the stripes: ``count`` levels geometric in ``span`` × ``centre``
-    (the site's design intensity, or the suite's median), in the intensity's own unit."""
+    (the site's design intensity, or the suite's median), in the intensity's own unit.
+
+    Parameters
+    ----------
+    centre : float
+        The intensity the stripes are centred on (e.g. [g]).
+    count : int
+        Number of stripes.
+    span : tuple of two float
+        Lowest and highest stripe as multiples of ``centre`` [-].
+    """
     return float(centre) * np.geomspace(span[0], span[1], count)
 
 
@@ -45,7 +55,13 @@ class OverturningPattern:
 
 
 def overturning_pattern(overturned) -> OverturningPattern:
-    """The pattern of each row of ``overturned`` (records × ascending stripes, bool)."""
+    """The pattern of each row of ``overturned`` (records × ascending stripes, bool).
+
+    Parameters
+    ----------
+    overturned : array_like of bool
+        Exact outcomes, shaped (record, stripe), stripes ascending.
+    """
     overturned = np.asarray(overturned, dtype=bool)
     any_over = overturned.any(axis=1)
     first = np.where(any_over, np.argmax(overturned, axis=1), -1)

@@ -45,12 +45,29 @@ class LognormalFit:
     confidence: float
 
     def probability(self, im) -> np.ndarray:
-        """P(overturn | IM = im) [-] of the fit."""
+        """P(overturn | IM = im) [-] of the fit.
+
+        Parameters
+        ----------
+        im : float or array_like of float
+            Intensity, in the unit of the stripes (e.g. [g]).
+        """
         return norm.cdf(np.log(np.asarray(im, dtype=float) / self.median) / self.beta)
 
     def probability_band(self, im) -> tuple[np.ndarray, np.ndarray]:
         """Confidence band of :meth:`probability` at ``im``, by the delta method on
-        z = (ln im − ln θ)/β."""
+        z = (ln im − ln θ)/β.
+
+        Parameters
+        ----------
+        im : float or array_like of float
+            Intensity, in the unit of the stripes (e.g. [g]).
+
+        Returns
+        -------
+        low, high : numpy.ndarray
+            The band's ends [-] at :attr:`confidence`, shaped as ``im``.
+        """
         z = np.log(np.asarray(im, dtype=float) / self.median) / self.beta
         # ∂z/∂ln θ = −1/β, ∂z/∂ln β = −z
         gradient = np.stack([-np.ones_like(z) / self.beta, -z])
@@ -93,7 +110,15 @@ class LognormalEstimate:
 
 def lognormal_estimate(levels, trials, successes) -> LognormalEstimate:
     """:func:`fit_lognormal`'s θ and β, the same numbers, without the bands (whose Hessian
-    costs a tenth of the fit); raises as it does."""
+    costs a tenth of the fit); raises as it does.
+
+    Parameters
+    ----------
+    levels : array_like of float
+        Intensity of each stripe (> 0).
+    trials, successes : array_like of int
+        Records at each stripe, and how many of them overturn the block.
+    """
     _, best = _most_likely(levels, trials, successes)
     return _estimate(best.x)
 
@@ -162,6 +187,15 @@ def _hessian(function, x, step: float = 1e-4) -> np.ndarray:
 def lognormal_fits(levels, trials: int, counts) -> tuple[np.ndarray, np.ndarray]:
     """The maximum-likelihood lognormal of many sets of stripe counts at once (each row of
     ``counts``, ``trials`` records at every stripe), as :func:`fit_lognormal` fits one.
+
+    Parameters
+    ----------
+    levels : array_like of float
+        Intensity of each stripe (> 0).
+    trials : int
+        Records at every stripe.
+    counts : array_like of int
+        Overturning records at each stripe, one row per set (shaped (set, stripe)).
 
     Returns
     -------

@@ -110,7 +110,19 @@ class MarginsStripes:
 def margins_stripes(procedures, suite, settings: MarginsSettings,
                     runtime: Runtime) -> MarginsStripes:
     """Every record of ``suite`` scaled to the stripes, with the exact response of every block
-    and each procedure's prediction there (the arguments of :func:`run_margins`)."""
+    and each procedure's prediction there (the arguments of :func:`run_margins`).
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    suite : records.RecordSuite
+        The records.
+    settings : MarginsSettings
+        The design-level settings.
+    runtime : Runtime
+        How it runs.
+    """
     im, levels, alpha_deg = settings.im, settings.stripes, settings.alpha_deg
     size_s, named_blocks, g = settings.size_s, settings.blocks, settings.g
     restitution, free_motion_s, jobs = settings.restitution, settings.free_motion_s, runtime.jobs
@@ -199,7 +211,18 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
 
 
 def margins_files(run: MarginsRun) -> dict[str, bytes]:
-    """The files of a design-level audit, as bytes (columns in ``columns.json``)."""
+    """The files of a design-level audit, as bytes (columns in ``columns.json``).
+
+    Parameters
+    ----------
+    run : MarginsRun
+        The finished design-level audit.
+
+    Returns
+    -------
+    dict of str to bytes
+        File name → contents.
+    """
     from audit.engine.run.results import json_ready
     from audit.engine.shared.schemas import column_guide
     files = {"stripes.csv": csv_bytes(run.stripes, "%.8g"),

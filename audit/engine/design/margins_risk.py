@@ -111,14 +111,28 @@ def _p50_at(alphas, ln_p, alpha) -> float:
 
 
 def hazard_summary(curve, target_p50: float) -> dict:
-    """What ``summary.json`` says of the site's hazard."""
+    """What ``summary.json`` says of the site's hazard.
+
+    Parameters
+    ----------
+    curve : records.hazard.HazardCurve
+        The site's hazard curve.
+    target_p50 : float
+        The target P of overturning in 50 years [-].
+    """
     return {"source": curve.source, "im": curve.im_name, "site": curve.site,
             "target_p50": target_p50, "years": YEARS,
             "target_annual_rate": annual_rate_for(target_p50)}
 
 
 def hazard_table(curve) -> pd.DataFrame:
-    """``hazard.csv``: the curve as read (the page draws it from the saved files)."""
+    """``hazard.csv``: the curve as read (the page draws it from the saved files).
+
+    Parameters
+    ----------
+    curve : records.hazard.HazardCurve
+        The site's hazard curve.
+    """
     return pd.DataFrame({"im_g": curve.im_g, "annual_rate": curve.annual_rate})
 
 

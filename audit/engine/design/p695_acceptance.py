@@ -41,7 +41,15 @@ ACCEPTED_GROUP_P, ACCEPTED_SINGLE_P = 0.10, 0.20
 
 def sized_blocks(required: pd.DataFrame, g: float) -> pd.DataFrame:
     """The blocks each guideline sizes (rows of ``required_alpha.csv`` with an α), with the
-    block by its dimensions: full width 2R sin α, height 2R cos α, R = 3g/(4p²)."""
+    block by its dimensions: full width 2R sin α, height 2R cos α, R = 3g/(4p²).
+
+    Parameters
+    ----------
+    required : pandas.DataFrame
+        ``required_alpha.csv``.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     rows = required[~required["procedure"].str.startswith("exact@")
                     & np.isfinite(required["required_alpha_deg"])].reset_index(drop=True)
     radius = 3.0 * g / (4.0 * (2.0 * np.pi / rows["size_s"]) ** 2)
@@ -52,7 +60,17 @@ def sized_blocks(required: pd.DataFrame, g: float) -> pd.DataFrame:
 def counted_fit(levels, overturned, known: dict):
     """:func:`~audit.engine.design.tables.exact_fit`'s θ and β of one block's outcomes
     (record, stripe), the fit ``exact_fit`` gives for the same counts at the same ``levels``
-    and number of records: ``known`` holds the fits by counts."""
+    and number of records: ``known`` holds the fits by counts.
+
+    Parameters
+    ----------
+    levels : numpy.ndarray
+        The stripes (e.g. [g]).
+    overturned : numpy.ndarray of bool
+        The block's outcomes, shaped (record, stripe).
+    known : dict
+        The fits so far by (levels, records, counts), added to.
+    """
     key = (np.asarray(levels).tobytes(), overturned.shape[0], overturned.sum(axis=0).tobytes())
     if key not in known:
         known[key] = exact_fit(levels, overturned, bands=False)
@@ -62,7 +80,19 @@ def counted_fit(levels, overturned, known: dict):
 def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[pd.DataFrame,
                                                                               list[dict]]:
     """``acceptance.csv`` (one row per guideline-sized block) and, per guideline, P695's
-    verdict, for the design-level audit's ``settings`` and its ``required_alpha.csv``."""
+    verdict, for the design-level audit's ``settings`` and its ``required_alpha.csv``.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+        The records, scaled to the design site.
+    settings : MarginsSettings
+        The design-level settings.
+    runtime : Runtime
+        How it runs (its stored parts are not used).
+    required : pandas.DataFrame
+        ``required_alpha.csv``.
+    """
     sized = sized_blocks(required, settings.g)
     if sized.empty:
         return pd.DataFrame(), []

@@ -25,6 +25,17 @@ def design_level_audit(procedures, suite, settings: MarginsSettings,
 
     A ``runtime.progress`` with a ``stage(text)`` method (:class:`audit.engine.shared.progress.Progress`)
     is told each stage.
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    suite : records.RecordSuite
+        The records.
+    settings : MarginsSettings
+        The design-level settings.
+    runtime : Runtime
+        How it runs.
     """
     stage = getattr(runtime.progress, "stage", lambda text: None)
     blocks = len(settings.size_s) * len(settings.alpha_deg) + len(settings.blocks)

@@ -60,7 +60,17 @@ class RecordGrid:
 
 
 def record_grid(entry, procedures, settings: SearchSettings) -> RecordGrid:
-    """Exact overturning and every procedure's prediction on the (α, size) search grid."""
+    """Exact overturning and every procedure's prediction on the (α, size) search grid.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record, scaled.
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    settings : SearchSettings
+        The search grid and solver settings.
+    """
     size_s, alpha_rad = np.asarray(settings.size_s), np.radians(settings.alpha_deg)
     exact = rocking_spectrum(entry.motion, size_s, alpha_rad, r=settings.restitution,
                              g=settings.g, free_motion_s=settings.free_motion_s,
@@ -82,7 +92,18 @@ def record_grid(entry, procedures, settings: SearchSettings) -> RecordGrid:
 
 
 def record_blocks(entry, procedures, settings: SearchSettings) -> np.ndarray:
-    """Exact overturning of the blocks of ``settings`` under one record (a bisection step)."""
+    """Exact overturning of the blocks of ``settings`` under one record (a bisection step).
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record, scaled.
+    procedures : list
+        Unused (the exact solver alone), for the scheduler's ``task(entry, procedures,
+        settings)``.
+    settings : SearchSettings
+        The blocks and solver settings.
+    """
     return rocking_blocks(entry.motion, settings.size_s, np.radians(settings.alpha_deg),
                           r=settings.restitution, g=settings.g,
                           free_motion_s=settings.free_motion_s, jobs=settings.jobs).overturned
@@ -90,7 +111,15 @@ def record_blocks(entry, procedures, settings: SearchSettings) -> np.ndarray:
 
 def last_crossing(share, limit) -> int | None:
     """Index j of the grid's last point where ``share`` exceeds ``limit`` (the bracket is
-    [j, j + 1]); -1 when it never does, None when it still does at the last point."""
+    [j, j + 1]); -1 when it never does, None when it still does at the last point.
+
+    Parameters
+    ----------
+    share : numpy.ndarray
+        A share over the grid (e.g. of records overturning) [-].
+    limit : float
+        The limit [-].
+    """
     over = np.flatnonzero(share > limit)
     if over.size == 0:
         return -1
@@ -100,7 +129,17 @@ def last_crossing(share, limit) -> int | None:
 def interpolated_alpha(alpha_deg, share, limit) -> float:
     """The smallest α above which ``share`` stays ≤ ``limit`` on the grid, the last crossing
     interpolated linearly; the grid's first α if it never exceeds, NaN if it still does at the
-    last."""
+    last.
+
+    Parameters
+    ----------
+    alpha_deg : array_like of float
+        The grid's slendernesses, ascending [degrees].
+    share : numpy.ndarray
+        The share at each [-].
+    limit : float
+        The limit [-].
+    """
     j = last_crossing(share, limit)
     if j is None:
         return math.nan

@@ -64,6 +64,13 @@ class LognormalFragility:
                              f"median {self.median_g}, beta {self.beta}")
 
     def probability(self, im_g) -> np.ndarray:
+        """P(overturn | IM = ``im_g``) [-].
+
+        Parameters
+        ----------
+        im_g : float or array_like of float
+            Intensity [g].
+        """
         return ndtr(np.log(np.asarray(im_g, dtype=float) / self.median_g) / self.beta)
 
     @property
@@ -92,6 +99,14 @@ class StripeFragility:
     im: str | None = None
 
     def probability(self, im_g) -> np.ndarray:
+        """P(overturn | IM = ``im_g``) [-], linear in ln IM between the stripes, held at the
+        end stripes' shares beyond them.
+
+        Parameters
+        ----------
+        im_g : float or array_like of float
+            Intensity [g].
+        """
         return np.interp(np.log(np.asarray(im_g, dtype=float)), np.log(self.levels_g),
                          self.shares)
 
@@ -149,7 +164,13 @@ class OverturningRisk:
     density: np.ndarray
 
     def probability_in(self, years: float) -> float:
-        """Probability of at least one overturning in ``years`` [-] (Poisson)."""
+        """Probability of at least one overturning in ``years`` [-] (Poisson).
+
+        Parameters
+        ----------
+        years : float
+            Exposure time [years].
+        """
         return float(-np.expm1(-years * self.annual_rate))
 
     def as_dict(self) -> dict:
@@ -159,7 +180,15 @@ class OverturningRisk:
 
 
 def annual_rate_for(probability: float, years: float = YEARS) -> float:
-    """The annual rate [1/yr] whose probability in ``years`` is ``probability`` (Poisson)."""
+    """The annual rate [1/yr] whose probability in ``years`` is ``probability`` (Poisson).
+
+    Parameters
+    ----------
+    probability : float
+        Probability in ``years`` [-], in (0, 1).
+    years : float
+        Exposure time [years].
+    """
     if not 0.0 < probability < 1.0:
         raise InputError(f"risk_target: a probability in (0, 1) is needed, got {probability}",
                          "risk_target")
@@ -168,7 +197,13 @@ def annual_rate_for(probability: float, years: float = YEARS) -> float:
 
 def hazard_im(curve):
     """The project's intensity measure (:class:`~audit.engine.shared.intensity.IntensityMeasure`) of a
-    hazard curve: PGA → ``pga``, SA(T) → ``sa:T``."""
+    hazard curve: PGA → ``pga``, SA(T) → ``sa:T``.
+
+    Parameters
+    ----------
+    curve : records.hazard.HazardCurve
+        The hazard curve.
+    """
     from audit.engine.shared.intensity import IntensityMeasure
     return IntensityMeasure("pga") if curve.imt == "PGA" else \
         IntensityMeasure("sa", float(curve.period_s))
@@ -176,7 +211,17 @@ def hazard_im(curve):
 
 def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
     """InputError when the fragility's intensity measure ``im`` (``pga``, ``sa:1``) is not
-    the hazard curve's; None passes (the caller vouches for it)."""
+    the hazard curve's; None passes (the caller vouches for it).
+
+    Parameters
+    ----------
+    curve : records.hazard.HazardCurve
+        The hazard curve.
+    im : str or None
+        The fragility's intensity measure.
+    what : str
+        The argument ``im`` came from, for the message.
+    """
     if im is None:
         return
     from audit.engine.shared.intensity import IntensityMeasure
@@ -193,7 +238,25 @@ def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=N
     """(curve, intensity measure) of a settings object's ``hazard`` field: the curve read from
     its file (at ``site_location``; of the IMT ``hazard_imt``, else of ``im`` in a file of
     several IMTs) unless given, ``im`` (when the user gave one) held to the curve's IMT, which
-    sets the intensity measure, and the risk target checked."""
+    sets the intensity measure, and the risk target checked.
+
+    Parameters
+    ----------
+    hazard : records.hazard.HazardCurve, str or pathlib.Path
+        A hazard curve or its file.
+    site_location : sequence of two float or str, optional
+        Longitude, latitude of the site in a file of several sites [degrees].
+    risk_target : float
+        Target P of overturning in 50 years [-].
+    im : str or IntensityMeasure, optional
+        The intensity measure the user gave.
+    hazard_imt : str, optional
+        The IMT to read from a file of several (``PGA``, ``SA(1.0)``).
+
+    Returns
+    -------
+    tuple of (records.hazard.HazardCurve, IntensityMeasure)
+    """
     from audit.engine.shared import fields
     from audit.engine.shared.hazard_imt import im_of_imt, imt_of
     from records.hazard import HazardCurve, read_hazard
@@ -269,7 +332,19 @@ def risk_integral(fragility, curve) -> OverturningRisk:
 def block_fragilities(fragility_row, stripes: pd.DataFrame):
     """The fitted (None where the fit failed) and counted fragility of one block of a
     design-level audit, from its row of ``fragility.csv`` and its rows of ``stripes.csv``
-    (their intensity measure checked by the caller, once)."""
+    (their intensity measure checked by the caller, once).
+
+    Parameters
+    ----------
+    fragility_row : pandas.Series
+        The block's row of ``fragility.csv``.
+    stripes : pandas.DataFrame
+        The block's rows of ``stripes.csv``.
+
+    Returns
+    -------
+    tuple of (LognormalFragility or None, StripeFragility)
+    """
     shares = stripes.groupby("im_level")["exact_overturned"].mean()
     counted = StripeFragility(shares.index.to_numpy(dtype=float), shares.to_numpy(dtype=float))
     median, beta = float(fragility_row["median"]), float(fragility_row["beta"])

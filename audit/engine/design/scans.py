@@ -31,6 +31,17 @@ def amplitude_scans(run: MarginsRun, suite, settings: MarginsSettings,
     the one overturning it at the lowest stripe) is scaled in steps of :data:`SCAN_STEP` from
     the stripe below its first overturning stripe to two stripes above it.
 
+    Parameters
+    ----------
+    run : MarginsRun
+        The design-level audit (its fragility, stripes and levels).
+    suite : records.RecordSuite
+        The records.
+    settings : MarginsSettings
+        The design-level settings.
+    runtime : Runtime
+        How it runs (its jobs).
+
     Returns
     -------
     pandas.DataFrame

@@ -22,7 +22,15 @@ from records.sites import scaled_site
 
 def half_crossing(levels, fraction) -> float:
     """Where ``fraction`` first reaches 0.5 along ascending ``levels``, ln-interpolated; NaN if
-    never."""
+    never.
+
+    Parameters
+    ----------
+    levels : numpy.ndarray
+        The stripes, ascending (e.g. [g]).
+    fraction : numpy.ndarray
+        The fraction at each stripe [-].
+    """
     above = np.flatnonzero(fraction >= 0.5)
     if above.size == 0:
         return math.nan
@@ -119,6 +127,22 @@ def locate_steps(procedure, entry, settings: StripeSettings, brackets: dict) -> 
     are bisected together, each at its own level (one evaluation of them all per halving,
     :func:`~procedures.overturning.site_predictions`); each block's halvings are those of a
     bisection of it alone.
+
+    Parameters
+    ----------
+    procedure : procedures.base.Procedure
+        A procedure that reads only the site.
+    entry : records.RecordEntry
+        A record it evaluates.
+    settings : StripeSettings
+        The blocks, stripes and solver settings.
+    brackets : dict
+        Block index → (low, high) levels (e.g. [g]).
+
+    Returns
+    -------
+    dict
+        Block index → the level of its step.
     """
     blocks = settings.blocks
     intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
@@ -148,7 +172,21 @@ _SITE_ANSWERS: dict = {}
 
 def procedure_predictions(proc, cases, p, groups, g) -> np.ndarray:
     """:func:`~procedures.overturning.overturning_predictions`, kept across records for a
-    procedure that reads only the (scaled) sites."""
+    procedure that reads only the (scaled) sites.
+
+    Parameters
+    ----------
+    proc : procedures.base.Procedure
+        The procedure.
+    cases : list of tuple
+        (record entry scaled to a level, its :class:`~procedures.context.RecordContext`) per level.
+    p : numpy.ndarray
+        Frequency parameter p of each block [rad/s].
+    groups : list of tuple
+        (α [rad], the indices of its blocks in ``p``, restitution r [-]) per slenderness.
+    g : float
+        Acceleration of gravity [m/s²].
+    """
     if any(proc.reads_record(entry) for entry, _ in cases):
         return overturning_predictions(proc, cases, p, groups, g)
     # ``proc`` is kept with its answer, so its id is not reused while the answer is
@@ -165,7 +203,19 @@ def record_stripes(entry, procedures, settings: StripeSettings,
                    context: RecordContext | None = None) -> RecordStripes:
     """The exact response and every procedure's prediction for one record scaled to each stripe
     (the unit of work of the design-level audit); ``context``, the record's spectra, when a
-    caller reads them again after."""
+    caller reads them again after.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    settings : StripeSettings
+        The blocks, stripes and solver settings.
+    context : procedures.context.RecordContext, optional
+        The record's spectra.
+    """
     blocks, levels = settings.blocks, np.asarray(settings.levels, dtype=float)
     intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
     factors = levels / intensity

@@ -25,7 +25,15 @@ READINGS = {True: "each record scaled to the level: a fragility, the share of re
 
 
 def reading(procedure, entries) -> str:
-    """Which reading of the stripes a procedure gets, over the records it can evaluate."""
+    """Which reading of the stripes a procedure gets, over the records it can evaluate.
+
+    Parameters
+    ----------
+    procedure : procedures.base.Procedure
+        The procedure.
+    entries : iterable of records.RecordEntry
+        The records.
+    """
     readings = {procedure.reads_record(e) for e in entries
                 if procedure.unmet_requirements(e) is None}
     if not readings:
@@ -40,7 +48,15 @@ def _block_columns(blocks: BlockList, index) -> dict:
 
 def site_factor(suite, record_id: str) -> float:
     """The factor by which the suite's scaling to a site (FEMA P695) scaled a record, 1 where
-    it was not scaled."""
+    it was not scaled.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+        The records, with their scaling.
+    record_id : str
+        The record.
+    """
     scaled = (suite.scaling or {}).get("records", {}).get(record_id)
     return float(scaled["scale_factor"]) if scaled else 1.0
 
@@ -75,7 +91,17 @@ def stripe_rows(run, site_factors) -> pd.DataFrame:
 def exact_fit(levels, overturned, bands: bool = True):
     """The lognormal fragility of one block's exact outcomes (record, stripe), None where the
     counts fix no median (no overturning, or every record at every stripe); without ``bands``
-    only its θ and β (:class:`~audit.engine.design.lognormal_fit.LognormalEstimate`)."""
+    only its θ and β (:class:`~audit.engine.design.lognormal_fit.LognormalEstimate`).
+
+    Parameters
+    ----------
+    levels : numpy.ndarray
+        The stripes (e.g. [g]).
+    overturned : numpy.ndarray of bool
+        The block's outcomes, shaped (record, stripe).
+    bands : bool
+        Whether to compute the confidence bands.
+    """
     fit = fit_lognormal if bands else lognormal_estimate
     try:
         return fit(levels, np.full(levels.size, overturned.shape[0]), overturned.sum(axis=0))
@@ -85,7 +111,24 @@ def exact_fit(levels, overturned, bands: bool = True):
 
 def collapse_margin(fit, levels, mce) -> tuple[float, str]:
     """The collapse margin ratio and how far it is known: a median beyond the stripes is an
-    extrapolation of the fit, so the CMR is only bounded by the outermost stripe there."""
+    extrapolation of the fit, so the CMR is only bounded by the outermost stripe there.
+
+    Parameters
+    ----------
+    fit : LognormalFit or None
+        The block's fit.
+    levels : numpy.ndarray
+        The stripes, ascending (e.g. [g]).
+    mce : float or None
+        The MCE intensity, in the same unit.
+
+    Returns
+    -------
+    cmr : float
+        The collapse margin ratio median/MCE [-] (NaN without a fit or an MCE).
+    bound : str
+        ``""``, ``"at least"`` or ``"at most"``.
+    """
     if fit is None or not mce:
         return math.nan, ""
     if fit.median > levels[-1]:
@@ -105,7 +148,30 @@ def _percentile_band(values, confidence: float = 0.90) -> tuple[float, float]:
 
 def fragility_rows(levels, blocks, im, exact_over, mce):
     """``fragility.csv`` and, per block, its lognormal fit and its bootstrap over records
-    (records are reused across the stripes, so the binomial band is too narrow)."""
+    (records are reused across the stripes, so the binomial band is too narrow).
+
+    Parameters
+    ----------
+    levels : numpy.ndarray
+        The stripes (e.g. [g]).
+    blocks : BlockList
+        The blocks.
+    im : IntensityMeasure
+        The intensity measure.
+    exact_over : numpy.ndarray of bool
+        Exact outcomes, shaped (record, stripe, block).
+    mce : float or None
+        The MCE intensity, in the unit of the stripes.
+
+    Returns
+    -------
+    rows : pandas.DataFrame
+        ``fragility.csv``.
+    fits : list of LognormalFit or None
+        Each block's fit.
+    boots : list of BootstrapFits or None
+        Each block's bootstrap over records.
+    """
     rows, fits, boots = [], [], []
     n_records = exact_over.shape[0]
     nan = math.nan
@@ -140,7 +206,21 @@ def fragility_rows(levels, blocks, im, exact_over, mce):
 
 def step_levels(procedures, entries, settings: StripeSettings, predicted, evaluated) -> dict:
     """Per (procedure name, block), the exact step of a procedure that reads only the site's
-    design spectrum, where it turns to predicting overturning between two stripes."""
+    design spectrum, where it turns to predicting overturning between two stripes.
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    entries : sequence of records.RecordEntry
+        The records.
+    settings : StripeSettings
+        The blocks, stripes and solver settings.
+    predicted : dict
+        Procedure name → predictions shaped (record, stripe, block).
+    evaluated : dict
+        Procedure name → whether it evaluated each record.
+    """
     levels = np.asarray(settings.levels)
     steps = {}
     for proc in procedures:

@@ -9,7 +9,15 @@ import math
 def margins_summary_text(run, seconds: float) -> str:
     """The lines ``audit margins`` prints of a design-level audit ``run`` (its ``fragility``,
     ``capacity``, ``required_alpha``, ``risk`` tables and ``summary``) computed in
-    ``seconds`` [s], each ending in a newline."""
+    ``seconds`` [s], each ending in a newline.
+
+    Parameters
+    ----------
+    run : MarginsRun
+        The design-level audit.
+    seconds : float
+        The time it took [s].
+    """
     fragility, summary = run.fragility, run.summary
     sizes = summary["grid"]["size_s"]
     lines = [f"Fragility of {len(fragility)} blocks on {summary['records_source']} in "

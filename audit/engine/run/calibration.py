@@ -34,7 +34,15 @@ def brier_score(predicted, observed) -> float:
 
 def log_likelihood(predicted, observed) -> float:
     """Σ [o ln p + (1 − o) ln(1 − p)] over the outcomes [nats]; −inf where an outcome the
-    prediction called impossible happened (no clipping: that is the finding)."""
+    prediction called impossible happened (no clipping: that is the finding).
+
+    Parameters
+    ----------
+    predicted : array_like of float
+        Predicted probability of each outcome [-].
+    observed : array_like of bool
+        Whether it happened.
+    """
     predicted = np.asarray(predicted, dtype=float)
     observed = np.asarray(observed, dtype=bool)
     with np.errstate(divide="ignore"):
@@ -63,7 +71,17 @@ class Calibration:
 
 
 def calibration(predicted, observed, edges=CALIBRATION_EDGES) -> Calibration:
-    """Bin the outcomes by predicted probability (see :class:`Calibration`)."""
+    """Bin the outcomes by predicted probability (see :class:`Calibration`).
+
+    Parameters
+    ----------
+    predicted : array_like of float
+        Predicted probability of each outcome [-].
+    observed : array_like of bool
+        Whether it happened.
+    edges : array_like of float
+        Edges of the probability bins [-], ascending from 0 to 1.
+    """
     predicted = np.asarray(predicted, dtype=float).ravel()
     observed = np.asarray(observed, dtype=float).ravel()
     edges = np.asarray(edges, dtype=float)

@@ -46,7 +46,13 @@ def ubc97_design_spectrum() -> pd.DataFrame:
 
 def site_design_spectra(entry) -> pd.DataFrame:
     """The rows of ``design-spectra.csv`` of one record: FEMA 356 at each Figure 5 damping where
-    it has a file and a site (none otherwise)."""
+    it has a file and a site (none otherwise).
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record, with its site (``sxs_g``, ``sx1_g`` [g]).
+    """
     site = entry.site or {}
     if entry.motion is None or not (site.get("sxs_g") and site.get("sx1_g")):
         return pd.DataFrame(columns=DESIGN_SPECTRA_COLUMNS)

@@ -29,6 +29,17 @@ def _representative_sizes(spectrum, alpha_index: int, count: int = 2) -> list[fl
 def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 1) -> list[dict]:
     """The blocks of one record worth a time history.
 
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        The record's ``results.csv`` rows.
+    spectrum : audit.physics.rocking.RockingSpectrum
+        The record's exact rocking spectrum on the grid.
+    alpha_deg : sequence of float
+        The grid's slendernesses [degrees].
+    per_class : int
+        Blocks picked per procedure and worst verdict class.
+
     Returns
     -------
     list of dict
@@ -55,6 +66,19 @@ def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 
 
 def simulate_histories(entry, results: pd.DataFrame, exact, alpha_deg, settings: AuditSettings):
     """The time histories of :func:`history_blocks` under the record ``entry``.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    results : pandas.DataFrame
+        Its ``results.csv`` rows.
+    exact : audit.physics.rocking.RockingSpectrum
+        Its exact rocking spectrum on the grid.
+    alpha_deg : sequence of float
+        The grid's slendernesses [degrees].
+    settings : AuditSettings
+        The audit's settings (``g``, ``free_motion_s``).
 
     Returns
     -------

@@ -62,7 +62,13 @@ def pelicun_fragility_table(components) -> pd.DataFrame:
 
 
 def pelicun_fragility_csv(components) -> bytes:
-    """:func:`pelicun_fragility_table` as the CSV file pelicun reads (full float precision)."""
+    """:func:`pelicun_fragility_table` as the CSV file pelicun reads (full float precision).
+
+    Parameters
+    ----------
+    components : iterable of procedures.probabilistic.FragilityComponent
+        As for :func:`pelicun_fragility_table`.
+    """
     return pelicun_fragility_table(components).to_csv(index=False, float_format="%.17g").encode()
 
 

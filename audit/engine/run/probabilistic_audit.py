@@ -31,7 +31,19 @@ CALIBRATION_CSV = "fragility-calibration.csv"
 
 def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -> dict:
     """The tables of the audit of ``procedure`` (a :class:`procedures.probabilistic.ProbabilisticProcedure`)
-    on the records: file name → :class:`pandas.DataFrame`."""
+    on the records: file name → :class:`pandas.DataFrame`.
+
+    Parameters
+    ----------
+    procedure : procedures.probabilistic.ProbabilisticProcedure
+        The procedure and its components.
+    record_ids : sequence of str
+        The records' ids.
+    motions : sequence of records.GroundMotion
+        Their motions, in the same order.
+    levels_m_s : array_like of float
+        The PGV stripes [m/s].
+    """
     levels = np.asarray(levels_m_s, dtype=float)
     zero = [record_id for record_id, motion in zip(record_ids, motions) if not motion.pgv > 0]
     if zero:

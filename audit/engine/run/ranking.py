@@ -26,7 +26,17 @@ WORST_CLASSES = (("unconservative", "ratio", False, "largest underestimate"),
 def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
     """``rows`` worst first by ``column``, blocks with a robust exact verdict before fragile ones
     (a missed overturning that a 3 % change of the record undoes is a weaker case); NaN last,
-    ties in the rows' order."""
+    ties in the rows' order.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        ``results.csv`` rows.
+    column : str
+        The column ranked by.
+    largest : bool
+        Whether the largest value is the worst.
+    """
     fragile = rows["exact_fragile"].eq(True).to_numpy()
     value = rows[column].to_numpy(dtype=float)
     missing = np.isnan(value)
@@ -39,7 +49,17 @@ def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
 def worst_case(rows: pd.DataFrame):
     """The block a procedure's bottom line names: a missed overturning where the procedure's
     rotation is smallest (robust before fragile), else the largest underestimate, else the
-    largest overestimate; None when there is none."""
+    largest overestimate; None when there is none.
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        One procedure's ``results.csv`` rows.
+
+    Returns
+    -------
+    pandas.Series or None
+    """
     order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
     for verdict, column, largest, _ in order:
         hits = rows[rows["verdict"] == verdict]
@@ -49,12 +69,30 @@ def worst_case(rows: pd.DataFrame):
 
 
 def block_key(record, alpha_deg, size_s) -> tuple:
-    """A block of a record, as the drawn time histories name it."""
+    """A block of a record, as the drawn time histories name it.
+
+    Parameters
+    ----------
+    record : str
+        The record's id.
+    alpha_deg : float
+        Slenderness α [degrees].
+    size_s : float
+        Size 2π/p [s].
+    """
     return record, round(float(alpha_deg), 6), round(float(size_s), 6)
 
 
 def is_drawn(results: pd.DataFrame, metas: list[dict]) -> np.ndarray:
-    """Which rows of ``results`` are blocks whose time history was drawn (``metas``)."""
+    """Which rows of ``results`` are blocks whose time history was drawn (``metas``).
+
+    Parameters
+    ----------
+    results : pandas.DataFrame
+        ``results.csv`` rows.
+    metas : list of dict
+        The drawn histories (``record``, ``alpha_deg``, ``size_s``).
+    """
     keys = {block_key(m["record"], m["alpha_deg"], m["size_s"]) for m in metas}
     return np.array([block_key(*key) in keys for key in zip(
         results["record"].tolist(), results["alpha_deg"].tolist(), results["size_s"].tolist())],
@@ -81,7 +119,15 @@ class ShownRecords:
                        for name in procedures for verdict, *_ in WORST_CLASSES}
 
     def add(self, results: pd.DataFrame, metas: list[dict]) -> None:
-        """Fold one record's ``results.csv`` rows and the time histories drawn for it."""
+        """Fold one record's ``results.csv`` rows and the time histories drawn for it.
+
+        Parameters
+        ----------
+        results : pandas.DataFrame
+            The record's ``results.csv`` rows.
+        metas : list of dict
+            Its drawn histories.
+        """
         for record, n in results.loc[results["verdict"].isin(UNSAFE_VERDICTS),
                                      "record"].value_counts(sort=False).items():
             self._unsafe[record] = self._unsafe.get(record, 0) + int(n)

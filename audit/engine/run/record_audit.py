@@ -69,7 +69,15 @@ class RecordAudit:
 
 
 def concat(frames, columns) -> pd.DataFrame:
-    """The frames one after the other, or an empty frame with the columns when there are none."""
+    """The frames one after the other, or an empty frame with the columns when there are none.
+
+    Parameters
+    ----------
+    frames : list of pandas.DataFrame
+        The frames.
+    columns : sequence of str
+        The columns of the empty frame.
+    """
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=columns)
 
 

@@ -40,7 +40,13 @@ REPORT_HTML = "report.html"
 
 
 def json_ready(value):
-    """Plain JSON: NaN and inf become null, numpy scalars become Python numbers."""
+    """Plain JSON: NaN and inf become null, numpy scalars become Python numbers.
+
+    Parameters
+    ----------
+    value : object
+        A dict, list, tuple or scalar, nested.
+    """
     if isinstance(value, dict):
         return {str(k): json_ready(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -58,7 +64,13 @@ def summary_bytes(summary: dict) -> bytes:
     """``summary.json``: UTF-8, indented, NaN and inf as null, numpy scalars as numbers (as
     :func:`json_ready`), encoded by orjson in one pass without a copy of the summary: the
     summary of a suite of thousands of records holds every record's provenance, statistics and
-    drawn histories."""
+    drawn histories.
+
+    Parameters
+    ----------
+    summary : dict
+        The run's summary.
+    """
     return orjson.dumps(summary, option=orjson.OPT_INDENT_2 | orjson.OPT_SERIALIZE_NUMPY
                         | orjson.OPT_NON_STR_KEYS) + b"\n"
 
@@ -90,13 +102,34 @@ RECORD_TABLES = {
 
 
 def table_bytes(frame: pd.DataFrame, name: str, header: bool = True) -> bytes:
-    """CSV bytes of the rows of one of :data:`RECORD_TABLES`."""
+    """CSV bytes of the rows of one of :data:`RECORD_TABLES`.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        The rows.
+    name : str
+        The table's file name, a key of :data:`RECORD_TABLES`.
+    header : bool
+        Whether the first line names the columns.
+    """
     _, float_format, booleans = RECORD_TABLES[name]
     return csv_bytes(_with_booleans(frame) if booleans else frame, float_format, header)
 
 
 def suite_files(run: AuditRun) -> dict[str, bytes]:
-    """The files of a run that hold the suite as a whole, as bytes."""
+    """The files of a run that hold the suite as a whole, as bytes.
+
+    Parameters
+    ----------
+    run : AuditRun
+        The run.
+
+    Returns
+    -------
+    dict of str to bytes
+        File name → contents.
+    """
     return {
         SUMMARY_JSON: summary_bytes(run.summary),
         SUITE_CSV: csv_bytes(run.suite, "%.6g"),
@@ -113,7 +146,13 @@ _CHUNK_ROWS = 20_000
 
 
 def read_summary(run_dir: str | Path) -> dict:
-    """``summary.json`` of a run directory; InputError if it is not valid JSON."""
+    """``summary.json`` of a run directory; InputError if it is not valid JSON.
+
+    Parameters
+    ----------
+    run_dir : str or pathlib.Path
+        The run's folder.
+    """
     try:
         return json.loads((Path(run_dir) / SUMMARY_JSON).read_bytes())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
@@ -122,7 +161,13 @@ def read_summary(run_dir: str | Path) -> dict:
 
 def checked_summary(run_dir: Path) -> dict:
     """``summary.json`` of ``run_dir``, once the folder is found to hold every file of a run,
-    each table with the columns of its schema."""
+    each table with the columns of its schema.
+
+    Parameters
+    ----------
+    run_dir : pathlib.Path
+        The run's folder.
+    """
     if not run_dir.is_dir():
         raise InputError(f"{run_dir}: not a directory of audit results")
     for name in DATA_FILES:

@@ -34,7 +34,13 @@ class SuiteStatistics:
         self._group, self._ratio = [], []
 
     def add(self, results: pd.DataFrame) -> "SuiteStatistics":
-        """Fold ``results.csv`` rows (columns ``procedure, alpha_deg, size_s, verdict, ratio``)."""
+        """Fold ``results.csv`` rows (columns ``procedure, alpha_deg, size_s, verdict, ratio``).
+
+        Parameters
+        ----------
+        results : pandas.DataFrame
+            ``results.csv`` rows.
+        """
         unknown = set(results["verdict"]) - set(VERDICTS)
         if unknown:
             raise ValueError(f"suite statistics: unknown verdicts {sorted(unknown)}")
@@ -152,7 +158,15 @@ class BottomLine:
                        for p in procedures}
 
     def add(self, results: pd.DataFrame, checks: pd.DataFrame) -> "BottomLine":
-        """Fold ``results.csv`` and ``checks.csv`` rows."""
+        """Fold ``results.csv`` and ``checks.csv`` rows.
+
+        Parameters
+        ----------
+        results : pandas.DataFrame
+            ``results.csv`` rows.
+        checks : pandas.DataFrame
+            ``checks.csv`` rows.
+        """
         # each table split by procedure once, not masked once per procedure
         results_of = dict(tuple(results.groupby("procedure", sort=False)))
         checks_of = dict(tuple(checks.groupby("procedure", sort=False)))

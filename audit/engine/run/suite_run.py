@@ -136,7 +136,22 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
 def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> AuditRun:
     """The whole run of :func:`audit_suite`, its settings and runtime given by their fields
     (``alpha_deg=…, sizes_s=…, jobs=…``), written and read back from its files into memory:
-    for a test or a script, not for a suite of thousands of records."""
+    for a test or a script, not for a suite of thousands of records.
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    suite : records.RecordSuite
+        The records.
+    detail : sequence of str
+        Record ids whose per-record detail the report should show.
+    claims : bool
+        Check the claims of the reference report.
+    **values
+        Fields of :class:`AuditSettings` and of :class:`~audit.engine.shared.runtime.Runtime`,
+        by name.
+    """
     settings = AuditSettings.parse(**{k: v for k, v in values.items() if k in AUDIT_FIELDS})
     runtime = Runtime.parse(**{k: v for k, v in values.items() if k not in AUDIT_FIELDS})
     with tempfile.TemporaryDirectory(prefix="rocking-audit-") as folder:

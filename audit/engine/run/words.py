@@ -7,7 +7,13 @@ from __future__ import annotations
 def audit_summary_text(summary: dict) -> str:
     """The lines ``audit run`` prints of an audit whose ``summary.json`` is ``summary``: what
     was audited where, what could not be (one line per procedure and reason, whatever the
-    number of records), and the count of each verdict; each line ends in a newline."""
+    number of records), and the count of each verdict; each line ends in a newline.
+
+    Parameters
+    ----------
+    summary : dict
+        ``summary.json`` of the run.
+    """
     names = ", ".join(p["name"] for p in summary["procedures"])
     lines = [f"Audited {names} on {summary['records_source']} in {summary['scheduler']}"
              + (f"; reused {len(summary['resumed'])} records of an interrupted run"

@@ -32,7 +32,13 @@ from audit.engine.shared.verdicts import VERDICTS
 
 
 def record_summary(entry) -> dict:
-    """Provenance of one record for ``summary.json``: facts, site, file, PGA/PGV recomputed."""
+    """Provenance of one record for ``summary.json``: facts, site, file, PGA/PGV recomputed.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    """
     motion, facts = entry.motion, entry.facts
     item = {"id": entry.id, "name": entry.name, "component": entry.component,
             "missing": entry.missing, "missing_reason": entry.missing_reason, "site": entry.site,
@@ -52,7 +58,13 @@ def record_summary(entry) -> dict:
 
 
 def statistics(frame: pd.DataFrame) -> list[dict]:
-    """Counts and approx/exact ratios per procedure, record and α."""
+    """Counts and approx/exact ratios per procedure, record and α.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        ``results.csv`` rows.
+    """
     stats = []
     for (procedure, record, alpha), group in frame.groupby(["procedure", "record", "alpha_deg"],
                                                           sort=False):
@@ -98,7 +110,15 @@ class RunWriter:
         self.kept = []
 
     def add(self, entry, part) -> None:
-        """Append one record's rows and fold them into the suite's statistics."""
+        """Append one record's rows and fold them into the suite's statistics.
+
+        Parameters
+        ----------
+        entry : records.RecordEntry
+            The record.
+        part : RecordAudit
+            Its part of the audit.
+        """
         self._files[DESIGN_SPECTRA_CSV].write(
             table_bytes(site_design_spectra(entry), DESIGN_SPECTRA_CSV, header=False))
         for name, (attribute, *_) in RECORD_TABLES.items():
@@ -122,7 +142,18 @@ class RunWriter:
 
     def summary(self, suite, settings, detail) -> dict:
         """``summary.json`` of the run (its records, statistics, bottom line and which records
-        the report shows)."""
+        the report shows).
+
+        Parameters
+        ----------
+        suite : records.RecordSuite
+            The records.
+        settings : AuditSettings
+            The audit's settings.
+        detail : sequence of str
+            Record ids whose per-record detail the report should show; the worst records when empty
+            (every record of a small suite).
+        """
         ids = [entry.id for entry in suite]
         worst = self.shown.worst_records()
         detailed = set(ids) if len(ids) <= LARGE_SUITE else set(detail or worst)
@@ -160,7 +191,13 @@ class RunWriter:
         }
 
     def kept_run(self, summary: dict) -> AuditRun:
-        """An :class:`AuditRun` of the kept records' rows and the whole run's summary."""
+        """An :class:`AuditRun` of the kept records' rows and the whole run's summary.
+
+        Parameters
+        ----------
+        summary : dict
+            The whole run's summary (:meth:`summary`).
+        """
         def cat(name):
             return concat([getattr(part, name) for part in self.kept
                            if len(getattr(part, name))], GUIDE[_FILE_OF[name]])
@@ -169,7 +206,15 @@ class RunWriter:
                         suite=self.suite_frame)
 
     def finish(self, summary: dict, claims) -> None:
-        """Write the files of the suite as a whole."""
+        """Write the files of the suite as a whole.
+
+        Parameters
+        ----------
+        summary : dict
+            The whole run's summary.
+        claims : pandas.DataFrame
+            The claims checklist (``claims.csv``).
+        """
         run = AuditRun(summary=summary, suite=self.suite_frame, claims=claims,
                        mechanics=mechanics())
         for name, content in suite_files(run).items():

@@ -99,7 +99,19 @@ class Block:
     def from_dimensions(cls, width_m: float, height_m: float, r: float | None = None,
                         g: float = G, name: str = "") -> Block:
         """The block of full width 2b and full height 2h [m]: α = atan(b/h), R = √(b² + h²),
-        within the limits every command applies (:func:`within_limits`)."""
+        within the limits every command applies (:func:`within_limits`).
+
+        Parameters
+        ----------
+        width_m, height_m : float
+            Full width 2b and full height 2h [m], positive, width < height.
+        r : float, optional
+            Coefficient of restitution [-]; Eq. 4.8 (from α) when not given.
+        g : float
+            Acceleration of gravity [m/s²].
+        name : str
+            What outputs call the block; its dimensions when empty.
+        """
         for field, value in (("width_m", width_m), ("height_m", height_m)):
             check.number(field, value, "a positive number of metres", 0, low_open=True)
         _check_r_g(r, g)  # named as the arguments, before the solver's block checks them
@@ -113,7 +125,19 @@ class Block:
     def of_dimensions(cls, width_m: float, height_m: float, r: float | None = None,
                       g: float = G, name: str = "") -> Block:
         """:meth:`from_dimensions` without the limits, for the blocks the audit makes itself
-        (a family of widths, the widths a guideline requires)."""
+        (a family of widths, the widths a guideline requires).
+
+        Parameters
+        ----------
+        width_m, height_m : float
+            Full width 2b and full height 2h [m].
+        r : float, optional
+            Coefficient of restitution [-]; Eq. 4.8 (from α) when not given.
+        g : float
+            Acceleration of gravity [m/s²].
+        name : str
+            What outputs call the block; its dimensions when empty.
+        """
         rigid = RigidBlock.from_dimensions(width_m / 2.0, height_m / 2.0, r, g)
         return cls(alpha_deg=math.degrees(rigid.alpha), size_s=rigid.size_s, r=r, g=g,
                    width_m=float(width_m), height_m=float(height_m), name=name)
@@ -122,14 +146,32 @@ class Block:
     def parse(cls, text: str, r: float | None = None, g: float = G, *,
               option: str = "block") -> Block:
         """The one block typed as ``WIDTHxHEIGHT`` [m] (full width × full height), e.g.
-        ``0.8x2.0``; InputError naming ``option``, the text and the field otherwise."""
+        ``0.8x2.0``; InputError naming ``option``, the text and the field otherwise.
+
+        Parameters
+        ----------
+        text : str
+            ``WIDTHxHEIGHT`` [m].
+        r : float, optional
+            Coefficient of restitution [-]; Eq. 4.8 (from α) when not given.
+        g : float
+            Acceleration of gravity [m/s²].
+        option : str
+            The option or argument the text was given as, for the message.
+        """
         blocks = parse_blocks([text], option, g, r)
         if len(blocks) != 1:
             raise InputError(f"{option}: expected one WIDTHxHEIGHT, got {text!r}", option)
         return blocks[0]
 
     def with_width(self, width_m: float) -> Block:
-        """The block of the same height and another width (its family at this height)."""
+        """The block of the same height and another width (its family at this height).
+
+        Parameters
+        ----------
+        width_m : float
+            Full base width 2b of the new block [m].
+        """
         return Block.of_dimensions(width_m, self.height_m, self.r, self.g, self.name)
 
     @property
@@ -161,7 +203,22 @@ class Block:
 def within_limits(block: Block, where: str, *fields: str) -> Block:
     """``block`` if a user may name it (size 2π/p ≤ :data:`MAX_SIZE_S`); otherwise InputError
     naming ``where`` (the option and text, or nothing for an argument) and ``height_m``, with
-    the block in metres when the dimensions look typed in millimetres."""
+    the block in metres when the dimensions look typed in millimetres.
+
+    Parameters
+    ----------
+    block : Block
+        The block to check.
+    where : str
+        The option and text it was given as (``"--block 1x80"``), or ``""`` for an argument.
+    *fields : str
+        The fields the InputError names (its ``fields``).
+
+    Returns
+    -------
+    Block
+        ``block`` itself.
+    """
     if block.size_s <= MAX_SIZE_S:
         return block
     w, h = block.width_m, block.height_m
@@ -212,7 +269,19 @@ def parse_blocks(texts, option: str = "blocks", g: float = G,
 
     The limits, the same for every command: positive dimensions, width < height (α < 45°,
     the rocking model's blocks), and size 2π/p ≤ :data:`MAX_SIZE_S` = 10 s (the records'
-    long-period band; the reasons at :data:`MAX_SIZE_S`)."""
+    long-period band; the reasons at :data:`MAX_SIZE_S`).
+
+    Parameters
+    ----------
+    texts : iterable of str or None
+        The option's values, each one ``WIDTHxHEIGHT`` or several comma-separated.
+    option : str
+        The option's name, for the message.
+    g : float
+        Acceleration of gravity [m/s²].
+    r : float, optional
+        Coefficient of restitution [-]; Eq. 4.8 (from α) when not given.
+    """
     return [_block_of_text(item.strip(), option, g, r) for text in texts or ()
             for item in str(text).split(",") if item.strip()]
 
@@ -236,6 +305,18 @@ class BlockList:
 
     @classmethod
     def of(cls, alpha_deg=(), size_s=(), named=()) -> BlockList:
+        """The grid ``alpha_deg`` × ``size_s`` (every slenderness at every size), then the blocks
+        ``named``.
+
+        Parameters
+        ----------
+        alpha_deg : array_like of float
+            Slendernesses of the grid [degrees].
+        size_s : array_like of float
+            Sizes 2π/p of the grid [s].
+        named : iterable of Block
+            Named blocks appended after the grid, labelled by :attr:`Block.label`.
+        """
         alpha_deg = np.asarray(alpha_deg, dtype=float)
         size_s = np.asarray(size_s, dtype=float)
         grid_alpha, grid_size = (a.ravel() for a in np.meshgrid(alpha_deg, size_s,

@@ -34,7 +34,19 @@ def _motions(suite) -> list:
 def audit_cost(procedures, suite, settings: AuditSettings, runtime: Runtime) -> guards.Estimate:
     """The work of :func:`audit.engine.run.suite_run.audit_suite`: every block solved once, twice
     more for the fragility flag (record × (1 ± ε)), once more per alternative model; the
-    record's spectra and each procedure's at each slenderness."""
+    record's spectra and each procedure's at each slenderness.
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    suite : records.RecordSuite
+        The records.
+    settings : AuditSettings
+        The audit's settings (grid, free-motion time, fragility and sensitivity flags).
+    runtime : Runtime
+        How it runs (the number of jobs).
+    """
     sizes, alphas = len(settings.size_s), len(settings.alpha_deg)
     return guards.estimate(
         _motions(suite), settings.free_motion_s,
@@ -50,7 +62,19 @@ def margins_cost(procedures, suite, settings: MarginsSettings,
     """The work of :func:`audit.engine.design.pipeline.design_level_audit`: every block at every
     stripe, then the required-slenderness grid and its bisections; the spectra each procedure
     that reads the record's spectra (its rotation estimate) computes at each slenderness (once
-    per record, scaled to every stripe) and at each of the search's."""
+    per record, scaled to every stripe) and at each of the search's.
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The procedures audited.
+    suite : records.RecordSuite
+        The records.
+    settings : MarginsSettings
+        The design-level settings (stripes, grid, blocks, required-α search).
+    runtime : Runtime
+        How it runs (the number of jobs).
+    """
     stripes = DEFAULT_STRIPES if settings.stripes is None else len(settings.stripes)
     sizes, alphas = len(settings.size_s), len(settings.alpha_deg)
     slendernesses = len({*settings.alpha_deg, *(b.alpha_deg for b in settings.blocks)})
@@ -84,7 +108,21 @@ def check_cost(procedures, suite, objects: int, settings: CheckSettings,
     bracket halved), each at every stripe; with a hazard curve, also the object at the width
     each guideline requires. Each procedure reading the record reads its spectrum at every
     object's damping, on demand: the periods its iteration visits, at the object's width and
-    at each width the guideline's search tries."""
+    at each width the guideline's search tries.
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The guidelines checked.
+    suite : records.RecordSuite
+        The records.
+    objects : int
+        Number of objects checked.
+    settings : CheckSettings
+        The check's settings (hazard, free-motion time).
+    runtime : Runtime
+        How it runs (the number of jobs).
+    """
     # imported here: run and margins estimate their work without the check's modules
     from audit.engine.check.pipeline import SITE_STRIPES, TARGETS
     from audit.engine.check.widths import SCAN_WIDTHS

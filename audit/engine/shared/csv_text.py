@@ -57,7 +57,17 @@ def _column(values, float_format: str) -> list[str]:
 def csv_bytes(frame: pd.DataFrame, float_format: str, header: bool = True) -> bytes:
     """``frame`` as CSV (header unless ``header`` is false, no index, floats by ``float_format`` such as ``"%.10g"``,
     empty cells for NaN and None, fields quoted only where they hold a comma, quote or line
-    break), UTF-8."""
+    break), UTF-8.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        The table.
+    float_format : str
+        ``%``-format of floats, e.g. ``"%.10g"``.
+    header : bool
+        Whether the first line names the columns.
+    """
     columns = [_column(frame[name].to_numpy(), float_format) for name in frame.columns]
     rows = "\n".join(map(",".join, zip(*columns))) + "\n" if columns and len(frame) else ""
     if header:

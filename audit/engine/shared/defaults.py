@@ -47,12 +47,24 @@ DEFAULT_STRIPE_SPAN = (0.2, 5.0)
 
 
 def alpha_text(alpha_deg=DEFAULT_ALPHA_DEG) -> str:
-    """Slendernesses as typed on the command line, e.g. ``10,15,20``."""
+    """Slendernesses as typed on the command line, e.g. ``10,15,20``.
+
+    Parameters
+    ----------
+    alpha_deg : sequence of float
+        Slendernesses [degrees].
+    """
     return ",".join(f"{a:g}" for a in alpha_deg)
 
 
 def sizes_text(sizes=DEFAULT_SIZES) -> str:
-    """A size grid as typed on the command line, e.g. ``0.5:8:0.05``."""
+    """A size grid as typed on the command line, e.g. ``0.5:8:0.05``.
+
+    Parameters
+    ----------
+    sizes : tuple of float
+        The grid (start, stop, step) of sizes 2π/p [s].
+    """
     return ":".join(f"{v:g}" for v in sizes)
 
 

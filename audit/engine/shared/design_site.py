@@ -56,7 +56,13 @@ class DesignSite:
 
     @classmethod
     def parse(cls, **values) -> DesignSite:
-        """The design site of the given fields, each checked once (InputError naming it)."""
+        """The design site of the given fields, each checked once (InputError naming it).
+
+        Parameters
+        ----------
+        **values
+            Fields of :data:`SITE_FIELDS` by name (the rest take :data:`SITE_DEFAULTS`).
+        """
         check.unknown("the design site", values, SITE_FIELDS)
         value = {**SITE_DEFAULTS, **values}
         site = value["site"]
@@ -90,7 +96,17 @@ class DesignSite:
         return cls(site, override, scale, anchor, ntc, floor)
 
     def apply(self, suite):
-        """``suite`` with these sites and scaling, on this floor."""
+        """``suite`` with these sites and scaling, on this floor.
+
+        Parameters
+        ----------
+        suite : records.RecordSuite
+            The records.
+
+        Returns
+        -------
+        records.RecordSuite
+        """
         from audit.engine.shared.floors import on_floor
         from audit.engine.shared.sites import scale_to_site, with_design_site, with_ntc_site
         if self.ntc_site is not None:

@@ -25,7 +25,13 @@ FLOOR_FIELDS = tuple(FLOOR_DEFAULTS)
 
 
 def floor_document(floor: Floor) -> dict:
-    """The floor and the building, JSON-ready (``z_over_h`` 0 on the ground)."""
+    """The floor and the building, JSON-ready (``z_over_h`` 0 on the ground).
+
+    Parameters
+    ----------
+    floor : audit.physics.building.Floor
+        Where the objects stand.
+    """
     return {"z_over_h": floor.z_over_h, "building_period_s": floor.building_period_s,
             "building_model": None if floor.on_ground else str(floor.building_model),
             "building_damping": None if floor.on_ground else floor.building_damping,
@@ -34,13 +40,30 @@ def floor_document(floor: Floor) -> dict:
 
 def floor_peaks(motion) -> dict:
     """Peak floor acceleration [g] and velocity [m/s] of a floor motion (the ground's peaks on
-    the ground): PFA = max|ü_floor|, PFV by the same integration as the records' PGV."""
+    the ground): PFA = max|ü_floor|, PFV by the same integration as the records' PGV.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+        The floor's (or the ground's) motion.
+
+    Returns
+    -------
+    dict
+        ``pfa_g`` [g] and ``pfv_m_s`` [m/s].
+    """
     return {"pfa_g": motion.pga / G, "pfv_m_s": motion.pgv}
 
 
 def suite_floor(suite) -> dict:
     """``suite.floor`` (the floor, the building, each record's PFA and PFV), or the ground's:
-    what every output file says of where the objects stand."""
+    what every output file says of where the objects stand.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+        The records, on a floor (:func:`on_floor`) or on the ground.
+    """
     return suite.floor or {**floor_document(Floor()), "records": {}}
 
 
@@ -54,7 +77,19 @@ def floor_at_site(suite, entries, intensity: dict, site_im: float) -> dict:
     """:func:`suite_floor` with each record's PFA and PFV at the site (the record scaled so that
     its ground intensity is ``site_im``; ``intensity`` holds each record's as it stands), and on
     a floor the median 5 %-damped spectra [g] of the floor motions and of the ground motions at
-    the site, ``spectra``."""
+    the site, ``spectra``.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+        The records, on a floor or on the ground.
+    entries : iterable of records.RecordEntry
+        The records used, each with its motion.
+    intensity : dict
+        Each record's ground intensity as it stands, by record id, in the unit of the IM.
+    site_im : float
+        The site's intensity, in the same unit.
+    """
     document = suite_floor(suite)
     factors = {entry.id: site_im / intensity[entry.id] for entry in entries}
     records = {record: {name: value * factors[record] for name, value in peaks.items()}
@@ -78,7 +113,19 @@ def floor_at_site(suite, entries, intensity: dict, site_im: float) -> dict:
 def on_floor(suite, floor: Floor):
     """``suite`` with every motion replaced by that of ``floor`` (see the module); on the ground
     the suite itself. ``suite.floor`` names the floor and the building and holds each record's
-    PFA and PFV."""
+    PFA and PFV.
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+        The ground motions.
+    floor : audit.physics.building.Floor
+        The floor and the building filtering them.
+
+    Returns
+    -------
+    records.RecordSuite
+    """
     if floor.on_ground:
         return suite
     # the filter's kernels load only here: reading results back (audit report) needs none

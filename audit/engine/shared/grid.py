@@ -8,6 +8,12 @@ import numpy as np
 
 
 def size_grid(start: float, stop: float, step: float) -> np.ndarray:
-    """Sizes 2π/p from ``start`` to ``stop`` inclusive [s], rounded to the step's decimals."""
+    """Sizes 2π/p from ``start`` to ``stop`` inclusive [s], rounded to the step's decimals.
+
+    Parameters
+    ----------
+    start, stop, step : float
+        First and last size 2π/p, and the step [s].
+    """
     count = int(math.floor((stop - start) / step + 1e-9)) + 1
     return np.round(start + step * np.arange(count), 10)

@@ -40,7 +40,15 @@ class GroundTruth:
 def parse_sensitivity(texts, option: str = "sensitivity") -> tuple[str, ...]:
     """``restitution=A,B,...`` (impact models: ``x0.9``, ``0.9x``, a fixed r, ``housner``)
     and/or ``vertical``, given once or repeated; the alternatives in a canonical spelling
-    (``restitution=x0.9``, ``vertical``)."""
+    (``restitution=x0.9``, ``vertical``).
+
+    Parameters
+    ----------
+    texts : iterable of str or None
+        The option's values.
+    option : str
+        The option's name, for the message.
+    """
     alternatives = []
     for text in texts or ():
         word = str(text).strip()
@@ -58,7 +66,15 @@ def parse_sensitivity(texts, option: str = "sensitivity") -> tuple[str, ...]:
 
 def alternatives(model: GroundTruth, sensitivity) -> list[GroundTruth]:
     """The models of ``sensitivity`` (:func:`parse_sensitivity`) as variants of ``model``:
-    another impact model, or the vertical component switched."""
+    another impact model, or the vertical component switched.
+
+    Parameters
+    ----------
+    model : GroundTruth
+        The reference model (impact model and vertical component).
+    sensitivity : iterable of str
+        Alternatives as :func:`parse_sensitivity` spells them.
+    """
     out = []
     for word in sensitivity:
         if word == VERTICAL:
@@ -71,7 +87,20 @@ def alternatives(model: GroundTruth, sensitivity) -> list[GroundTruth]:
 def slides(required_friction, friction):
     """Blocks that would slide on a base of friction coefficient μ = ``friction`` [-]: their
     pure-rocking response needs more friction than μ (every block that uplifts needs at least
-    tan α, so a block with tan α > μ slides before it can rock). NaN where μ is not given."""
+    tan α, so a block with tan α > μ slides before it can rock). NaN where μ is not given.
+
+    Parameters
+    ----------
+    required_friction : array_like of float
+        Friction coefficient each block's pure-rocking response needs [-].
+    friction : float or None
+        Friction coefficient μ of the base [-], None when not given.
+
+    Returns
+    -------
+    numpy.ndarray
+        True where the block slides (float NaN everywhere when μ is None).
+    """
     required = np.asarray(required_friction, dtype=float)
     if friction is None:
         return np.full(required.shape, np.nan)

@@ -95,7 +95,15 @@ class Estimate:
 
 
 def samples_with_tail(motion, free_motion_s: float) -> int:
-    """Samples the solvers visit for ``motion``: the record and its free-motion tail."""
+    """Samples the solvers visit for ``motion``: the record and its free-motion tail.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+        The record.
+    free_motion_s : float
+        Free-motion time solved after the record ends [s].
+    """
     return motion.acceleration.size + int(math.ceil(free_motion_s / motion.dt))
 
 
@@ -165,7 +173,17 @@ def _record_cause(motion) -> Cause:
 
 
 def check(cost: Estimate, force: bool, out=None) -> None:
-    """Refuse ``cost`` above the limits unless ``force``; warn on one line above the lower one."""
+    """Refuse ``cost`` above the limits unless ``force``; warn on one line above the lower one.
+
+    Parameters
+    ----------
+    cost : Estimate
+        The work estimated (:func:`estimate`).
+    force : bool
+        Run whatever the estimate.
+    out : file-like, optional
+        Where the warning goes; standard error when not given.
+    """
     out = out or sys.stderr
     too_long = cost.seconds > REFUSE_SECONDS
     too_big = cost.memory_bytes > REFUSE_MEMORY_BYTES

@@ -10,7 +10,13 @@ from audit.errors import InputError
 def imt_of(im: str) -> str | None:
     """The hazard files' IMT (``PGA``, ``SA(1.0)``) of an intensity measure as ``--im`` names
     it (``pga``, ``sa:1``); None for one no hazard file gives (PGV) or not an IM at all (the
-    settings refuse those with their own message)."""
+    settings refuse those with their own message).
+
+    Parameters
+    ----------
+    im : str
+        Intensity measure as ``--im`` names it.
+    """
     from audit.engine.shared.intensity import IntensityMeasure
     try:
         mine = IntensityMeasure.parse(im)
@@ -21,7 +27,13 @@ def imt_of(im: str) -> str | None:
 
 def im_of_imt(imt: str) -> str:
     """``--im``'s name (``pga``, ``sa:1``) of a hazard file's IMT (``PGA``, ``SA(1.0)``,
-    ``SA1P0``); InputError naming ``hazard_imt`` otherwise."""
+    ``SA1P0``); InputError naming ``hazard_imt`` otherwise.
+
+    Parameters
+    ----------
+    imt : str
+        A hazard file's IMT.
+    """
     from records.hazard import parse_imt
     try:
         kind, period = parse_imt(imt, "hazard_imt")

@@ -26,7 +26,13 @@ class IntensityMeasure:
 
     @classmethod
     def parse(cls, text: str) -> IntensityMeasure:
-        """``pga``, ``pgv`` or ``sa:T``; InputError naming ``im`` otherwise."""
+        """``pga``, ``pgv`` or ``sa:T``; InputError naming ``im`` otherwise.
+
+        Parameters
+        ----------
+        text : str
+            The intensity measure, ``sa:T`` with the period T [s].
+        """
         if not isinstance(text, str):
             raise InputError(f"im: expected pga, pgv or sa:T with T a period in s, got {text!r}",
                              "im")
@@ -53,7 +59,20 @@ class IntensityMeasure:
 
     def of_record(self, motion, free_motion_s: float) -> float:
         """The intensity of a record (in :attr:`unit`): of its ground motion where it is the
-        motion of a floor (the hazard is at the ground)."""
+        motion of a floor (the hazard is at the ground).
+
+        Parameters
+        ----------
+        motion : records.GroundMotion
+            The record (or a floor motion, carrying its ground motion).
+        free_motion_s : float
+            Free-motion time after the record [s], for the oscillator of Sa(T).
+
+        Returns
+        -------
+        float
+            PGA [g], PGV [m/s] or Sa(T) at 5 % [g].
+        """
         motion = motion.ground if motion.ground is not None else motion
         if self.kind == PGA:
             return motion.pga_g
@@ -68,7 +87,18 @@ class IntensityMeasure:
 
     def of_design_site(self, site: dict) -> float | None:
         """The intensity of a FEMA 356 design site (S_XS, S_X1 [g]), or None: PGA = 0.4 S_XS,
-        Sa(T) of the design spectrum at 5 %; PGV has no design value."""
+        Sa(T) of the design spectrum at 5 %; PGV has no design value.
+
+        Parameters
+        ----------
+        site : dict or None
+            The design site, ``sxs_g`` and ``sx1_g`` [g].
+
+        Returns
+        -------
+        float or None
+            The intensity [g].
+        """
         if not site or self.kind == PGV:
             return None
         from audit.physics.design_spectra import FEMA356Spectrum

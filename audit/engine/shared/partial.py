@@ -26,7 +26,13 @@ PARTIAL_DIR = ".partial"
 
 
 def motion_digest(motion) -> str:
-    """SHA-256 of the samples [m/s²] and step [s] of a motion: its identity as audited."""
+    """SHA-256 of the samples [m/s²] and step [s] of a motion: its identity as audited.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+        The motion.
+    """
     digest = hashlib.sha256(motion.acceleration.tobytes())
     digest.update(repr(float(motion.dt)).encode())
     return digest.hexdigest()
@@ -37,7 +43,15 @@ def _sha(text: str) -> str:
 
 
 def run_key(procedures, settings) -> str:
-    """Hash of the tool version, the procedures and the settings of a run."""
+    """Hash of the tool version, the procedures and the settings of a run.
+
+    Parameters
+    ----------
+    procedures : sequence of procedures.base.Procedure
+        The procedures run.
+    settings : AuditSettings
+        The run's settings (anything with ``as_dict()``).
+    """
     return _sha(json.dumps({
         "version": __version__,
         "procedures": [[p.name, f"{type(p).__module__}.{type(p).__qualname__}",
@@ -47,7 +61,13 @@ def run_key(procedures, settings) -> str:
 
 
 def record_key(entry) -> str:
-    """Hash of what a record contributes to its part of the audit."""
+    """Hash of what a record contributes to its part of the audit.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    """
     motion = entry.motion
     item = {"id": entry.id, "site": entry.site, "facts": repr(entry.facts),
             "component": entry.component, "missing_reason": entry.missing_reason}
@@ -59,7 +79,13 @@ def record_key(entry) -> str:
 
 
 def kept_parts(directory) -> list[Path]:
-    """The parts stored in ``directory`` (temporary files of a write under way excluded)."""
+    """The parts stored in ``directory`` (temporary files of a write under way excluded).
+
+    Parameters
+    ----------
+    directory : str or pathlib.Path
+        The folder of the parts (``partial_dir``).
+    """
     directory = Path(directory)
     return sorted(directory.glob("[!.]*.pkl")) if directory.is_dir() else []
 
@@ -90,7 +116,13 @@ class PartialStore:
         return self.directory / f"{key[:40]}.pkl", key
 
     def load(self, entry):
-        """The stored part of ``entry`` when it matches this run, else None."""
+        """The stored part of ``entry`` when it matches this run, else None.
+
+        Parameters
+        ----------
+        entry : records.RecordEntry
+            The record.
+        """
         path, key = self._path_and_key(entry)
         try:
             with open(path, "rb") as file:
@@ -104,7 +136,15 @@ class PartialStore:
         return stored["part"]
 
     def save(self, entry, part) -> None:
-        """Store the part of ``entry`` atomically (temporary file, then rename)."""
+        """Store the part of ``entry`` atomically (temporary file, then rename).
+
+        Parameters
+        ----------
+        entry : records.RecordEntry
+            The record.
+        part : object
+            Its part of the run (a :class:`~audit.engine.run.record_audit.RecordAudit`), pickled.
+        """
         path, key = self._path_and_key(entry)
         write_file_atomically(path, pickle.dumps({"key": key, "record": entry.id, "part": part},
                                                  protocol=pickle.HIGHEST_PROTOCOL))

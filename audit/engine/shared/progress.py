@@ -44,7 +44,13 @@ class Progress:
             self.stage(f"{self.label} {done}/{total}: {what}" + (f" ({how})" if how else ""))
 
     def stage(self, text: str) -> None:
-        """One line saying what the run does now, with the time elapsed."""
+        """One line saying what the run does now, with the time elapsed.
+
+        Parameters
+        ----------
+        text : str
+            What the run does now.
+        """
         if self.enabled:
             tqdm.write(f"[{time.perf_counter() - self.start:6.1f} s] {text}", file=sys.stderr)
 

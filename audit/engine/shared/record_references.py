@@ -26,7 +26,13 @@ class RecordReference:
 
 
 def by_reference(entry):
-    """``entry`` as a :class:`RecordReference` when its file can be re-read, else ``entry``."""
+    """``entry`` as a :class:`RecordReference` when its file can be re-read, else ``entry``.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    """
     motion = entry.motion
     if (motion is None or motion.pulse is not None
             or motion.metadata.get("format") not in _READERS or not Path(motion.source).is_file()):
@@ -42,6 +48,11 @@ def resolve(item):
 
     None when the file is not readable here, or its SHA-256 or samples differ from the ones
     the run was given (e.g. another file at that path, or a record scaled after reading).
+
+    Parameters
+    ----------
+    item : records.RecordEntry or RecordReference
+        A record, or a reference to one.
     """
     if not isinstance(item, RecordReference):
         return item

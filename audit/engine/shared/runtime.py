@@ -25,7 +25,15 @@ RUNTIME_FIELDS = tuple(RUNTIME_DEFAULTS)
 
 
 def check_scheduler(text, field: str = "scheduler") -> str:
-    """``local``, ``dask`` or a Dask scheduler address ``tcp://HOST:PORT``."""
+    """``local``, ``dask`` or a Dask scheduler address ``tcp://HOST:PORT``.
+
+    Parameters
+    ----------
+    text : str
+        What was given.
+    field : str
+        The argument's name, for the message.
+    """
     if text in (LOCAL, DASK):
         return text
     if isinstance(text, str) and text.startswith(("tcp://", "tls://")):
@@ -63,7 +71,13 @@ class Runtime:
 
     @classmethod
     def parse(cls, **values) -> Runtime:
-        """The runtime of the given fields, each checked once (InputError naming it)."""
+        """The runtime of the given fields, each checked once (InputError naming it).
+
+        Parameters
+        ----------
+        **values
+            Fields of :data:`RUNTIME_FIELDS` by name (the rest take :data:`RUNTIME_DEFAULTS`).
+        """
         check.unknown("the runtime", values, RUNTIME_FIELDS)
         value = {**RUNTIME_DEFAULTS, **values}
         scheduler = value["scheduler"]
@@ -83,7 +97,17 @@ class Runtime:
                    resume, progress)
 
     def report(self, done: int, total: int, record_id: str, how: str) -> None:
-        """Tell :attr:`progress`, if any, that a record is done."""
+        """Tell :attr:`progress`, if any, that a record is done.
+
+        Parameters
+        ----------
+        done, total : int
+            Records done so far, and in all.
+        record_id : str
+            The record just done.
+        how : str
+            How, in words: ``computed in 2.1 s`` or ``reused from an interrupted run``.
+        """
         if self.progress is not None:
             self.progress(done, total, record_id, how)
 

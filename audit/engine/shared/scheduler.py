@@ -29,7 +29,17 @@ from audit.errors import InputError
 
 def timed(task, item, *args):
     """``task(entry, *args)`` on one record (entry or reference): ``(part, seconds)``, or None
-    if the reference cannot be resolved."""
+    if the reference cannot be resolved.
+
+    Parameters
+    ----------
+    task : callable
+        ``task(entry, *args)``, the work on one record.
+    item : records.RecordEntry or RecordReference
+        The record, or a reference re-read here.
+    *args
+        The task's other arguments.
+    """
     entry = resolve(item)
     if entry is None:
         return None
@@ -53,7 +63,17 @@ class LocalScheduler:
     solver_threads = None
 
     def map(self, task, entries, *args):
-        """Yield ``(index, task(entry, *args), seconds)`` for each entry, in order."""
+        """Yield ``(index, task(entry, *args), seconds)`` for each entry, in order.
+
+        Parameters
+        ----------
+        task : callable
+            ``task(entry, *args)``, the work on one record.
+        entries : sequence of records.RecordEntry or RecordReference
+            The records.
+        *args
+            The task's other arguments.
+        """
         pool = ThreadPoolExecutor(RECORDS_IN_FLIGHT)
         try:
             futures = deque(pool.submit(timed, task, entry, *args)
@@ -68,7 +88,17 @@ class LocalScheduler:
             pool.shutdown(wait=False, cancel_futures=True)
 
     def audit(self, entries, procedures, settings):
-        """Yield ``(index, RecordAudit, seconds)`` for each entry, in order."""
+        """Yield ``(index, RecordAudit, seconds)`` for each entry, in order.
+
+        Parameters
+        ----------
+        entries : sequence of records.RecordEntry or RecordReference
+            The records.
+        procedures : sequence of procedures.base.Procedure
+            The procedures audited.
+        settings : AuditSettings
+            The audit's settings.
+        """
         return self.map(audit_record, entries, procedures, settings)
 
 
@@ -106,6 +136,15 @@ class DaskScheduler:
         tasks to the other workers (up to ``distributed.scheduler.allowed-failures`` deaths per
         task); ``retries=`` would only re-run a task that raised, which for a deterministic
         record raises again (tests/cli/test_dask_cluster.py).
+
+        Parameters
+        ----------
+        task : callable
+            ``task(entry, *args)``, the work on one record.
+        entries : sequence of records.RecordEntry or RecordReference
+            The records.
+        *args
+            The task's other arguments.
         """
         from distributed import as_completed
         # an empty list (the check's width search has no procedures) has nothing to scatter;
@@ -144,7 +183,17 @@ class DaskScheduler:
             fill()
 
     def audit(self, entries, procedures, settings):
-        """Yield ``(index, RecordAudit, seconds)`` in order of completion."""
+        """Yield ``(index, RecordAudit, seconds)`` in order of completion.
+
+        Parameters
+        ----------
+        entries : sequence of records.RecordEntry or RecordReference
+            The records.
+        procedures : sequence of procedures.base.Procedure
+            The procedures audited.
+        settings : AuditSettings
+            The audit's settings.
+        """
         return self.map(audit_record, entries, list(procedures),
                         replace(settings, jobs=self.solver_threads))
 

@@ -14,7 +14,13 @@ from audit.engine.shared.verdicts import (CHECK_VERDICTS, CLAIM_STATUSES, ROCKIN
 
 
 def verdict_column(verdict: str) -> str:
-    """``suite.csv`` column of a verdict class: ``missed-overturn`` → ``frac_missed_overturn``."""
+    """``suite.csv`` column of a verdict class: ``missed-overturn`` → ``frac_missed_overturn``.
+
+    Parameters
+    ----------
+    verdict : str
+        The verdict class.
+    """
     return f"frac_{verdict.replace('-', '_')}"
 
 

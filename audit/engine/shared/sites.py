@@ -68,6 +68,8 @@ def with_ntc_site(suite: RecordSuite, ag_g: float, f0: float, tc_star_s: float, 
 
     Parameters
     ----------
+    suite : records.RecordSuite
+        The records.
     ag_g : float
         Peak ground acceleration on rock a_g [g].
     f0 : float

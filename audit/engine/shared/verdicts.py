@@ -72,22 +72,48 @@ CLAIM_STATUSES = (
 
 
 def names(vocabulary) -> tuple[str, ...]:
-    """The names of a vocabulary, in order."""
+    """The names of a vocabulary, in order.
+
+    Parameters
+    ----------
+    vocabulary : iterable of Verdict
+        The verdicts.
+    """
     return tuple(v.name for v in vocabulary)
 
 
 def on_side(vocabulary, side: str) -> tuple[str, ...]:
-    """The names of a vocabulary's verdicts on ``side`` (``unsafe``, ``uneconomic``, …)."""
+    """The names of a vocabulary's verdicts on ``side`` (``unsafe``, ``uneconomic``, …).
+
+    Parameters
+    ----------
+    vocabulary : iterable of Verdict
+        The verdicts.
+    side : str
+        The side.
+    """
     return tuple(v.name for v in vocabulary if v.side == side)
 
 
 def meanings(vocabulary) -> dict[str, str]:
-    """``{name: meaning}`` of a vocabulary."""
+    """``{name: meaning}`` of a vocabulary.
+
+    Parameters
+    ----------
+    vocabulary : iterable of Verdict
+        The verdicts.
+    """
     return {v.name: v.meaning for v in vocabulary}
 
 
 def colours(vocabulary) -> dict[str, str]:
-    """``{name: colour}`` of a vocabulary."""
+    """``{name: colour}`` of a vocabulary.
+
+    Parameters
+    ----------
+    vocabulary : iterable of Verdict
+        The verdicts.
+    """
     return {v.name: v.colour for v in vocabulary}
 
 
@@ -111,7 +137,15 @@ ROCKING_FLOOR = 1e-3
 
 def rotation_ratio(approx_theta, exact_theta, alpha_rad):
     """approx/exact of each block [-], each rotation [rad] floored at :data:`ROCKING_FLOOR` ×
-    ``alpha_rad``; NaN where either rotation is NaN."""
+    ``alpha_rad``; NaN where either rotation is NaN.
+
+    Parameters
+    ----------
+    approx_theta, exact_theta : array_like of float
+        Peak rotation by the procedure and by the exact solver [rad].
+    alpha_rad : array_like of float
+        Each block's slenderness α [rad].
+    """
     floor = ROCKING_FLOOR * np.asarray(alpha_rad, dtype=float)
     with np.errstate(invalid="ignore"):
         return np.maximum(approx_theta, floor) / np.maximum(exact_theta, floor)
@@ -120,7 +154,17 @@ def rotation_ratio(approx_theta, exact_theta, alpha_rad):
 def reported_ratio(verdict, approx_theta, exact_theta, alpha_rad):
     """The ``ratio`` of ``results.csv`` [-]: :func:`rotation_ratio` where both survive (agrees,
     conservative, unconservative) and the exact block rocks (θ ≥ :data:`ROCKING_FLOOR` α);
-    NaN elsewhere."""
+    NaN elsewhere.
+
+    Parameters
+    ----------
+    verdict : array_like of str
+        Each block's verdict.
+    approx_theta, exact_theta : array_like of float
+        Peak rotation by the procedure and by the exact solver [rad].
+    alpha_rad : array_like of float
+        Each block's slenderness α [rad].
+    """
     rocks = np.asarray(exact_theta) >= ROCKING_FLOOR * np.asarray(alpha_rad, dtype=float)
     both_survive = np.isin(verdict, ["agrees", "conservative", "unconservative"])
     return np.where(both_survive & rocks, rotation_ratio(approx_theta, exact_theta, alpha_rad),

@@ -38,6 +38,18 @@ class ThresholdFragility:
 
     @classmethod
     def fit(cls, intensity, outcomes, lapse: float) -> ThresholdFragility:
+        """The maximum-likelihood threshold and β of the outcomes, for a fixed lapse (the best
+        of a grid of starts, refined).
+
+        Parameters
+        ----------
+        intensity : array_like of float
+            Each test's intensity x (PGA [g] or PGV [m/s]), positive.
+        outcomes : array_like of float
+            Each test's observed outcome, 0 or 1.
+        lapse : float
+            The lapse ε [-]: probabilities kept in [ε, 1 − ε].
+        """
         log_x = np.log(intensity)
 
         def negative(theta):
@@ -50,6 +62,13 @@ class ThresholdFragility:
         return cls(math.exp(best.x[0]), math.exp(best.x[1]), lapse)
 
     def probability(self, intensity) -> np.ndarray:
+        """P(overturn) [-] at each intensity, with the lapse.
+
+        Parameters
+        ----------
+        intensity : array_like of float
+            Intensity x, in the unit of the fit (PGA [g] or PGV [m/s]).
+        """
         return _with_lapse(ndtr(np.log(np.asarray(intensity) / self.threshold) / self.beta),
                            self.lapse)
 
@@ -67,6 +86,19 @@ class VectorLogistic:
 
     @classmethod
     def fit(cls, pga_g, pgv_pga_s, outcomes, lapse: float) -> VectorLogistic:
+        """The maximum-likelihood coefficients of the outcomes, for a fixed lapse.
+
+        Parameters
+        ----------
+        pga_g : array_like of float
+            Each test's PGA [g].
+        pgv_pga_s : array_like of float
+            Each test's PGV/PGA [s].
+        outcomes : array_like of float
+            Each test's outcome, 0 or 1.
+        lapse : float
+            The lapse ε [-]: probabilities kept in [ε, 1 − ε].
+        """
         design = cls._design(pga_g, pgv_pga_s)
 
         def negative(b):
@@ -75,6 +107,15 @@ class VectorLogistic:
         return cls(tuple(float(b) for b in best.x), lapse)
 
     def probability(self, pga_g, pgv_pga_s) -> np.ndarray:
+        """P(overturn) [-] of each test, with the lapse.
+
+        Parameters
+        ----------
+        pga_g : array_like of float
+            PGA [g].
+        pgv_pga_s : array_like of float
+            PGV/PGA [s].
+        """
         return _with_lapse(expit(self._design(pga_g, pgv_pga_s) @ np.asarray(self.coefficients)),
                            self.lapse)
 
@@ -107,7 +148,15 @@ class Scores:
 
 
 def scores(probability, outcomes) -> Scores:
-    """:class:`Scores` of ``probability`` (already within (0, 1)) against 0/1 ``outcomes``."""
+    """:class:`Scores` of ``probability`` (already within (0, 1)) against 0/1 ``outcomes``.
+
+    Parameters
+    ----------
+    probability : array_like of float
+        Predicted P(overturn) of each test [-].
+    outcomes : array_like of float
+        Each test's outcome, 0 or 1.
+    """
     probability = np.asarray(probability, dtype=float)
     observed = np.asarray(outcomes) > 0.5
     predicted = probability >= 0.5

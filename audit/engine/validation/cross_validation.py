@@ -24,6 +24,13 @@ def folds_by_record(groups, folds: int) -> np.ndarray:
 
     Motions go largest first (ties by name) to the fold with the fewest tests so far (ties:
     the lowest index): deterministic, and the folds' sizes differ by at most one motion's.
+
+    Parameters
+    ----------
+    groups : array_like of str
+        Each test's ground motion.
+    folds : int
+        Number of folds.
     """
     groups = np.asarray(groups, dtype=str)
     names, counts = np.unique(groups, return_counts=True)

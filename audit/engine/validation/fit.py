@@ -75,7 +75,21 @@ def slenderness_weights(log_alpha_nodes, log_median: float, sigma: float) -> np.
 
 
 def overturning_probability(node_outcomes, log_alpha_nodes, log_median, sigma, lapse):
-    """P(overturn) per test from its node outcomes (test × α node), with the lapse."""
+    """P(overturn) per test from its node outcomes (test × α node), with the lapse.
+
+    Parameters
+    ----------
+    node_outcomes : numpy.ndarray
+        Exact outcomes (0 or 1) of each test at each α node, shaped (test, node).
+    log_alpha_nodes : array_like of float
+        ln α_k of the nodes (α [rad]), increasing.
+    log_median : float
+        ln α̂ (α [rad]).
+    sigma : float
+        Dispersion σ of ln α [-].
+    lapse : float
+        The lapse ε [-].
+    """
     weights = slenderness_weights(log_alpha_nodes, log_median, sigma)
     return lapse + (1.0 - 2.0 * lapse) * np.clip(node_outcomes @ weights, 0.0, 1.0)
 
@@ -124,7 +138,16 @@ class BlockFit:
     profile: np.ndarray
 
     def probability(self, overturned: np.ndarray, settings) -> np.ndarray:
-        """P(overturn) of each test from a grid's exact outcomes (test, f, p, α)."""
+        """P(overturn) of each test from a grid's exact outcomes (test, f, p, α).
+
+        Parameters
+        ----------
+        overturned : numpy.ndarray of bool
+            The grid's exact outcomes, shaped (test, restitution factor, p, α).
+        settings : ValidationSettings
+            The grid (``restitution_factors``, ``p_rad_s`` [rad/s], ``alpha_deg`` [degrees])
+            and the lapse.
+        """
         j = list(settings.restitution_factors).index(self.restitution_factor)
         k = list(settings.p_rad_s).index(self.p_rad_s)
         return overturning_probability(overturned[:, j, k, :].astype(float),

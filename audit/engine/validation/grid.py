@@ -88,7 +88,15 @@ class ValidationSettings:
 def band_passed(motion, settings: ValidationSettings):
     """The motion band-passed (zero phase) as ``settings`` says; SI in and out. InputError
     naming the motion's file where its step leaves the high-pass at or above the Nyquist
-    frequency, or where it is too short for the zero-phase filter's padding."""
+    frequency, or where it is too short for the zero-phase filter's padding.
+
+    Parameters
+    ----------
+    motion : records.GroundMotion
+        The table's motion.
+    settings : ValidationSettings
+        The band (``highpass_hz``, ``lowpass_hz`` [Hz]).
+    """
     nyquist = 0.5 / motion.dt
     if settings.highpass_hz >= nyquist:
         raise InputError(f"{motion.source}: time step {motion.dt:g} s: the Nyquist frequency "
@@ -127,7 +135,18 @@ class Intensities:
 
 
 def intensities(motions) -> Intensities:
-    """PGA and PGV (trapezoid integral from rest) of each (band-passed) motion."""
+    """PGA and PGV (trapezoid integral from rest) of each (band-passed) motion.
+
+    Parameters
+    ----------
+    motions : iterable of records.GroundMotion
+        The motions, accelerations [m/s²].
+
+    Returns
+    -------
+    Intensities
+        PGA [m/s²] and PGV [m/s] of each.
+    """
     pga, pgv = [], []
     for motion in motions:
         acc = motion.acceleration

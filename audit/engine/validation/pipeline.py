@@ -177,7 +177,15 @@ def run_validation(campaign, settings: ValidationSettings, geometry: pd.DataFram
 
 def methods_statement(fits_table: pd.DataFrame, scores_table: pd.DataFrame) -> str:
     """The sentence a report's Methods gives about the validation of the exact model, from the
-    saved ``validation-fits.csv`` and ``validation-scores.csv``."""
+    saved ``validation-fits.csv`` and ``validation-scores.csv``.
+
+    Parameters
+    ----------
+    fits_table : pandas.DataFrame
+        ``validation-fits.csv``.
+    scores_table : pandas.DataFrame
+        ``validation-scores.csv``.
+    """
     parts = []
     for row in fits_table.itertuples():
         model = scores_table[(scores_table["specimen"] == row.specimen)
@@ -195,7 +203,19 @@ def methods_statement(fits_table: pd.DataFrame, scores_table: pd.DataFrame) -> s
 
 def fitted_restitution(fits_table: pd.DataFrame, specimen: str | None = None) -> str:
     """The ``--restitution`` value (``xFACTOR``) of a saved fit: the named specimen's, or the
-    factor every specimen shares; None when the specimens' factors differ."""
+    factor every specimen shares; None when the specimens' factors differ.
+
+    Parameters
+    ----------
+    fits_table : pandas.DataFrame
+        ``validation-fits.csv``.
+    specimen : str, optional
+        The specimen.
+
+    Returns
+    -------
+    str or None
+    """
     rows = fits_table if specimen is None else fits_table[fits_table["specimen"] == specimen]
     factors = set(rows["restitution_factor"])
     return f"x{factors.pop():g}" if len(factors) == 1 else None
