@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import minimize
-from scipy.special import log_ndtr
+from scipy.special import log_ndtr, ndtri
 from scipy.stats import norm
 
 #: Resamples of the bootstrap over records, and its band.
@@ -59,7 +59,7 @@ class WidthFamily:
         im : float
             Intensity [g].
         """
-        return math.exp((math.log(im) - self.intercept - self.beta * norm.ppf(target))
+        return math.exp((math.log(im) - self.intercept - self.beta * ndtri(target))
                         / self.slope)
 
 
@@ -151,26 +151,34 @@ def fit_width_families(widths_m, levels, counts, records: int, start=None):
     log_likelihood = _probit_log_likelihood(theta @ x.T, k, records)
     settled = np.zeros(sets, dtype=bool)
     for _ in range(NEWTON_ITERATIONS):
-        eta = theta @ x.T  # (set, cell)
+        active = np.flatnonzero(~settled)
+        if not active.size:
+            break
+        here, kk, before = theta[active], k[active], log_likelihood[active]
+        eta = here @ x.T  # (set, cell)
         up, down = _mills(eta), _mills(-eta)
-        gradient = np.einsum("sc,cj->sj", k * up - (records - k) * down, x)
-        curvature = k * up * (eta + up) + (records - k) * down * (down - eta)
+        gradient = np.einsum("sc,cj->sj", kk * up - (records - kk) * down, x)
+        curvature = kk * up * (eta + up) + (records - kk) * down * (down - eta)
         hessian = np.einsum("sc,ci,cj->sij", curvature, x, x)
         # the pseudo-inverse: one width alone leaves ln w collinear with the constant
         step = np.einsum("sij,sj->si", np.linalg.pinv(hessian), gradient)
-        step[settled] = 0.0
+        # a step this small is the last: at the maximum the likelihood's rounding, not its
+        # shape, decides whether it climbs
+        last = np.all(np.abs(step) <= NEWTON_TOLERANCE * (1.0 + np.abs(here)), axis=1)
+        value = before.copy()
+        climbing = ~last
         for _ in range(40):  # halve each step that does not climb
-            trial = theta + step
-            value = _probit_log_likelihood(trial @ x.T, k, records)
-            worse = ~(value >= log_likelihood)
+            trial = here[climbing] + step[climbing]
+            value[climbing] = _probit_log_likelihood(trial @ x.T, kk[climbing], records)
+            worse = climbing & ~(value >= before)
             if not worse.any():
                 break
             step[worse] *= 0.5
-        theta, log_likelihood = np.where(worse[:, None], theta, trial), \
-            np.where(worse, log_likelihood, value)
-        settled |= np.all(np.abs(step) <= NEWTON_TOLERANCE * (1.0 + np.abs(theta)), axis=1)
-        if settled.all():
-            break
+            climbing = worse
+        moved = last | (value >= before)
+        theta[active[moved]] = here[moved] + step[moved]
+        log_likelihood[active[moved]] = value[moved]
+        settled[active[last]] = True
     beta = 1.0 / theta[:, 1]
     slope = -theta[:, 2] * beta
     fits = []
@@ -233,9 +241,12 @@ def width_answer(widths_m, levels, overturned, site_im: float, targets, height_m
     rng = np.random.default_rng(seed)
     rows = [rng.integers(0, records, records) for _ in range(resamples)]
     counts = np.stack([overturned[r].sum(axis=0) for r in rows])
-    resampled = [[fit.width_for(t, site_im) for t in targets]
-                 for fit in fit_width_families(widths_m, levels, counts, records, family)]
-    resampled = np.array(resampled)
+    fits = fit_width_families(widths_m, levels, counts, records, family)
+    intercept, slope, beta = (np.array([getattr(f, name) for f in fits])[:, None]
+                              for name in ("intercept", "slope", "beta"))
+    # WidthFamily.width_for of every resample and target at once
+    resampled = np.exp((math.log(site_im) - intercept - beta * ndtri(np.asarray(targets)))
+                       / slope)
     tail = 100 * (1 - CONFIDENCE) / 2
     widths, bands = {}, {}
     for k, target in enumerate(targets):
