@@ -104,10 +104,12 @@ def test_the_graph_sees_imports():
     assert _layer("audit.cli.run") > _layer("audit.api") > _layer("reports.render")
 
 
-#: What the command line may import: the API, the defaults its help shows, the base modules,
-#: the records (read by the options) and the reports' figures; never the engine's internals,
-#: the physics or the procedures (a command is argparse → one API call → print).
-CLI_MAY_IMPORT = ("audit.api", "audit.cli", "audit.engine.shared.defaults", "records", "reports")
+#: What the command line may import besides the base modules: the API (the defaults its
+#: ``--help`` shows too) and itself; never the engine, the records, the
+#: reports, the physics or the procedures (a command is argparse → one API call → print).
+CLI_MAY_IMPORT = ("audit.api", "audit.cli")
+#: The packages below the API the command line must not reach into.
+BELOW_THE_API = ("audit.engine", "records", "reports", "procedures")
 
 
 def test_the_command_line_goes_through_the_api():
@@ -123,6 +125,29 @@ def test_the_command_line_goes_through_the_api():
               if _layer(name) == _layer("audit.cli") for target in targets
               if target.startswith("audit.api.")]
     assert not behind, "the command line behind the API's front: " + "; ".join(sorted(behind))
+
+
+def _imported_names(path: Path) -> set[str]:
+    """Every module name an ``import`` or ``from … import`` of ``path`` names, function-level
+    included, whether or not it is a module of the project."""
+    names = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            names |= {alias.name for alias in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+            names |= {node.module, *(f"{node.module}.{alias.name}" for alias in node.names)}
+    return names
+
+
+def test_the_command_line_imports_nothing_below_the_api():
+    """No module of ``audit/cli`` imports from the engine, the records, the reports or the
+    procedures: records are read, sites parsed and summaries written below the API."""
+    cli = sorted((REPO / "audit" / "cli").glob("*.py"))
+    below = [f"{path.name} → {name}" for path in cli for name in sorted(_imported_names(path))
+             if any(name == top or name.startswith(top + ".") for top in BELOW_THE_API)]
+    assert not below, "the command line below the API: " + "; ".join(below)
+    # the parse sees imports inside functions and from-imports of names
+    assert "audit.api.run" in _imported_names(REPO / "audit" / "cli" / "run.py")
 
 
 def _import_alone(name: str) -> tuple[str, str]:

@@ -44,12 +44,26 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           # and its report, for the command line
           "available_procedures": "procedures.registry", "size_grid": "audit.engine.shared.grid",
           "kept_parts": "audit.engine.shared.partial", "PARTIAL_DIR": "audit.engine.shared.partial",
-          "REPORT_HTML": "audit.engine.run.results"}
+          "REPORT_HTML": "audit.engine.run.results",
+          # the one place records are read, the suites built in, and an analytic pulse
+          "record_suite": "audit.api.inputs", "built_in_suites": "audit.api.inputs",
+          "PULSE_SUITE": "records", "one_pulse": "records",
+          # the figures the command line saves as PNG
+          "new_figure": "reports.figures", "png_bytes": "reports.figures",
+          "draw_rocking_spectra": "reports.figures", "draw_response_spectra": "reports.figures"}
+
+
+#: The defaults of the API's keywords, as the command line's ``--help`` shows them (light: no
+#: numpy, so that parsing the flags stays quick).
+_DEFAULTS = "audit.engine.shared.defaults"
 
 
 def __getattr__(name):
     if name in _WHERE:
         return getattr(importlib.import_module(_WHERE[name]), name)
+    defaults = importlib.import_module(_DEFAULTS)
+    if name in defaults.__all__:
+        return getattr(defaults, name)
     raise AttributeError(f"module 'audit.api' has no attribute {name!r}")
 
 
@@ -63,4 +77,6 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "design_spectrum", "load_result", "available_procedures", "size_grid", "kept_parts",
            "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
            "read_objects", "parse_block_text", "object_by_slenderness",
-           "floor_motion", "FloorMotion"]
+           "floor_motion", "FloorMotion", "record_suite", "built_in_suites", "PULSE_SUITE",
+           "one_pulse", "new_figure", "png_bytes", "draw_rocking_spectra",
+           "draw_response_spectra"]

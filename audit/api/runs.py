@@ -160,6 +160,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
         anchor_period_s: float | None = None, ntc_site=None, floor: float = 0.0,
         building: float | None = None, building_model: str | None = None,
         building_damping: float = DEFAULT_BUILDING_DAMPING, skip_bad_records: bool = False,
+        dt_s: float | None = None, units: str | None = None,
         detail=(), out_dir=None, force: bool = False, jobs: int = DEFAULT_JOBS,
         scheduler=DEFAULT_SCHEDULER, partial_dir=None, resume: bool = False,
         progress=False) -> AuditResult:
@@ -217,6 +218,11 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
     skip_bad_records : bool
         Audit the readable records of the suite; the unreadable ones are warned about
         (:class:`~audit.errors.InputWarning`) and left out.
+    dt_s : float, optional
+        Time step [s] of a text record file that states none (no time column, no ``dt =``
+        comment).
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of the accelerations of a text record file that states none.
     detail : str or sequence of str
         Records whose detail the report shows.
     out_dir : str or Path, optional
@@ -241,7 +247,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
     -------
     AuditResult
     """
-    from audit.api.inputs import procedures_of, suite_of
+    from audit.api.inputs import procedures_of, record_suite
     from audit.engine.shared import guards
     from audit.engine.shared.costs import audit_cost
     from audit.engine.shared.progress import Progress
@@ -259,7 +265,8 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
     if out_dir is not None:
         out_dir = check.path("out_dir", out_dir, "a folder")
     chosen = procedures_of(procedures)
-    suite = site.apply(suite_of(records, skip_bad_records))
+    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
+                                    skip_bad_records=skip_bad_records))
     _warn_without_vertical(suite, settings)
     guards.check(audit_cost(chosen, suite, settings, runtime), force)
     stage = Progress(len(suite), "record") if bar else runtime.progress

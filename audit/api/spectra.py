@@ -16,7 +16,9 @@ CODES = ("fema356", "ubc97", "ntc2018")
 
 def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUTION,
                      free_motion_s: float = DEFAULT_FREE_MOTION_S, vertical: bool = False,
-                     jobs: int = DEFAULT_JOBS, force: bool = False, floor: float = 0.0,
+                     jobs: int = DEFAULT_JOBS, force: bool = False, records=None,
+                     dt_s: float | None = None, units: str | None = None,
+                     skip_bad_records: bool = False, floor: float = 0.0,
                      building: float | None = None,
                      building_model: str | None = None,
                      building_damping: float = DEFAULT_BUILDING_DAMPING):
@@ -43,12 +45,18 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
         Solver threads.
     force : bool
         Start even when the estimated work is beyond the limits.
+    records : str, path or records.RecordSuite, optional
+        Where a record id is looked up, as for :func:`audit.rock`.
+    dt_s, units, skip_bad_records :
+        How a record is read: the time step [s] and the units (``g``, ``m/s2``, ``cm/s2``) of
+        a text record file that states none; the unreadable records of the suite an id is
+        looked up in left out (:func:`audit.api.inputs.record_suite`).
     floor, building, building_model, building_damping :
         Where the block stands, as for :func:`audit.rock`.
     """
     import numpy as np
 
-    from audit.api.inputs import on_floor_of, settings_fields
+    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
     from audit.engine.shared.floors import FLOOR_FIELDS
     from audit.engine.shared import guards
     from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
@@ -56,7 +64,8 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     from audit.physics.block import Restitution
     from audit.physics.rocking import rocking_spectrum as spectrum
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS))
+    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS),
+                                         records, settings_fields(locals(), READING_FIELDS))
     sizes = check.numbers("sizes_s", sizes_s, "positive block sizes 2π/p in s", 0, low_open=True)
     alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
                            45, low_open=True, high_open=True)
@@ -81,6 +90,8 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
 
 def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
                      free_motion_s: float = DEFAULT_RESPONSE_FREE_MOTION_S, force: bool = False,
+                     records=None, dt_s: float | None = None, units: str | None = None,
+                     skip_bad_records: bool = False,
                      floor: float = 0.0, building: float | None = None,
                      building_model: str | None = None,
                      building_damping: float = DEFAULT_BUILDING_DAMPING):
@@ -100,18 +111,25 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
         Free vibration after the excitation [s].
     force : bool
         Start even when the estimated work is beyond the limits.
+    records : str, path or records.RecordSuite, optional
+        Where a record id is looked up, as for :func:`audit.rock`.
+    dt_s, units, skip_bad_records :
+        How a record is read: the time step [s] and the units (``g``, ``m/s2``, ``cm/s2``) of
+        a text record file that states none; the unreadable records of the suite an id is
+        looked up in left out (:func:`audit.api.inputs.record_suite`).
     floor, building, building_model, building_damping :
         Where the block stands, as for :func:`audit.rock`.
     """
     import numpy as np
 
-    from audit.api.inputs import on_floor_of, settings_fields
+    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
     from audit.engine.shared.floors import FLOOR_FIELDS
     from audit.engine.shared import guards
     from audit.engine.shared.grid import size_grid
     from audit.physics.response_spectra import response_spectra as spectra
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS))
+    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS),
+                                         records, settings_fields(locals(), READING_FIELDS))
     periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
     damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,
                             high_open=True)

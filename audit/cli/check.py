@@ -7,8 +7,8 @@ import time
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
-                                   DEFAULT_JOBS)
+from audit.api import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
+                       DEFAULT_JOBS)
 from audit.errors import InputError
 
 
@@ -48,6 +48,7 @@ def add_parser(sub):
     p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
                    help="record suite (see 'list'), manifest, file or folder; each record is "
                         "scaled to the site's intensity and to stripes around it")
+    options.add_record_file_options(p)
     p.add_argument("--im", default=None, metavar="pga|sa:T",
                    help=f"intensity measure (default {DEFAULT_IM}, or the --hazard file's IMT): "
                         "the 5 %%-damped pseudo-spectral acceleration ω²·S_d at T [g] (the site's "
@@ -127,7 +128,7 @@ def run(args) -> int:
         values["im"] = args.im
     if args.hazard:
         values.update(hazard=args.hazard, hazard_imt=args.hazard_imt,
-                      site_location=options.site_location(args.site_location),
+                      site_location=args.site_location,
                       return_period=args.return_period, poe=args.poe)
     else:
         for flag in ("site_location", "hazard_imt", "return_period", "poe"):
@@ -135,7 +136,7 @@ def run(args) -> int:
                 raise InputError(f"--{flag.replace('_', '-')}: read on the --hazard file; no "
                                  "--hazard given")
     result = check(objects, site["site"], procedures=args.procedure, records=args.records,
-                   ntc_site=site.get("ntc_site"), skip_bad_records=args.skip_bad_records,
+                   ntc_site=site.get("ntc_site"), **options.reading(args),
                    jobs=args.jobs, scheduler=args.scheduler, progress=True, force=args.force,
                    **values)
     if out_dir is not None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 
 from audit.cli import options, outputs
-from audit.engine.shared.defaults import DEFAULT_DESIGN_DAMPING_PCT, DEFAULT_DESIGN_PERIODS, sizes_text
+from audit.api import DEFAULT_DESIGN_DAMPING_PCT, DEFAULT_DESIGN_PERIODS, sizes_text
 
 
 def add_parser(sub):

@@ -24,6 +24,7 @@ FLAGS = {
     "hazard_imt": "--hazard-imt", "return_period": "--return-period", "poe": "--poe",
     "floor": "--floor", "building": "--building", "building_model": "--building-model",
     "building_damping": "--building-damping",
+    "dt_s": "--dt", "units": "--units",
 }
 #: Where a command's flag for an argument differs from :data:`FLAGS`.
 COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}

@@ -19,6 +19,7 @@ def add_parser(sub):
     options.add_records_option(p)
     p.add_argument("--record", metavar="ID_OR_PATH", required=True,
                    help="record id of the suite, or a file")
+    options.add_skip_bad_records_option(p)
     options.add_floor_options(p)
     p.set_defaults(floor=1.0)
     p.add_argument("--csv", metavar="FILE", help="CSV output (default: standard output)")
@@ -30,15 +31,9 @@ def run(args) -> int:
     import json
 
     import audit.api as api
-    from audit.cli.options import record_file
     csv = outputs.output_file(args.csv, "--csv")
-    records = args.records
-    record = args.record
-    from pathlib import Path
-    if Path(record).is_file():
-        from records import load_path
-        record = load_path(record, **record_file(args)).entries[0].motion
-    result = api.floor_motion(record, records, **options.floor_values(args))
+    result = api.floor_motion(args.record, args.records, **options.reading(args),
+                              **options.floor_values(args))
     from audit.files import write_atomically
     if csv is not None:
         write_atomically({csv: result.csv()})

@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.shared.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
+from audit.api import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
 
 
 def add_parser(sub):
@@ -17,6 +17,7 @@ def add_parser(sub):
     p.add_argument("--procedure", default=DEFAULT_PROBABILISTIC_PROCEDURE,
                    help="probabilistic procedure (see 'list')")
     options.add_records_option(p)
+    options.add_skip_bad_records_option(p)
     options.add_floor_options(p)
     p.add_argument("--out", required=True, metavar="DIR",
                    help="output folder: fragility-*.csv and fragility.html")
@@ -32,7 +33,8 @@ def run(args) -> int:
     from audit.files import check_output_dir, check_output_file, write_file_atomically
     out_dir = check_output_dir(Path(args.out))
     pelicun = check_output_file(args.pelicun, "--pelicun") if args.pelicun else None
-    result = fragility(args.procedure, args.records, progress=True, **options.floor_values(args))
+    result = fragility(args.procedure, args.records, **options.reading(args), progress=True,
+                       **options.floor_values(args))
     pelicun_csv = result.pelicun_csv() if pelicun else None  # made before anything is written
     result.write(out_dir)
     if pelicun:

@@ -10,11 +10,12 @@ def add_parser(sub):
     p = sub.add_parser("list", help="registered procedures, built-in suites and the records of the "
                                     "record source")
     options.add_records_option(p)
+    options.add_skip_bad_records_option(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from audit.api import available_procedures
+    from audit.api import PULSE_SUITE, available_procedures, built_in_suites, record_suite
     print("Procedures:")
     for name, cls in available_procedures().items():
         print(f"  {name:<16} {cls.title} — {cls.damping_law}; {cls.spectrum_source}")
@@ -23,19 +24,12 @@ def run(args) -> int:
         print(f"  {name:<16} {cls.title} — P({cls.event} | "
               f"{'/'.join(sorted({c.intensity_measure for c in cls.components}))}) of "
               f"{len(cls.components)} components")
-    from audit.errors import InputError
-    from records import P695_SUITES, PULSE_SUITE
-    from records.p695 import overview
     print("\nBuilt-in suites (--records NAME):")
     print(f"  {PULSE_SUITE:<26} 7 one-cosine pulses idealising the seed records of Table 5.1 "
           "(not recorded motions)")
-    for name in P695_SUITES:
-        try:
-            holds = overview(name)
-        except InputError as exc:  # the other sources still work without the package
-            holds = f"unavailable: {exc}"
+    for name, holds in built_in_suites().items():
         print(f"  {name:<26} {holds}")
-    suite = options.suite(args)
+    suite = record_suite(args.records, **options.reading(args))
     print(f"\nRecords ({suite.description}):")
     for entry in suite:
         if entry.missing:

@@ -7,9 +7,9 @@ import sys
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.shared.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
-                                   DEFAULT_MARGINS_SIZES, DEFAULT_SITE_LEVEL, SITE_LEVELS,
-                                   alpha_text, sizes_text)
+from audit.api import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
+                       DEFAULT_MARGINS_SIZES, DEFAULT_SITE_LEVEL, SITE_LEVELS,
+                       alpha_text, sizes_text)
 from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out/margins"
@@ -79,7 +79,7 @@ def run(args) -> int:
         values["im"] = args.im
     if args.hazard:
         values.update(hazard=args.hazard, hazard_imt=args.hazard_imt,
-                      site_location=options.site_location(args.site_location))
+                      site_location=args.site_location)
     elif args.site_location or args.hazard_imt:
         raise InputError(f"{'--site-location' if args.site_location else '--hazard-imt'}: read "
                          "on the --hazard file; no --hazard given")
@@ -88,7 +88,8 @@ def run(args) -> int:
     site = options.design_site(args)
     del site["site_override"]  # one design site: the audit is of that site
     try:
-        result = margins(args.procedure, options.suite(args), force=args.force, **values, **site,
+        result = margins(args.procedure, args.records, **options.reading(args),
+                         force=args.force, **values, **site,
                          jobs=args.jobs, scheduler=args.scheduler,
                          partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True)
     except KeyboardInterrupt:

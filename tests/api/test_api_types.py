@@ -36,6 +36,10 @@ OBJECTS = st.none() | NUMBERS | JUNK
 FRAGILITY = TEXTS | JUNK | st.none() | st.tuples(UNIT_TEXTS, NUMBERS) | st.tuples(NUMBERS)
 NTC = TEXTS | JUNK | NUMBERS | st.tuples(UNIT_TEXTS, NUMBERS, NUMBERS, st.just("B"),
                                          st.just("T1"))
+#: A design site: "S_XS,S_X1" text is one too, as ``--site`` passes it.
+SITE_PAIR = PAIR.filter(lambda v: not _lon_lat_text(v))
+#: How records are read: the time step [s] and units of a text record file, skipping the bad.
+READING = {"dt_s": NUMBER, "units": CHOICE | UNIT_TEXTS, "skip_bad_records": FLAG}
 
 
 class Started(Exception):
@@ -87,7 +91,7 @@ RUN = {"procedures": "fema356", "records": "pulses"}
 #: function → (valid arguments, {argument: values of a wrong type}).
 CASES = {
     "check": (audit.check, {"objects": ["0.6x1.8"], "site": SITE, "records": "pulses"}, {
-        "objects": OBJECTS, "site": PAIR, "procedures": OBJECTS, "records": PATH,
+        **READING, "objects": OBJECTS, "site": SITE_PAIR, "procedures": OBJECTS, "records": PATH,
         "im": CHOICE, "free_motion_s": NUMBER, "g": NUMBER, "seed": WHOLE.filter(lambda v: v is not None), "hazard": PATH,
         "risk_target": NUMBER, "ntc_site": NTC, "skip_bad_records": FLAG, "jobs": WHOLE,
         "scheduler": CHOICE, "progress": CALLBACK}),
@@ -99,8 +103,8 @@ CASES = {
         "procedures": OBJECTS, "records": PATH, "alpha_deg": SEQUENCE, "sizes_s": SEQUENCE,
         "free_motion_s": NUMBER, "agree_band": NUMBER, "robustness": NUMBER, "g": NUMBER,
         "restitution": JUNK, "vertical": FLAG, "friction": NUMBER, "sensitivity": CHOICE,
-        "site": PAIR, "site_override": FLAG, "scale_to_site": FLAG, "ntc_site": NTC,
-        "skip_bad_records": FLAG, "detail": JUNK | NUMBERS, "out_dir": PATH, "force": FLAG,
+        "site": SITE_PAIR, "site_override": FLAG, "scale_to_site": FLAG, "ntc_site": NTC,
+        **READING, "detail": JUNK | NUMBERS, "out_dir": PATH, "force": FLAG,
         "jobs": WHOLE, "scheduler": CHOICE, "partial_dir": PATH, "resume": FLAG,
         "progress": CALLBACK}),
     "run scaled": (audit.run, {**RUN, "site": SITE, "scale_to_site": True},
@@ -109,13 +113,13 @@ CASES = {
         "procedures": OBJECTS, "records": PATH, "im": CHOICE, "stripes": SEQUENCE,
         "alpha_deg": SEQUENCE, "sizes_s": SEQUENCE, "restitution": JUNK,
         "free_motion_s": NUMBER, "required": FLAG, "g": NUMBER, "site_level": CHOICE,
-        "hazard": PATH, "risk_target": NUMBER, "site": PAIR, "ntc_site": NTC,
-        "skip_bad_records": FLAG, "force": FLAG, "jobs": WHOLE, "scheduler": CHOICE,
+        "hazard": PATH, "risk_target": NUMBER, "site": SITE_PAIR, "ntc_site": NTC,
+        **READING, "force": FLAG, "jobs": WHOLE, "scheduler": CHOICE,
         "partial_dir": PATH, "resume": FLAG, "progress": CALLBACK}),
     "rock": (audit.rock, {"block": audit.Block(alpha_deg=15.0, size_s=2.0), "motion": _pulse()},
              {"block": OBJECTS | TEXTS, "motion": OBJECTS, "free_motion_s": NUMBER,
               "restitution": JUNK, "vertical": FLAG, "friction": NUMBER, "force": FLAG,
-              "floor": NUMBER}),
+              "floor": NUMBER, **READING}),
     "rock by id": (audit.rock, {"block": audit.Block(alpha_deg=15.0, size_s=2.0),
                                 "motion": "pacoima_dam_1971"}, {"records": PATH}),
     "Block": (audit.Block, {"alpha_deg": 15.0, "size_s": 2.0},
@@ -125,8 +129,7 @@ CASES = {
                               {"width_m": NUMBER_OR_NONE, "height_m": NUMBER_OR_NONE,
                                "r": NUMBER, "g": NUMBER_OR_NONE}),
     "fragility": (audit.fragility, {"records": "pulses"},
-                  {"procedure": CHOICE, "records": PATH, "skip_bad_records": FLAG,
-                   "progress": FLAG}),
+                  {"procedure": CHOICE, "records": PATH, **READING, "progress": FLAG}),
     "validate": (audit.validate, {"folder": "campaign"},
                  {"folder": PATH | st.none(), "geometry": PATH, "folds": WHOLE, "jobs": WHOLE,
                   "free_motion_s": NUMBER, "progress": CALLBACK,
@@ -136,13 +139,18 @@ CASES = {
                          {"motion": OBJECTS, "sizes_s": SEQUENCE | st.none(),
                           "alpha_deg": SEQUENCE | st.none(), "restitution": JUNK,
                           "free_motion_s": NUMBER, "vertical": FLAG, "jobs": WHOLE,
-                          "force": FLAG}),
+                          "force": FLAG, **READING}),
+    "rocking_spectrum by id": (audit.rocking_spectrum, {"motion": "pacoima_dam_1971",
+                                                        "sizes_s": [1.0], "alpha_deg": [15.0]},
+                               {"records": PATH}),
     "response_spectra": (audit.response_spectra, {"motion": _pulse(), "periods_s": [1.0]},
                          {"motion": OBJECTS, "periods_s": SEQUENCE | st.none(),
                           "damping_pct": SEQUENCE | st.none(), "free_motion_s": NUMBER,
-                          "force": FLAG}),
+                          "force": FLAG, **READING}),
+    "response_spectra by id": (audit.response_spectra, {"motion": "pacoima_dam_1971",
+                                                        "periods_s": [1.0]}, {"records": PATH}),
     "design_suite": (audit.design_suite, {"suite": None, "site": SITE},
-                     {"site": PAIR, "site_override": FLAG, "scale_to_site": FLAG,
+                     {"site": SITE_PAIR, "site_override": FLAG, "scale_to_site": FLAG,
                       "ntc_site": NTC}),
     "design_spectrum": (audit.design_spectrum, {"code": "fema356", "periods_s": [0.5],
                                                 "sxs_g": 1.5, "sx1_g": 0.9},
@@ -156,7 +164,9 @@ CASES = {
     "load_result": (audit.load_result, {"folder": "audit-out"}, {"folder": PATH | st.none()}),
     "floor_motion": (audit.floor_motion, {"motion": _pulse(), "building": 1.0},
                      {"motion": OBJECTS, "building": NUMBER, "floor": NUMBER,
-                      "building_damping": NUMBER}),
+                      "building_damping": NUMBER, **READING}),
+    "floor_motion by id": (audit.floor_motion, {"motion": "pacoima_dam_1971", "building": 1.0},
+                           {"records": PATH}),
 }
 
 

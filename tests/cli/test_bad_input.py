@@ -498,16 +498,18 @@ def test_skip_bad_records_keeps_the_rest_and_lists_each(workdir):
 
 
 def test_the_api_skips_bad_records_for_every_command_warning_each(workdir, capsys):
-    from audit.api.inputs import suite_of
+    from audit.api.inputs import record_suite
     from audit.errors import InputWarning
     _write(workdir, {"recs/a.AT2": GOOD_AT2, "recs/b.AT2": "", "recs/c.AT2": at2_text(npts="3")})
     with pytest.warns(InputWarning) as caught:
-        suite = suite_of("recs", skip_bad_records=True)
+        suite = record_suite("recs", skip_bad_records=True)
     assert [e.id for e in suite] == ["a"]
     assert [str(w.message).split(" (")[0] for w in caught] == ["not audited: b", "not audited: c"]
     with pytest.raises(InputError, match="b.AT2"):  # without it, the first bad record stops
-        suite_of("recs")
-    for command in ("check", "run", "margins"):  # every command that reads records offers it
+        record_suite("recs")
+    # every command that reads records offers it
+    for command in ("check", "run", "margins", "list", "rock", "spectrum", "floor-motion",
+                    "fragility"):
         main([command, "--help"])
         assert "--skip-bad-records" in capsys.readouterr().out, command
 

@@ -32,7 +32,8 @@ class DesignSite:
     Attributes
     ----------
     site : (float, float) or None
-        FEMA 356 design site S_XS, S_X1 [g] for every record without one.
+        FEMA 356 design site S_XS, S_X1 [g] for every record without one (:meth:`parse` takes
+        the text ``"S_XS,S_X1"`` too: the one place ``--site`` is read).
     site_override : bool
         Also replace the sites records carry (Table 3.1).
     scale_to_site : bool
@@ -66,6 +67,11 @@ class DesignSite:
         check.unknown("the design site", values, SITE_FIELDS)
         value = {**SITE_DEFAULTS, **values}
         site = value["site"]
+        if isinstance(site, str):  # "S_XS,S_X1", as typed on the command line
+            site = _numbers_of(site)
+            if site is None or len(site) != 2:
+                raise InputError(f"site: expected two numbers S_XS,S_X1 in g, got "
+                                 f"{value['site']!r}", "site")
         if site is not None:
             site = check.pair("site", site, "S_XS, S_X1 in g (positive)", 0, low_open=True)
             if max(site) > MAX_SITE_G:
@@ -121,6 +127,14 @@ class DesignSite:
                 suite = scale_to_site(suite, sxs_g, sx1_g, DEFAULT_ANCHOR_PERIOD_S
                                       if self.anchor_period_s is None else self.anchor_period_s)
         return on_floor(suite, self.floor)
+
+
+def _numbers_of(text: str) -> list[float] | None:
+    """The comma-separated numbers of ``text`` (empty items skipped), or None."""
+    try:
+        return [float(item) for item in text.split(",") if item.strip()]
+    except ValueError:
+        return None
 
 
 __all__ = ["DesignSite", "SITE_DEFAULTS", "SITE_FIELDS", "MAX_SITE_G"]
