@@ -16,13 +16,13 @@ from audit.cli import main
 from audit.errors import InputError
 from records import ENV_VARIABLE
 
-GRID = ["--alpha", "15,20", "--sizes", "1:3:0.5"]
+GRID = ["--alpha", "15,20", "--size", "1:3:0.5"]
 
 
 def test_run_from_python_gives_the_command_line_results_and_claims(tmp_path, monkeypatch):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
     assert main(["run", "fema356", *GRID, "--out", str(tmp_path / "cli")]) == 0
-    result = audit.run("fema356", alpha_deg=[15, 20], sizes_s=np.arange(1.0, 3.01, 0.5), jobs=1)
+    result = audit.run("fema356", alpha_deg=[15, 20], size_s=np.arange(1.0, 3.01, 0.5), jobs=1)
     result.write(tmp_path / "api")
     for name in ("results.csv", "checks.csv", "suite.csv", "claims.csv", "rocking.csv"):
         assert (tmp_path / "api" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
@@ -75,7 +75,7 @@ def test_a_plug_in_written_in_python_is_audited():
 
     suite = records.load("pulses")
     result = audit.run([HalfDamped, "priestley1978"], suite, alpha_deg=[15],
-                       sizes_s=[1.0, 2.0], jobs=1, robustness=0.0)
+                       size_s=[1.0, 2.0], jobs=1, robustness=0.0)
     beta = result.results.groupby("procedure")["beta_pct"].first()
     assert beta["half"] == pytest.approx(0.5 * beta["priestley1978"])
 

@@ -96,7 +96,7 @@ CASES = {
                             # "LON,LAT" text is a site too (west and south negative)
                             {"site_location": PAIR.filter(lambda v: not _lon_lat_text(v))}),
     "run": (audit.run, RUN, {
-        "procedures": OBJECTS, "records": PATH, "alpha_deg": SEQUENCE, "sizes_s": SEQUENCE,
+        "procedures": OBJECTS, "records": PATH, "alpha_deg": SEQUENCE, "size_s": SEQUENCE,
         "free_motion_s": NUMBER, "agree_band": NUMBER, "robustness": NUMBER, "g": NUMBER,
         "restitution": JUNK, "vertical": FLAG, "friction": NUMBER, "sensitivity": CHOICE,
         "site": PAIR, "site_override": FLAG, "scale_to_site": FLAG, "ntc_site": NTC,
@@ -107,7 +107,7 @@ CASES = {
                    {"anchor_period_s": NUMBER}),
     "margins": (audit.margins, RUN, {
         "procedures": OBJECTS, "records": PATH, "im": CHOICE, "stripes": SEQUENCE,
-        "alpha_deg": SEQUENCE, "sizes_s": SEQUENCE, "restitution": JUNK,
+        "alpha_deg": SEQUENCE, "size_s": SEQUENCE, "restitution": JUNK,
         "free_motion_s": NUMBER, "required": FLAG, "g": NUMBER, "site_level": CHOICE,
         "hazard": PATH, "risk_target": NUMBER, "site": PAIR, "ntc_site": NTC,
         "skip_bad_records": FLAG, "force": FLAG, "jobs": WHOLE, "scheduler": CHOICE,
@@ -131,9 +131,9 @@ CASES = {
                  {"folder": PATH | st.none(), "geometry": PATH, "folds": WHOLE, "jobs": WHOLE,
                   "free_motion_s": NUMBER, "progress": CALLBACK,
                   "settings": JUNK | TEXTS | NUMBERS}),
-    "rocking_spectrum": (audit.rocking_spectrum, {"motion": _pulse(), "sizes_s": [1.0],
+    "rocking_spectrum": (audit.rocking_spectrum, {"motion": _pulse(), "size_s": [1.0],
                                                   "alpha_deg": [15.0]},
-                         {"motion": OBJECTS, "sizes_s": SEQUENCE | st.none(),
+                         {"motion": OBJECTS, "size_s": SEQUENCE | st.none(),
                           "alpha_deg": SEQUENCE | st.none(), "restitution": JUNK,
                           "free_motion_s": NUMBER, "vertical": FLAG, "jobs": WHOLE,
                           "force": FLAG}),

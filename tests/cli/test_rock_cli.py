@@ -25,7 +25,7 @@ from records.motion import GroundMotion
 ROOT = Path(__file__).resolve().parents[2]
 ALPHA_15 = math.radians(15)
 PULSE = ["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine", "--pulse-period", "2",
-         "--duration", "8"]
+         "--free-motion", "8"]
 
 
 def test_free_vibration_peak_of_the_pulse_anchor_matches_the_reference_solver():
@@ -154,7 +154,7 @@ def test_rock_reads_a_text_record_with_dt_and_units_given_or_a_time_column(tmp_p
     (tmp_path / "one.txt").write_text("\n".join(f"{a * 981:.9e}" for a in pulse_g) + "\n")
     (tmp_path / "timed.txt").write_text("% time [s], acceleration (g)\n" + "\n".join(
         f"{time:.3f} {a:.9e}" for time, a in zip(t, pulse_g)) + "\n")
-    block = ["rock", "--p", "2", "--alpha", "15", "--duration", "8", "--json"]
+    block = ["rock", "--p", "2", "--alpha", "15", "--free-motion", "8", "--json"]
     for record in (["--record", str(tmp_path / "one.txt"), "--dt", "0.005", "--units", "cm/s2"],
                    ["--record", str(tmp_path / "timed.txt")]):
         assert main(block + record) == 0

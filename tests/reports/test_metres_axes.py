@@ -120,7 +120,7 @@ def _plot_specs(page: str) -> dict:
 @pytest.fixture(scope="module")
 def report(seed_suite, tmp_path_factory):
     out = tmp_path_factory.mktemp("metres") / "run"
-    audit.api.run("all", seed_suite, alpha_deg=ALPHAS_DEG, sizes_s=list(SIZES_S),
+    audit.api.run("all", seed_suite, alpha_deg=ALPHAS_DEG, size_s=list(SIZES_S),
                   robustness=0.0, out_dir=out)
     return out
 

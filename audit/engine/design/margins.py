@@ -131,7 +131,7 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
         levels = stripe_levels(centre)
     blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
     if not len(blocks):
-        raise InputError("sizes_s, alpha_deg, blocks: no block to audit", "sizes_s",
+        raise InputError("size_s, alpha_deg, blocks: no block to audit", "size_s",
                          "alpha_deg", "blocks")
     settings_of_stripes = StripeSettings(
         im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()), design, blocks,
