@@ -69,7 +69,7 @@ def run(args) -> int:
                         restitution=restitution, vertical=args.vertical, friction=args.friction,
                         force=args.force, **options.floor_values(args))
     result = {**response.as_dict(),
-              "block_m": args.block and f"{block.width_m:g}x{block.height_m:g}",
+              "width_m": block.width_m, "height_m": block.height_m,
               "vertical": args.vertical}
     files = {}
     if history:

@@ -192,7 +192,7 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
                "grid": {"alpha_deg": [float(a) for a in settings.alpha_deg],
                         "size_s": np.asarray(settings.size_s if settings.size_s is not None
                                              else (), dtype=float).tolist()},
-               "blocks": [{"block_m": b.label, "width_m": b.width_m, "height_m": b.height_m,
+               "blocks": [{"width_m": b.width_m, "height_m": b.height_m,
                            "alpha_deg": b.alpha_deg, "size_s": b.size_s}
                           for b in named_blocks]}
     return MarginsRun(stripes, fragility, capacity, summary)

@@ -168,7 +168,7 @@ def _blocks(items, g: float) -> tuple:
         if isinstance(item, str):
             blocks += parse_blocks([item], "blocks", g)
         elif isinstance(item, Block):
-            # margins' tables name a block by its dimensions (block_m)
+            # margins' tables give a block by its dimensions (width_m, height_m), not a name
             blocks.append(within_limits(replace(item, name=""), "blocks", "blocks"))
         else:
             raise InputError(f"blocks: expected 'WIDTHxHEIGHT' in metres (e.g. '0.8x2.0') or a "

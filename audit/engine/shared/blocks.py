@@ -226,13 +226,15 @@ class BlockList:
     ----------
     alpha_deg, size_s : numpy.ndarray
         Slenderness [degrees] and size 2π/p [s].
-    label : numpy.ndarray of str
-        ``WIDTHxHEIGHT`` [m] (or the name) of a named block, ``""`` for a grid block.
+    width_m, height_m : numpy.ndarray
+        Full width and height [m] of a named block, NaN for a grid block (the tables tell
+        the two apart by them).
     """
 
     alpha_deg: np.ndarray
     size_s: np.ndarray
-    label: np.ndarray
+    width_m: np.ndarray
+    height_m: np.ndarray
 
     @classmethod
     def of(cls, alpha_deg=(), size_s=(), named=()) -> BlockList:
@@ -240,9 +242,11 @@ class BlockList:
         size_s = np.asarray(size_s, dtype=float)
         grid_alpha, grid_size = (a.ravel() for a in np.meshgrid(alpha_deg, size_s,
                                                                    indexing="ij"))
+        grid = np.full(grid_alpha.size, np.nan)
         return cls(np.concatenate([grid_alpha, [b.alpha_deg for b in named]]),
                    np.concatenate([grid_size, [b.size_s for b in named]]),
-                   np.array([""] * grid_alpha.size + [b.label for b in named], dtype=object))
+                   np.concatenate([grid, [b.width_m for b in named]]),
+                   np.concatenate([grid, [b.height_m for b in named]]))
 
     def __len__(self) -> int:
         return self.alpha_deg.size

@@ -204,7 +204,7 @@ def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
     named = run_margins(procedures, _suite(), _settings(blocks=[block]), Runtime())
     twin = run_margins(procedures, _suite(),
                        _settings(alpha_deg=(block.alpha_deg,), size_s=[block.size_s]), Runtime())
-    rows = named.stripes[named.stripes["block_m"] == "0.8x4"].reset_index(drop=True)
+    rows = named.stripes[(named.stripes["width_m"] == 0.8) & (named.stripes["height_m"] == 4.0)].reset_index(drop=True)
     assert len(rows) == 3 * LEVELS_G.size
     for column in ("exact_overturned", "exact_theta_rad", "priestley1978_overturns"):
         assert list(rows[column]) == list(twin.stripes[column])
