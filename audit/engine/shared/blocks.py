@@ -34,7 +34,7 @@ from audit.physics.block import RigidBlock
 #: spectra this project computes stop at 10 s too). A larger block's answer would rest on
 #: ground motion the records do not hold: ``1x80`` (2π/p = 14.6 s) and ``1x500`` (36.6 s) are
 #: refused. The usual cause of such a block is a dimension typed in millimetres, so the
-#: message then gives the block in metres. Grid sweeps (``--sizes``) are research inputs and
+#: message then gives the block in metres. Grid sweeps (``--size``) are research inputs and
 #: are not limited.
 MAX_SIZE_S = 10.0
 #: From this base width [m] up, a block too large is taken as typed in millimetres and the
