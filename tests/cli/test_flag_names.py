@@ -40,3 +40,14 @@ def test_default_sizes_unchanged_by_the_alias():
     """The hidden alias sets no default of its own: without either flag the grid is the
     command's default."""
     assert build_parser().parse_args(["run", "fema356"]).size == "0.5:8:0.05"
+
+
+def test_check_takes_its_sizes_as_a_grid_or_a_list():
+    from audit.cli.check import objects_of
+    parser = build_parser()
+
+    def names(sizes):
+        args = parser.parse_args(["check", "--alpha", "15", "--size", sizes, "--site", "1.5,0.9"])
+        return [o.name for o in objects_of(args)]
+    expected = ["α=15°, 2π/p=1 s", "α=15°, 2π/p=1.5 s", "α=15°, 2π/p=2 s"]
+    assert names("1:2:0.5") == names("1,1.5,2") == expected
