@@ -39,7 +39,7 @@ def add_parser(sub):
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
     p.add_argument("--size", default=sizes_text(DEFAULT_MARGINS_SIZES), metavar="START:STOP:STEP",
-                   help="block sizes 2π/p [s]")
+                   help="block sizes 2π/p [s] (a comma list S,... too)")
     options.add_alias(p, "--sizes", "size")
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 design site S_XS,S_X1 [g] of every record (the records' own "

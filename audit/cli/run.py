@@ -25,7 +25,7 @@ def add_parser(sub):
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
     p.add_argument("--size", default=sizes_text(), metavar="START:STOP:STEP",
-                   help="block sizes 2π/p [s]")
+                   help="block sizes 2π/p [s] (a comma list S,... too)")
     options.add_alias(p, "--sizes", "size")
     p.add_argument("--out", metavar="DIR", help=f"output directory (default {DEFAULT_OUT}/PROCEDURE)")
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,

@@ -17,7 +17,7 @@ def add_parser(sub):
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
     p.add_argument("--size", default=sizes_text(), metavar="START:STOP:STEP",
-                   help="block sizes 2π/p [s] (rocking)")
+                   help="block sizes 2π/p [s] (a comma list S,... too; rocking)")
     options.add_alias(p, "--sizes", "size")
     p.add_argument("--damping", default=",".join(f"{d:g}" for d in DEFAULT_DAMPING_PCT),
                    metavar="PCT,...",
