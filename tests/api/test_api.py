@@ -88,16 +88,16 @@ def test_command_line_defaults_are_the_engines():
     from audit.cli import options
     args = build_parser().parse_args(["run", "all"])
     assert list(options.alphas_deg(args.alpha)) == list(defaults.DEFAULT_ALPHA_DEG)
-    np.testing.assert_array_equal(options.sizes(args.sizes), size_grid(*defaults.DEFAULT_SIZES))
+    np.testing.assert_array_equal(options.sizes(args.size), size_grid(*defaults.DEFAULT_SIZES))
     assert (args.jobs, args.free_motion, args.agree_band, args.robustness, args.scheduler) == (
         defaults.DEFAULT_JOBS, defaults.DEFAULT_FREE_MOTION_S, defaults.DEFAULT_AGREE_BAND,
         defaults.DEFAULT_ROBUSTNESS, defaults.DEFAULT_SCHEDULER)
     spectrum = build_parser().parse_args(["spectrum", "--pulse", "cosine", "--amplitude", "0.3",
                                           "--pulse-period", "1"])
-    assert (spectrum.alpha, spectrum.sizes) == (defaults.alpha_text(), defaults.sizes_text())
+    assert (spectrum.alpha, spectrum.size) == (defaults.alpha_text(), defaults.sizes_text())
     rock = build_parser().parse_args(["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine",
                                       "--amplitude", "0.3", "--pulse-period", "2"])
-    assert rock.duration == defaults.DEFAULT_FREE_MOTION_S
+    assert rock.free_motion == defaults.DEFAULT_FREE_MOTION_S
 
 
 def _keywords(function) -> dict:
