@@ -6,7 +6,7 @@ class InputError(ValueError):
 
     The message names the file or the argument and says what is wrong, in one line; the
     command-line interface prints it and exits with status 2. Below the command line a message
-    names the argument as the Python API spells it (``sizes_s``, ``stripes``), never a
+    names the argument as the Python API spells it (``size_s``, ``stripes``), never a
     command-line flag; ``fields`` lists the arguments it names, so that the command line can
     put its own flags in their place (``audit.cli.flags``).
 

@@ -26,8 +26,9 @@ def procedure_colour(names: list, name: str) -> str:
 
 
 def block_label(row) -> str:
-    if isinstance(row.get("block_m"), str) and row["block_m"]:
-        return f"{row['block_m']} m (α = {row['alpha_deg']:.3g}°, 2π/p = {row['size_s']:.3g} s)"
+    if pd.notna(row.get("width_m")):  # a named block
+        return (f"{row['width_m']:g}x{row['height_m']:g} m (α = {row['alpha_deg']:.3g}°, "
+                f"2π/p = {row['size_s']:.3g} s)")
     return (f"α = {row['alpha_deg']:g}°, 2π/p = {row['size_s']:g} s "
             f"({describe_block(row['alpha_deg'], row['size_s'])})")
 
@@ -59,7 +60,7 @@ def required_figure(required: pd.DataFrame, names: list, titles) -> dict:
 
 
 def cmr_figure(fragility: pd.DataFrame) -> dict:
-    grid = fragility[fragility["block_m"].fillna("") == ""]
+    grid = fragility[fragility["width_m"].isna()]
     pivot = grid.pivot_table(index="alpha_deg", columns="size_s", values="cmr", aggfunc="first")
     bounds = grid.assign(bound=grid["cmr_bound"].map(
         {"": "", "at least": " (at least: median above the stripes)",

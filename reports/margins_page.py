@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from audit.engine.shared.schemas import block_labels, upgrade_columns
 from records.suite import counted_records
 from reports.html_parts import html_table as _table
 from reports.html_parts import plot_div as _plot
@@ -42,7 +43,8 @@ def _keys(frame: pd.DataFrame) -> pd.Series:
     """Which block each row is about: its dimensions, else its grid α and size (the files round
     α and size to different digits, so a named block is matched by name)."""
     grid = frame["alpha_deg"].map("{:.6g}".format) + "|" + frame["size_s"].map("{:.6g}".format)
-    return frame["block_m"].where(frame["block_m"] != "", grid)
+    labels = block_labels(frame)
+    return labels.where(labels != "", grid)
 
 
 
@@ -95,15 +97,14 @@ def _margins_table(fragility, capacity, required, titles) -> pd.DataFrame:
 
 
 def _read(path: Path) -> pd.DataFrame | None:
-    """A saved table, ``block_m`` and ``cmr_bound`` as text: empty for a grid block, resp. a
-    CMR that is the fit's (pandas 3 reads an empty field as NaN even through a ``str``
+    """A saved table (an earlier version's columns read too), ``cmr_bound`` as text: empty for
+    a CMR that is the fit's (pandas 3 reads an empty field as NaN even through a ``str``
     converter)."""
     if not path.exists():
         return None
-    frame = pd.read_csv(path)
-    for column in ("block_m", "cmr_bound"):
-        if column in frame:
-            frame[column] = frame[column].astype(object).fillna("").astype(str)
+    frame = upgrade_columns(pd.read_csv(path))
+    if "cmr_bound" in frame:
+        frame["cmr_bound"] = frame["cmr_bound"].astype(object).fillna("").astype(str)
     return frame
 
 
@@ -160,7 +161,7 @@ def render_margins_page(folder) -> str:
         for p in summary["procedures"]) + "</ul>")
     parts += risk_section(folder, summary, fragility, stripes, _keys, titles,
                           lambda name: procedure_colour(names, name))
-    if summary.get("design_im") and (fragility["block_m"] == "").any():
+    if summary.get("design_im") and fragility["width_m"].isna().any():
         extrapolated = int(fragility["median_extrapolated"].sum())
         parts.append("<h2>Collapse margin ratio over the grid</h2><p>CMR = median of the exact "
                      f"fragility / the site's MCE intensity ({summary['mce_im']:.3g} "
@@ -189,8 +190,8 @@ def render_margins_page(folder) -> str:
                      "block: overturning comes and goes in ever narrower windows, so the smallest "
                      "overturning intensity depends on the step of the scan. The share of records "
                      "that overturn at an intensity is the number to build on.</p>")
-        for i, (_, rows) in enumerate(scan.groupby(["alpha_deg", "size_s", "block_m"],
-                                                   sort=False)):
+        for i, (_, rows) in enumerate(scan.groupby([scan["alpha_deg"], scan["size_s"],
+                                                    block_labels(scan)], sort=False)):
             parts.append(_plot(f"scan{i}", scan_figure(rows.reset_index(drop=True), summary)))
     parts.append("<h2>Worst blocks</h2><p>Per procedure, the blocks with the largest exact "
                  "probability of overturning where the guideline draws its line.</p>")
@@ -215,8 +216,8 @@ def render_margins_page(folder) -> str:
 def _chosen_blocks(fragility: pd.DataFrame) -> pd.DataFrame:
     """Blocks whose fragility curves are drawn: the named ones and, per α, the grid blocks of
     :data:`CURVE_SIZES_S` (the nearest sizes of the grid)."""
-    named = fragility[fragility["block_m"] != ""]
-    grid = fragility[fragility["block_m"] == ""]
+    named = fragility[fragility["width_m"].notna()]
+    grid = fragility[fragility["width_m"].isna()]
     picked = []
     for _, rows in grid.groupby("alpha_deg"):
         sizes = rows["size_s"].to_numpy()

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from audit.engine.design.risk import block_fragilities, risk_integral
+from audit.engine.shared.schemas import block_labels, upgrade_columns
 from records.hazard import HazardCurve
 from reports.html_parts import html_table, plot_div
 from reports.block_metres import METRES_ROOM_PX, add_metres_axis, block_hover, block_size_m
@@ -29,10 +30,10 @@ def _curve(folder: Path, hazard: dict) -> HazardCurve:
                                hazard["source"], tuple(hazard["site"] or ()) or None)
 
 
-def _quote(row, target) -> str:
+def _quote(row, label, target) -> str:
     years = 1.0 / row["annual_rate_fit"] if row["annual_rate_fit"] > 0 else math.inf
     meets = "meets" if row["p50_fit"] <= target else "does not meet"
-    return (f"At this site the {row['block_m']} m block (α = {row['alpha_deg']:.3g}°, 2π/p = "
+    return (f"At this site the {label} m block (α = {row['alpha_deg']:.3g}°, 2π/p = "
             f"{row['size_s']:.3g} s) overturns on average once in {years:,.0f} years: λ_ov = "
             f"{row['annual_rate_fit']:.3g}/yr, P = {row['p50_fit']:.2%} in 50 years, which "
             f"{meets} the target {target:.2%}; 90 % of the risk comes from {row['im']} "
@@ -60,7 +61,7 @@ def _alpha_figure(risk_alpha, titles, colour_of, target) -> dict:
 
 
 def _map_figure(risk: pd.DataFrame, target_rate: float) -> dict:
-    grid = risk[risk["block_m"] == ""]
+    grid = risk[risk["width_m"].isna()]
     pivot = grid.pivot_table(index="alpha_deg", columns="size_s", values="annual_rate_fit",
                              aggfunc="first")
     alphas = pivot.index.to_numpy(dtype=float)
@@ -91,8 +92,7 @@ def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -
     hazard = summary.get("hazard")
     if not hazard or not (folder / "risk.csv").exists():
         return []
-    risk = pd.read_csv(folder / "risk.csv")
-    risk["block_m"] = risk["block_m"].astype(object).fillna("").astype(str)
+    risk = upgrade_columns(pd.read_csv(folder / "risk.csv"))
     risk_alpha = pd.read_csv(folder / "risk_alpha.csv")
     curve = _curve(folder, hazard)
     target = hazard["target_p50"]
@@ -104,7 +104,7 @@ def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -
              "is the 5 %-damped pseudo-spectral acceleration ω²·S_d of the component as "
              "audited; a hazard curve's is the one its ground-motion models predict (often of "
              "RotD50, the orientation-independent median of two horizontal components).</p>"]
-    named = risk[risk["block_m"] != ""]
+    named = risk[risk["width_m"].notna()]
     if len(named):
         parts.append("<p>Per named block: the site's hazard curve (top), the block's exact "
                      "fragility (middle: the fit, and the share of records overturning at each "
@@ -112,17 +112,17 @@ def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -
                      "its kinks are the hazard curve's levels, between which it is a power "
                      "law). Shaded: the intensities of the central 90 % of λ_ov.</p>")
     stripe_keys = keys(stripes)
-    for i, row in enumerate(named.to_dict("records")):
-        parts.append(f'<p class="quote">{html.escape(_quote(row, target))}</p>')
-        block = fragility[keys(fragility) == row["block_m"]].iloc[0]
-        fitted, counted = block_fragilities(block, stripes[stripe_keys == row["block_m"]])
+    for i, (label, row) in enumerate(zip(block_labels(named), named.to_dict("records"))):
+        parts.append(f'<p class="quote">{html.escape(_quote(row, label, target))}</p>')
+        block = fragility[keys(fragility) == label].iloc[0]
+        fitted, counted = block_fragilities(block, stripes[stripe_keys == label])
         if fitted is not None:
             parts.append(plot_div(f"risk{i}", risk_figure(
                 curve, fitted, risk_integral(fitted, curve), counted,
-                f"{row['block_m']} m: λ_ov = {row['annual_rate_fit']:.3g}/yr, P in 50 years "
+                f"{label} m: λ_ov = {row['annual_rate_fit']:.3g}/yr, P in 50 years "
                 f"{row['p50_fit']:.2%}; 90 % of it from {row['im_low_90_g']:.3g} to "
                 f"{row['im_high_90_g']:.3g} g (shaded)")))
-    grid = risk[risk["block_m"] == ""]
+    grid = risk[risk["width_m"].isna()]
     if grid["alpha_deg"].nunique() > 1:
         parts.append("<h3>Slenderness for the risk target</h3><p>Per size, the smallest α "
                      "of the grid's (ln P interpolated between them) above which the exact "
@@ -144,7 +144,7 @@ def risk_section(folder, summary, fragility, stripes, keys, titles, colour_of) -
                      f"for {int(risk['truncated'].sum())} blocks: their λ_ov is a lower bound; "
                      "risk.csv annual_rate_fit_upper bounds it.</p>")
     if len(named):
-        parts.append(html_table(named.drop(columns=["block_m"]).assign(block=named["block_m"])))
+        parts.append(html_table(named))
     return parts
 
 

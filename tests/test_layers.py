@@ -168,7 +168,7 @@ def test_audit_report_imports_no_solver(tmp_path):
     # oscillator kernels
     import audit.api
     from records import pulse_suite
-    audit.api.run("priestley1978", pulse_suite(), alpha_deg=(15.0,), sizes_s=[2.0],
+    audit.api.run("priestley1978", pulse_suite(), alpha_deg=(15.0,), size_s=[2.0],
                   robustness=0.0, out_dir=tmp_path / "run")
     probe = ("import sys; from audit.cli import main; "
              f"status = main(['report', {str(tmp_path / 'run')!r}]); "

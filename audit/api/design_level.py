@@ -74,7 +74,7 @@ class MarginsResult(Files):
 
 
 def margins(procedures="all", records=None, *, im: str | None = None, stripes=None,
-            alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None, blocks=(),
+            alpha_deg=DEFAULT_ALPHA_DEG, size_s=None, blocks=(),
             restitution=DEFAULT_RESTITUTION, free_motion_s: float = DEFAULT_FREE_MOTION_S,
             required: bool = True, g: float = G, site_level: str = DEFAULT_SITE_LEVEL,
             hazard=None, hazard_imt: str | None = None, site_location=None,
@@ -108,7 +108,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         intensity or the suite's median.
     alpha_deg : float or sequence of float
         Slendernesses [degrees], 0 < α < 45 (may be empty when ``blocks`` are given).
-    sizes_s : float or sequence of float, optional
+    size_s : float or sequence of float, optional
         Block sizes 2π/p [s]; default 0.5 … 8 s in steps of 0.25 s.
     blocks : sequence of str or Block
         Blocks by their dimensions, ``"WIDTHxHEIGHT"`` [m] or :class:`Block`, beside the grid.

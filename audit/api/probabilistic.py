@@ -59,7 +59,7 @@ class FragilityResult(Files):
         from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
         return [FragilityComponent(row.component, row.description, "PGV",
                                    LognormalFragility(row.exact_median_m_s, row.exact_beta),
-                                   2.0 * row.half_width_m, 2.0 * row.half_height_m)
+                                   row.width_m, row.height_m)
                 for row in self.tables[COMPONENTS_CSV].itertuples()]
 
     def pelicun_csv(self) -> bytes:

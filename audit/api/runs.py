@@ -152,7 +152,7 @@ class AuditResult:
         return sum(line["blocks"] for line in self.summary["bottom_line"])
 
 
-def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=None,
+def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=None,
         free_motion_s: float = DEFAULT_FREE_MOTION_S, agree_band: float = DEFAULT_AGREE_BAND,
         robustness: float = DEFAULT_ROBUSTNESS, g: float = G, restitution=DEFAULT_RESTITUTION,
         vertical: bool = False, friction: float | None = None, sensitivity=(), site=None,
@@ -182,7 +182,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, sizes_s=
         :func:`records.load`; default: ``$ROCKING_AUDIT_RECORDS``, else the shipped seed records.
     alpha_deg : float or sequence of float
         Slendernesses α [degrees], 0 < α < 45.
-    sizes_s : float or sequence of float, optional
+    size_s : float or sequence of float, optional
         Block sizes 2π/p [s]; default 0.5 … 8.0 s in steps of 0.05 s.
     free_motion_s : float
         Free motion after each record, for the exact solver and the record spectra [s].

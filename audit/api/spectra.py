@@ -14,7 +14,7 @@ from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 CODES = ("fema356", "ubc97", "ntc2018")
 
 
-def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUTION,
+def rocking_spectrum(motion, *, size_s, alpha_deg, restitution=DEFAULT_RESTITUTION,
                      free_motion_s: float = DEFAULT_FREE_MOTION_S, vertical: bool = False,
                      jobs: int = DEFAULT_JOBS, force: bool = False, records=None,
                      dt_s: float | None = None, units: str | None = None,
@@ -31,7 +31,7 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     ----------
     motion : str, path, records.GroundMotion or (array, float)
         As for :func:`audit.rock` (acceleration [m/s²], dt [s]).
-    sizes_s : float or sequence of float
+    size_s : float or sequence of float
         Block sizes 2π/p [s], positive.
     alpha_deg : float or sequence of float
         Slendernesses [degrees], in (0, 45).
@@ -66,7 +66,7 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     force = check.flag("force", force)
     motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS),
                                          records, settings_fields(locals(), READING_FIELDS))
-    sizes = check.numbers("sizes_s", sizes_s, "positive block sizes 2π/p in s", 0, low_open=True)
+    sizes = check.numbers("size_s", size_s, "positive block sizes 2π/p in s", 0, low_open=True)
     alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
                            45, low_open=True, high_open=True)
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
@@ -79,7 +79,7 @@ def rocking_spectrum(motion, *, sizes_s, alpha_deg, restitution=DEFAULT_RESTITUT
     jobs = check.whole("jobs", jobs, 1)
     guards.check(guards.estimate(
         [motion], free_motion_s, blocks=len(sizes) * len(alphas), jobs=jobs,
-        settings=(guards.Setting("sizes_s", len(sizes), size_grid(*DEFAULT_SIZES).size),
+        settings=(guards.Setting("size_s", len(sizes), size_grid(*DEFAULT_SIZES).size),
                   guards.Setting("alpha_deg", len(alphas), len(DEFAULT_ALPHA_DEG)))), force)
     frame = spectrum(motion, np.asarray(sizes), np.radians(alphas), impact,
                      free_motion_s=free_motion_s, jobs=jobs, vertical=vertical).to_frame()

@@ -87,7 +87,7 @@ def _run(args) -> int:
             args.jobs = options.cap_jobs(args.jobs)
         return args.func(args)
     except InputError as exc:
-        message = with_flags(str(exc), getattr(exc, "fields", ()), args.command)
+        message = with_flags(str(exc), getattr(exc, "fields", ()))
         print(f"error: {' '.join(message.split())}", file=sys.stderr)
         return 2
     except BrokenPipeError:  # the reader of standard output (e.g. `| head`) has gone

@@ -37,7 +37,8 @@ def add_parser(sub):
                         "for objects described that way), one object a row")
     p.add_argument("--alpha", metavar="DEG,...",
                    help="with --size: objects by slenderness [degrees], every --size each")
-    p.add_argument("--size", metavar="S,...", help="with --alpha: sizes 2π/p [s]")
+    p.add_argument("--size", metavar="S,... or START:STOP:STEP",
+                   help="with --alpha: sizes 2π/p [s]")
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 / ASCE 41 design spectral accelerations S_XS,S_X1 [g] at the "
                         "hazard level assessed (required): the site's intensity")
@@ -98,7 +99,7 @@ def objects_of(args) -> list:
         raise InputError("--alpha and --size go together: objects by slenderness and size")
     if args.alpha:
         for alpha in options.float_list(args.alpha, "--alpha"):
-            for size in options.float_list(args.size, "--size"):
+            for size in options.sizes(args.size):
                 name = f"α={alpha:g}°, 2π/p={size:g} s"
                 objects.append(object_by_slenderness(name, alpha, size, f"--alpha/--size {name}"))
     if not objects:

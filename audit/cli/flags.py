@@ -1,6 +1,6 @@
 """The command line's flags for the API's argument names, in one table: a message from below
-the command line names the argument (``sizes_s: …``); the command line shows its flag
-(``--sizes: …``) instead."""
+the command line names the argument (``size_s: …``); the command line shows its flag
+(``--size: …``) instead."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import re
 
 #: Argument (settings field) → flag, for every command.
 FLAGS = {
-    "alpha_deg": "--alpha", "sizes_s": "--sizes", "free_motion_s": "--free-motion",
+    "alpha_deg": "--alpha", "size_s": "--size", "free_motion_s": "--free-motion",
     "agree_band": "--agree-band", "robustness": "--robustness", "restitution": "--restitution",
     "vertical": "--vertical", "friction": "--friction", "sensitivity": "--sensitivity",
     "site": "--site", "site_override": "--site-override", "scale_to_site": "--scale-to-site",
@@ -26,12 +26,10 @@ FLAGS = {
     "building_damping": "--building-damping",
     "dt_s": "--dt", "units": "--units",
 }
-#: Where a command's flag for an argument differs from :data:`FLAGS`.
-COMMAND_FLAGS = {"rock": {"free_motion_s": "--duration"}}
 
 
-def with_flags(message: str, fields, command: str | None = None) -> str:
-    """``message`` with each of ``fields`` it names replaced by the command's flag (a boolean
+def with_flags(message: str, fields) -> str:
+    """``message`` with each of ``fields`` it names replaced by its flag (a boolean
     ``field=True`` by the flag alone).
 
     A field of one plain word (``hazard``, ``records``) is also an ordinary word, which a
@@ -39,9 +37,8 @@ def with_flags(message: str, fields, command: str | None = None) -> str:
     suite's title): it is replaced only outside parentheses and quotes, where the message
     speaks of the argument itself. A field with an underscore (``site_location``) is the
     argument wherever it appears."""
-    table = {**FLAGS, **COMMAND_FLAGS.get(command, {})}
     for field in dict.fromkeys(fields):
-        flag = table.get(field)
+        flag = FLAGS.get(field)
         if flag:
             pattern = re.compile(rf"(?<![\w-]){re.escape(field)}(=True)?(?!\w)")
             if "_" in field:
@@ -82,4 +79,4 @@ def _spoken_parts(message: str):
     return out
 
 
-__all__ = ["FLAGS", "COMMAND_FLAGS", "with_flags"]
+__all__ = ["FLAGS", "with_flags"]

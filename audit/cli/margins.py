@@ -38,8 +38,9 @@ def add_parser(sub):
                         "0.2–5 × the site's design intensity (or the suite's median)")
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
-    p.add_argument("--sizes", default=sizes_text(DEFAULT_MARGINS_SIZES), metavar="START:STOP:STEP",
-                   help="block sizes 2π/p [s]")
+    p.add_argument("--size", default=sizes_text(DEFAULT_MARGINS_SIZES), metavar="START:STOP:STEP",
+                   help="block sizes 2π/p [s] (a comma list S,... too)")
+    options.add_alias(p, "--sizes", "size")
     p.add_argument("--site", metavar="SXS,SX1",
                    help="FEMA 356 design site S_XS,S_X1 [g] of every record (the records' own "
                         "sites are replaced); its intensity is the CMR's denominator, taken as "
@@ -72,7 +73,7 @@ def run(args) -> int:
     out_dir = check_output_dir(Path(args.out))
     out_dir_existed = out_dir.exists()
     values = {"alpha_deg": options.alphas_deg(args.alpha),
-              "sizes_s": options.sizes(args.sizes), "blocks": args.block or (),
+              "size_s": options.sizes(args.size), "blocks": args.block or (),
               "restitution": args.restitution, "free_motion_s": args.free_motion,
               "site_level": args.level, "risk_target": args.risk_target}
     if args.im is not None:  # without it, the default or the hazard file's IMT

@@ -88,8 +88,15 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
 
 
 def sizes(text: str) -> np.ndarray:
-    """Block sizes 2π/p [s] of ``--sizes``."""
-    return time_grid(text, "--sizes")
+    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list."""
+    return time_grid(text, "--size")
+
+
+def add_alias(parser, alias: str, dest: str, type=None) -> None:
+    """``alias``, the name a flag had before one quantity had one flag on every command: it
+    sets the same ``dest`` (parsed by the same ``type``), so old scripts run; not in ``--help``."""
+    parser.add_argument(alias, dest=dest, type=type, help=argparse.SUPPRESS,
+                        default=argparse.SUPPRESS)
 
 
 def number(rule: str, low: float | None = None, high: float | None = None, *,

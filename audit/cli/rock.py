@@ -30,9 +30,10 @@ def add_parser(sub):
     p.add_argument("--friction", type=options.POSITIVE, metavar="MU",
                    help="friction coefficient μ: mark the block as sliding when its pure-rocking "
                         "response needs more")
-    p.add_argument("--duration", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
+    p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
                    metavar="S", help=f"free motion simulated after the excitation [s] (default "
                                      f"{DEFAULT_FREE_MOTION_S:g})")
+    options.add_alias(p, "--duration", "free_motion", options.NON_NEGATIVE)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw θ/α and θ' against time")
     p.add_argument("--history", metavar="FILE.csv",
@@ -64,11 +65,11 @@ def run(args) -> int:
                              "WIDTHxHEIGHT)")
         block = api.Block(alpha_deg=args.alpha,
                           size_s=args.size if args.size is not None else 2 * math.pi / args.p)
-    response = api.rock(block, **options.motion(args), free_motion_s=args.duration,
+    response = api.rock(block, **options.motion(args), free_motion_s=args.free_motion,
                         restitution=restitution, vertical=args.vertical, friction=args.friction,
                         force=args.force, **options.floor_values(args))
     result = {**response.as_dict(),
-              "block_m": args.block and f"{block.width_m:g}x{block.height_m:g}",
+              "width_m": block.width_m, "height_m": block.height_m,
               "vertical": args.vertical}
     files = {}
     if history:

@@ -24,8 +24,9 @@ def add_parser(sub):
     options.add_records_option(p)
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
-    p.add_argument("--sizes", default=sizes_text(), metavar="START:STOP:STEP",
-                   help="block sizes 2π/p [s]")
+    p.add_argument("--size", default=sizes_text(), metavar="START:STOP:STEP",
+                   help="block sizes 2π/p [s] (a comma list S,... too)")
+    options.add_alias(p, "--sizes", "size")
     p.add_argument("--out", metavar="DIR", help=f"output directory (default {DEFAULT_OUT}/PROCEDURE)")
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="threads of the exact solver, or worker processes with --scheduler dask")
@@ -67,7 +68,7 @@ def run(args) -> int:
     from audit.files import check_output_dir
     out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
     out_dir_existed = out_dir.exists()
-    grid = {"alpha_deg": options.alphas_deg(args.alpha), "sizes_s": options.sizes(args.sizes)}
+    grid = {"alpha_deg": options.alphas_deg(args.alpha), "size_s": options.sizes(args.size)}
     site = options.design_site(args)
     start = time.perf_counter()
     try:

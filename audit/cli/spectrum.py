@@ -16,8 +16,9 @@ def add_parser(sub):
     options.add_excitation_options(p)
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
-    p.add_argument("--sizes", default=sizes_text(), metavar="START:STOP:STEP",
-                   help="block sizes 2π/p [s] (rocking)")
+    p.add_argument("--size", default=sizes_text(), metavar="START:STOP:STEP",
+                   help="block sizes 2π/p [s] (a comma list S,... too; rocking)")
+    options.add_alias(p, "--sizes", "size")
     p.add_argument("--damping", default=",".join(f"{d:g}" for d in DEFAULT_DAMPING_PCT),
                    metavar="PCT,...",
                    help="damping ratios [%%] (response)")
@@ -50,8 +51,8 @@ def run(args) -> int:
                                      damping_pct=100.0 * damping, free_motion_s=args.free_motion,
                                      force=args.force, **options.floor_values(args))
     else:
-        alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args.sizes)
-        frame = api.rocking_spectrum(**options.motion(args), sizes_s=sizes, alpha_deg=alphas,
+        alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args.size)
+        frame = api.rocking_spectrum(**options.motion(args), size_s=sizes, alpha_deg=alphas,
                                      restitution=args.restitution, free_motion_s=args.free_motion,
                                      vertical=args.vertical, jobs=args.jobs, force=args.force,
                                      **options.floor_values(args))

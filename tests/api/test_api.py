@@ -16,13 +16,13 @@ from audit.cli import main
 from audit.errors import InputError
 from records import ENV_VARIABLE
 
-GRID = ["--alpha", "15,20", "--sizes", "1:3:0.5"]
+GRID = ["--alpha", "15,20", "--size", "1:3:0.5"]
 
 
 def test_run_from_python_gives_the_command_line_results_and_claims(tmp_path, monkeypatch):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
     assert main(["run", "fema356", *GRID, "--out", str(tmp_path / "cli")]) == 0
-    result = audit.run("fema356", alpha_deg=[15, 20], sizes_s=np.arange(1.0, 3.01, 0.5), jobs=1)
+    result = audit.run("fema356", alpha_deg=[15, 20], size_s=np.arange(1.0, 3.01, 0.5), jobs=1)
     result.write(tmp_path / "api")
     for name in ("results.csv", "checks.csv", "suite.csv", "claims.csv", "rocking.csv"):
         assert (tmp_path / "api" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
@@ -75,7 +75,7 @@ def test_a_plug_in_written_in_python_is_audited():
 
     suite = records.load("pulses")
     result = audit.run([HalfDamped, "priestley1978"], suite, alpha_deg=[15],
-                       sizes_s=[1.0, 2.0], jobs=1, robustness=0.0)
+                       size_s=[1.0, 2.0], jobs=1, robustness=0.0)
     beta = result.results.groupby("procedure")["beta_pct"].first()
     assert beta["half"] == pytest.approx(0.5 * beta["priestley1978"])
 
@@ -88,16 +88,16 @@ def test_command_line_defaults_are_the_engines():
     from audit.cli import options
     args = build_parser().parse_args(["run", "all"])
     assert list(options.alphas_deg(args.alpha)) == list(defaults.DEFAULT_ALPHA_DEG)
-    np.testing.assert_array_equal(options.sizes(args.sizes), size_grid(*defaults.DEFAULT_SIZES))
+    np.testing.assert_array_equal(options.sizes(args.size), size_grid(*defaults.DEFAULT_SIZES))
     assert (args.jobs, args.free_motion, args.agree_band, args.robustness, args.scheduler) == (
         defaults.DEFAULT_JOBS, defaults.DEFAULT_FREE_MOTION_S, defaults.DEFAULT_AGREE_BAND,
         defaults.DEFAULT_ROBUSTNESS, defaults.DEFAULT_SCHEDULER)
     spectrum = build_parser().parse_args(["spectrum", "--pulse", "cosine", "--amplitude", "0.3",
                                           "--pulse-period", "1"])
-    assert (spectrum.alpha, spectrum.sizes) == (defaults.alpha_text(), defaults.sizes_text())
+    assert (spectrum.alpha, spectrum.size) == (defaults.alpha_text(), defaults.sizes_text())
     rock = build_parser().parse_args(["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine",
                                       "--amplitude", "0.3", "--pulse-period", "2"])
-    assert rock.duration == defaults.DEFAULT_FREE_MOTION_S
+    assert rock.free_motion == defaults.DEFAULT_FREE_MOTION_S
 
 
 def _keywords(function) -> dict:

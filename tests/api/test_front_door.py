@@ -189,7 +189,7 @@ def workdir(tmp_path, monkeypatch):
     return tmp_path
 
 
-MARGINS = ["margins", "all", "--records", "pulses", "--alpha", "15", "--sizes", "2",
+MARGINS = ["margins", "all", "--records", "pulses", "--alpha", "15", "--size", "2",
            "--out", "m"]
 
 
@@ -237,7 +237,7 @@ def test_margins_cost_counts_the_spectra_the_procedures_read():
     motion = records.GroundMotion("long", 0.5 * np.sin(2 * np.pi * t), 0.01)
     suite = records.RecordSuite((records.RecordEntry("long", motion),), "one long record")
     with pytest.raises(InputError, match=r"^work: 29 blocks and 16,821 oscillators") as caught:
-        audit.margins("priestley1978", suite, stripes=[0.5], alpha_deg=15, sizes_s=2.0)
+        audit.margins("priestley1978", suite, stripes=[0.5], alpha_deg=15, size_s=2.0)
     assert "h, beyond the limit" in str(caught.value) and "force" in caught.value.fields
 
 
@@ -256,11 +256,11 @@ def test_tables_are_typed_from_the_schema():
 
 
 def test_scalars_where_lists_are_and_the_reprs():
-    result = audit.run("fema356", "pulses", alpha_deg=15, sizes_s=2.0, robustness=0.0, jobs=1)
+    result = audit.run("fema356", "pulses", alpha_deg=15, size_s=2.0, robustness=0.0, jobs=1)
     assert set(result.results["alpha_deg"]) == {15.0} and set(result.results["size_s"]) == {2.0}
     assert result.results["alpha_deg"].dtype.kind in "if"  # numbers, not text
     assert "block comparisons" in repr(result)
     margins = audit.margins("fema356", "pulses", im="pga", stripes=[0.2, 0.4], alpha_deg=15,
-                            sizes_s=2.0, required=False, free_motion_s=2.0)
+                            size_s=2.0, required=False, free_motion_s=2.0)
     assert repr(margins).startswith("MarginsResult(fema356 on ") and "2 stripes of pga" in \
         repr(margins)

@@ -97,32 +97,32 @@ CASES = [
     ("spectrum-bad-kind", {}, ["spectrum", "--kind", "fourier"], ["--kind"]),
     ("pulse-bad-shape", {}, [*ROCK, "--pulse", "square"], ["--pulse"]),
     ("design-bad-code", {}, ["design-spectrum", "ec8"], ["code"]),
-    ("option-missing-value", {}, [*RUN, "--sizes"], ["--sizes"]),
+    ("option-missing-value", {}, [*RUN, "--size"], ["--size"]),
     ("report-no-dir", {}, ["report"], ["RESULTS_DIR"]),
     # ---------------------------------------------------------------- --jobs
     ("jobs-zero", {}, [*RUN, "--jobs", "0"], ["--jobs"]),
     ("jobs-negative", {}, [*SPEC, "--jobs", "-3"], ["--jobs"]),
     ("jobs-text", {}, [*RUN, "--jobs", "many"], ["--jobs"]),
     ("jobs-fraction", {}, [*SPEC, "--jobs", "1.5"], ["--jobs"]),
-    # ---------------------------------------------------------------- --sizes / --periods grids
-    ("sizes-inf-stop", {}, [*RUN, "--sizes", "0.5:inf:0.1"], ["--sizes"]),
-    ("sizes-nan-step", {}, [*RUN, "--sizes", "0.5:8:nan"], ["--sizes"]),
-    ("sizes-huge-grid", {}, [*RUN, "--sizes", "0.5:1e12:1"], ["--sizes"]),
-    ("sizes-zero-start", {}, [*RUN, "--sizes", "0:8:0.1"], ["--sizes"]),
-    ("sizes-negative-start", {}, [*RUN, "--sizes", "-1:8:0.1"], ["--sizes"]),
-    ("sizes-reversed", {}, [*RUN, "--sizes", "8:0.5:0.1"], ["--sizes"]),
-    ("sizes-zero-step", {}, [*RUN, "--sizes", "0.5:8:0"], ["--sizes"]),
-    ("sizes-negative-step", {}, [*RUN, "--sizes", "0.5:8:-0.1"], ["--sizes"]),
-    ("sizes-words", {}, [*RUN, "--sizes", "small:large:some"], ["--sizes"]),
-    ("sizes-two-parts", {}, [*RUN, "--sizes", "0.5:8"], ["--sizes"]),
-    ("sizes-four-parts", {}, [*RUN, "--sizes", "0.5:8:0.1:2"], ["--sizes"]),
-    ("sizes-empty", {}, [*RUN, "--sizes", ""], ["--sizes"]),
-    ("sizes-commas-only", {}, [*SPEC, "--sizes", ",,"], ["--sizes"]),
-    ("sizes-list-negative", {}, [*SPEC, "--sizes", "1,-2"], ["--sizes"]),
-    ("sizes-list-zero", {}, [*SPEC, "--sizes", "0,1"], ["--sizes"]),
-    ("sizes-list-nan", {}, [*SPEC, "--sizes", "1,nan"], ["--sizes"]),
-    ("sizes-runaway-cost", {}, [*RUN, "--sizes", "0.5:8:0.00001"],
-     ["work", "--sizes, 750,001 values (151 by default)", "--force"]),
+    # ---------------------------------------------------------------- --size / --periods grids
+    ("sizes-inf-stop", {}, [*RUN, "--size", "0.5:inf:0.1"], ["--size"]),
+    ("sizes-nan-step", {}, [*RUN, "--size", "0.5:8:nan"], ["--size"]),
+    ("sizes-huge-grid", {}, [*RUN, "--size", "0.5:1e12:1"], ["--size"]),
+    ("sizes-zero-start", {}, [*RUN, "--size", "0:8:0.1"], ["--size"]),
+    ("sizes-negative-start", {}, [*RUN, "--size", "-1:8:0.1"], ["--size"]),
+    ("sizes-reversed", {}, [*RUN, "--size", "8:0.5:0.1"], ["--size"]),
+    ("sizes-zero-step", {}, [*RUN, "--size", "0.5:8:0"], ["--size"]),
+    ("sizes-negative-step", {}, [*RUN, "--size", "0.5:8:-0.1"], ["--size"]),
+    ("sizes-words", {}, [*RUN, "--size", "small:large:some"], ["--size"]),
+    ("sizes-two-parts", {}, [*RUN, "--size", "0.5:8"], ["--size"]),
+    ("sizes-four-parts", {}, [*RUN, "--size", "0.5:8:0.1:2"], ["--size"]),
+    ("sizes-empty", {}, [*RUN, "--size", ""], ["--size"]),
+    ("sizes-commas-only", {}, [*SPEC, "--size", ",,"], ["--size"]),
+    ("sizes-list-negative", {}, [*SPEC, "--size", "1,-2"], ["--size"]),
+    ("sizes-list-zero", {}, [*SPEC, "--size", "0,1"], ["--size"]),
+    ("sizes-list-nan", {}, [*SPEC, "--size", "1,nan"], ["--size"]),
+    ("sizes-runaway-cost", {}, [*RUN, "--size", "0.5:8:0.00001"],
+     ["work", "--size, 750,001 values (151 by default)", "--force"]),
     ("periods-zero-step", {}, [*RESP, "--periods", "0:10:0"], ["--periods"]),
     ("periods-negative", {}, [*RESP, "--periods", "-1:10:1"], ["--periods"]),
     ("periods-inf", {}, [*RESP, "--periods", "0:inf:1"], ["--periods"]),
@@ -132,8 +132,8 @@ CASES = [
     ("response-runaway-cost", {}, [*RESP, "--periods", "0.001:100:0.0001", "--damping",
                                    "1,2,3,4,5,6,7,8,9,10"], ["work", "--periods", "--force"]),
     # ---------------------------------------------------------------- cost named by its cause
-    ("rock-duration-runaway-cost", {}, [*ROCK, *PULSE, "--duration", "1e9"],
-     ["--duration 1e+09 s", "--force"]),
+    ("rock-duration-runaway-cost", {}, [*ROCK, *PULSE, "--free-motion", "1e9"],
+     ["--free-motion 1e+09 s", "--force"]),
     ("spectrum-free-motion-runaway-cost", {}, [*SPEC, "--free-motion", "1e9"],
      ["--free-motion 1e+09 s", "--force"]),
     ("response-free-motion-runaway-cost", {}, [*RESP, "--free-motion", "1e9"],
@@ -181,9 +181,9 @@ CASES = [
     ("rock-r-negative", {}, [*ROCK, "--r", "-0.1", *PULSE], ["--r"]),
     ("rock-r-above-one", {}, [*ROCK, "--r", "1.5", *PULSE], ["--r"]),
     ("rock-r-nan", {}, [*ROCK, "--r", "nan", *PULSE], ["--r"]),
-    ("rock-duration-negative", {}, [*ROCK, "--duration", "-1", *PULSE], ["--duration"]),
-    ("rock-duration-inf", {}, [*ROCK, "--duration", "inf", *PULSE], ["--duration"]),
-    ("rock-duration-nan", {}, [*ROCK, "--duration", "nan", *PULSE], ["--duration"]),
+    ("rock-duration-negative", {}, [*ROCK, "--free-motion", "-1", *PULSE], ["--free-motion"]),
+    ("rock-duration-inf", {}, [*ROCK, "--free-motion", "inf", *PULSE], ["--free-motion"]),
+    ("rock-duration-nan", {}, [*ROCK, "--free-motion", "nan", *PULSE], ["--free-motion"]),
     ("free-motion-negative", {}, [*RUN, "--free-motion", "-10"], ["--free-motion"]),
     ("free-motion-text", {}, [*SPEC, "--free-motion", "long"], ["--free-motion"]),
     # ---------------------------------------------------------------- excitation
@@ -463,7 +463,7 @@ def test_bad_input_gets_one_line_and_exit_2(workdir, capsys, files, argv, words)
 # --- what is accepted, with a note or a warning -------------------------------------------------
 
 def test_jobs_capped_at_cores_with_a_note(workdir, capsys):
-    assert main([*SPEC, "--sizes", "1", "--alpha", "10", "--jobs", "1000"]) == 0
+    assert main([*SPEC, "--size", "1", "--alpha", "10", "--jobs", "1000"]) == 0
     err = capsys.readouterr().err.splitlines()
     cores = len(os.sched_getaffinity(0))
     assert err[0] == f"note: --jobs 1000: only {cores} core(s) available; using {cores}"
@@ -573,10 +573,10 @@ def test_five_million_sample_record_refused_before_work(workdir, capsys):
 
 def test_plot_not_left_when_the_csv_cannot_be_written(workdir, capsys):
     _write(workdir, {"taken": "x"})
-    assert main([*SPEC, "--sizes", "1", "--alpha", "10", "--plot", "out.png",
+    assert main([*SPEC, "--size", "1", "--alpha", "10", "--plot", "out.png",
                  "--csv", "taken/out.csv"]) == 2
     assert not (workdir / "out.png").exists()
-    assert main([*SPEC, "--sizes", "1", "--alpha", "10", "--plot", "out.png",
+    assert main([*SPEC, "--size", "1", "--alpha", "10", "--plot", "out.png",
                  "--csv", "new/out.csv"]) == 0
     assert (workdir / "out.png").read_bytes()[:4] == b"\x89PNG"
     assert (workdir / "new" / "out.csv").is_file()
@@ -671,7 +671,7 @@ def test_ctrl_c_inside_a_numba_callback_stops_the_command(tmp_path):
     environment["PYTHONPATH"] = str(ROOT)
     process = subprocess.run(
         [sys.executable, "-c", CTRL_C_IN_NUMBA_CALLBACK, "margins", "fema356", "--records",
-         "pulses", "--sizes", "1:2:0.5", "--alpha", "10", "--out", "out"],
+         "pulses", "--size", "1:2:0.5", "--alpha", "10", "--out", "out"],
         cwd=tmp_path, env=environment, capture_output=True, text=True, timeout=600)
     lines = [line for line in process.stderr.splitlines() if not line.startswith("[")]
     assert lines == ["sending SIGINT inside the callback", "interrupted; nothing written"], \
@@ -682,7 +682,7 @@ def test_ctrl_c_inside_a_numba_callback_stops_the_command(tmp_path):
 
 def test_ctrl_c_stops_with_one_line_exit_130_and_nothing_written(tmp_path):
     # the pulse suite over a fine grid: long enough to be interrupted while computing
-    process = _cli("run", "all", "--sizes", "0.2:8:0.002", "--alpha", "5,10,15,20,25",
+    process = _cli("run", "all", "--size", "0.2:8:0.002", "--alpha", "5,10,15,20,25",
                    "--free-motion", "60", "--out", "out", "--force", cwd=tmp_path)
     time.sleep(4.0)
     assert process.poll() is None, process.communicate()

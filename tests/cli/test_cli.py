@@ -60,7 +60,7 @@ def test_list_default_is_the_shipped_seed_records(monkeypatch, capsys):
 
 def test_rock_json_pulse_anchor(capsys):
     args = ["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine", "--pulse-period", "2",
-            "--duration", "8", "--json"]
+            "--free-motion", "8", "--json"]
     assert main(args + ["--amplitude", "0.316"]) == 0
     falls = json.loads(capsys.readouterr().out)
     assert falls["overturned"] is True and falls["overturn_time"] > 2.0
@@ -87,7 +87,7 @@ def test_rocking_spectrum_csv(tmp_path, capsys):
     csv = tmp_path / "spec.csv"
     plot = tmp_path / "spec.png"
     assert main(["spectrum", "--pulse", "cosine", "--amplitude", "0.5", "--pulse-period", "1",
-                 "--alpha", "10,20", "--sizes", "0.5:2:0.5", "--csv", str(csv),
+                 "--alpha", "10,20", "--size", "0.5:2:0.5", "--csv", str(csv),
                  "--plot", str(plot)]) == 0
     frame = pd.read_csv(csv)
     assert {"alpha_deg", "size_s", "p_rad_s", "theta_peak_rad", "theta_ratio", "overturned",
@@ -120,7 +120,7 @@ def test_response_and_design_spectrum_csv(tmp_path):
     (["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine", "--amplitude", "-1",
       "--pulse-period", "1"], "amplitude: must be a positive"),
     (["spectrum", "--pulse", "cosine", "--amplitude", "0.3", "--pulse-period", "1",
-      "--sizes", "2:1:0.5"], "--sizes: need 0 < START"),
+      "--size", "2:1:0.5"], "--size: need 0 < START"),
     (["spectrum", "--pulse", "cosine", "--amplitude", "0.3", "--pulse-period", "1",
       "--alpha", "ten"], "--alpha: expected comma-separated numbers"),
     (["run", "fema", "--out", "OUT"], "procedure: unknown 'fema'"),
@@ -140,7 +140,7 @@ def test_bad_input_exits_2_with_one_line(tmp_path, monkeypatch, args, message):
 def test_output_onto_a_file_is_a_one_line_error(tmp_path):
     blocker = tmp_path / "taken"
     blocker.write_text("not a folder")
-    result = run_cli("run", "fema356", "--alpha", "15", "--sizes", "2:3:1", "--out", str(blocker),
+    result = run_cli("run", "fema356", "--alpha", "15", "--size", "2:3:1", "--out", str(blocker),
                      env={ENV_VARIABLE: ""})
     assert result.returncode == 2 and "Traceback" not in result.stderr
     assert str(blocker) in result.stderr and result.stderr.count("\n") == 1
@@ -161,7 +161,7 @@ def test_bad_record_file_names_file_and_leaves_no_output(tmp_path):
 def test_run_and_rerender(tmp_path, monkeypatch, capsys):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
     out = tmp_path / "audit"
-    assert main(["run", "all", "--records", "pulses", "--alpha", "15", "--sizes", "1:4:1",
+    assert main(["run", "all", "--records", "pulses", "--alpha", "15", "--size", "1:4:1",
                  "--out", str(out)]) == 0
     assert "pulse-idealised" in capsys.readouterr().out
     assert sorted(p.name for p in out.iterdir()) == [
@@ -215,7 +215,7 @@ def test_third_party_plugin_runs_through_the_cli(tmp_path):
     listing = run_cli("list", env=env)
     assert listing.returncode == 0 and "halfpriestley" in listing.stdout
     out = tmp_path / "out"
-    result = run_cli("run", "halfpriestley", "--alpha", "20", "--sizes", "2:3:1", "--out", str(out),
+    result = run_cli("run", "halfpriestley", "--alpha", "20", "--size", "2:3:1", "--out", str(out),
                      env=env)
     assert result.returncode == 0, result.stderr
     results = pd.read_csv(out / "results.csv")

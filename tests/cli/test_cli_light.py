@@ -72,7 +72,7 @@ def test_spectrum_csv_loads_no_figures_and_no_procedures(tmp_path):
     fact (SPEC §2): a block of p = 2 rad/s (2π/p = π s), α = 15° rocks and survives a 0.30 g,
     2 s cosine pulse (a_p < 0.310 g)."""
     modules, _ = loaded_modules(tmp_path, "spectrum", "--pulse", "cosine", "--amplitude", "0.3",
-                                "--pulse-period", "2", "--alpha", "15", "--sizes", str(math.pi),
+                                "--pulse-period", "2", "--alpha", "15", "--size", str(math.pi),
                                 "--csv", "spectrum.csv")
     loaded = [m for m in modules if m.startswith(("matplotlib", "scipy.optimize", "procedures"))]
     assert loaded == []

@@ -21,7 +21,7 @@ from audit.engine.shared.partial import PARTIAL_DIR, kept_parts  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 #: About 1–2 s per record on one thread, so that a kill lands while records are under way.
-GRID = ["--alpha", "3,6,9", "--sizes", "0.5:8:0.01", "--free-motion", "30", "--jobs", "1"]
+GRID = ["--alpha", "3,6,9", "--size", "0.5:8:0.01", "--free-motion", "30", "--jobs", "1"]
 #: Generous: the machine may be loaded; a condition that never comes fails, it never skips.
 TIMEOUT_S = 240
 

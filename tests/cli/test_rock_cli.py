@@ -25,7 +25,7 @@ from records.motion import GroundMotion
 ROOT = Path(__file__).resolve().parents[2]
 ALPHA_15 = math.radians(15)
 PULSE = ["rock", "--p", "2", "--alpha", "15", "--pulse", "cosine", "--pulse-period", "2",
-         "--duration", "8"]
+         "--free-motion", "8"]
 
 
 def test_free_vibration_peak_of_the_pulse_anchor_matches_the_reference_solver():
@@ -136,11 +136,22 @@ def test_rock_a_block_given_by_its_dimensions(capsys):
     assert result["alpha_deg"] == pytest.approx(math.degrees(math.atan(0.2)), rel=1e-12)
     assert result["p"] == pytest.approx(math.sqrt(3 * 9.81 / (4 * math.hypot(0.2, 1.0))),
                                         rel=1e-12)
-    assert result["R_m"] == pytest.approx(math.hypot(0.2, 1.0)) and result["block_m"] == "0.4x2"
+    assert result["R_m"] == pytest.approx(math.hypot(0.2, 1.0))
+    assert (result["width_m"], result["height_m"]) == (0.4, 2.0)
     for extra in (["--alpha", "10"], ["--size", "2"]):
         assert main(["rock", "--block", "0.4x2", *extra, "--pulse", "cosine", "--amplitude",
                      "0.3", "--pulse-period", "2"]) == 2
         assert "--block" in capsys.readouterr().err
+
+
+def test_rock_json_gives_the_dimensions_of_a_block_given_by_size(capsys):
+    """--size 2 --alpha 15: p = π rad/s, R = 3g/(4p²), width 2R sin α, height 2R cos α [m]."""
+    assert main(["rock", "--size", "2", "--alpha", "15", "--pulse", "cosine", "--amplitude",
+                 "0.3", "--pulse-period", "2", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    radius = 3 * 9.81 / (4 * math.pi ** 2)
+    assert result["width_m"] == pytest.approx(2 * radius * math.sin(math.radians(15)), rel=1e-9)
+    assert result["height_m"] == pytest.approx(2 * radius * math.cos(math.radians(15)), rel=1e-9)
 
 
 def test_rock_reads_a_text_record_with_dt_and_units_given_or_a_time_column(tmp_path, capsys):
@@ -154,7 +165,7 @@ def test_rock_reads_a_text_record_with_dt_and_units_given_or_a_time_column(tmp_p
     (tmp_path / "one.txt").write_text("\n".join(f"{a * 981:.9e}" for a in pulse_g) + "\n")
     (tmp_path / "timed.txt").write_text("% time [s], acceleration (g)\n" + "\n".join(
         f"{time:.3f} {a:.9e}" for time, a in zip(t, pulse_g)) + "\n")
-    block = ["rock", "--p", "2", "--alpha", "15", "--duration", "8", "--json"]
+    block = ["rock", "--p", "2", "--alpha", "15", "--free-motion", "8", "--json"]
     for record in (["--record", str(tmp_path / "one.txt"), "--dt", "0.005", "--units", "cm/s2"],
                    ["--record", str(tmp_path / "timed.txt")]):
         assert main(block + record) == 0

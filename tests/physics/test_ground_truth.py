@@ -14,7 +14,7 @@ from audit.engine.shared.ground_truth import GroundTruth, alternatives, parse_se
 from audit.errors import InputError
 from records import load_records
 
-GRID = ["--sizes", "1:4:0.5", "--alpha", "10,30,40"]
+GRID = ["--size", "1:4:0.5", "--alpha", "10,30,40"]
 
 
 def _run(tmp_path, name, seed_manifest, *extra):

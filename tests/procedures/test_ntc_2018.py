@@ -306,7 +306,7 @@ def test_record_demand_is_the_largest_sd_up_to_t_slv(seed_suite):
 def test_runner_audits_the_rotation_on_a_pulse():
     """The existing runner takes the plug-in as it is: one row per block, θ compared."""
     suite = RecordSuite((RecordEntry("pulse", one_pulse("sine", 0.5, 1.0)),), "one pulse")
-    run = run_audit([NTC2018()], suite, alpha_deg=[10.0, 30.0], sizes_s=np.array([1.0, 3.0]))
+    run = run_audit([NTC2018()], suite, alpha_deg=[10.0, 30.0], size_s=np.array([1.0, 3.0]))
     rows = run.results
     assert len(rows) == 4 and set(rows["procedure"]) == {"ntc2018"}
     # α = 30°: g tan α = 0.577 g > 0.5 g: neither rocks
@@ -339,7 +339,7 @@ def test_runner_audits_every_check_against_its_exact_event(seed_suite):
     from records import RecordSuite
     suite = RecordSuite((seed_suite.get("sylmar_1994"),), "one record")
     run = run_audit(get_procedures("ntc2018"), suite, alpha_deg=[10.0, 20.0],
-                    sizes_s=np.arange(0.5, 8.01, 0.5))
+                    size_s=np.arange(0.5, 8.01, 0.5))
     checks, results = run.checks, run.results.set_index(["alpha_deg", "size_s"])
     assert set(checks["limit_state"]) == {"SLD", "SLV-linear", "SLV", "SLC"}
     assert len(checks) == 4 * len(results)

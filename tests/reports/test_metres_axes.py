@@ -120,7 +120,7 @@ def _plot_specs(page: str) -> dict:
 @pytest.fixture(scope="module")
 def report(seed_suite, tmp_path_factory):
     out = tmp_path_factory.mktemp("metres") / "run"
-    audit.api.run("all", seed_suite, alpha_deg=ALPHAS_DEG, sizes_s=list(SIZES_S),
+    audit.api.run("all", seed_suite, alpha_deg=ALPHAS_DEG, size_s=list(SIZES_S),
                   robustness=0.0, out_dir=out)
     return out
 
@@ -170,8 +170,8 @@ def test_the_margins_charts_over_size_have_a_metres_axis():
     required = pd.DataFrame({"procedure": "exact@0.10", "size_s": SIZES_S,
                              "required_alpha_deg": np.linspace(25, 8, SIZES_S.size),
                              "exact_overturning_share": 0.1})
-    fragility = grid.assign(block_m="", cmr=np.linspace(0.5, 3, len(grid)), cmr_bound="")
-    risk = grid.assign(block_m="", annual_rate_fit=np.geomspace(1e-5, 1e-2, len(grid)))
+    fragility = grid.assign(width_m=np.nan, height_m=np.nan, cmr=np.linspace(0.5, 3, len(grid)), cmr_bound="")
+    risk = grid.assign(width_m=np.nan, height_m=np.nan, annual_rate_fit=np.geomspace(1e-5, 1e-2, len(grid)))
     risk_alpha = required.assign(procedure="exact@risk", p50=0.01)
     figures = {"required": required_figure(required, [], {}), "cmr": cmr_figure(fragility),
                "risk-alpha": _alpha_figure(risk_alpha, {}, lambda name: "#000", 0.01),

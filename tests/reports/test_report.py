@@ -240,7 +240,7 @@ def _small_run():
     """A quick audit of the pulse suite on a small grid, with synthetic frames standing in for
     the limit-state checks, suite statistics and claims that other parts of the audit write."""
     run = run_audit(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(10.0, 15.0),
-                    sizes_s=np.array([1.0, 2.0, 3.0]), robustness=0.0)
+                    size_s=np.array([1.0, 2.0, 3.0]), robustness=0.0)
     records = ["pacoima_dam_1971", "rinaldi_1994"]
     checks = []
     verdicts = ["agrees-safe", "missed", "false-alarm", "agrees-unsafe", "missed", "agrees-safe"]
@@ -317,7 +317,7 @@ def test_paths_do_not_depend_on_the_working_directory(seed_manifest, tmp_path):
     assert records.startswith("..")
     done = subprocess.run(
         [sys.executable, "-m", "audit", "run", "priestley1978", "--records", records,
-         "--out", "../out", "--alpha", "15", "--sizes", "2:3:0.5", "--robustness", "0"],
+         "--out", "../out", "--alpha", "15", "--size", "2:3:0.5", "--robustness", "0"],
         cwd=cwd, capture_output=True, text=True, timeout=900,
         env={**os.environ, "PYTHONPATH": str(REPO)})
     assert done.returncode == 0, done.stderr[-2000:]
@@ -467,7 +467,7 @@ def test_record_drawn_but_audited_by_no_procedure():
     no_site = RecordSuite(tuple(e for e in pulse_suite() if not e.site.get("sxs_g")), "no site")
     assert [e.id for e in no_site] == ["erzincan_1992", "takatori_1995"]
     run = run_audit(get_procedures("fema356"), no_site, alpha_deg=[15.0],
-                    sizes_s=np.arange(1.0, 8.01, 1.0))
+                    size_s=np.arange(1.0, 8.01, 1.0))
     assert run.results.empty and len(run.histories)
     html = render_report(run)
     drawn = [key for key in _parse(html).specs if key.startswith("th-")]
@@ -479,7 +479,7 @@ def test_mechanics_figures_are_drawn_from_the_saved_files():
     # Figures 7.1 and 4.1/7.2 come from mechanics.csv: 16 free-rocking curves (θ₀/α 0.1…0.7 ×
     # n 2…8) and the two laws; three pulse amplitudes for the block and for the oscillator
     run = run_audit(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(15.0,),
-                    sizes_s=np.array([2.0]), robustness=0.0, claims=False)  # read from its files
+                    size_s=np.array([2.0]), robustness=0.0, claims=False)  # read from its files
     specs = _parse(render_report(run)).specs
     names = [trace["name"] for trace in specs["fig-7-1"]["data"]]
     assert len(names) == 18 and names[-2:] == ["Eq. 7.10: β = −0.34 ln r",

@@ -143,7 +143,7 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
         levels = stripe_levels(centre)
     blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
     if not len(blocks):
-        raise InputError("sizes_s, alpha_deg, blocks: no block to audit", "sizes_s",
+        raise InputError("size_s, alpha_deg, blocks: no block to audit", "size_s",
                          "alpha_deg", "blocks")
     settings_of_stripes = StripeSettings(
         im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()), design, blocks,
@@ -204,7 +204,7 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
                "grid": {"alpha_deg": [float(a) for a in settings.alpha_deg],
                         "size_s": np.asarray(settings.size_s if settings.size_s is not None
                                              else (), dtype=float).tolist()},
-               "blocks": [{"block_m": b.label, "width_m": b.width_m, "height_m": b.height_m,
+               "blocks": [{"width_m": b.width_m, "height_m": b.height_m,
                            "alpha_deg": b.alpha_deg, "size_s": b.size_s}
                           for b in named_blocks]}
     return MarginsRun(stripes, fragility, capacity, summary)

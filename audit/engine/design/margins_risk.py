@@ -22,6 +22,7 @@ from audit.engine.design.required_alpha import interpolated_alpha
 from audit.engine.design.risk import (YEARS, annual_rate_for, block_fragilities, check_same_im,
                                risk_integral)
 from audit.engine.design.risk_schema import RISK_GUIDE
+from audit.engine.shared.schemas import block_labels
 from audit.errors import InputWarning
 
 #: The exact risk-targeted curve's name in ``risk_alpha.csv``.
@@ -31,7 +32,7 @@ FLOOR_P = 1e-12
 
 def _keys(frame: pd.DataFrame) -> pd.Series:
     return (frame["alpha_deg"].map("{:.9g}".format) + "|" + frame["size_s"].map("{:.9g}".format)
-            + "|" + frame["block_m"].astype(str))
+            + "|" + block_labels(frame))
 
 
 def margins_risk(run, curve, target_p50: float = 0.01) -> tuple[pd.DataFrame, pd.DataFrame]:
@@ -59,7 +60,8 @@ def margins_risk(run, curve, target_p50: float = 0.01) -> tuple[pd.DataFrame, pd
         truncated += bool(fit and fit.truncated)
         nan = math.nan
         rows.append({"alpha_deg": block["alpha_deg"], "size_s": block["size_s"],
-                     "block_m": block["block_m"], "im": curve.im_name,
+                     "width_m": block["width_m"], "height_m": block["height_m"],
+                     "im": curve.im_name,
                      "annual_rate_fit": fit.annual_rate if fit else nan,
                      "annual_rate_fit_upper": fit.annual_rate_upper if fit else nan,
                      "p50_fit": fit.p50 if fit else nan,
@@ -77,7 +79,7 @@ def margins_risk(run, curve, target_p50: float = 0.01) -> tuple[pd.DataFrame, pd
 
 def _grid_p50(risk: pd.DataFrame) -> pd.DataFrame:
     """P in 50 years of the grid's blocks, (α × size): the fit's, the stripes' where no fit."""
-    grid = risk[risk["block_m"] == ""]
+    grid = risk[risk["width_m"].isna()]
     p50 = grid["p50_fit"].where(np.isfinite(grid["p50_fit"]), grid["p50_stripes"])
     return grid.assign(p50=p50).pivot_table(index="alpha_deg", columns="size_s", values="p50",
                                             aggfunc="first")

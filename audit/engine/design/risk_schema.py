@@ -7,7 +7,10 @@ RISK_GUIDE = {
     "risk.csv": {
         "alpha_deg": ("deg", "slenderness α"),
         "size_s": ("s", "block size 2π/p"),
-        "block_m": ("m", "a block given by its dimensions (--block); empty for a grid block"),
+        "width_m": ("m", "full base width of a block given by its dimensions (--block); "
+                         "empty for a grid block"),
+        "height_m": ("m", "full height of a block given by its dimensions (--block); empty "
+                          "for a grid block"),
         "im": ("text", "intensity measure of the hazard curve and the fragility"),
         "annual_rate_fit": ("1/yr", "mean annual rate of overturning λ_ov, lognormal fit"),
         "annual_rate_fit_upper": ("1/yr", "the most λ_ov can be where the hazard curve stops"),

@@ -12,6 +12,7 @@ from audit.engine.design.fragility import overturning_pattern
 from audit.engine.design.margins import MarginsRun
 from audit.engine.design.settings import MarginsSettings
 from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.schemas import block_labels
 from audit.physics.rocking import rocking_blocks
 
 
@@ -45,22 +46,22 @@ def amplitude_scans(run: MarginsRun, suite, settings: MarginsSettings,
     Returns
     -------
     pandas.DataFrame
-        ``record, alpha_deg, size_s, block_m, scale_factor, im_level, exact_overturned,
+        ``record, alpha_deg, size_s, width_m, height_m, scale_factor, im_level, exact_overturned,
         exact_theta_rad`` (the columns of ``scan.csv``).
     """
     restitution, g, free_motion_s = settings.restitution, settings.g, settings.free_motion_s
     jobs = runtime.jobs
     fragility, stripes = run.fragility, run.stripes
-    named = fragility[fragility["block_m"] != ""]
+    named = fragility[fragility["width_m"].notna()]
     chosen = named if len(named) else fragility.sort_values(
         ["records_with_islands", "island_share"], ascending=False, kind="stable").head(SCAN_BLOCKS)
     motions = {entry.id: entry.motion for entry in suite if entry.motion is not None}
     levels = np.asarray(run.summary["levels"])
-    frames = []
+    frames, labels, chosen_labels = [], block_labels(stripes), block_labels(chosen)
     for block in chosen.itertuples():
         rows = stripes[(stripes["alpha_deg"] == block.alpha_deg)
                        & (stripes["size_s"] == block.size_s)
-                       & (stripes["block_m"] == block.block_m)]
+                       & (labels == chosen_labels[block.Index])]
         over = rows.pivot(index="record", columns="im_level", values="exact_overturned")
         if not over.to_numpy().any():
             continue
@@ -81,7 +82,7 @@ def amplitude_scans(run: MarginsRun, suite, settings: MarginsSettings,
                  for level in im_levels]
         frames.append(pd.DataFrame({
             "record": record, "alpha_deg": block.alpha_deg, "size_s": block.size_s,
-            "block_m": block.block_m,
+            "width_m": block.width_m, "height_m": block.height_m,
             "scale_factor": im_levels * factor_per_im * float(first_row["site_factor"]),
             "im_level": im_levels,
             "exact_overturned": np.concatenate([one.overturned for one in peaks]),
@@ -89,8 +90,8 @@ def amplitude_scans(run: MarginsRun, suite, settings: MarginsSettings,
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=SCAN_COLUMNS)
 
 
-SCAN_COLUMNS = ["record", "alpha_deg", "size_s", "block_m", "scale_factor", "im_level",
-                "exact_overturned", "exact_theta_rad"]
+SCAN_COLUMNS = ["record", "alpha_deg", "size_s", "width_m", "height_m", "scale_factor",
+                "im_level", "exact_overturned", "exact_theta_rad"]
 
 
 __all__ = ["amplitude_scans", "SCAN_COLUMNS", "SCAN_BLOCKS", "SCAN_STEP"]

@@ -18,10 +18,10 @@ from audit.errors import InputError
 from audit.physics.block import Restitution
 
 #: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``im``: None, the hazard
-#: curve's IMT, else ``DEFAULT_IM``; ``sizes_s``: None, the default grid; ``stripes``: None,
+#: curve's IMT, else ``DEFAULT_IM``; ``size_s``: None, the default grid; ``stripes``: None,
 #: levels around the design intensity).
 MARGINS_DEFAULTS = {"im": None, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
-                    "sizes_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
+                    "size_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
                     "free_motion_s": DEFAULT_FREE_MOTION_S, "required": True, "g": G,
                     "site_level": DEFAULT_SITE_LEVEL, "hazard": None, "site_location": None,
                     "risk_target": DEFAULT_RISK_TARGET, "hazard_imt": None}
@@ -83,7 +83,7 @@ class MarginsSettings:
             ``pga`` [g], ``pgv`` [m/s] or ``sa:T``.
         stripes : float or sequence of float, optional
             Positive, finite, increasing, each once.
-        alpha_deg, sizes_s : float or sequence of float
+        alpha_deg, size_s : float or sequence of float
         blocks : sequence of str or objects with ``width_m``, ``height_m``
             ``"WIDTHxHEIGHT"`` [m], or a block (e.g. :class:`audit.Block`).
         restitution : str, float or Restitution
@@ -112,7 +112,7 @@ class MarginsSettings:
             if any(b <= a for a, b in zip(stripes, stripes[1:])):
                 raise InputError(f"stripes: expected increasing intensity levels, each once, "
                                  f"got {', '.join(f'{s:g}' for s in stripes)}", "stripes")
-        sizes = value["sizes_s"]
+        sizes = value["size_s"]
         if value["site_location"] is not None and value["hazard"] is None:
             raise InputError("site_location: a site of the hazard file; no hazard given",
                              "site_location")
@@ -138,7 +138,7 @@ class MarginsSettings:
             alpha_deg=_grid("alpha_deg", value["alpha_deg"], "slendernesses between 0 and 45 "
                             "degrees", 0, 45),
             size_s=(tuple(float(s) for s in size_grid(*DEFAULT_MARGINS_SIZES)) if sizes is None
-                    else _grid("sizes_s", sizes, "positive block sizes 2π/p in s", 0,
+                    else _grid("size_s", sizes, "positive block sizes 2π/p in s", 0,
                                math.inf)),
             blocks=_blocks(value["blocks"], g),
             restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
@@ -168,7 +168,7 @@ def _blocks(items, g: float) -> tuple:
         if isinstance(item, str):
             blocks += parse_blocks([item], "blocks", g)
         elif isinstance(item, Block):
-            # margins' tables name a block by its dimensions (block_m)
+            # margins' tables give a block by its dimensions (width_m, height_m), not a name
             blocks.append(within_limits(replace(item, name=""), "blocks", "blocks"))
         else:
             raise InputError(f"blocks: expected 'WIDTHxHEIGHT' in metres (e.g. '0.8x2.0') or a "

@@ -73,7 +73,8 @@ class StripeSettings:
     def as_dict(self) -> dict:
         return {"kind": "margins stripes", "im": self.im.name, "levels": list(self.levels),
                 "design_im": self.design_im, "alpha_deg": self.blocks.alpha_deg.tolist(),
-                "size_s": self.blocks.size_s.tolist(), "block_m": self.blocks.label.tolist(),
+                "size_s": self.blocks.size_s.tolist(), "width_m": self.blocks.width_m.tolist(),
+                "height_m": self.blocks.height_m.tolist(),
                 "restitution": str(self.restitution), "g": self.g,
                 "free_motion_s": self.free_motion_s}
 

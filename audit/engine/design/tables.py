@@ -43,7 +43,7 @@ def reading(procedure, entries) -> str:
 
 def _block_columns(blocks: BlockList, index) -> dict:
     return {"alpha_deg": blocks.alpha_deg[index], "size_s": blocks.size_s[index],
-            "block_m": blocks.label[index]}
+            "width_m": blocks.width_m[index], "height_m": blocks.height_m[index]}
 
 
 def site_factor(suite, record_id: str) -> float:

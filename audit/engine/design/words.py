@@ -60,9 +60,11 @@ def margins_summary_text(run, seconds: float) -> str:
 def _risk_lines(run) -> list[str]:
     hazard = run.summary["hazard"]
     lines = [f"  at the site ({hazard['source']}), target P {hazard['target_p50']:g} in 50 years:"]
-    for row in run.risk[run.risk["block_m"] != ""].itertuples():
-        lines.append(f"  block {row.block_m} m: λ_ov {row.annual_rate_fit:.3g}/yr, P in 50 "
-                     f"years {row.p50_fit:.3g} (stripe shares: {row.annual_rate_stripes:.3g}/yr); "
+    named = run.risk[run.risk["width_m"].notna()]
+    for row in named.itertuples():
+        lines.append(f"  block {row.width_m:g}x{row.height_m:g} m: λ_ov "
+                     f"{row.annual_rate_fit:.3g}/yr, P in 50 years {row.p50_fit:.3g} (stripe "
+                     f"shares: {row.annual_rate_stripes:.3g}/yr); "
                      f"90 % of it from {row.im_low_90_g:.3g}–{row.im_high_90_g:.3g} g")
     return lines
 

@@ -71,7 +71,7 @@ def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -
                            if math.isfinite(median) else np.full(overturned.shape, np.nan))
         components.append({
             "component": component.id, "description": component.description,
-            "half_width_m": block.half_width, "half_height_m": block.half_height,
+            "width_m": 2.0 * block.half_width, "height_m": 2.0 * block.half_height,
             "alpha_deg": math.degrees(block.alpha), "p_rad_s": block.p,
             "procedure_median_m_s": component.fragility.median,
             "procedure_beta": component.fragility.beta,

@@ -79,7 +79,7 @@ class AuditSettings:
         ----------
         alpha_deg : float or sequence of float
             Slendernesses [degrees], 0 < α < 45.
-        sizes_s : float or sequence of float, optional
+        size_s : float or sequence of float, optional
             Block sizes 2π/p [s], positive; default the grid of ``DEFAULT_SIZES``.
         free_motion_s, agree_band, robustness, g :
             As the attributes: ≥ 0 s; in [0, 1); in [0, 0.5); positive m/s².
@@ -92,13 +92,13 @@ class AuditSettings:
         """
         check.unknown("the audit settings", values, AUDIT_FIELDS)
         value = {**AUDIT_DEFAULTS, **values}
-        sizes = value["sizes_s"]
+        sizes = value["size_s"]
         return cls(
             alpha_deg=check.numbers("alpha_deg", value["alpha_deg"],
                                     "slendernesses between 0 and 45 degrees", 0, 45,
                                     low_open=True, high_open=True),
             size_s=(tuple(float(s) for s in size_grid(*DEFAULT_SIZES)) if sizes is None
-                    else check.numbers("sizes_s", sizes, "positive block sizes 2π/p in s", 0,
+                    else check.numbers("size_s", sizes, "positive block sizes 2π/p in s", 0,
                                        low_open=True)),
             free_motion_s=check.number("free_motion_s", value["free_motion_s"],
                                        "a duration ≥ 0 s", 0),
@@ -143,9 +143,9 @@ class AuditSettings:
                 "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING]}
 
 
-#: The fields :meth:`AuditSettings.parse` takes, and their defaults (``sizes_s``: None, the
+#: The fields :meth:`AuditSettings.parse` takes, and their defaults (``size_s``: None, the
 #: default grid).
-AUDIT_DEFAULTS = {"alpha_deg": DEFAULT_ALPHA_DEG, "sizes_s": None,
+AUDIT_DEFAULTS = {"alpha_deg": DEFAULT_ALPHA_DEG, "size_s": None,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "agree_band": DEFAULT_AGREE_BAND,
                   "robustness": DEFAULT_ROBUSTNESS, "g": G, "restitution": DEFAULT_RESTITUTION,
                   "vertical": False, "friction": None, "sensitivity": ()}

@@ -135,7 +135,7 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
 
 def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> AuditRun:
     """The whole run of :func:`audit_suite`, its settings and runtime given by their fields
-    (``alpha_deg=…, sizes_s=…, jobs=…``), written and read back from its files into memory:
+    (``alpha_deg=…, size_s=…, jobs=…``), written and read back from its files into memory:
     for a test or a script, not for a suite of thousands of records.
 
     Parameters

@@ -34,7 +34,7 @@ from audit.physics.block import RigidBlock
 #: spectra this project computes stop at 10 s too). A larger block's answer would rest on
 #: ground motion the records do not hold: ``1x80`` (2π/p = 14.6 s) and ``1x500`` (36.6 s) are
 #: refused. The usual cause of such a block is a dimension typed in millimetres, so the
-#: message then gives the block in metres. Grid sweeps (``--sizes``) are research inputs and
+#: message then gives the block in metres. Grid sweeps (``--size``) are research inputs and
 #: are not limited.
 MAX_SIZE_S = 10.0
 #: From this base width [m] up, a block too large is taken as typed in millimetres and the
@@ -295,13 +295,15 @@ class BlockList:
     ----------
     alpha_deg, size_s : numpy.ndarray
         Slenderness [degrees] and size 2π/p [s].
-    label : numpy.ndarray of str
-        ``WIDTHxHEIGHT`` [m] (or the name) of a named block, ``""`` for a grid block.
+    width_m, height_m : numpy.ndarray
+        Full width and height [m] of a named block, NaN for a grid block (the tables tell
+        the two apart by them).
     """
 
     alpha_deg: np.ndarray
     size_s: np.ndarray
-    label: np.ndarray
+    width_m: np.ndarray
+    height_m: np.ndarray
 
     @classmethod
     def of(cls, alpha_deg=(), size_s=(), named=()) -> BlockList:
@@ -321,9 +323,11 @@ class BlockList:
         size_s = np.asarray(size_s, dtype=float)
         grid_alpha, grid_size = (a.ravel() for a in np.meshgrid(alpha_deg, size_s,
                                                                    indexing="ij"))
+        grid = np.full(grid_alpha.size, np.nan)
         return cls(np.concatenate([grid_alpha, [b.alpha_deg for b in named]]),
                    np.concatenate([grid_size, [b.size_s for b in named]]),
-                   np.array([""] * grid_alpha.size + [b.label for b in named], dtype=object))
+                   np.concatenate([grid, [b.width_m for b in named]]),
+                   np.concatenate([grid, [b.height_m for b in named]]))
 
     def __len__(self) -> int:
         return self.alpha_deg.size

@@ -53,7 +53,7 @@ def audit_cost(procedures, suite, settings: AuditSettings, runtime: Runtime) -> 
         blocks=sizes * alphas * ((3 if settings.robustness else 1) + len(settings.sensitivity)),
         oscillators=SPECTRUM_PERIODS_S.size * (RECORD_SPECTRA + alphas * len(procedures)),
         jobs=runtime.jobs,
-        settings=(guards.Setting("sizes_s", sizes, size_grid(*DEFAULT_SIZES).size),
+        settings=(guards.Setting("size_s", sizes, size_grid(*DEFAULT_SIZES).size),
                   guards.Setting("alpha_deg", alphas, len(DEFAULT_ALPHA_DEG))))
 
 
@@ -87,7 +87,7 @@ def margins_cost(procedures, suite, settings: MarginsSettings,
         oscillators=SPECTRUM_PERIODS_S.size * (slendernesses + search) * readers,
         jobs=runtime.jobs,
         settings=(guards.Setting("stripes", stripes, DEFAULT_STRIPES),
-                  guards.Setting("sizes_s", sizes, size_grid(*DEFAULT_MARGINS_SIZES).size),
+                  guards.Setting("size_s", sizes, size_grid(*DEFAULT_MARGINS_SIZES).size),
                   guards.Setting("alpha_deg", alphas, len(DEFAULT_ALPHA_DEG)),
                   guards.Setting("blocks", len(settings.blocks), 0)))
 

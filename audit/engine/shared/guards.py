@@ -47,7 +47,7 @@ class Setting:
     Attributes
     ----------
     option : str
-        The setting's field, e.g. ``"sizes_s"``.
+        The setting's field, e.g. ``"size_s"``.
     count : int
         Values it gives (sizes, slendernesses, stripes, periods, ...).
     default : int

@@ -24,6 +24,14 @@ def verdict_column(verdict: str) -> str:
     return f"frac_{verdict.replace('-', '_')}"
 
 
+#: The dimensions of a block named by them (--block), in the design-level audit's tables.
+_NAMED_BLOCK = {
+    "width_m": ("m", "full base width of a block given by its dimensions (--block); empty for a "
+                     "block of the α × size grid"),
+    "height_m": ("m", "full height of a block given by its dimensions (--block); empty for a "
+                      "block of the α × size grid"),
+}
+
 _RESULTS = {
     "record": ("text", "record id"),
     "procedure": ("text", "guideline procedure (registry name)"),
@@ -172,8 +180,7 @@ GUIDE["stripes.csv"] = {
     "record": ("text", "record id"),
     "alpha_deg": ("deg", "slenderness α"),
     "size_s": ("s", "block size 2π/p"),
-    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
-                     "empty for a block of the α × size grid"),
+    **_NAMED_BLOCK,
     "im": ("text", "intensity measure: pga [g], pgv [m/s] or sa:T (5 %-damped "
                    "pseudo-spectral acceleration ω²·S_d [g])"),
     "im_level": ("g or m/s", "the stripe's intensity, in the unit of im"),
@@ -189,8 +196,7 @@ GUIDE["stripes.csv"] = {
 GUIDE["fragility.csv"] = {
     "alpha_deg": ("deg", "slenderness α"),
     "size_s": ("s", "block size 2π/p"),
-    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
-                     "empty for a block of the α × size grid"),
+    **_NAMED_BLOCK,
     "im": ("text", "intensity measure"),
     "records": ("-", "records at each stripe"),
     "stripes": ("-", "intensity levels"),
@@ -223,8 +229,7 @@ GUIDE["capacity.csv"] = {
     "procedure": ("text", "guideline procedure"),
     "alpha_deg": ("deg", "slenderness α"),
     "size_s": ("s", "block size 2π/p"),
-    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
-                     "empty for a block of the α × size grid"),
+    **_NAMED_BLOCK,
     "guideline_im": ("g or m/s", "where the share of records for which the procedure predicts "
                                  "overturning first reaches one half (ln-interpolated)"),
     "ratio_to_exact_median": ("-", "guideline_im / the exact fragility's median"),
@@ -331,8 +336,7 @@ GUIDE["scan.csv"] = {
     "record": ("text", "record id"),
     "alpha_deg": ("deg", "slenderness α"),
     "size_s": ("s", "block size 2π/p"),
-    "block_m": ("m", "a block given by its dimensions (--block): full width x full height; "
-                     "empty for a block of the α × size grid"),
+    **_NAMED_BLOCK,
     "scale_factor": ("-", "factor the record as read is scaled by (0.2 % apart; site scaling "
                           "included, as in stripes.csv)"),
     "im_level": ("g or m/s", "the scaled record's intensity, in the unit of the run's im"),
@@ -345,9 +349,9 @@ _COMPONENT = ("text", "component of the procedure (e.g. FEMA P-58 E.20.22.104a)"
 GUIDE["fragility-components.csv"] = {
     "component": _COMPONENT,
     "description": ("text", "the component in words"),
-    "half_width_m": ("m", "b of its block: depth/2 (uniform contents)"),
-    "half_height_m": ("m", "h of its block: height/2"),
-    "alpha_deg": ("deg", "slenderness α = atan(b/h)"),
+    "width_m": ("m", "full width 2b of its block: the component's depth (uniform contents)"),
+    "height_m": ("m", "full height 2h of its block: the component's height"),
+    "alpha_deg": ("deg", "slenderness α = atan(width/height)"),
     "p_rad_s": ("rad/s", "frequency parameter p"),
     "procedure_median_m_s": ("m/s", "the procedure's fragility median (PGV)"),
     "procedure_beta": ("-", "the procedure's fragility β"),
@@ -397,6 +401,40 @@ MECHANICS_COLUMNS = list(GUIDE["mechanics.csv"])
 #: Columns holding booleans in ``results.csv`` (empty where not checked).
 BOOLEAN_COLUMNS = ("exact_overturned", "exact_uplifted", "exact_fragile", "exact_jumps",
                    "exact_slides", "exact_model_sensitive", "approx_overturned")
+
+
+def upgrade_columns(frame):
+    """``frame`` as read from a file, in this version's columns: the one place where the
+    columns an earlier version wrote are still read.
+
+    ``block_m`` (``"0.6x1.8"``, full width x full height as text; empty for a grid block) of
+    ``stripes.csv``, ``fragility.csv``, ``capacity.csv``, ``scan.csv`` and ``risk.csv`` becomes
+    ``width_m``, ``height_m`` in its place (empty for a grid block); ``half_width_m``,
+    ``half_height_m`` (b, h) of ``fragility-components.csv`` become ``width_m``, ``height_m``
+    (2b, 2h). A frame in this version's columns is returned as it is."""
+    import pandas as pd
+    columns = list(frame.columns)
+    if "block_m" in frame:
+        text = frame["block_m"].astype(object).fillna("").astype(str).str.strip()
+        parts = text.str.lower().str.split("x", n=1, expand=True).reindex(columns=[0, 1])
+        width, height = (pd.to_numeric(parts[k].where(text != ""), errors="raise") for k in (0, 1))
+        at = columns.index("block_m")
+        frame = frame.drop(columns="block_m")
+        frame.insert(at, "width_m", width.astype(float))
+        frame.insert(at + 1, "height_m", height.astype(float))
+    elif "half_width_m" in frame and "half_height_m" in frame:
+        frame = frame.rename(columns={"half_width_m": "width_m", "half_height_m": "height_m"})
+        frame[["width_m", "height_m"]] = 2.0 * frame[["width_m", "height_m"]]
+    return frame
+
+
+def block_labels(frame):
+    """``WIDTHxHEIGHT`` [m] of each row's named block (``"0.6x1.8"``, as typed to --block),
+    ``""`` for a grid block: how pages and keys name a row's block."""
+    import pandas as pd
+    return pd.Series([f"{w:g}x{h:g}" if w == w else "" for w, h in  # NaN: a grid block
+                      zip(frame["width_m"].astype(float), frame["height_m"].astype(float))],
+                     index=frame.index, dtype=object)
 
 
 def column_guide() -> dict:

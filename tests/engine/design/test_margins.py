@@ -35,7 +35,7 @@ def _settings(**values):
     """The settings of these tests: PGA stripes LEVELS_G, the block (ALPHA_DEG, SIZE_S), 8 s of
     free motion; ``values`` replace them."""
     return MarginsSettings.parse(**{"im": "pga", "stripes": LEVELS_G, "alpha_deg": (ALPHA_DEG,),
-                                    "sizes_s": [SIZE_S], "free_motion_s": 8.0, **values})
+                                    "size_s": [SIZE_S], "free_motion_s": 8.0, **values})
 
 
 def _suite():
@@ -98,7 +98,7 @@ def test_a_site_based_step_is_placed_at_its_level_not_between_stripes():
     at Sa(1 s) = 0.4 × 0.9 / 0.6 = 0.600 g, whatever the stripes around it."""
     levels = np.geomspace(0.2, 1.6, 8)  # 0.566 and 0.749 g around the step
     run = run_margins(get_procedures("fema356"), _suite(),
-                      _settings(im="sa:1.0", stripes=levels, alpha_deg=(), sizes_s=(),
+                      _settings(im="sa:1.0", stripes=levels, alpha_deg=(), size_s=(),
                                 blocks=[Block.of_dimensions(0.8, 2.0)]), Runtime())
     step = 0.4 * 0.9 / (0.4 * 1.5)
     capacity = run.capacity.iloc[0]
@@ -178,7 +178,7 @@ def test_intensity_measures_and_bad_input(tmp_path, capsys):
 def test_margins_from_python(tmp_path):
     import audit
     result = audit.margins("fema356", _suite(), im="pga", stripes=LEVELS_G, alpha_deg=[15],
-                           sizes_s=[SIZE_S], free_motion_s=8.0, required=False)
+                           size_s=[SIZE_S], free_motion_s=8.0, required=False)
     assert len(result.fragility) == 1 and "fema356" in result._repr_html_()
     written = sorted(p.name for p in result.write(tmp_path / "m").iterdir())
     assert written == ["capacity.csv", "columns.json", "fragility.csv", "margins.html",
@@ -203,8 +203,8 @@ def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
     procedures = get_procedures("priestley1978")
     named = run_margins(procedures, _suite(), _settings(blocks=[block]), Runtime())
     twin = run_margins(procedures, _suite(),
-                       _settings(alpha_deg=(block.alpha_deg,), sizes_s=[block.size_s]), Runtime())
-    rows = named.stripes[named.stripes["block_m"] == "0.8x4"].reset_index(drop=True)
+                       _settings(alpha_deg=(block.alpha_deg,), size_s=[block.size_s]), Runtime())
+    rows = named.stripes[(named.stripes["width_m"] == 0.8) & (named.stripes["height_m"] == 4.0)].reset_index(drop=True)
     assert len(rows) == 3 * LEVELS_G.size
     for column in ("exact_overturned", "exact_theta_rad", "priestley1978_overturns"):
         assert list(rows[column]) == list(twin.stripes[column])
@@ -214,7 +214,7 @@ def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
 def test_required_alpha_bisects_the_last_crossing_against_brute_force():
     from audit.engine.design.required_alpha import required_alpha
     grid = np.arange(6.0, 30.1, 4.0)
-    table = required_alpha(get_procedures("priestley1978"), _suite(), _settings(sizes_s=[2.0]),
+    table = required_alpha(get_procedures("priestley1978"), _suite(), _settings(size_s=[2.0]),
                            Runtime(), grid, targets=(0.10,), bisections=3)
     table = table.set_index("procedure")
 
@@ -246,7 +246,7 @@ def test_resumed_and_dask_margins_are_identical(tmp_path):
     pytest.importorskip("distributed")
     import audit
     from audit.engine.shared.partial import kept_parts
-    common = dict(im="pga", stripes=LEVELS_G, alpha_deg=[15], sizes_s=[SIZE_S],
+    common = dict(im="pga", stripes=LEVELS_G, alpha_deg=[15], size_s=[SIZE_S],
                   free_motion_s=8.0, required=False)
     local = audit.margins("priestley1978", _suite(), **common)
     partial = tmp_path / ".partial"
@@ -263,7 +263,7 @@ def test_resumed_and_dask_margins_are_identical(tmp_path):
 def test_margins_page_from_the_files(tmp_path):
     import audit
     result = audit.margins(["priestley1978", "fema356"], _suite(), im="pga", stripes=LEVELS_G,
-                           alpha_deg=[15], sizes_s=[SIZE_S], blocks=["0.8x4"],
+                           alpha_deg=[15], size_s=[SIZE_S], blocks=["0.8x4"],
                            free_motion_s=8.0)
     page = (result.write(tmp_path / "m") / "margins.html").read_text()
     share = result.required_alpha.set_index("procedure").loc["fema356", "exact_overturning_share"]

@@ -35,10 +35,12 @@ def _closed_form_p50(median_g):
 
 
 def _run(im="pga"):
-    fragility = pd.DataFrame({"alpha_deg": ALPHAS, "size_s": 1.0, "block_m": "", "im": im,
+    fragility = pd.DataFrame({"alpha_deg": ALPHAS, "size_s": 1.0, "width_m": np.nan,
+                              "height_m": np.nan, "im": im,
                               "median": MEDIANS_G, "beta": BETA})
     levels = np.geomspace(0.05, 3.0, 8)
-    stripes = pd.DataFrame([{"record": f"r{r}", "alpha_deg": a, "size_s": 1.0, "block_m": "",
+    stripes = pd.DataFrame([{"record": f"r{r}", "alpha_deg": a, "size_s": 1.0, "width_m": np.nan,
+                             "height_m": np.nan,
                              "im": im, "im_level": x, "exact_overturned": x * (1 + r / 10) > m}
                             for a, m in zip(ALPHAS, MEDIANS_G) for x in levels
                             for r in range(10)])
@@ -106,11 +108,12 @@ def test_margins_at_a_site_from_python_and_its_page(tmp_path):
     from tests.engine.design.test_margins import LEVELS_G, _suite
     curve = _power_law_csv(tmp_path / "curve.csv")
     result = audit.margins("priestley1978", _suite(), stripes=LEVELS_G, alpha_deg=[15, 25],
-                           sizes_s=[3.0], blocks=["0.8x4"], free_motion_s=8.0, hazard=curve)
+                           size_s=[3.0], blocks=["0.8x4"], free_motion_s=8.0, hazard=curve)
     assert result.summary["im"] == "pga"  # from the curve
-    named = result.fragility[result.fragility["block_m"] == "0.8x4"].iloc[0]
+    named = result.fragility[result.fragility["width_m"] == 0.8].iloc[0]
     alone = audit.risk(named, curve)
-    row = result.risk[result.risk["block_m"] == "0.8x4"].iloc[0]
+    row = result.risk[result.risk["width_m"] == 0.8].iloc[0]
+    assert row["height_m"] == 4.0
     assert row["annual_rate_fit"] == pytest.approx(alone.annual_rate, rel=1e-12)
     assert row["p50_fit"] == pytest.approx(1 - math.exp(-50 * alone.annual_rate), rel=1e-9)
     out = result.write(tmp_path / "m")

@@ -31,7 +31,7 @@ def _suite():
 
 def _settings(**values):
     return MarginsSettings.parse(**{"im": "pga", "stripes": LEVELS_G, "alpha_deg": (15.0,),
-                                    "sizes_s": [3.0], "free_motion_s": 8.0, **values})
+                                    "size_s": [3.0], "free_motion_s": 8.0, **values})
 
 
 def test_blocks_sized_alike_share_their_fit_and_every_value_is_the_full_audits():

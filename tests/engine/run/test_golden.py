@@ -31,7 +31,7 @@ def test_golden_blocks(seed_suite, record):
     suite = RecordSuite((seed_suite.get(record),), "one record")
     for (procedure, alpha), rows in expected.groupby(["procedure", "alpha_deg"]):
         run = run_audit(get_procedures(procedure), suite, alpha_deg=[alpha],
-                            sizes_s=rows["size_s"].to_numpy())
+                            size_s=rows["size_s"].to_numpy())
         got = run.results.set_index("size_s").loc[rows["size_s"]]
         for (_, want), (_, have) in zip(rows.iterrows(), got.iterrows()):
             where = f"{record} {procedure} α={alpha} 2π/p={want['size_s']}"

@@ -47,7 +47,7 @@ def test_layout_is_the_p58_librarys():
 
 def test_fragility_result_exports_the_exact_fit():
     table = pd.DataFrame([{"component": "E.20.22.106a", "description": "Bookcase",
-                           "half_width_m": 0.16, "half_height_m": 1.03,
+                           "width_m": 0.32, "height_m": 2.06,
                            "exact_median_m_s": 0.3172843, "exact_beta": 0.4137}])
     result = FragilityResult(FEMAP58(), {COMPONENTS_CSV: table}, "test")
     (component,) = result.exact_components()

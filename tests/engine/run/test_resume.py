@@ -31,7 +31,7 @@ RECORDS = [
     ("rinaldi_1994_at2", "raw/Rinaldi228.AT2", "peer-at2", None),
     ("rinaldi_fn", "derived/P695NF_RSN1063_NORTHR_RRS_032.txt", "columns", 0.01),
 ]
-GRID = ["--alpha", "15", "--sizes", "3:8:0.25", "--jobs", "1"]
+GRID = ["--alpha", "15", "--size", "3:8:0.25", "--jobs", "1"]
 FINAL_FILES = ("results.csv", "summary.json", "suite.csv", "report.html", "rocking.csv")
 
 
@@ -114,7 +114,7 @@ def test_killed_run_resumes_to_identical_results(manifest, tmp_path):
     # the same run uninterrupted, in this process
     whole = tmp_path / "whole"
     audit.api.run("priestley1978", load_records(manifest), alpha_deg=[15.0],
-                  sizes_s=size_grid(3.0, 8.0, 0.25),
+                  size_s=size_grid(3.0, 8.0, 0.25),
                   out_dir=whole)
     for name in ("results.csv", "suite.csv", "rocking.csv"):
         assert (out / name).read_bytes() == (whole / name).read_bytes(), name

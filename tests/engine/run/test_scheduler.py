@@ -20,7 +20,7 @@ from audit.errors import InputError
 from procedures import get_procedures
 from records import RecordSuite, one_pulse
 
-GRID = dict(alpha_deg=[15.0, 20.0], sizes_s=np.arange(3.0, 8.01, 1.0))
+GRID = dict(alpha_deg=[15.0, 20.0], size_s=np.arange(3.0, 8.01, 1.0))
 FRAMES = ("results", "rocking", "spectra", "histories", "estimates_only", "suite")
 
 
@@ -48,7 +48,7 @@ def test_local_run_fills_suite_statistics(local_run):
     suite = local_run.suite
     assert list(suite.columns) == SUITE_COLUMNS
     # one row per procedure × α × size (Priestley, FEMA 356, NTC 2018), over the records with a file
-    assert len(suite) == 3 * len(GRID["alpha_deg"]) * len(GRID["sizes_s"])  # priestley, fema, ntc
+    assert len(suite) == 3 * len(GRID["alpha_deg"]) * len(GRID["size_s"])  # priestley, fema, ntc
     assert suite.loc[suite["procedure"] == "priestley1978", "records"].eq(3).all()
     fractions = suite.filter(like="frac_").drop(columns="frac_unsafe").sum(axis=1)
     np.testing.assert_allclose(fractions, 1.0, atol=5e-6)  # as saved: 6 significant digits

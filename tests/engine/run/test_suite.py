@@ -129,7 +129,7 @@ def test_an_exact_rotation_of_1e_14_rad_gives_no_ratio_of_1e12():
     edge = one_pulse("cosine", math.tan(alpha) * (1 + 1e-6), 1.0, record_id="edge")
     run = run_audit(get_procedures("priestley1978"),
                     RecordSuite((RecordEntry("edge", edge, None, "edge"),), "edge"),
-                    alpha_deg=(10.0,), sizes_s=np.array([4.0]), robustness=0.0)
+                    alpha_deg=(10.0,), size_s=np.array([4.0]), robustness=0.0)
     row = run.results.iloc[0]
     assert row["exact_uplifted"] and row["exact_theta_rad"] < 1e-12 < row["approx_theta_rad"]
     assert row["exact_theta_rad"] < ROCKING_FLOOR * alpha

@@ -60,7 +60,7 @@ def _refusals(block: str, tmp_path, capsys) -> dict[str, str]:
     commands = {
         "check": ["check", "--block", block, "--site", "1.5,0.9", "--out", str(tmp_path / "c")],
         "rock": ["rock", "--block", block, *PULSE, "--json"],
-        "margins": ["margins", "fema356", "--records", "pulses", "--alpha", "15", "--sizes",
+        "margins": ["margins", "fema356", "--records", "pulses", "--alpha", "15", "--size",
                     "3:3:1", "--block", block, "--out", str(tmp_path / "m")],
     }
     lines = {}

@@ -11,8 +11,8 @@ from audit.engine.shared import guards
 from audit.errors import InputError
 from records import GroundMotion, one_pulse
 
-#: The --sizes and --alpha of the default grid: 151 sizes × 3 slendernesses.
-DEFAULT_GRID = (guards.Setting("--sizes", 151, 151), guards.Setting("--alpha", 3, 3))
+#: The --size and --alpha of the default grid: 151 sizes × 3 slendernesses.
+DEFAULT_GRID = (guards.Setting("--size", 151, 151), guards.Setting("--alpha", 3, 3))
 
 
 def _record(record_id, seconds, dt=0.01):
@@ -31,17 +31,17 @@ def _refusal(cost) -> str:
 
 def test_a_long_free_motion_is_named_by_its_option():
     pulse = one_pulse("cosine", 0.5, 1.0)
-    message = _refusal(guards.estimate([pulse], 1e9, blocks=1, free_motion_option="--duration"))
-    assert "mostly because of --duration 1e+09 s (free motion after each record)" in message
-    assert "--sizes" not in message
+    message = _refusal(guards.estimate([pulse], 1e9, blocks=1, free_motion_option="--free-motion"))
+    assert "mostly because of --free-motion 1e+09 s (free motion after each record)" in message
+    assert "--size" not in message
 
 
 def test_the_default_free_motion_of_short_records_is_not_blamed_for_a_fine_grid():
     # 10 s of free motion after 1 s pulses is 11 × their samples, and the default
     pulses = [one_pulse("cosine", 0.5, 1.0) for _ in range(7)]
-    fine = (guards.Setting("--sizes", 50_000, 151), guards.Setting("--alpha", 3, 3))
+    fine = (guards.Setting("--size", 50_000, 151), guards.Setting("--alpha", 3, 3))
     message = _refusal(guards.estimate(pulses, 10.0, blocks=150_000, settings=fine))
-    assert "mostly because of --sizes, 50,000 values (151 by default): give fewer" in message
+    assert "mostly because of --size, 50,000 values (151 by default): give fewer" in message
 
 
 def test_one_long_record_is_named_with_its_length():
@@ -83,8 +83,8 @@ def test_real_motion_type_has_what_the_causes_read():
 def test_run_on_real_records_names_a_fine_sizes_grid(seed_manifest, tmp_path, capsys):
     from audit.cli import main
     # one thread doubles the estimate: refused well before any record is audited
-    assert main(["run", "all", "--records", str(seed_manifest), "--sizes", "0.1:10:0.0001",
+    assert main(["run", "all", "--records", str(seed_manifest), "--size", "0.1:10:0.0001",
                  "--jobs", "1", "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err.splitlines()
-    assert len(err) == 1 and "mostly because of --sizes, 99,001 values (151 by default)" in err[0]
+    assert len(err) == 1 and "mostly because of --size, 99,001 values (151 by default)" in err[0]
     assert not (tmp_path / "out").exists()
