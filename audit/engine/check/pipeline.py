@@ -220,8 +220,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
         family = Family(entries, levels, intensity, settings, jobs, executor, progress)
         solved = []
-        widths = exact_required_widths(family, [o.height_m for o in objects], targets, measure,
-                                       solved)
+        # objects of one height share their search: the width it finds is the height's
+        heights, height_of = np.unique([o.height_m for o in objects], return_inverse=True)
+        widths = exact_required_widths(family, heights, targets, measure, solved)[height_of]
         _stage(progress, "the exact P(overturn) at the other standard intensity measure")
         others = other_im_answers(family, objects, suite.design_site, check_levels)
         contexts = {}  # records scaled to the site, on the spectra their parts computed

@@ -271,3 +271,14 @@ def test_a_dask_cluster_gives_the_same_answers(result):
                        free_motion_s=5.0, scheduler="dask", jobs=2)
     assert "LocalCluster of 2" in dask.document["scheduler"]
     assert dask.document["objects"] == result.document["objects"]
+
+
+def test_an_objects_exact_answer_does_not_depend_on_the_objects_checked_beside_it():
+    # objects of one height share their width search: beside a narrower object of its height
+    # and one of another height, the cabinet's exact answer (required widths, the family fitted
+    # on each solved width once, bands) is the one it gets alone
+    alone = audit.check(["0.6x1.8"], SITE, procedures=["fema356"], records=_pulses(), im="pga",
+                        free_motion_s=5.0)
+    beside = audit.check(["0.6x1.8", "0.45x1.8", "0.5x1.2"], SITE, procedures=["fema356"],
+                         records=_pulses(), im="pga", free_motion_s=5.0)
+    assert beside.document["objects"][0]["exact"] == alone.document["objects"][0]["exact"]
