@@ -36,6 +36,9 @@ class RecordContext:
         # the displacement spectra computed where read (``_on_demand``, by damping) too
         self._motion, self._factor, self._spectra = entry.motion, 1.0, {}
         self._on_demand, self._partial = False, {}
+        # the cached spectra × _factor, by damping: a procedure reads them several times per
+        # evaluation, and a check evaluates every object at each stripe
+        self._scaled = {}
 
     def scaled(self, entry, factor: float) -> RecordContext:
         """The context of ``entry``, this context's record scaled by ``factor``: it reads the
@@ -45,6 +48,8 @@ class RecordContext:
         other._motion, other._factor = self._motion, self._factor * factor
         other._spectra, other._partial = self._spectra, self._partial
         other._on_demand = self._on_demand
+        if factor == 1.0:
+            other._scaled = self._scaled
         return other
 
     def on_demand(self) -> RecordContext:
@@ -77,7 +82,13 @@ class RecordContext:
                 self._motion, SPECTRUM_PERIODS_S, [key], self.free_motion_s, jobs=self.jobs,
                 displacement_only=displacement_only), displacement_only)
         spectra = self._spectra[key][0]
-        return spectra if self._factor == 1.0 else spectra.scaled(self._factor)
+        if self._factor == 1.0:
+            return spectra
+        base, scaled = self._scaled.get(key, (None, None))
+        if base is not spectra:  # not yet scaled, or the full spectra replaced Sd alone since
+            scaled = spectra.scaled(self._factor)
+            self._scaled[key] = (spectra, scaled)
+        return scaled
 
     def true_displacement(self, damping: float):
         """Sd(T) [m] at damping β [-], linear in T between the tabulated periods."""

@@ -6,6 +6,7 @@ recurrence of :mod:`audit.physics.oscillator`, computed by :mod:`audit.physics.s
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -88,6 +89,20 @@ def _with_free_motion(motion, free_motion_s: float) -> np.ndarray:
 def _oscillators(period_s, damping, dt):
     """Recurrence coefficients and ω [rad/s] of the oscillators (T > 0, ξ) [s, -], 1-D."""
     return recurrence_coefficients(period_s, damping, dt), 2.0 * np.pi / period_s
+
+
+@lru_cache(maxsize=64)
+def _table_oscillators(period_bytes: bytes, damping: float, dt: float) -> tuple:
+    """(coeffs, omega, damping) of every period of a table (its bytes) at one damping and
+    step; rows at T = 0 are placeholders, never computed (known), so indices stay the
+    table's. Callers only read them."""
+    period_s = np.frombuffer(period_bytes)
+    positive = period_s > 0
+    damping = np.full(period_s.size, damping)
+    coeffs = np.zeros((period_s.size, 2, 4))
+    omega = np.ones(period_s.size)
+    coeffs[positive], omega[positive] = _oscillators(period_s[positive], damping[positive], dt)
+    return coeffs, omega, damping
 
 
 def response_spectra(motion, period_s, damping, free_motion_s: float = 0.0,
@@ -207,15 +222,11 @@ class DisplacementOnDemand:
     def kernel_arguments(self) -> tuple:
         """What :func:`~audit.physics.spectrum_kernel.fill_displacement` needs, for a
         compiled reader: (acc, dt, coeffs, omega, damping, sd_m, known), the oscillators of
-        every period of the table. Made at each call and not kept: a check holds one of these
-        per record and damping tried, and they would be ten times the values."""
-        positive = self.period_s > 0
-        damping = np.full(self.period_s.size, self.damping)
-        # rows at T = 0 are never computed (known): placeholders keep indices those of the table
-        coeffs = np.zeros((self.period_s.size, 2, 4))
-        omega = np.ones(self.period_s.size)
-        coeffs[positive], omega[positive] = _oscillators(self.period_s[positive],
-                                                         damping[positive], self.motion.dt)
+        every period of the table. The oscillators are kept by (table, damping, step), not
+        here: a check holds one of these per record and damping tried, and its records share
+        a step and the dampings its widths try."""
+        coeffs, omega, damping = _table_oscillators(self.period_s.tobytes(), self.damping,
+                                                    self.motion.dt)
         return (_with_free_motion(self.motion, self.free_motion_s), self.motion.dt, coeffs,
                 omega, damping, self.sd_m, self.known)
 
