@@ -26,6 +26,8 @@ SEED = 20260
 #: the last step at which a fit has settled (far below the widths' printed precision).
 NEWTON_ITERATIONS = 100
 NEWTON_TOLERANCE = 1e-10
+#: Relative size of the log-likelihood's rounding (a sum of a few hundred terms).
+ROUNDING = 1e-13
 
 
 @dataclass(frozen=True)
@@ -163,8 +165,14 @@ def fit_width_families(widths_m, levels, counts, records: int, start=None):
         # the pseudo-inverse: one width alone leaves ln w collinear with the constant
         step = np.einsum("sij,sj->si", np.linalg.pinv(hessian), gradient)
         # a step this small is the last: at the maximum the likelihood's rounding, not its
-        # shape, decides whether it climbs
-        last = np.all(np.abs(step) <= NEWTON_TOLERANCE * (1.0 + np.abs(here)), axis=1)
+        # shape, decides whether it climbs; so is a small one whose climb, the Newton
+        # decrement g·H⁻¹g / 2, is below that rounding (outcomes a line separates also climb
+        # ever less, but by steps that do not shrink)
+        relative = np.max(np.abs(step) / (1.0 + np.abs(here)), axis=1)
+        decrement = 0.5 * np.einsum("sj,sj->s", gradient, step)
+        last = (relative <= NEWTON_TOLERANCE) | (
+            (relative <= 1e3 * NEWTON_TOLERANCE)
+            & (decrement <= ROUNDING * np.maximum(1.0, np.abs(before))))
         value = before.copy()
         climbing = ~last
         for _ in range(40):  # halve each step that does not climb
