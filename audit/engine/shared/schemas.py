@@ -411,7 +411,13 @@ def upgrade_columns(frame):
     ``stripes.csv``, ``fragility.csv``, ``capacity.csv``, ``scan.csv`` and ``risk.csv`` becomes
     ``width_m``, ``height_m`` in its place (empty for a grid block); ``half_width_m``,
     ``half_height_m`` (b, h) of ``fragility-components.csv`` become ``width_m``, ``height_m``
-    (2b, 2h). A frame in this version's columns is returned as it is."""
+    (2b, 2h). A frame in this version's columns is returned as it is.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        A table read from one of the files above, of this version or an earlier one.
+    """
     import pandas as pd
     columns = list(frame.columns)
     if "block_m" in frame:
@@ -430,7 +436,13 @@ def upgrade_columns(frame):
 
 def block_labels(frame):
     """``WIDTHxHEIGHT`` [m] of each row's named block (``"0.6x1.8"``, as typed to --block),
-    ``""`` for a grid block: how pages and keys name a row's block."""
+    ``""`` for a grid block: how pages and keys name a row's block.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Rows with ``width_m``, ``height_m`` [m] (NaN for a grid block).
+    """
     import pandas as pd
     return pd.Series([f"{w:g}x{h:g}" if w == w else "" for w, h in  # NaN: a grid block
                       zip(frame["width_m"].astype(float), frame["height_m"].astype(float))],
