@@ -27,13 +27,16 @@ def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
     """``rows`` worst first by ``column``, blocks with a robust exact verdict before fragile ones
     (a missed overturning that a 3 % change of the record undoes is a weaker case); NaN last,
     ties in the rows' order."""
-    fragile = rows["exact_fragile"].eq(True).to_numpy()
-    value = rows[column].to_numpy(dtype=float)
+    return rows.take(_worst_first(rows["exact_fragile"].eq(True).to_numpy(),
+                                  rows[column].to_numpy(dtype=float), largest))
+
+
+def _worst_first(fragile: np.ndarray, value: np.ndarray, largest: bool) -> np.ndarray:
+    """The order of :func:`rank_worst`, of the rows' fragility flags and ranked values."""
     missing = np.isnan(value)
     # numpy's lexsort is stable, as pandas' sort_values on these keys is, at a fraction of
     # its cost (the bottom line ranks every record's rows)
-    return rows.take(np.lexsort((np.where(missing, 0.0, -value if largest else value),
-                                 missing, fragile)))
+    return np.lexsort((np.where(missing, 0.0, -value if largest else value), missing, fragile))
 
 
 def worst_case(rows: pd.DataFrame):
@@ -41,10 +44,14 @@ def worst_case(rows: pd.DataFrame):
     rotation is smallest (robust before fragile), else the largest underestimate, else the
     largest overestimate; None when there is none."""
     order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
+    verdicts = rows["verdict"].to_numpy()
+    fragile = rows["exact_fragile"].eq(True).to_numpy()
     for verdict, column, largest, _ in order:
-        hits = rows[rows["verdict"] == verdict]
-        if len(hits):
-            return rank_worst(hits, column, largest).iloc[0]
+        # ranked on the columns' arrays: one row taken from the frame, not every hit
+        hits = np.flatnonzero(verdicts == verdict)
+        if hits.size:
+            value = rows[column].to_numpy(dtype=float)[hits]
+            return rows.iloc[hits[_worst_first(fragile[hits], value, largest)[0]]]
     return None
 
 
