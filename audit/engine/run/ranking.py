@@ -22,6 +22,9 @@ WORST_CLASSES = (("unconservative", "ratio", False, "largest underestimate"),
                  ("missed-overturn", "approx_theta_rad", False, "missed overturning"),
                  ("conservative", "ratio", True, "largest overestimate"))
 
+#: Each ranked class's verdict → (column ranked, largest first?).
+_RANKED = {verdict: (column, largest) for verdict, column, largest, _ in WORST_CLASSES}
+
 
 def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
     """``rows`` worst first by ``column``, blocks with a robust exact verdict before fragile ones
@@ -89,21 +92,20 @@ class ShownRecords:
 
     def add(self, results: pd.DataFrame, metas: list[dict]) -> None:
         """Fold one record's ``results.csv`` rows and the time histories drawn for it."""
-        for record, n in results.loc[results["verdict"].isin(UNSAFE_VERDICTS),
-                                     "record"].value_counts(sort=False).items():
-            self._unsafe[record] = self._unsafe.get(record, 0) + int(n)
-        # only the rows of the ranked classes can enter the table
-        results = results[results["verdict"].isin([verdict for verdict, *_ in WORST_CLASSES])]
-        results = results[is_drawn(results, metas)]
-        for verdict, column, largest, _ in WORST_CLASSES:
-            hits = results[results["verdict"] == verdict]
-            for name in hits["procedure"].unique():
-                kept = (name, verdict)
-                if kept in self._worst:
-                    both = pd.concat([self._worst[kept],
-                                      hits.loc[hits["procedure"] == name, self._COLUMNS]],
-                                     ignore_index=True)
-                    self._worst[kept] = rank_worst(both, column, largest).head(WORST_ROWS)
+        verdict = results["verdict"]
+        for record in results["record"].to_numpy()[verdict.isin(UNSAFE_VERDICTS).to_numpy()]:
+            self._unsafe[record] = self._unsafe.get(record, 0) + 1
+        # only the drawn rows of the ranked classes can enter the table: they are picked from
+        # the arrays, and the few of them taken from the frame once
+        kept = verdict.isin(_RANKED).to_numpy().copy()
+        kept[kept] = is_drawn(results.loc[kept, ["record", "alpha_deg", "size_s"]], metas)
+        rows = results.loc[kept, ["procedure", "verdict", *self._COLUMNS]]
+        for (name, verdict), hits in rows.groupby(["procedure", "verdict"], sort=False):
+            if (name, verdict) in self._worst:
+                column, largest = _RANKED[verdict]
+                both = pd.concat([self._worst[name, verdict], hits[self._COLUMNS]],
+                                 ignore_index=True)
+                self._worst[name, verdict] = rank_worst(both, column, largest).head(WORST_ROWS)
 
     def worst_records(self) -> list[str]:
         """The :data:`WORST_RECORDS` records with the most unsafe blocks (suite order on ties)."""
