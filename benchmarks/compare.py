@@ -12,7 +12,13 @@ Each run is a fresh process in an empty folder, with ``PYTHONPATH`` the checkout
 same script measures either tree); ``{change}`` in the command is this checkout. With
 ``--stages`` the lines ``name: N s`` a benchmark prints (benchmarks/margins.py's breakdown) are
 collected and compared too. ``--keep DIR`` keeps each side's last output folder, to compare the
-files the two trees wrote.
+files the two trees wrote; ``--identical`` (with ``--keep``) then says whether every file is
+the same bytes on both sides, the report's "generated" time stamp aside — for a change that
+must not alter any output, measured against its parent commit:
+
+    git worktree add --detach ../parent HEAD~1
+    python benchmarks/compare.py --baseline ../parent --keep /tmp/both --identical -- \\
+        python -m audit run all --records $ROCKING_AUDIT_RECORDS --out out
 """
 
 from __future__ import annotations
@@ -32,6 +38,8 @@ from pathlib import Path
 CHANGE = Path(__file__).resolve().parents[1]
 #: ``stage: 12.3 s`` in a benchmark's output.
 STAGE = re.compile(r"([A-Za-zα ]+?):? (\d+(?:\.\d+)?) s\b")
+#: The time stamp of a page (``generated 2026-11-27 16:13 UTC``): the one difference allowed.
+STAMP = re.compile(rb"generated \d{4}-\d\d-\d\d \d\d:\d\d UTC")
 
 
 def run_once(tree: Path, command: list[str], keep: Path | None) -> dict:
@@ -55,14 +63,28 @@ def run_once(tree: Path, command: list[str], keep: Path | None) -> dict:
             - (before.ru_utime + before.ru_stime), "load": load, "stages": stages}
 
 
+def differing_files(base: Path, change: Path) -> list[str]:
+    """Files (relative paths) present on one side only or with other bytes, time stamps aside."""
+    names = {p.relative_to(side).as_posix() for side in (base, change) for p in side.rglob("*")
+             if p.is_file()}
+    return sorted(name for name in names
+                  if not ((base / name).is_file() and (change / name).is_file())
+                  or STAMP.sub(b"", (base / name).read_bytes())
+                  != STAMP.sub(b"", (change / name).read_bytes()))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--baseline", type=Path, required=True, help="baseline checkout")
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--stages", action="store_true")
-    parser.add_argument("--keep", type=Path, help="keep each side's last output in DIR/{base,change}")
+    parser.add_argument("--keep", type=Path, help="keep each side's last output in DIR/{baseline,change}")
+    parser.add_argument("--identical", action="store_true",
+                        help="with --keep: check that both sides wrote the same files")
     parser.add_argument("command", nargs=argparse.REMAINDER)
     args = parser.parse_args()
+    if args.identical and args.keep is None:
+        parser.error("--identical needs --keep DIR")
     command = args.command[1:] if args.command[:1] == ["--"] else args.command
     trees = {"baseline": args.baseline.resolve(), "change": CHANGE}
     runs = {name: [] for name in trees}
@@ -86,6 +108,11 @@ def main() -> None:
         change = statistics.median(value(r) for r in runs["change"])
         print(f"  {label:40s} baseline {base:8.2f} s  change {change:8.2f} s  "
               f"ratio {change / base if base else float('nan'):.3f}")
+    if args.identical:
+        differing = differing_files(args.keep / "baseline", args.keep / "change")
+        files = sum(1 for p in (args.keep / "change").rglob("*") if p.is_file())
+        print("outputs: " + (f"differ: {', '.join(differing)}" if differing else
+                             f"all {files} files identical (time stamps aside)"))
 
 
 if __name__ == "__main__":

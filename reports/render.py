@@ -101,6 +101,11 @@ def _by_record(frame: pd.DataFrame) -> dict:
     return defaultdict(lambda: frame.iloc[:0], list(frame.groupby("record", sort=False)))
 
 
+def _by_procedure(frame: pd.DataFrame) -> dict:
+    """The rows of each procedure, no rows (same columns) for any other."""
+    return defaultdict(lambda: frame.iloc[:0], list(frame.groupby("procedure", sort=False)))
+
+
 def _at(frame: pd.DataFrame, meta: dict) -> np.ndarray:
     """Which rows of ``frame`` are the block of ``meta`` (its α and size as saved)."""
     return (np.isclose(frame["size_s"].to_numpy(), meta["size_s"])
@@ -165,10 +170,11 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
         rid, number = record["id"], record["number"]
         section = {"record": record, "number": number, "figures": [], "histories": [],
                    "unauditable": [u for u in summary["unauditable"] if u["record"] == rid]}
-        rows = by_record[1][rid]
-        spectra = spectra_by[rid]
+        # each procedure's rows and spectra split off once, not masked out per procedure
+        rows = _by_procedure(by_record[1][rid])
+        spectra = _by_procedure(spectra_by[rid])
         if not record["missing"]:
-            response = spectra[spectra["procedure"] == ""]
+            response = spectra[""]
             rocking = rocking_by[rid]
             has_site = bool((record.get("site") or {}).get("sxs_g"))
             design = run.design_spectra[run.design_spectra["record"].isin(("", rid))]
@@ -184,10 +190,10 @@ def _record_sections(run, procedures, pending, results, records, names, drawn,
                 f"per α). Drag to zoom, double-click to reset.")
             section["figures"].append(figure)
         for procedure in procedures:
-            prows = rows[rows["procedure"] == procedure["name"]]
+            prows = rows[procedure["name"]]
             if prows.empty:
                 continue
-            pspec = spectra[spectra["procedure"] == procedure["name"]]
+            pspec = spectra[procedure["name"]]
             series = procedure["figure_series"] or "P"
             figure = pending.add(f"fig-{series}-{number}-{procedure['name']}",
                                  procedure_figure(prows, pspec, procedure["title"]))

@@ -14,7 +14,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq
 
 from audit import G
 
@@ -81,6 +80,10 @@ def housner_half_sine_amplitude(frequency_ratio):
 
 def _solve_psi(frequency_ratio: float, span: float, sign: float) -> float:
     """ψ ∈ (0, π/2) of (ω/p) sin ψ − cos ψ = sign · exp[−(p/ω)(span − ψ)]; a_p0/(αg) = 1/sin ψ."""
+    # kept local, as below: the procedures import this module, and scipy.optimize's ~0.5 s
+    # import would hold up every run before its first record starts (a run's fixed-point
+    # scan imports it later, in a worker beside the solver)
+    from scipy.optimize import brentq
     ratio = float(frequency_ratio)
 
     def residual(psi):
@@ -128,6 +131,7 @@ def impulse_minimum_amplitude(frequency_ratio: float, shape: str) -> float:
     pulse shape. Computed with p = 1 (only ω_p/p matters).
     """
     from scipy.integrate import quad  # kept local: scipy.integrate costs start-up to every run
+    from scipy.optimize import brentq
     wave, end = _pulse_shape(shape, float(frequency_ratio))
 
     def weighted_impulse(amplitude):  # in units of αg: uplift where amplitude·wave(t) = 1

@@ -22,6 +22,9 @@ WORST_CLASSES = (("unconservative", "ratio", False, "largest underestimate"),
                  ("missed-overturn", "approx_theta_rad", False, "missed overturning"),
                  ("conservative", "ratio", True, "largest overestimate"))
 
+#: Each ranked class's verdict → (column ranked, largest first?).
+_RANKED = {verdict: (column, largest) for verdict, column, largest, _ in WORST_CLASSES}
+
 
 def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
     """``rows`` worst first by ``column``, blocks with a robust exact verdict before fragile ones
@@ -37,13 +40,16 @@ def rank_worst(rows: pd.DataFrame, column: str, largest: bool) -> pd.DataFrame:
     largest : bool
         Whether the largest value is the worst.
     """
-    fragile = rows["exact_fragile"].eq(True).to_numpy()
-    value = rows[column].to_numpy(dtype=float)
+    return rows.take(_worst_first(rows["exact_fragile"].eq(True).to_numpy(),
+                                  rows[column].to_numpy(dtype=float), largest))
+
+
+def _worst_first(fragile: np.ndarray, value: np.ndarray, largest: bool) -> np.ndarray:
+    """The order of :func:`rank_worst`, of the rows' fragility flags and ranked values."""
     missing = np.isnan(value)
     # numpy's lexsort is stable, as pandas' sort_values on these keys is, at a fraction of
     # its cost (the bottom line ranks every record's rows)
-    return rows.take(np.lexsort((np.where(missing, 0.0, -value if largest else value),
-                                 missing, fragile)))
+    return np.lexsort((np.where(missing, 0.0, -value if largest else value), missing, fragile))
 
 
 def worst_case(rows: pd.DataFrame):
@@ -61,10 +67,14 @@ def worst_case(rows: pd.DataFrame):
     pandas.Series or None
     """
     order = sorted(WORST_CLASSES, key=lambda item: item[0] != "missed-overturn")
+    verdicts = rows["verdict"].to_numpy()
+    fragile = rows["exact_fragile"].eq(True).to_numpy()
     for verdict, column, largest, _ in order:
-        hits = rows[rows["verdict"] == verdict]
-        if len(hits):
-            return rank_worst(hits, column, largest).iloc[0]
+        # ranked on the columns' arrays: one row taken from the frame, not every hit
+        hits = np.flatnonzero(verdicts == verdict)
+        if hits.size:
+            value = rows[column].to_numpy(dtype=float)[hits]
+            return rows.iloc[hits[_worst_first(fragile[hits], value, largest)[0]]]
     return None
 
 
@@ -121,6 +131,7 @@ class ShownRecords:
     def add(self, results: pd.DataFrame, metas: list[dict]) -> None:
         """Fold one record's ``results.csv`` rows and the time histories drawn for it.
 
+
         Parameters
         ----------
         results : pandas.DataFrame
@@ -128,21 +139,20 @@ class ShownRecords:
         metas : list of dict
             Its drawn histories.
         """
-        for record, n in results.loc[results["verdict"].isin(UNSAFE_VERDICTS),
-                                     "record"].value_counts(sort=False).items():
-            self._unsafe[record] = self._unsafe.get(record, 0) + int(n)
-        # only the rows of the ranked classes can enter the table
-        results = results[results["verdict"].isin([verdict for verdict, *_ in WORST_CLASSES])]
-        results = results[is_drawn(results, metas)]
-        for verdict, column, largest, _ in WORST_CLASSES:
-            hits = results[results["verdict"] == verdict]
-            for name in hits["procedure"].unique():
-                kept = (name, verdict)
-                if kept in self._worst:
-                    both = pd.concat([self._worst[kept],
-                                      hits.loc[hits["procedure"] == name, self._COLUMNS]],
-                                     ignore_index=True)
-                    self._worst[kept] = rank_worst(both, column, largest).head(WORST_ROWS)
+        verdict = results["verdict"]
+        for record in results["record"].to_numpy()[verdict.isin(UNSAFE_VERDICTS).to_numpy()]:
+            self._unsafe[record] = self._unsafe.get(record, 0) + 1
+        # only the drawn rows of the ranked classes can enter the table: they are picked from
+        # the arrays, and the few of them taken from the frame once
+        kept = verdict.isin(_RANKED).to_numpy().copy()
+        kept[kept] = is_drawn(results.loc[kept, ["record", "alpha_deg", "size_s"]], metas)
+        rows = results.loc[kept, ["procedure", "verdict", *self._COLUMNS]]
+        for (name, verdict), hits in rows.groupby(["procedure", "verdict"], sort=False):
+            if (name, verdict) in self._worst:
+                column, largest = _RANKED[verdict]
+                both = pd.concat([self._worst[name, verdict], hits[self._COLUMNS]],
+                                 ignore_index=True)
+                self._worst[name, verdict] = rank_worst(both, column, largest).head(WORST_ROWS)
 
     def worst_records(self) -> list[str]:
         """The :data:`WORST_RECORDS` records with the most unsafe blocks (suite order on ties)."""

@@ -81,6 +81,40 @@ def concat(frames, columns) -> pd.DataFrame:
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=columns)
 
 
+def rows_frame(pieces: list[dict], columns) -> pd.DataFrame:
+    """The rows of ``pieces`` (each a dict column → array, all of one length) one after the
+    other, as :func:`concat` of a frame per piece gives them, each column joined once.
+
+    A record's results and checks come in tens of pieces of a few hundred rows; a frame per
+    piece and their concatenation cost more than the rows (Python work that held the GIL
+    while the solver waited).
+
+    Parameters
+    ----------
+    pieces : list of dict
+        Column name → numpy array, every array of a piece one length.
+    columns : sequence of str
+        The frame's columns, in order (the columns of an empty frame).
+    """
+    if not pieces:
+        return pd.DataFrame(columns=columns)
+    data = {}
+    for name in columns:
+        arrays = [piece[name] for piece in pieces]
+        if len({array.dtype.kind for array in arrays}) == 1:
+            data[name] = np.concatenate(arrays)
+        else:  # mixed kinds: pandas' own promotion (bool beside float makes object)
+            data[name] = pd.concat([pd.Series(array) for array in arrays], ignore_index=True)
+    return pd.DataFrame(data)
+
+
+def _columns(values: dict, size: int) -> dict:
+    """Each value as an array of ``size`` rows, a scalar repeated as a frame's column would
+    repeat it (text as objects)."""
+    return {name: np.full(size, value, dtype=object if isinstance(value, str) else None)
+            if np.ndim(value) == 0 else np.asarray(value) for name, value in values.items()}
+
+
 def fragile_overturning(motion, settings: AuditSettings, overturned: np.ndarray):
     """Blocks whose exact overturning verdict changes when the record is scaled by 1 ± ε.
 
@@ -190,15 +224,16 @@ def audit_record(entry, procedures, settings: AuditSettings) -> RecordAudit:
         if exact is not None:  # a check is audited only against an exact response
             checks += [_check_rows(entry.id, name, alpha_deg[i], sizes, check, exact, i,
                                    settings.g) for check in evaluation.checks]
+    results = rows_frame(results, RESULT_COLUMNS)
     rocking, histories, histories_meta = [], [], []
     if exact is not None:
         rocking.append(exact.to_frame().assign(record=entry.id)[ROCKING_COLUMNS])
-        histories, histories_meta = simulate_histories(
-            entry, concat(results, RESULT_COLUMNS), exact, alpha_deg, settings)
-    return RecordAudit(entry.id, concat(results, RESULT_COLUMNS),
-                       concat(estimates_only, RESULT_COLUMNS), concat(spectra, SPECTRA_COLUMNS),
-                       concat(histories, HISTORY_COLUMNS), concat(rocking, ROCKING_COLUMNS),
-                       concat(checks, CHECK_COLUMNS), unauditable, histories_meta)
+        histories, histories_meta = simulate_histories(entry, results, exact, alpha_deg,
+                                                       settings)
+    return RecordAudit(entry.id, results, rows_frame(estimates_only, RESULT_COLUMNS),
+                       concat(spectra, SPECTRA_COLUMNS), concat(histories, HISTORY_COLUMNS),
+                       concat(rocking, ROCKING_COLUMNS), rows_frame(checks, CHECK_COLUMNS),
+                       unauditable, histories_meta)
 
 
 class RowKeys(NamedTuple):
@@ -225,7 +260,7 @@ class ExactAnswer(NamedTuple):
 
 def _result_rows(keys: RowKeys, estimate, truth: ExactAnswer, settings: AuditSettings):
     """One row per block of a procedure's estimate, beside the exact response it is judged
-    against (``results.csv``)."""
+    against (``results.csv``), as columns (:func:`rows_frame` joins them)."""
     record_id, procedure_name, i, alpha_deg, sizes, p = keys
     exact, fragile, others = truth
     nan = np.full(sizes.shape, np.nan)
@@ -251,7 +286,7 @@ def _result_rows(keys: RowKeys, estimate, truth: ExactAnswer, settings: AuditSet
                                       other.uplifted[i], estimate.theta, estimate.outcome,
                                       alpha_rad, band) != verdict
     ratio = reported_ratio(verdict, estimate.theta, exact_theta, alpha_rad)
-    return pd.DataFrame({
+    return _columns({
         "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
         "size_s": sizes, "p_rad_s": p, "exact_theta_rad": exact_theta,
         "exact_overturned": exact_over, "exact_uplifted": exact_up,
@@ -263,13 +298,14 @@ def _result_rows(keys: RowKeys, estimate, truth: ExactAnswer, settings: AuditSet
         "approx_fixed_points": estimate.fixed_points, "approx_cycle": estimate.cycle,
         "approx_detail": estimate.detail, "iterations": estimate.iterations,
         "beta_pct": 100.0 * estimate.damping, "verdict": verdict, "ratio": ratio,
-    })[RESULT_COLUMNS]
+    }, sizes.size)
 
 
 def _check_rows(record_id, procedure_name, alpha_deg, sizes, check, exact, i, g):
-    """One row per block of a limit-state check, with the exact event it is audited against."""
+    """One row per block of a limit-state check, with the exact event it is audited against, as
+    columns (:func:`rows_frame` joins them)."""
     exceeded = exact_exceeded(check, exact.theta_peak[i], exact.overturned[i], exact.uplifted[i])
-    return pd.DataFrame({
+    return _columns({
         "record": record_id, "procedure": procedure_name, "alpha_deg": alpha_deg,
         "size_s": sizes, "limit_state": check.limit_state, "exact_event": check.exact_event,
         "procedure_passes": np.asarray(check.passes, dtype=bool), "exact_exceeded": exceeded,
@@ -278,7 +314,7 @@ def _check_rows(record_id, procedure_name, alpha_deg, sizes, check, exact, i, g)
         "capacity_g": check.capacity_m_s2 / g, "demand_m_s": check.demand_m_s,
         "capacity_m_s": check.capacity_m_s, "demand_theta_rad": check.demand_theta_rad,
         "theta_limit_rad": check.theta_limit_rad, "period_s": check.period_s,
-    })[CHECK_COLUMNS]
+    }, sizes.size)
 
 
 __all__ = ["audit_record", "RecordAudit", "fragile_overturning", "concat"]

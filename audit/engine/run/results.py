@@ -209,6 +209,9 @@ def load_run(run_dir: str | Path, shown: bool = False) -> AuditRun:
         # dropped before the tables are read: a few kB a record of the suite
         summary["statistics"] = [s for s in summary["statistics"] if s["record"] in detailed]
         summary["histories"] = [h for h in summary["histories"] if h["record"] in records]
+        if detailed >= {entry["id"] for entry in summary["records"]}:
+            # every record has a section (a small suite): every row is read, at once
+            records = detailed = histories_kept = None
     text = {"record": str}
     try:
         results = _read_results(files[RESULTS_CSV], records)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from audit.engine.run.ranking import worst_case
+from audit.engine.run.ranking import WORST_CLASSES, worst_case
 from audit.engine.shared.schemas import SUITE_COLUMNS, verdict_column
 from audit.engine.shared.verdicts import (CHECK_VERDICTS, UNECONOMIC_CHECK_VERDICTS, UNECONOMIC_VERDICTS,
                                    UNSAFE_CHECK_VERDICTS, UNSAFE_VERDICTS, VERDICTS, names)
@@ -48,7 +48,7 @@ class SuiteStatistics:
                    results["size_s"].astype(float))
         group = np.fromiter((self._groups.setdefault(key, len(self._groups)) for key in keys),
                             dtype=np.int32, count=len(results))
-        verdict = results["verdict"].map(_VERDICT_CODE).to_numpy(dtype=np.int64)
+        verdict = results["verdict"].map(VERDICT_CODE).to_numpy(dtype=np.int64)
         if len(self._groups) > len(self._counts):
             self._counts = np.vstack([self._counts, np.zeros(
                 (len(self._groups) - len(self._counts), len(VERDICTS)), dtype=np.int64)])
@@ -75,7 +75,8 @@ class SuiteStatistics:
         return table[SUITE_COLUMNS]
 
 
-_VERDICT_CODE = {v: code for code, v in enumerate(VERDICTS)}
+#: Each verdict's number: its place in :data:`~audit.engine.shared.verdicts.VERDICTS`.
+VERDICT_CODE = {v: code for code, v in enumerate(VERDICTS)}
 
 
 def suite_statistics(results: pd.DataFrame) -> pd.DataFrame:
@@ -167,38 +168,59 @@ class BottomLine:
         checks : pandas.DataFrame
             ``checks.csv`` rows.
         """
-        # each table split by procedure once, not masked once per procedure
-        results_of = dict(tuple(results.groupby("procedure", sort=False)))
-        checks_of = dict(tuple(checks.groupby("procedure", sort=False)))
-        for name, line in self._lines.items():
-            rows = results_of.get(name, results.iloc[:0])
-            mine = checks_of.get(name, checks.iloc[:0])
-            verdict = rows["verdict"]
-            for value, n in verdict.value_counts(sort=False).items():
-                line["count"][value] += int(n)
-            ratios = rows["ratio"].to_numpy(dtype=float)
-            line["ratios"].append(ratios[np.isfinite(ratios)])
-            line["records"].update(rows["record"].unique())
-            line["records"].update(mine["record"].unique())
-            worst = worst_case(rows)
+        # the counts of every procedure at once, by its number on each row: this runs in the
+        # driver for each record, beside solver threads that wait for the GIL it holds
+        lines = list(self._lines.values())
+        procedure = _numbers(results["procedure"], self._lines)
+        verdict = results["verdict"].map(VERDICT_CODE).to_numpy(dtype=float)
+        ours = procedure >= 0
+        if np.isnan(verdict[ours]).any():
+            raise ValueError(f"bottom line: unknown verdicts "
+                             f"{sorted(set(results['verdict'][ours & np.isnan(verdict)]))}")
+        counts = _per_procedure(procedure, len(lines), verdict, len(VERDICTS))
+        unsafe = results["verdict"].isin(UNSAFE_VERDICTS).to_numpy()
+        jumps = _per_procedure(procedure, len(lines), results["exact_jumps"].eq(True).to_numpy())
+        flags = {}
+        for column, flag in _FLAGS.items():
+            flagged = results[column].eq(True).to_numpy()
+            flags[flag] = (_per_procedure(procedure, len(lines), flagged),
+                           _per_procedure(procedure, len(lines), flagged & unsafe),
+                           _per_procedure(procedure, len(lines),
+                                          results[column].isin((True, False)).to_numpy()))
+        ratio = results["ratio"].to_numpy(dtype=float)
+        finite = np.isfinite(ratio)
+        record = results["record"].to_numpy()
+        check_procedure = _numbers(checks["procedure"], self._lines)
+        check_record = checks["record"].to_numpy()
+        # only the rows of a ranked class can be the worst case
+        ranked = results["verdict"].isin([verdict for verdict, *_ in WORST_CLASSES]).to_numpy()
+        candidates = dict(tuple(results[ranked].groupby("procedure", sort=False)))
+        for i, (name, line) in enumerate(self._lines.items()):
+            rows = procedure == i
+            for value, n in zip(VERDICTS, counts[i].tolist()):
+                line["count"][value] += n
+            line["ratios"].append(ratio[rows & finite])
+            line["records"].update(record[rows])
+            line["records"].update(check_record[check_procedure == i])
+            worst = worst_case(candidates.get(name, results.iloc[:0]))
             if worst is not None:  # the worst of (the worst so far, this part's): the same
                 # block as ranking them all, since the ranking is a stable sort
                 line["worst"] = worst if line["worst"] is None else worst_case(
                     pd.DataFrame([line["worst"], worst]))
-            # (limit state, verdict) pairs come in order of first appearance, so the limit
-            # states do too
-            for (state, value), n in mine.groupby(["limit_state", "verdict"],
-                                                  sort=False).size().items():
-                tally = line["checks"].setdefault(state, dict.fromkeys(names(CHECK_VERDICTS), 0))
-                tally[value] += int(n)
-            line["jumps"] += int(rows["exact_jumps"].eq(True).sum())
-            unsafe = verdict.isin(UNSAFE_VERDICTS)
-            for column, flag in _FLAGS.items():
-                flagged = rows[column].eq(True)
+            line["jumps"] += jumps[i]
+            for flag, (flagged, flagged_unsafe, checked) in flags.items():
                 tally = line["flags"][flag]
-                tally[0] += int(flagged.sum())
-                tally[1] += int((flagged & unsafe).sum())
-                tally[2] |= bool(rows[column].isin((True, False)).any())
+                tally[0] += flagged[i]
+                tally[1] += flagged_unsafe[i]
+                tally[2] |= bool(checked[i])
+        # (limit state, verdict) pairs come in order of first appearance, so the limit states
+        # do too
+        for (name, state, value), n in checks.groupby(["procedure", "limit_state", "verdict"],
+                                                      sort=False).size().items():
+            if name in self._lines:
+                tally = self._lines[name]["checks"].setdefault(
+                    state, dict.fromkeys(names(CHECK_VERDICTS), 0))
+                tally[value] += int(n)
         return self
 
     def lines(self) -> list[dict]:
@@ -227,6 +249,24 @@ class BottomLine:
                 "checks": [_check_line(state, tally) for state, tally in line["checks"].items()],
                 "jumps": line["jumps"], **flags})
         return out
+
+
+def _numbers(column: pd.Series, known) -> np.ndarray:
+    """The position of each row's value among ``known`` (in its order), -1 where absent."""
+    return column.map({name: i for i, name in enumerate(known)}).fillna(-1).to_numpy(
+        dtype=np.int64)
+
+
+def _per_procedure(procedure: np.ndarray, count: int, values: np.ndarray,
+                   classes: int | None = None) -> np.ndarray:
+    """Per procedure (rows numbered by :func:`_numbers`; -1 left out): the number of true
+    ``values``, or with ``classes`` the rows of each class code ``values``, as ints."""
+    ours = procedure >= 0
+    if classes is None:
+        return np.bincount(procedure[ours], weights=values[ours],
+                           minlength=count).astype(np.int64).tolist()
+    return np.bincount(procedure[ours] * classes + values[ours].astype(np.int64),
+                       minlength=count * classes).reshape(count, classes)
 
 
 def bottom_line(results: pd.DataFrame, checks: pd.DataFrame, procedures) -> list[dict]:
