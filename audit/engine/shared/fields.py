@@ -242,7 +242,7 @@ def lon_lat(field: str, value) -> tuple[float, float]:
             value = [float(v) for v in value]
         except ValueError:
             value = None
-    what = "a site (longitude, latitude) in degrees, e.g. (-118, 34) or '-118,34'"
+    what = "LON,LAT in degrees (west and south negative), e.g. '-118,34' or (-118, 34)"
     if value is None or isinstance(value, (bytes, dict)) or not hasattr(value, "__len__") \
             or len(value) != 2:
         raise InputError(f"{field}: expected {what}, got {given!r}", field)
