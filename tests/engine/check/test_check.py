@@ -282,3 +282,20 @@ def test_an_objects_exact_answer_does_not_depend_on_the_objects_checked_beside_i
     beside = audit.check(["0.6x1.8", "0.45x1.8", "0.5x1.2"], SITE, procedures=["fema356"],
                          records=_pulses(), im="pga", free_motion_s=5.0)
     assert beside.document["objects"][0]["exact"] == alone.document["objects"][0]["exact"]
+
+
+def test_the_page_shows_each_component_provisions_static_row(result, tmp_path):
+    # the page's table carries the static checks of check.json beside the guidelines, each
+    # with its own verdict and F/W demand and capacity in g
+    import re
+    result.write(tmp_path)
+    document = json.loads((tmp_path / "check.json").read_text())
+    page = (tmp_path / "check.html").read_text()
+    provisions = document["objects"][0]["component_provisions"]
+    assert len(provisions) == 3
+    for entry in provisions:
+        row = re.search(re.escape(f"<td class=\"l\">{entry['procedure']} (static)</td>")
+                        + r".*?</tr>", page, re.S)
+        assert row is not None, entry["procedure"]
+        assert f">{entry['verdict']}</td>" in row.group(0)
+        assert f"{entry['capacity']:.3g}" in row.group(0) and ">g</td>" in row.group(0)
