@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import time
 from collections import deque
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import CancelledError, ThreadPoolExecutor
 from contextlib import contextmanager, nullcontext
 from dataclasses import replace
 
@@ -102,6 +102,9 @@ class LocalScheduler:
         return self.map(audit_record, entries, procedures, settings)
 
 
+#: Times a record whose task the Dask scheduler cancelled (a lost worker took an argument it
+#: needed) is sent again before the run gives up.
+RESUBMITS = 3
 #: Records queued or running per worker thread of a Dask cluster: enough that a worker never
 #: waits for the driver, few enough that the records sent by value stay a small, fixed term.
 TASKS_PER_THREAD = 2
@@ -132,10 +135,12 @@ class DaskScheduler:
         cluster as it is then (so a cluster that grows gets more): a record sent by value is
         held by the scheduler only while queued or running, and the driver's memory does not
         grow with the suite. A record sent by reference that a worker cannot read back is sent
-        again by value. A worker lost mid-run needs nothing here: the Dask scheduler gives its
-        tasks to the other workers (up to ``distributed.scheduler.allowed-failures`` deaths per
-        task); ``retries=`` would only re-run a task that raised, which for a deterministic
-        record raises again (tests/cli/test_dask_cluster.py).
+        again by value. A worker lost mid-run: the Dask scheduler gives its tasks to the other
+        workers (up to ``distributed.scheduler.allowed-failures`` deaths per task), but a task
+        whose scattered argument was lost with it is cancelled, so the arguments are scattered
+        again and the record sent again (up to :data:`RESUBMITS` times); ``retries=`` would only
+        re-run a task that raised, which for a deterministic record raises again
+        (tests/cli/test_dask_cluster.py).
 
         Parameters
         ----------
@@ -150,9 +155,15 @@ class DaskScheduler:
         # an empty list (the check's width search has no procedures) has nothing to scatter;
         # keys of their own (hash=False): the same procedures scattered by an earlier call
         # would share its key, and its release lose them under this call's tasks
-        args = [arg if isinstance(arg, list) and not arg
-                else self.client.scatter(arg, broadcast=True, hash=False) for arg in args]
+        given = args
+
+        def scattered():
+            return [arg if isinstance(arg, list) and not arg
+                    else self.client.scatter(arg, broadcast=True, hash=False) for arg in given]
+
+        args = scattered()
         waiting = iter(enumerate(entries))
+        cancelled = {}
         index_of = {}
         pending = as_completed()
 
@@ -161,19 +172,34 @@ class DaskScheduler:
             index_of[future.key] = index
             pending.add(future)
 
+        def send(index, entry):
+            item = by_reference(entry)
+            if item is entry:
+                self.by_value.append(entry.id)
+            submit(index, item)
+
         def fill():
             threads = max(1, sum(self.client.nthreads().values()))
             for index, entry in waiting:
-                item = by_reference(entry)
-                if item is entry:
-                    self.by_value.append(entry.id)
-                submit(index, item)
+                send(index, entry)
                 if pending.count() >= TASKS_PER_THREAD * threads:
                     return
 
         fill()
         for future in pending:
-            index, outcome = index_of.pop(future.key), future.result()
+            index = index_of.pop(future.key)
+            try:
+                outcome = future.result()
+            except CancelledError:
+                # the scheduler forgot the task: a worker lost mid-run can take the only copy
+                # of a scattered argument with it, and what depends on it is cancelled, not
+                # rerun; scattered again, the record is sent again
+                cancelled[index] = cancelled.get(index, 0) + 1
+                if cancelled[index] > RESUBMITS:
+                    raise
+                args = scattered()
+                send(index, entries[index])
+                continue
             future.release()
             if outcome is None:
                 self.by_value.append(entries[index].id)
