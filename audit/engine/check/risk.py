@@ -18,8 +18,8 @@ import warnings
 import numpy as np
 
 from audit.engine.design.lognormal_fit import lognormal_fits
-from audit.engine.design.risk import (YEARS, LognormalFragility, StripeFragility, annual_rate_for,
-                               risk_integral)
+from audit.engine.design.margins_risk import hazard_summary
+from audit.engine.design.risk import LognormalFragility, StripeFragility, risk_integral
 from audit.errors import InputWarning
 
 
@@ -148,7 +148,9 @@ def object_risk(fitted, counted, curve, target_p50: float, width_m: float | None
 
 
 def hazard_document(curve, target_p50: float) -> dict:
-    """What ``check.json`` says of the site's hazard curve (the curve itself, for the page).
+    """What ``check.json`` says of the site's hazard curve: what a margins run's summary says
+    (:func:`~audit.engine.design.margins_risk.hazard_summary`) and the curve itself, for the
+    page.
 
     Parameters
     ----------
@@ -157,9 +159,7 @@ def hazard_document(curve, target_p50: float) -> dict:
     target_p50 : float
         The target P of overturning in 50 years [-].
     """
-    return {"source": curve.source, "im": curve.im_name, "site": curve.site,
-            "target_p50": target_p50, "years": YEARS,
-            "target_annual_rate": annual_rate_for(target_p50),
+    return {**hazard_summary(curve, target_p50),
             "curve": {"im_g": np.asarray(curve.im_g, dtype=float).tolist(),
                       "annual_rate": np.asarray(curve.annual_rate, dtype=float).tolist()}}
 
