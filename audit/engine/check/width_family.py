@@ -83,19 +83,22 @@ def fit_width_family(widths_m, levels, overturned, start=None) -> WidthFamily:
         Starting point (intercept, ln slope, ln β) of the minimisation; the mean ln stripe less
         the mean ln width, 0 and ln 0.4 when not given.
     """
-    widths = np.log(np.asarray(widths_m, dtype=float))
-    ln_levels = np.log(np.asarray(levels, dtype=float))
-    counts = overturned.sum(axis=0)  # (stripe, width)
-    records = overturned.shape[0]
+    ln_w = np.log(np.asarray(widths_m, dtype=float))
+    ln_im = np.log(np.asarray(levels, dtype=float))
+    if start is None:
+        start = (float(np.mean(ln_im) - np.mean(ln_w)), 0.0, math.log(0.4))
+    return _nelder_mead(ln_w, ln_im, overturned.sum(axis=0), overturned.shape[0], start)
 
+
+def _nelder_mead(ln_w, ln_im, counts, records: int, start) -> WidthFamily:
+    """:func:`fit_width_family` of counts (stripe, width) out of ``records`` (the likelihood
+    reads only the counts), from ``start`` = (a, ln c, ln β)."""
     def negative_log_likelihood(x):
         intercept, log_slope, log_beta = x
-        z = (ln_levels[:, None] - intercept - math.exp(log_slope) * widths[None, :]) \
+        z = (ln_im[:, None] - intercept - math.exp(log_slope) * ln_w[None, :]) \
             / math.exp(log_beta)
         return -float(np.sum(counts * log_ndtr(z) + (records - counts) * log_ndtr(-z)))
 
-    if start is None:
-        start = (float(np.mean(ln_levels) - np.mean(widths)), 0.0, math.log(0.4))
     best = minimize(negative_log_likelihood, start, method="Nelder-Mead",
                     options={"xatol": 1e-7, "fatol": 1e-9, "maxiter": 4000})
     intercept, log_slope, log_beta = best.x
@@ -195,16 +198,10 @@ def fit_width_families(widths_m, levels, counts, records: int, start=None):
             fits.append(WidthFamily(float(-theta[j, 0] * beta[j]), float(slope[j]),
                                     float(beta[j])))
         else:
-            fits.append(_fit_counts(ln_w, ln_im, counts[j], records, start))
+            fits.append(_nelder_mead(ln_w, ln_im, counts[j], records,
+                                     (start.intercept, math.log(start.slope),
+                                      math.log(start.beta))))
     return fits
-
-
-def _fit_counts(ln_w, ln_im, counts, records, start) -> WidthFamily:
-    """:func:`fit_width_family` of counts (stripe, width) out of ``records``: outcomes rebuilt
-    with the same counts (the likelihood reads only the counts)."""
-    overturned = np.arange(records)[:, None, None] < counts[None, :, :]
-    return fit_width_family(np.exp(ln_w), np.exp(ln_im), overturned,
-                            (start.intercept, math.log(start.slope), math.log(start.beta)))
 
 
 @dataclass(frozen=True)
