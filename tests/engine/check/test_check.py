@@ -22,10 +22,10 @@ from audit.errors import InputError
 from audit.physics.block import coefficient_of_restitution
 from procedures import get_procedures
 from procedures.context import RecordContext
-from records import RecordEntry, RecordSuite, one_pulse
+from records import RecordEntry
+from tests.engine.check.pulses import eight_pulses
 
 G = 9.81
-PERIODS_S = (0.4, 0.6, 0.8, 1.0, 1.3, 1.6, 2.0, 2.5)
 SITE = (1.5, 0.9)  # PGA of the design spectrum 0.4 S_XS = 0.6 g
 # the 0.6 m × 1.8 m cabinet, and the same block typed by (α, 2π/p) worked by hand:
 # α = atan(0.6/1.8); R = ½√(0.6² + 1.8²); p = √(3g/(4R)); 2π/p
@@ -34,17 +34,12 @@ RADIUS_M = 0.5 * math.hypot(0.6, 1.8)
 SIZE_S = 2.0 * math.pi / math.sqrt(3.0 * G / (4.0 * RADIUS_M))
 
 
-def _pulses():
-    return RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
-                                                                     record_id=f"c{t:g}"))
-                             for t in PERIODS_S), "eight one-cosine pulses")
-
 
 @pytest.fixture(scope="module")
 def result():
     by_slenderness = Block(alpha_deg=ALPHA_DEG, size_s=SIZE_S, name="by-alpha")
     return audit.check(["0.6x1.8", by_slenderness], SITE, procedures=["fema356", "housner1963"],
-                       records=_pulses(), im="pga", free_motion_s=5.0)
+                       records=eight_pulses(), im="pga", free_motion_s=5.0)
 
 
 def test_check_json_has_the_fields_of_the_issue(result, tmp_path):
@@ -267,7 +262,7 @@ def test_a_dask_cluster_gives_the_same_answers(result):
     answer as in this process (the width search sends its records with no procedure, and the
     check's work sets its stripes' solver threads)."""
     dask = audit.check(["0.6x1.8", Block(alpha_deg=ALPHA_DEG, size_s=SIZE_S, name="by-alpha")],
-                       SITE, procedures=["fema356", "housner1963"], records=_pulses(), im="pga",
+                       SITE, procedures=["fema356", "housner1963"], records=eight_pulses(), im="pga",
                        free_motion_s=5.0, scheduler="dask", jobs=2)
     assert "LocalCluster of 2" in dask.document["scheduler"]
     assert dask.document["objects"] == result.document["objects"]
@@ -277,10 +272,10 @@ def test_an_objects_exact_answer_does_not_depend_on_the_objects_checked_beside_i
     # objects of one height share their width search: beside a narrower object of its height
     # and one of another height, the cabinet's exact answer (required widths, the family fitted
     # on each solved width once, bands) is the one it gets alone
-    alone = audit.check(["0.6x1.8"], SITE, procedures=["fema356"], records=_pulses(), im="pga",
+    alone = audit.check(["0.6x1.8"], SITE, procedures=["fema356"], records=eight_pulses(), im="pga",
                         free_motion_s=5.0)
     beside = audit.check(["0.6x1.8", "0.45x1.8", "0.5x1.2"], SITE, procedures=["fema356"],
-                         records=_pulses(), im="pga", free_motion_s=5.0)
+                         records=eight_pulses(), im="pga", free_motion_s=5.0)
     assert beside.document["objects"][0]["exact"] == alone.document["objects"][0]["exact"]
 
 

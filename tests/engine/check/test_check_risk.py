@@ -15,19 +15,13 @@ from scipy.stats import norm
 import audit
 from audit.cli import main
 from audit.errors import InputError
-from records import RecordEntry, RecordSuite, one_pulse
+from tests.engine.check.pulses import eight_pulses
 from records.hazard import HazardCurve
 
 SITE = (1.5, 0.9)  # PGA of the design spectrum 0.4 S_XS = 0.6 g
-PERIODS_S = (0.4, 0.6, 0.8, 1.0, 1.3, 1.6, 2.0, 2.5)
 K0, K = 2e-6, 2.5  # λ(s) = K0 s^−K, s in g
 TARGET = 0.02
 
-
-def _pulses():
-    return RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
-                                                                     record_id=f"c{t:g}"))
-                             for t in PERIODS_S), "eight one-cosine pulses")
 
 
 def _power_law(levels=np.geomspace(1e-4, 60.0, 90)):
@@ -35,7 +29,7 @@ def _power_law(levels=np.geomspace(1e-4, 60.0, 90)):
 
 
 def _check(objects, **options):
-    return audit.check(objects, SITE, procedures=["fema356", "priestley1978"], records=_pulses(),
+    return audit.check(objects, SITE, procedures=["fema356", "priestley1978"], records=eight_pulses(),
                        im="pga", free_motion_s=5.0, hazard=_power_law(), risk_target=TARGET,
                        **options)
 
@@ -99,11 +93,11 @@ def test_the_hazard_curve_sets_the_intensity_measure():
     sa = HazardCurve.checked("SA(1.0)", np.geomspace(0.01, 5, 20),
                              1e-4 * np.geomspace(0.01, 5, 20) ** -2.0, "sa curve")
     with pytest.raises(InputError, match="im.*SA\\(1.0\\).*pga"):
-        audit.check(["0.4x1.8"], SITE, records=_pulses(), im="pga", hazard=sa)
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), im="pga", hazard=sa)
     with pytest.raises(InputError, match="site_location"):
-        audit.check(["0.4x1.8"], SITE, records=_pulses(), site_location=(0.0, -0.3))
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), site_location=(0.0, -0.3))
     with pytest.raises(InputError, match="risk_target"):
-        audit.check(["0.4x1.8"], SITE, records=_pulses(), hazard=sa, risk_target=1.5)
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), hazard=sa, risk_target=1.5)
 
 
 def test_cli_refuses_a_hazard_of_another_im_in_one_line(tmp_path, capsys):

@@ -17,17 +17,11 @@ from audit.cli import build_parser, main
 from audit.engine.check.settings import CheckSettings
 from audit.engine.shared.fields import probability
 from audit.errors import InputError
-from records import RecordEntry, RecordSuite, one_pulse
+from tests.engine.check.pulses import PERIODS_S, eight_pulses
 
 SITE = (1.5, 0.9)  # PGA of the design spectrum 0.4 S_XS = 0.6 g; S_X1 = 0.9 g
-PERIODS_S = (0.4, 0.6, 0.8, 1.0, 1.3, 1.6, 2.0, 2.5)
 OQ_SA1 = "openquake-demo/hazard_curve-mean-SA(1.0)_2.csv"
 
-
-def _pulses():
-    return RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
-                                                                     record_id=f"c{t:g}"))
-                             for t in PERIODS_S), "eight one-cosine pulses")
 
 
 def _interpolated_by_hand(path, lon, lat, years):
@@ -55,7 +49,7 @@ def test_return_period_sets_the_exact_answers_intensity_from_the_curve(hazard_di
     expected = _interpolated_by_hand(path, 0.0, -0.3, 2475.0)
     assert expected == pytest.approx(0.764, rel=0.01)  # the engine's own hazard map (README)
     with pytest.warns(UserWarning, match="hazard curve gives sa:1 = 0.7"):
-        result = audit.check(["0.4x1.8"], SITE, procedures=["fema356"], records=_pulses(),
+        result = audit.check(["0.4x1.8"], SITE, procedures=["fema356"], records=eight_pulses(),
                              free_motion_s=5.0, hazard=path, site_location=(0.0, -0.3),
                              return_period=2475)
     document = result.document
@@ -81,7 +75,7 @@ def test_poe_and_return_period_need_a_hazard_and_one_of_them(hazard_dir):
         CheckSettings.parse(hazard=hazard_dir / OQ_SA1, site_location=(0.0, -0.3),
                             return_period=475, poe=0.1)
     with pytest.raises(InputError, match="return_period: the hazard curve .* covers"):
-        audit.check(["0.4x1.8"], SITE, records=_pulses(), hazard=hazard_dir / OQ_SA1,
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), hazard=hazard_dir / OQ_SA1,
                     site_location=(0.0, -0.3), return_period=1e9)
 
 
@@ -159,7 +153,7 @@ def test_a_dynamic_response_without_its_total_is_refused(tmp_path, capsys):
                                {"component": "Grid", "yvalues": [0.02, 0.006, 0.001]}])
     with pytest.raises(InputError, match="dynamic.json: response\\[0\\]: data: no entry with "
                                          "component 'Total'"):
-        audit.check(["0.4x1.8"], SITE, records=_pulses(), hazard=path)
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), hazard=path)
     assert main(["check", "--block", "0.4x1.8", "--site", "1.0,0.6",
                  "--hazard", str(path)]) == 2
     error = capsys.readouterr().err.strip()
@@ -184,7 +178,7 @@ BLOCK = "0.8x1.2"  # tan α = 0.667 > 0.6: at PGA 0.6 g it never lifts off
 def stocky():
     def run(**options):
         return audit.check([BLOCK, "0.3x1.8"], SITE, procedures=["fema356"],
-                           records=_pulses(), im="pga", free_motion_s=5.0, **options).document
+                           records=eight_pulses(), im="pga", free_motion_s=5.0, **options).document
     return {mu: run(**({} if mu is None else {"friction": mu})) for mu in (None, 10.0, 0.2)}
 
 

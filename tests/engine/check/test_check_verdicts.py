@@ -14,25 +14,19 @@ from scipy.signal import lsim
 
 import audit
 from audit.engine.check.limits import suite_demand
-from records import RecordEntry, RecordSuite, one_pulse
+from tests.engine.check.pulses import PERIODS_S, eight_pulses
 
 G = 9.81
-PERIODS_S = (0.4, 0.6, 0.8, 1.0, 1.3, 1.6, 2.0, 2.5)
 SITE = (1.0, 0.6)  # PGA of the design spectrum 0.4 S_XS = 0.4 g: every pulse scaled to it
 WIDTH_M, HEIGHT_M = 0.4, 1.8  # the vitrine
 
-
-def _pulses():
-    return RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
-                                                                     record_id=f"c{t:g}"))
-                             for t in PERIODS_S), "eight one-cosine pulses")
 
 
 @pytest.fixture(scope="module")
 def vitrine():
     return audit.check([f"{WIDTH_M}x{HEIGHT_M}"], SITE,
                        procedures=["ntc2018", "fema356", "housner1963"],
-                       records=_pulses(), im="pga", free_motion_s=5.0)
+                       records=eight_pulses(), im="pga", free_motion_s=5.0)
 
 
 def _peak_displacement(amplitude_g: float, pulse_s: float, period_s: float,
@@ -93,7 +87,7 @@ def test_ntc_judges_the_vitrine_by_its_own_slv_and_slc_on_d(vitrine):
 
 
 def test_only_the_limit_state_asked_for_is_reported():
-    result = audit.check(["0.4x1.8"], SITE, procedures=["ntc2018"], records=_pulses(), im="pga",
+    result = audit.check(["0.4x1.8"], SITE, procedures=["ntc2018"], records=eight_pulses(), im="pga",
                          free_motion_s=5.0, limit_state="slc")
     assert [e["limit_state"] for e in result.document["objects"][0]["procedures"]] == ["SLC"]
     with pytest.raises(audit.errors.InputError, match="limit_state"):
