@@ -43,7 +43,7 @@ class ResponseSummary(NamedTuple):
 @kernel()
 def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out,
-              turns_out, stride=1, reactions=False):
+              turns_out, stride=1, reactions=False, peaks_only=False):
     """Simulate one block; see :func:`simulate`. History arrays of length 0 store nothing;
     otherwise every ``stride``-th sample is stored. ``vertical`` holds the vertical ground
     acceleration at the samples of ``acc`` [m/s²], or nothing (horizontal motion only).
@@ -55,6 +55,11 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     of every Runge–Kutta step of the rocking motion and on both sides of every impact; at rest
     on the base H = m üg and V = m (g + üv), whose largest ratio over the samples is capped at
     tan α (beyond it the block uplifts, at exactly tan α).
+
+    With ``peaks_only`` (no histories, no reactions) the free motion after the excitation stops
+    once it has had a turning point and an impact: with the ground at rest the energy only falls
+    from there, so no later |θ| or |θ'| can exceed those already seen, and the peaks are those
+    of the whole free motion, bit for bit; the counts of impacts and turning points stop there.
 
     Returns a :class:`ResponseSummary`; its reactions are NaN without ``reactions``.
     """
@@ -92,6 +97,8 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     n_impacts = 0
     n_turns = 0
     episode = 0
+    turned_after = False  # a turning point and an impact in the free motion (``peaks_only``)
+    impact_after = False
     filled = 0  # history samples written so far
     if store:
         theta_out[0] = theta0
@@ -119,6 +126,8 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
         after = t0 >= t_exc_end - 1e-12 * dt
         t = t0
         while t < t1 - 1e-12 * dt:
+            if turned_after and impact_after:
+                break
             if resting:
                 ua = _ground(t, seg_kind, a0, slope, t0, amp, omega_p)
                 ub = _ground(t1, seg_kind, a0, slope, t0, amp, omega_p)
@@ -166,6 +175,7 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                         turns_out[n_turns, _TURN_TIME] = t + tau
                         turns_out[n_turns, _TURN_THETA] = th_e
                     n_turns += 1
+                    turned_after = after and peaks_only
                     if abs(th_e) > peak:
                         peak = abs(th_e)
                         peak_signed = th_e
@@ -218,6 +228,7 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                     impacts_out[n_impacts, _OMEGA_BEFORE_IMPACT] = om_i
                     impacts_out[n_impacts, _OMEGA_AFTER_IMPACT] = omega
                 n_impacts += 1
+                impact_after = after and peaks_only
                 continue
             theta = th_n
             omega = om_n
@@ -235,7 +246,7 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
                 peak_signed = theta
             if after and abs(theta) > peak_after:
                 peak_after = abs(theta)
-        if overturned:
+        if overturned or (turned_after and impact_after):
             break
         if store and (k + 1) % stride == 0:
             theta_out[(k + 1) // stride] = theta
@@ -264,7 +275,7 @@ def _spectrum(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     for i in range(p.size):
         res = _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p[i], alpha[i],
                         velocity_ratio[i], g, steps_per_radian, rest_tolerance, 0.0, 0.0, empty,
-                        empty, no_events, no_events, 1, reactions)
+                        empty, no_events, no_events, 1, reactions, not reactions)
         out.theta_peak[i] = res.peak_rotation
         out.omega_peak[i] = res.peak_angular_velocity
         out.theta_after[i] = res.peak_rotation_after_excitation
