@@ -77,6 +77,10 @@ class Procedure:
     requires_site: ClassVar[tuple[str, ...]] = ()
     #: False for a procedure that only checks limit states and estimates no rotation.
     estimates_rotation: ClassVar[bool] = True
+    #: True for a procedure whose :meth:`evaluate_for_verdict` takes α and r as arrays of p's
+    #: shape, one per block, element by element (closed forms in numpy, no iteration): blocks
+    #: of many slendernesses are then judged in one call, with the numbers of one call each.
+    alpha_per_block: ClassVar[bool] = False
 
     def unmet_requirements(self, entry) -> str | None:
         """Why this procedure cannot evaluate the record ``entry``, or None."""

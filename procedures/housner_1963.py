@@ -55,6 +55,7 @@ class Housner1963(Procedure):
                        "T ≤ 10 s, against S_v,cr = gα/p (eq. 17, rectangle)")
     requires_motion = True
     estimates_rotation = False
+    alpha_per_block = True
 
     def checks(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> list[Check]:
         p = np.asarray(p, dtype=float)

@@ -93,6 +93,7 @@ class MakrisRoussos2000(Procedure):
                        "record's PGA (one-cosine assumed)")
     requires_motion = True
     estimates_rotation = False
+    alpha_per_block = True
 
     def __post_init__(self):
         if self.variant not in (PUBLISHED, EXACT_LINEAR, HOUSNER):

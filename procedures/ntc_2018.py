@@ -37,7 +37,7 @@ SLD check passes (the block does not rock), overturning where d_dem ≥ d₀.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -144,6 +144,7 @@ class NTC2018(Procedure):
     floor: Floor = Floor()
 
     name = "ntc2018"
+    alpha_per_block = True
     title = "NTC 2018 / Circolare 2019"
     reference = ("NTC 2018, D.M. 17 gennaio 2018, §3.2.3.2; Circolare 21 gennaio 2019 n. 7 "
                  "C.S.LL.PP., §C8.7.1.2.1 (local mechanisms, kinematic analysis).")
@@ -250,6 +251,14 @@ class NTC2018(Procedure):
     def evaluate(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> Evaluation:
         """The four checks, and the rotation θ(d_dem(T_SLV)) at ξ_SLV [rad] they imply: 0 where
         SLD passes, overturning where d_dem ≥ d₀; the demand spectrum read at ξ_SLV."""
+        evaluation = self.evaluate_for_verdict(entry, p, alpha_rad, r, context, g)
+        spectrum = self.displacement_spectrum(entry, self.damping_slv, context)
+        return replace(evaluation, spectrum_sd_m=spectrum(STORED_SPECTRUM_PERIODS_S))
+
+    def evaluate_for_verdict(self, entry, p, alpha_rad, r, context,
+                             g: float = G) -> Evaluation:
+        """:meth:`evaluate` without the stored spectrum; α and r may be arrays of p's shape
+        (:attr:`~procedures.base.Procedure.alpha_per_block`)."""
         checks = self.checks(entry, p, alpha_rad, r, context, g)
         by_state = {check.limit_state: check for check in checks}
         sld, slv = by_state["SLD"], by_state["SLV"]
@@ -264,5 +273,4 @@ class NTC2018(Procedure):
                             # no iteration, so no fixed points or cycles to report
                             fixed_points=np.full(theta.shape, "", dtype=object),
                             cycle=np.full(theta.shape, "", dtype=object))
-        spectrum = self.displacement_spectrum(entry, self.damping_slv, context)
-        return Evaluation(estimate, spectrum(STORED_SPECTRUM_PERIODS_S), checks)
+        return Evaluation(estimate, None, checks)

@@ -7,8 +7,10 @@ that keeps the contract's own :meth:`~procedures.base.Procedure.evaluate` and re
 spectrum (the record's, :class:`procedures.tabulated.TabulatedDisplacement`), every case and
 slenderness is iterated at once (:func:`procedures.iteration.iterate_tabulated`), and neither
 the fixed points nor the stored spectrum, which only a report reads, are computed; its iterates
-are those of one :meth:`~procedures.base.Procedure.evaluate` per case, bit for bit. Any other
-procedure is evaluated case by case.
+are those of one :meth:`~procedures.base.Procedure.evaluate` per case, bit for bit. A procedure
+that takes α per block (:attr:`~procedures.base.Procedure.alpha_per_block`: closed-form checks)
+is evaluated once per case for blocks of every slenderness. Any other procedure is evaluated
+case by case and slenderness by slenderness.
 """
 
 from __future__ import annotations
@@ -60,6 +62,14 @@ def overturning_predictions(procedure, cases, p, groups, g: float) -> np.ndarray
     numpy.ndarray of bool, shaped (case, block)
     """
     out = np.zeros((len(cases), p.size), dtype=bool)
+    if procedure.alpha_per_block and len(groups) > 1:
+        blocks = np.concatenate([index for _, index, _ in groups])
+        alpha = np.concatenate([np.full(index.size, a) for a, index, _ in groups])
+        restitution = np.concatenate([np.full(index.size, r) for _, index, r in groups])
+        for c, (entry, context) in enumerate(cases):
+            out[c, blocks] = predicts_overturning(procedure.evaluate_for_verdict(
+                entry, p[blocks], alpha, restitution, context, g))
+        return out
     if type(procedure).evaluate is not Procedure.evaluate or not procedure.estimates_rotation:
         for c, (entry, context) in enumerate(cases):
             for alpha, index, r in groups:

@@ -231,6 +231,43 @@ def test_evaluation_for_a_verdict_is_the_evaluation_without_its_report(pacoima_c
                 assert any(full.estimate.fixed_points)
 
 
+def test_a_slenderness_per_block_is_the_evaluations_one_slenderness_at_a_time(pacoima_cases):
+    """A procedure that takes α per block (NTC 2018, Housner, Makris–Roussos): one call for
+    blocks of three slendernesses gives every number of its checks and estimate that the three
+    one-slenderness calls give, bit for bit (NaNs in place)."""
+    sizes = np.linspace(0.5, 9.0, 12)
+    alphas = np.radians([8.0, 14.0, 20.0])
+    p = np.tile(2.0 * np.pi / sizes, alphas.size)
+    alpha, r = np.repeat(alphas, sizes.size), coefficient_of_restitution(np.repeat(alphas,
+                                                                                   sizes.size))
+    per_block = [proc for proc in get_procedures("all") if proc.alpha_per_block]
+    assert {proc.name for proc in per_block} == {"ntc2018", "housner1963", "makrisroussos2000"}
+    for procedure in per_block:
+        for entry, context in pacoima_cases:
+            if procedure.unmet_requirements(entry) is not None:
+                continue
+            together = procedure.evaluate_for_verdict(entry, p, alpha, r, context, 9.81)
+            apart = [procedure.evaluate(entry, p[alpha == a], float(a),
+                                        float(coefficient_of_restitution(a)), context, 9.81)
+                     for a in alphas]
+            for k, check in enumerate(together.checks):
+                for field in ("passes", "demand_m", "capacity_m", "demand_m_s2",
+                              "capacity_m_s2", "demand_theta_rad", "theta_limit_rad",
+                              "period_s", "demand_m_s", "capacity_m_s"):
+                    np.testing.assert_array_equal(
+                        getattr(check, field),
+                        # a one-slenderness call may give one value for all its blocks
+                        np.concatenate([np.broadcast_to(getattr(one.checks[k], field),
+                                                        sizes.shape) for one in apart]),
+                        err_msg=f"{procedure.name} {check.limit_state} {field}")
+            if together.estimate is not None:
+                for field in ("theta", "period_s", "outcome"):
+                    np.testing.assert_array_equal(
+                        getattr(together.estimate, field),
+                        np.concatenate([getattr(one.estimate, field) for one in apart]),
+                        err_msg=f"{procedure.name} {field}")
+
+
 def test_compiled_iteration_on_a_record_cycles_and_chaos_included(pacoima_cases,
                                                                   pacoima_on_demand):
     """Pacoima Dam as recorded, α = 10°: fixed points, overturning, a 2-cycle (2π/p = 6 s,
