@@ -207,6 +207,26 @@ def test_block_peaks_are_the_single_simulations_field_by_field():
                                       [getattr(s, single_name) for s in singles], err_msg=name)
 
 
+@pytest.mark.parametrize("reactions", [False, True])
+def test_a_scale_per_block_is_the_scaled_motion_bit_for_bit(seed_suite, reactions):
+    """Blocks solved at many levels in one call (``scale``) have every peak of the same
+    blocks under ``motion.scaled(level)``, one call per level: a record and an analytic pulse
+    (its amplitude scaled), levels where the blocks rest, rock and overturn."""
+    sizes, alphas = np.array([0.6, 1.5, 3.0, 6.0]), np.radians([8, 12, 16, 25])
+    levels = np.geomspace(0.2, 5.0, 7)
+    for motion in (seed_suite.get("pacoima_dam_1971").motion, one_pulse("cosine", 0.25, 1.5)):
+        one_call = rocking_blocks(motion, np.tile(sizes, levels.size),
+                                  np.tile(alphas, levels.size), jobs=2, reactions=reactions,
+                                  scale=np.repeat(levels, sizes.size))
+        by_level = [rocking_blocks(motion.scaled(float(level)), sizes, alphas, jobs=2,
+                                   reactions=reactions) for level in levels]
+        for name in one_call._fields:
+            np.testing.assert_array_equal(
+                getattr(one_call, name), np.concatenate([getattr(p, name) for p in by_level]),
+                err_msg=name)
+        assert 0 < one_call.overturned.sum() < one_call.uplifted.sum() < levels.size * sizes.size
+
+
 def test_peaks_stop_early_in_the_free_motion_with_the_whole_free_motions_peaks():
     """Without reactions the peaks stop in the free motion after its first turning point and
     impact (the energy only falls after them); every peak is still bit for bit the one of

@@ -226,13 +226,14 @@ def record_stripes(entry, procedures, settings: StripeSettings,
     alpha_rad = np.empty(len(blocks))
     for alpha, index in groups:
         alpha_rad[index] = alpha
-    for j, factor in enumerate(factors):
-        # every block in one solver call, whatever its α: blocks of many slendernesses (those
-        # the guidelines size, for the P695 acceptance) would otherwise be one call each
-        peaks = rocking_blocks(entry.motion.scaled(float(factor)), blocks.size_s, alpha_rad,
-                               r=settings.restitution, g=settings.g,
-                               free_motion_s=settings.free_motion_s, jobs=settings.jobs)
-        exact_over[j], exact_theta[j] = peaks.overturned, peaks.theta_peak
+    # every block at every stripe in one solver call, whatever its α: the threads share all
+    # the record's solves, not a stripe's at a time
+    peaks = rocking_blocks(entry.motion, np.tile(blocks.size_s, levels.size),
+                           np.tile(alpha_rad, levels.size), r=settings.restitution,
+                           g=settings.g, free_motion_s=settings.free_motion_s,
+                           jobs=settings.jobs, scale=np.repeat(factors, len(blocks)))
+    exact_over[:], exact_theta[:] = (peaks.overturned.reshape(shape),
+                                     peaks.theta_peak.reshape(shape))
     p = 2.0 * np.pi / blocks.size_s
     base = context or RecordContext(entry, settings.free_motion_s, settings.jobs)
     cases = [_at_level(entry, base, float(level), intensity, settings) for level in levels]

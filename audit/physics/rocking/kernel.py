@@ -43,7 +43,7 @@ class ResponseSummary(NamedTuple):
 @kernel()
 def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
               steps_per_radian, rest_tolerance, theta0, omega0, theta_out, omega_out, impacts_out,
-              turns_out, stride=1, reactions=False, peaks_only=False):
+              turns_out, stride=1, reactions=False, peaks_only=False, scale=1.0):
     """Simulate one block; see :func:`simulate`. History arrays of length 0 store nothing;
     otherwise every ``stride``-th sample is stored. ``vertical`` holds the vertical ground
     acceleration at the samples of ``acc`` [m/s²], or nothing (horizontal motion only).
@@ -55,6 +55,10 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     of every Runge–Kutta step of the rocking motion and on both sides of every impact; at rest
     on the base H = m üg and V = m (g + üv), whose largest ratio over the samples is capped at
     tan α (beyond it the block uplifts, at exactly tan α).
+
+    ``scale`` multiplies every ground acceleration as it is read (the record's, the vertical
+    one's, a pulse's amplitude): the response to ``motion.scaled(scale)``, bit for bit (each
+    sample is the same product), without a scaled copy of the record.
 
     With ``peaks_only`` (no histories, no reactions) the free motion after the excitation stops
     once it has had a turning point and an impact: with the ground at rest the energy only falls
@@ -68,6 +72,7 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     t_exc_end = (n_rec - 1) * dt
     store = theta_out.size > 0
     has_vertical = vertical.size > 0
+    amp = amp * scale
     p2 = p * p
     tan_alpha = math.tan(alpha)
     n_sub = max(1, int(math.ceil(dt * p * steps_per_radian)))
@@ -76,11 +81,12 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
     max_ratio = 0.0
     min_vertical = math.inf
     for i in range(n_rec):
-        uv = vertical[i] if has_vertical else 0.0
-        if _lifts(acc[i], uv, g, tan_alpha):
+        uv = vertical[i] * scale if has_vertical else 0.0
+        ui = acc[i] * scale
+        if _lifts(ui, uv, g, tan_alpha):
             last_exceed = i
         if reactions:
-            max_ratio = max(max_ratio, min(_friction_ratio(acc[i], g + uv), tan_alpha))
+            max_ratio = max(max_ratio, min(_friction_ratio(ui, g + uv), tan_alpha))
             min_vertical = min(min_vertical, (g + uv) / g)
 
     theta = theta0
@@ -114,11 +120,11 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
         vslope = 0.0
         if k < n_rec - 1:
             seg_kind = kind
-            a0 = acc[k]
-            slope = (acc[k + 1] - acc[k]) / dt
+            a0 = acc[k] * scale
+            slope = (acc[k + 1] * scale - a0) / dt
             if has_vertical:
-                v0 = vertical[k]
-                vslope = (vertical[k + 1] - vertical[k]) / dt
+                v0 = vertical[k] * scale
+                vslope = (vertical[k + 1] * scale - v0) / dt
         else:
             seg_kind = _SAMPLED
             a0 = 0.0
@@ -266,16 +272,16 @@ def _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_
 
 
 @kernel()
-def _spectrum(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, g,
-              steps_per_radian, rest_tolerance, reactions, out):
-    """Peaks of many blocks under one motion; fills ``out``, a
+def _spectrum(acc, vertical, dt, n_tail, kind, amp, omega_p, p, alpha, velocity_ratio, scale,
+              g, steps_per_radian, rest_tolerance, reactions, out):
+    """Peaks of many blocks under one motion, block i's × ``scale[i]``; fills ``out``, a
     :class:`audit.physics.rocking.spectrum.BlockPeaks`."""
     empty = np.empty(0)
     no_events = np.empty((0, 4))
     for i in range(p.size):
         res = _simulate(acc, vertical, dt, n_tail, kind, amp, omega_p, p[i], alpha[i],
                         velocity_ratio[i], g, steps_per_radian, rest_tolerance, 0.0, 0.0, empty,
-                        empty, no_events, no_events, 1, reactions, not reactions)
+                        empty, no_events, no_events, 1, reactions, not reactions, scale[i])
         out.theta_peak[i] = res.peak_rotation
         out.omega_peak[i] = res.peak_angular_velocity
         out.theta_after[i] = res.peak_rotation_after_excitation

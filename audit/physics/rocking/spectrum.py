@@ -104,8 +104,10 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
                    free_motion_s: float = DEFAULT_FREE_MOTION_S,
                    steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
                    rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1,
-                   reactions: bool = False, vertical: bool = False) -> BlockPeaks:
-    """Peaks of blocks given one by one, ``size_s[i]`` with ``alpha_rad[i]``, under one motion.
+                   reactions: bool = False, vertical: bool = False,
+                   scale=None) -> BlockPeaks:
+    """Peaks of blocks given one by one, ``size_s[i]`` with ``alpha_rad[i]``, under one motion
+    (block i under the motion × ``scale[i]``, when given).
 
     Parameters
     ----------
@@ -124,6 +126,10 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
         Also evaluate the pivot reactions over the response (about 25 % more work).
     vertical : bool
         Include the motion's vertical component (gravity g + üv), where it has one.
+    scale : array, optional
+        Each block's scale factor of the motion [-]: its peaks are those under
+        ``motion.scaled(scale[i])``, bit for bit, so one call solves a record at many levels
+        (stripes) without a copy of it per level. 1 for every block when not given.
 
     Returns
     -------
@@ -139,6 +145,10 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
     blocks = [RigidBlock(2 * np.pi / size_s.max(), a, r, **({} if g is None else {"g": g}))
               for a in unique]
     p = 2.0 * np.pi / size_s
+    factor = (np.ones(p.size) if scale is None
+              else np.ascontiguousarray(np.broadcast_to(np.asarray(scale, dtype=float), p.shape)))
+    if not np.all(np.isfinite(factor)):
+        raise InputError("scale: every scale factor of the motion must be a finite number")
     ratio = np.sqrt(np.array([b.r for b in blocks]))[inverse.ravel()]
     args = _motion_arguments(motion, free_motion_s, vertical)
     out = BlockPeaks.empty(p.size)
@@ -148,7 +158,7 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
 
     def run(chunk):
         part = BlockPeaks.empty(chunk.size)
-        _spectrum(*args, p[chunk], alpha[chunk], ratio[chunk], blocks[0].g,
+        _spectrum(*args, p[chunk], alpha[chunk], ratio[chunk], factor[chunk], blocks[0].g,
                   steps_per_radian, rest_tolerance, reactions, part)
         for values, computed in zip(out, part):
             values[chunk] = computed
