@@ -206,6 +206,7 @@ class DisplacementOnDemand:
         positive = self.period_s > 0
         self.sd_m = np.where(positive, np.nan, 0.0)
         self.known = ~positive
+        self._arguments = None  # the kernel's arguments, built when first read
 
     def fill(self, index) -> None:
         """Compute Sd at the table's indices ``index`` where not known yet."""
@@ -224,11 +225,14 @@ class DisplacementOnDemand:
         compiled reader: (acc, dt, coeffs, omega, damping, sd_m, known), the oscillators of
         every period of the table. The oscillators are kept by (table, damping, step), not
         here: a check holds one of these per record and damping tried, and its records share
-        a step and the dampings its widths try."""
-        coeffs, omega, damping = _table_oscillators(self.period_s.tobytes(), self.damping,
-                                                    self.motion.dt)
-        return (_with_free_motion(self.motion, self.free_motion_s), self.motion.dt, coeffs,
-                omega, damping, self.sd_m, self.known)
+        a step and the dampings its widths try. Built once: a verdict reads them at every
+        iteration it runs on this table."""
+        if self._arguments is None:
+            coeffs, omega, damping = _table_oscillators(self.period_s.tobytes(), self.damping,
+                                                        self.motion.dt)
+            self._arguments = (_with_free_motion(self.motion, self.free_motion_s),
+                               self.motion.dt, coeffs, omega, damping, self.sd_m, self.known)
+        return self._arguments
 
 
 __all__ = ["DisplacementOnDemand", "ResponseSpectra", "response_spectra"]
