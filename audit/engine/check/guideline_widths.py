@@ -63,8 +63,8 @@ class GuidelineWidths:
         width = math.nan
         if mine:
             def refine(which, widths):
-                return [overturns_at(proc, *site_context(records[k]), obj, float(w),
-                                     settings.restitution, settings.g)
+                return [bool(overturns_at(proc, *site_context(records[k]), [obj], [w],
+                                          settings.restitution, settings.g)[0])
                         for k, w in zip(which, widths)]
             width = accepted_width([j.width_low[b] for j in mine],
                                    [j.width_high[b] for j in mine], refine)

@@ -11,7 +11,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from audit.engine.check.limits import limit_readings
-from audit.engine.check.widths import guideline_bracket, overturns_at
+from audit.engine.check.widths import guideline_brackets, overturns_at
 from audit.physics.block import Restitution
 from procedures.overturning import predicts_overturning
 
@@ -26,7 +26,7 @@ class Judgement:
         It predicts overturning.
     width_low, width_high : numpy.ndarray
         Bracket of the narrowest width at the object's height it does not predict overturning
-        for [m] (:func:`~audit.engine.check.widths.guideline_bracket`).
+        for [m] (:func:`~audit.engine.check.widths.guideline_brackets`).
     readings : list
         Per object, the :class:`~audit.engine.check.limits.LimitReading` of each limit state.
     """
@@ -55,18 +55,19 @@ def judge(procedure, entry, context, objects, restitution: Restitution, g: float
     g : float
         Acceleration of gravity [m/s²].
     """
-    out = Judgement(np.zeros(len(objects), dtype=bool), *np.full((2, len(objects)), np.nan), [])
+    overturns, readings = np.zeros(len(objects), dtype=bool), []
     for i, obj in enumerate(objects):
         alpha = math.radians(obj.alpha_deg)
         evaluation = procedure.evaluate_for_verdict(
             entry, np.array([2.0 * math.pi / obj.size_s]), alpha, float(restitution.r(alpha)),
             context.on_demand(), g)
-        out.overturns[i] = predicts_overturning(evaluation)[0]
-        out.readings.append(limit_readings(evaluation, alpha))
-        out.width_low[i], out.width_high[i] = guideline_bracket(
-            lambda width: overturns_at(procedure, entry, context, obj, width, restitution, g),
-            obj, out.overturns[i])
-    return out
+        overturns[i] = predicts_overturning(evaluation)[0]
+        readings.append(limit_readings(evaluation, alpha))
+    low, high = guideline_brackets(
+        lambda which, widths: overturns_at(procedure, entry, context,
+                                           [objects[k] for k in which], widths, restitution, g),
+        objects, overturns)
+    return Judgement(overturns, low, high, readings)
 
 
 def at_site(entry, context, intensity: float, site_im: float):

@@ -27,6 +27,7 @@ site, not its whole grid. From it, per object:
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 import warnings
 from dataclasses import dataclass, replace
 
@@ -219,12 +220,6 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                + (" and for the risk target" if curve is not None else ""))
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
         family = Family(entries, levels, intensity, settings, jobs, executor, progress)
-        solved = []
-        # objects of one height share their search: the width it finds is the height's
-        heights, height_of = np.unique([o.height_m for o in objects], return_inverse=True)
-        widths = exact_required_widths(family, heights, targets, measure, solved)[height_of]
-        _stage(progress, "the exact P(overturn) at the other standard intensity measure")
-        others = other_im_answers(family, objects, suite.design_site, check_levels)
         contexts = {}  # records scaled to the site, on the spectra their parts computed
 
         def site_context(i: int):
@@ -233,16 +228,32 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                       design_im)
             return contexts[i]
 
-        # a procedure reading only the site: one answer for every record, judged on the first
-        site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
-                       for p in procedures if p.name not in per_record
-                       and p.unmet_requirements(site_context(0)[0]) is None}
-        _stage(progress, "the width each guideline requires at each object's height")
+        def guideline_widths():
+            # a procedure reading only the site: one answer for every record, judged on the first
+            site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
+                           for p in procedures if p.name not in per_record
+                           and p.unmet_requirements(site_context(0)[0]) is None}
+            search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
+            return [[search.of(proc, b, obj) for proc in procedures]
+                    for b, obj in enumerate(objects)]
+
+        # the guidelines' searches (Python, holding the GIL) run on a thread of their own beside
+        # the exact ones (compiled solves, one call per record, which release it)
+        beside = ThreadPoolExecutor(1)
+        try:
+            guidelines = beside.submit(guideline_widths)
+            solved = []
+            # objects of one height share their search: the width it finds is the height's
+            heights, height_of = np.unique([o.height_m for o in objects], return_inverse=True)
+            widths = exact_required_widths(family, heights, targets, measure, solved)[height_of]
+            _stage(progress, "the exact P(overturn) at the other standard intensity measure")
+            others = other_im_answers(family, objects, suite.design_site, check_levels)
+            _stage(progress, "the width each guideline requires at each object's height")
+            judged = guidelines.result()
+        finally:  # after Ctrl-C or an error nothing waits for the guidelines' searches
+            beside.shutdown(wait=False, cancel_futures=True)
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
         exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
-        search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
-        judged = [[search.of(proc, b, obj) for proc in procedures]
-                  for b, obj in enumerate(objects)]
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
                          else {})
     frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],

@@ -13,7 +13,7 @@ Guideline: per record scaled to the site's intensity, the narrowest width c_r th
 not predict overturning for (its answer is taken as monotone in width for one record); it accepts
 a width when it predicts overturning for at most half the records it can evaluate, so its
 required width is the ⌈n/2⌉-th smallest c_r. Each c_r is first bracketed by stepping out from
-the object's width (:func:`guideline_bracket`); only the brackets that can hold that order
+the object's width (:func:`guideline_brackets`); only the brackets that can hold that order
 statistic are then halved (:func:`accepted_width`): each try of a procedure whose damping
 depends on α (Priestley's β(r(α))) reads a new spectrum of the record.
 """
@@ -21,7 +21,6 @@ depends on α (Priestley's β(r(α))) reads a new spectrum of the record.
 from __future__ import annotations
 
 import math
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -67,9 +66,8 @@ class FamilySettings:
 
 def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
     """Exact overturning of the blocks of ``settings`` under one record scaled to each stripe,
-    shaped (stripe, block). The stripes share ``settings.jobs`` threads as the blocks of each
-    do: a bisection solves one or two blocks, which alone would leave all threads but one
-    idle (every block is solved alone, so the values do not depend on it).
+    shaped (stripe, block): one solver call for every block at every stripe, so that a
+    bisection's one or two blocks still keep every thread busy.
 
     Parameters
     ----------
@@ -82,18 +80,13 @@ def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
         The blocks, stripes and solver settings.
     """
     intensity = dict(settings.intensity)[entry.id]
-
-    def overturned(level):
-        return rocking_blocks(entry.motion.scaled(float(level / intensity)), settings.size_s,
-                              np.radians(settings.alpha_deg), r=settings.restitution,
-                              g=settings.g, free_motion_s=settings.free_motion_s,
-                              jobs=settings.jobs).overturned
-
-    pool = ThreadPoolExecutor(max(1, settings.jobs))
-    try:
-        return np.stack(list(pool.map(overturned, settings.levels)))
-    finally:  # on an interrupt nothing waits for the stripes not started
-        pool.shutdown(wait=False, cancel_futures=True)
+    levels, blocks = len(settings.levels), len(settings.size_s)
+    factors = np.array([level / intensity for level in settings.levels])
+    return rocking_blocks(entry.motion, np.tile(settings.size_s, levels),
+                          np.tile(np.radians(settings.alpha_deg), levels),
+                          r=settings.restitution, g=settings.g,
+                          free_motion_s=settings.free_motion_s, jobs=settings.jobs,
+                          scale=np.repeat(factors, blocks)).overturned.reshape(levels, blocks)
 
 
 def probability_at_site(overturned, levels, site_im: float) -> np.ndarray:
@@ -257,9 +250,11 @@ def exact_required_widths(family: Family, heights_m, targets, measure,
     return required_width(measured, heights_m, targets)
 
 
-def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g: float) -> bool:
-    """Whether ``procedure`` predicts overturning for the object made ``width_m`` wide under
-    ``entry`` (a record scaled to the site, ``context`` its spectra).
+def overturns_at(procedure, entry, context, objects, widths_m, restitution,
+                 g: float) -> np.ndarray:
+    """Whether ``procedure`` predicts overturning for each object made as wide as its entry of
+    ``widths_m`` under ``entry`` (a record scaled to the site, ``context`` its spectra), all in
+    one evaluation: each object's answer is that of an evaluation of it alone.
 
     Parameters
     ----------
@@ -269,55 +264,75 @@ def overturns_at(procedure, entry, context, obj, width_m: float, restitution, g:
         The record, scaled to the site.
     context : procedures.context.RecordContext
         Its spectra.
-    obj : Block
-        The object; its height stays.
-    width_m : float
-        Full base width tried [m].
+    objects : sequence of Block
+        The objects; their heights stay.
+    widths_m : sequence of float
+        Full base width tried for each [m].
     restitution : Restitution
         The impact model.
     g : float
         Acceleration of gravity [m/s²].
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        One answer per object.
     """
-    block = obj.with_width(width_m)
-    alpha = math.radians(block.alpha_deg)
-    # the verdict alone: the iteration reads the record's spectrum at this α's damping only
+    blocks = [obj.with_width(float(width)) for obj, width in zip(objects, widths_m)]
+    alpha = [math.radians(block.alpha_deg) for block in blocks]
+    # the verdict alone: the iteration reads the record's spectrum at each α's damping only
     # where it goes (a new damping at every width tried)
-    return bool(overturning_predictions(
-        procedure, [(entry, context.on_demand())], np.array([2.0 * math.pi / block.size_s]),
-        [(alpha, np.array([0]), float(restitution.r(alpha)))], g)[0, 0])
+    return overturning_predictions(
+        procedure, [(entry, context.on_demand())],
+        np.array([2.0 * math.pi / block.size_s for block in blocks]),
+        [(a, np.array([k]), float(restitution.r(a))) for k, a in enumerate(alpha)], g)[0]
 
 
-def guideline_bracket(overturns, obj, object_overturns: bool) -> tuple[float, float]:
-    """Widths (low, high) [m] at the object's height with ``overturns(low)`` and not
-    ``overturns(high)``, high/low ≤ :data:`GUIDELINE_STEP`: stepped out from the object's width
-    (whose answer is ``object_overturns``). (0.99 h, +inf) when it predicts overturning up to
-    0.99 × the height; (0, 0.01 h) when it predicts none down to 1 % of the height.
+def guideline_brackets(overturns, objects, object_overturns) -> tuple[np.ndarray, np.ndarray]:
+    """Per object, widths (low, high) [m] at its height with ``overturns`` at low and not at
+    high, high/low ≤ :data:`GUIDELINE_STEP`: stepped out from the object's width (whose answer
+    is its ``object_overturns``). (0.99 h, +inf) when it predicts overturning up to 0.99 × the
+    height; (0, 0.01 h) when it predicts none down to 1 % of the height. The objects step
+    together, each through the widths it would try alone, one call of ``overturns`` per step.
 
     Parameters
     ----------
     overturns : callable
-        ``overturns(width_m)`` → whether the guideline predicts overturning at that width.
-    obj : Block
-        The object.
-    object_overturns : bool
-        The guideline's answer at the object's own width.
+        ``overturns(indices, widths_m)`` → whether the guideline predicts overturning for those
+        objects at those widths.
+    objects : sequence of Block
+        The objects.
+    object_overturns : array_like of bool
+        The guideline's answer at each object's own width.
     """
-    lowest, highest = 0.01 * obj.height_m, 0.99 * obj.height_m
-    if object_overturns:
-        low = obj.width_m
-        while low < highest:
-            high = min(low * GUIDELINE_STEP, highest)
-            if not overturns(high):
-                return low, high
-            low = high
-        return highest, math.inf
-    high = obj.width_m
-    while high > lowest:
-        low = max(high / GUIDELINE_STEP, lowest)
-        if overturns(low):
-            return low, high
-        high = low
-    return 0.0, lowest
+    heights = np.array([obj.height_m for obj in objects], dtype=float)
+    lowest, highest = 0.01 * heights, 0.99 * heights
+    up = np.asarray(object_overturns, dtype=bool)
+    # the width last found overturning (going up) or not (going down)
+    reached = np.array([obj.width_m for obj in objects], dtype=float)
+    low, high = np.full(heights.size, np.nan), np.full(heights.size, np.nan)
+    ended_up = up & ~(reached < highest)
+    low[ended_up], high[ended_up] = highest[ended_up], math.inf
+    ended_down = ~up & ~(reached > lowest)
+    low[ended_down], high[ended_down] = 0.0, lowest[ended_down]
+    open_ = np.flatnonzero(~(ended_up | ended_down))
+    while open_.size:
+        going_up = up[open_]
+        tried = np.where(going_up, np.minimum(reached[open_] * GUIDELINE_STEP, highest[open_]),
+                         np.maximum(reached[open_] / GUIDELINE_STEP, lowest[open_]))
+        over = np.asarray(overturns(open_, tried), dtype=bool)
+        found = going_up != over  # up: not overturning at last; down: overturning at last
+        done = open_[found]
+        low[done] = np.where(going_up[found], reached[done], tried[found])
+        high[done] = np.where(going_up[found], tried[found], reached[done])
+        reached[open_] = tried
+        more = open_[~found]
+        ended_up = up[more] & ~(reached[more] < highest[more])
+        low[more[ended_up]], high[more[ended_up]] = highest[more[ended_up]], math.inf
+        ended_down = ~up[more] & ~(reached[more] > lowest[more])
+        low[more[ended_down]], high[more[ended_down]] = 0.0, lowest[more[ended_down]]
+        open_ = more[~(ended_up | ended_down)]
+    return low, high
 
 
 def accepted_width(low, high, refine, tolerance: float = GUIDELINE_TOLERANCE) -> float:
@@ -355,7 +370,7 @@ def accepted_width(low, high, refine, tolerance: float = GUIDELINE_TOLERANCE) ->
         high[straddle[~over]] = middle[~over]
 
 
-__all__ = ["required_width", "exact_required_widths", "Family", "overturns_at", "guideline_bracket",
+__all__ = ["required_width", "exact_required_widths", "Family", "overturns_at", "guideline_brackets",
            "accepted_width", "probability_at_site",
            "record_family", "FamilySettings", "SCAN_FRACTIONS", "SCAN_WIDTHS",
            "WIDTH_TOLERANCE"]

@@ -217,7 +217,7 @@ def test_an_inventory_row_may_give_alpha_and_size(tmp_path):
 def test_accepted_width_is_the_order_statistic_of_the_records_widths():
     # records with known narrowest accepted widths c_r: the guideline accepts w when at most
     # half of them have c_r > w, i.e. from the ⌈n/2⌉-th smallest c_r on
-    from audit.engine.check.widths import accepted_width, guideline_bracket
+    from audit.engine.check.widths import accepted_width, guideline_brackets
     rng = np.random.default_rng(5)
     for n in (1, 7, 44):
         c = rng.uniform(0.2, 1.4, n)
@@ -228,8 +228,10 @@ def test_accepted_width_is_the_order_statistic_of_the_records_widths():
             tries.append(len(which))
             return [w < c[k] for k, w in zip(which, widths)]
 
-        brackets = [guideline_bracket(lambda w, r=r: w < r, obj, 0.6 < r) for r in c]
-        assert all(low < r <= high for (low, high), r in zip(brackets, c))
+        # one object per record, all stepped together
+        brackets = list(zip(*guideline_brackets(lambda which, w, c=c: w < c[which], [obj] * n,
+                                                0.6 < c)))
+        assert all(low < r <= high <= 1.5 * low for (low, high), r in zip(brackets, c))
         width = accepted_width(*zip(*brackets), refine)
         expected = np.sort(c)[math.ceil(n / 2) - 1]
         assert expected <= width <= expected * 1.02
@@ -237,12 +239,13 @@ def test_accepted_width_is_the_order_statistic_of_the_records_widths():
 
 
 def test_a_guideline_that_rejects_every_width_requires_none():
-    from audit.engine.check.widths import accepted_width, guideline_bracket
+    from audit.engine.check.widths import accepted_width, guideline_brackets
     obj = Block.of_dimensions(0.6, 1.8, name="x")
-    low, high = guideline_bracket(lambda w: True, obj, True)
+    (low,), (high,) = guideline_brackets(lambda which, w: np.ones(len(which), bool), [obj], [True])
     assert (low, high) == (pytest.approx(0.99 * 1.8), math.inf)
     assert math.isinf(accepted_width([low], [high], lambda which, widths: [True] * len(which)))
-    low, high = guideline_bracket(lambda w: False, obj, False)
+    (low,), (high,) = guideline_brackets(lambda which, w: np.zeros(len(which), bool), [obj],
+                                         [False])
     assert (low, high) == (0.0, pytest.approx(0.018))
     assert accepted_width([low], [high], None) == pytest.approx(0.018)
 
