@@ -1,6 +1,6 @@
 """The width each guideline requires at an object's height, searched for every object of a
 check together (:class:`GuidelineWidths`): by the median of the records (the order statistic
-of each record's narrowest accepted width, :func:`~audit.engine.check.widths.accepted_width`),
+of each record's narrowest accepted width, :func:`~audit.engine.check.guideline_search.accepted_width`),
 and, for a guideline whose suite rule is another (NTC 2018's mean), the width whose suite
 demand meets its capacity (:func:`~audit.engine.check.entries.rule_width`).
 """
@@ -15,7 +15,7 @@ import numpy as np
 from audit.engine.check.entries import rule_width
 from audit.engine.check.limits import MEDIAN, limit_readings, suite_rule
 from audit.engine.check.settings import CheckSettings
-from audit.engine.check.widths import accepted_width, overturns_at
+from audit.engine.check.guideline_search import accepted_width, overturns_at
 from audit.engine.design.stripes import half_crossing
 
 

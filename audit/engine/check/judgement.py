@@ -11,7 +11,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from audit.engine.check.limits import limit_readings
-from audit.engine.check.widths import guideline_brackets, overturns_at
+from audit.engine.check.guideline_search import guideline_brackets, overturns_at
 from audit.physics.block import Restitution
 from procedures.overturning import predicts_overturning
 
@@ -26,7 +26,7 @@ class Judgement:
         It predicts overturning.
     width_low, width_high : numpy.ndarray
         Bracket of the narrowest width at the object's height it does not predict overturning
-        for [m] (:func:`~audit.engine.check.widths.guideline_brackets`).
+        for [m] (:func:`~audit.engine.check.guideline_search.guideline_brackets`).
     readings : list
         Per object, the :class:`~audit.engine.check.limits.LimitReading` of each limit state.
     """

@@ -217,7 +217,7 @@ def test_an_inventory_row_may_give_alpha_and_size(tmp_path):
 def test_accepted_width_is_the_order_statistic_of_the_records_widths():
     # records with known narrowest accepted widths c_r: the guideline accepts w when at most
     # half of them have c_r > w, i.e. from the ⌈n/2⌉-th smallest c_r on
-    from audit.engine.check.widths import accepted_width, guideline_brackets
+    from audit.engine.check.guideline_search import accepted_width, guideline_brackets
     rng = np.random.default_rng(5)
     for n in (1, 7, 44):
         c = rng.uniform(0.2, 1.4, n)
@@ -239,7 +239,7 @@ def test_accepted_width_is_the_order_statistic_of_the_records_widths():
 
 
 def test_a_guideline_that_rejects_every_width_requires_none():
-    from audit.engine.check.widths import accepted_width, guideline_brackets
+    from audit.engine.check.guideline_search import accepted_width, guideline_brackets
     obj = Block.of_dimensions(0.6, 1.8, name="x")
     (low,), (high,) = guideline_brackets(lambda which, w: np.ones(len(which), bool), [obj], [True])
     assert (low, high) == (pytest.approx(0.99 * 1.8), math.inf)
