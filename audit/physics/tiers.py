@@ -13,6 +13,7 @@ the compiled code does; no fast-math), so they agree to rounding.
 from __future__ import annotations
 
 import functools
+import math
 import sys
 import types
 
@@ -69,6 +70,16 @@ def machine_code_cached(kernel: CPUDispatcher) -> bool:
         return True
 
 
+def expect(interpreted_s: float) -> None:
+    """Judge a batch of runs estimated to take ``interpreted_s`` [s] interpreted, all together:
+    beyond the budget every later :func:`tiered` call runs compiled, so a batch too large to
+    interpret (a suite's records on a floor) does not interpret its first runs before loading
+    the compiled code anyway; within it, each run is counted as it comes."""
+    global _interpreted_s
+    if _interpreted_s + interpreted_s > INTERPRETED_BUDGET_S:
+        _interpreted_s = math.inf
+
+
 def tiered(kernel: CPUDispatcher, interpreted_s: float):
     """``kernel`` compiled, or interpreted for a run estimated to take ``interpreted_s`` [s]
     that way, while the process's interpreted runs stay within :data:`INTERPRETED_BUDGET_S`."""
@@ -79,4 +90,4 @@ def tiered(kernel: CPUDispatcher, interpreted_s: float):
     return interpreted(kernel)
 
 
-__all__ = ["INTERPRETED_BUDGET_S", "interpreted", "machine_code_cached", "tiered"]
+__all__ = ["INTERPRETED_BUDGET_S", "expect", "interpreted", "machine_code_cached", "tiered"]

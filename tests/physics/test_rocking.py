@@ -290,3 +290,17 @@ def test_tiered_kernels_turn_compiled_past_the_budget(monkeypatch):
     monkeypatch.setattr(tiers, "_any_compiled", lambda: True)
     monkeypatch.setattr(tiers, "_interpreted_s", 0.0)
     assert tiers.tiered(oscillator._history, 0.0) is oscillator._history
+
+
+def test_a_batch_beyond_the_budget_runs_compiled_from_its_first_run(monkeypatch):
+    """``expect`` judges a batch as a whole: one within the budget leaves each run counted as
+    it comes; one beyond it sends every later run, however short, to the compiled kernel."""
+    from audit.physics import oscillator, tiers
+    monkeypatch.setattr(tiers, "_interpreted_s", 0.0)
+    monkeypatch.setattr(tiers, "_any_compiled", lambda: False)
+    budget = tiers.INTERPRETED_BUDGET_S
+    slow = tiers.interpreted(oscillator._history)
+    tiers.expect(0.5 * budget)
+    assert tiers.tiered(oscillator._history, 0.5 * budget) is slow
+    tiers.expect(0.6 * budget)
+    assert tiers.tiered(oscillator._history, 1e-9) is oscillator._history

@@ -10,6 +10,7 @@ IntensityMeasure` reads). Procedures that read the record read the floor motion.
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
@@ -129,10 +130,15 @@ def on_floor(suite, floor: Floor):
     if floor.on_ground:
         return suite
     # the filter's kernels load only here: reading results back (audit report) needs none
-    from audit.physics.building.floor_motion import floor_motion
-    entries = tuple(entry if entry.motion is None
-                    else replace(entry, motion=floor_motion(entry.motion, floor))
-                    for entry in suite)
+    from audit.physics.building.floor_motion import floor_motion, interpreted_time_s
+    from audit.physics.tiers import expect
+    motions = [entry.motion for entry in suite if entry.motion is not None]
+    expect(sum(interpreted_time_s(motion, floor) for motion in motions))
+    # the records filtered two at a time: the compiled filter releases the GIL
+    with ThreadPoolExecutor(2) as pool:
+        on_floor = iter(pool.map(lambda motion: floor_motion(motion, floor), motions))
+        entries = tuple(entry if entry.motion is None else replace(entry, motion=next(on_floor))
+                        for entry in suite)
     peaks = {entry.id: floor_peaks(entry.motion) for entry in entries if entry.motion is not None}
     return replace(suite, entries=entries, description=f"{suite.description}; {floor.describe()}",
                    floor={**floor_document(floor), "records": peaks})

@@ -63,6 +63,24 @@ def _modal_sum(acc, coeffs, weights, two_xi_omega, omega2, out):
             out[k + 1] -= w * (damping_term * v + stiffness_term * u)
 
 
+def _free_vibration_samples(samples: int, dt: float, floor: Floor) -> int:
+    """Samples of the building's free vibration appended to a record of ``samples`` samples."""
+    tail = min(math.log(1.0 / FREE_VIBRATION_LEFT) * floor.building_period_s
+               / (2.0 * math.pi * floor.building_damping), (samples - 1) * dt)
+    return int(math.ceil(tail / dt))
+
+
+def interpreted_time_s(motion, floor: Floor) -> float:
+    """Estimated time [s] of the floor filter of ``motion`` run by the interpreter (for
+    :func:`audit.physics.tiers.tiered`)."""
+    if floor.on_ground:
+        return 0.0
+    samples = motion.acceleration.size
+    modes = floor_modes(floor, motion.dt)[0].size
+    return (samples + _free_vibration_samples(samples, motion.dt, floor)) * modes \
+        * INTERPRETED_STEP_S
+
+
 def floor_acceleration(acceleration, dt: float, floor: Floor) -> np.ndarray:
     """The absolute floor acceleration at the samples of ``acceleration`` (the ground's, any
     unit; the same unit out), zeros appended for the building's free vibration (see the
@@ -81,9 +99,8 @@ def floor_acceleration(acceleration, dt: float, floor: Floor) -> np.ndarray:
     if floor.on_ground:
         return acc.copy()
     periods, weights = floor_modes(floor, dt)
-    tail = min(math.log(1.0 / FREE_VIBRATION_LEFT) * floor.building_period_s
-               / (2.0 * math.pi * floor.building_damping), (acc.size - 1) * dt)
-    acc = np.concatenate((acc, np.zeros(int(math.ceil(tail / dt)) if periods.size else 0)))
+    acc = np.concatenate((acc, np.zeros(_free_vibration_samples(acc.size, dt, floor)
+                                        if periods.size else 0)))
     out = (1.0 - weights.sum()) * acc
     if periods.size:
         damping = np.full(periods.size, floor.building_damping)
@@ -113,4 +130,5 @@ def floor_motion(motion, floor: Floor):
 
 
 __all__ = ["floor_acceleration", "floor_motion", "floor_modes", "building_of",
+           "interpreted_time_s",
            "FREE_VIBRATION_LEFT"]
