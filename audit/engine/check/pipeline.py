@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 from concurrent.futures import ThreadPoolExecutor
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -37,9 +37,10 @@ from audit.engine.shared.blocks import BlockList
 from audit.engine.check.risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check.settings import CheckSettings
 from audit.engine.check.site import site_intensity
-from audit.engine.check.sliding import required_friction, sliding_answer
+from audit.engine.check.sliding import sliding_answer
 from audit.engine.check.words import sentence
 from audit.engine.check.judgement import at_site, judge
+from audit.engine.check.record_part import CheckWork, check_record
 from audit.engine.check.guideline_widths import GuidelineWidths
 from audit.engine.check.widths import Family, exact_required_widths, probability_at_site
 from audit.engine.check.other_im import other_im_answers
@@ -48,13 +49,12 @@ from audit.engine.shared.floors import floor_at_site
 from audit.engine.design.bootstrap import bootstrap_lognormal
 from audit.engine.check.width_family import width_answer
 from audit.engine.design.lognormal_fit import fit_lognormal
-from audit.engine.design.stripes import RecordStripes, StripeSettings, record_stripes
+from audit.engine.design.stripes import StripeSettings
 from audit.engine.design.risk import LognormalFragility, StripeFragility
 from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts, open_scheduler
 from audit.errors import InputError, InputWarning
 from audit.physics.building.floor import Floor
-from procedures.context import RecordContext
 from records.sites import NTC2018_SITE_KEYS
 
 #: Stripes either side of the site's intensity, and the ratio between neighbours: 0.25–4 ×.
@@ -77,86 +77,6 @@ def check_levels(site_im: float) -> np.ndarray:
         The site's intensity (in the IM's unit, e.g. [g]).
     """
     return site_im * STRIPE_STEP ** np.arange(-SITE_STRIPES, SITE_STRIPES + 1)
-
-
-@dataclass(frozen=True)
-class CheckWork:
-    """What every record's part of a check depends on.
-
-    Attributes
-    ----------
-    stripes : audit.engine.design.stripes.StripeSettings
-        The stripes (the site's intensity its ``design_im``) and the objects as blocks.
-    objects : tuple of audit.engine.shared.blocks.Block
-    per_record : tuple of str
-        Procedures judged on every record (those reading the record); the others read only the
-        site and are judged once.
-    """
-
-    stripes: StripeSettings
-    objects: tuple
-    per_record: tuple
-
-    @property
-    def jobs(self) -> int:
-        return self.stripes.jobs
-
-    def with_jobs(self, jobs: int) -> CheckWork:
-        """This work with ``jobs`` solver threads (a Dask worker's one).
-
-        Parameters
-        ----------
-        jobs : int
-            Solver threads.
-        """
-        return replace(self, stripes=replace(self.stripes, jobs=jobs))
-
-    def as_dict(self) -> dict:
-        return {**self.stripes.as_dict(), "kind": "check", "per_record": list(self.per_record)}
-
-
-@dataclass
-class CheckRecord:
-    """One record's part of a check: its stripes, the judgements of the procedures that read
-    it (None where a procedure cannot evaluate the record), and its context, whose cached
-    spectra the width searches read again, and the friction each object's pure-rocking response
-    needs at the site's intensity (:mod:`audit.engine.check.sliding`)."""
-
-    stripes: RecordStripes
-    judged: dict
-    context: RecordContext
-    required_friction: np.ndarray | None = None
-
-
-def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
-    """The unit of work of a check: one record's stripes, then each record-reading procedure's
-    judgement at the site, on the same cached spectra. A check reads only verdicts, so its
-    displacement spectra are computed only where the iterations read them (at each object's
-    damping and, in the width search, at each width's).
-
-    Parameters
-    ----------
-    entry : records.RecordEntry
-        The record.
-    procedures : sequence of procedures.base.Procedure
-        The guidelines.
-    settings : CheckWork
-        The check's work: stripes, objects and the procedures judged record by record.
-    """
-    margins = settings.stripes
-    context = RecordContext(entry, margins.free_motion_s, margins.jobs).on_demand()
-    stripes = record_stripes(entry, procedures, margins, context)
-    scaled, scaled_context = at_site(entry, context, stripes.intensity, margins.design_im)
-    judged = {}
-    for proc in procedures:
-        if proc.name in settings.per_record and proc.unmet_requirements(scaled) is None:
-            judged[proc.name] = judge(proc, scaled, scaled_context, settings.objects,
-                                      margins.restitution, margins.g)
-    site_level = margins.levels[len(margins.levels) // 2]  # the site's, mid-stripes
-    friction = required_friction(entry.motion, site_level / stripes.intensity, margins.blocks,
-                                 margins.restitution, margins.g, margins.free_motion_s,
-                                 margins.jobs)
-    return CheckRecord(stripes, judged, context, friction)
 
 
 @dataclass
@@ -228,20 +148,22 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                       design_im)
             return contexts[i]
 
-        def guideline_widths():
+        def beside_the_exact_search():
             # a procedure reading only the site: one answer for every record, judged on the first
             site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
                            for p in procedures if p.name not in per_record
                            and p.unmet_requirements(site_context(0)[0]) is None}
             search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
-            return [[search.of(proc, b, obj) for proc in procedures]
-                    for b, obj in enumerate(objects)]
+            return ([[search.of(proc, b, obj) for proc in procedures]
+                     for b, obj in enumerate(objects)],
+                    floor_at_site(suite, entries, intensity, site_im))
 
-        # the guidelines' searches (Python, holding the GIL) run on a thread of their own beside
-        # the exact ones (compiled solves, one call per record, which release it)
+        # the guidelines' searches (Python, holding the GIL) and, on a floor, the spectra of
+        # the floor and ground motions run on a thread of their own beside the exact search
+        # (compiled solves, one call per record, which release the GIL)
         beside = ThreadPoolExecutor(1)
         try:
-            guidelines = beside.submit(guideline_widths)
+            guidelines = beside.submit(beside_the_exact_search)
             solved = []
             # objects of one height share their search: the width it finds is the height's
             heights, height_of = np.unique([o.height_m for o in objects], return_inverse=True)
@@ -249,7 +171,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             _stage(progress, "the exact P(overturn) at the other standard intensity measure")
             others = other_im_answers(family, objects, suite.design_site, check_levels)
             _stage(progress, "the width each guideline requires at each object's height")
-            judged = guidelines.result()
+            judged, floor_document = guidelines.result()
         finally:  # after Ctrl-C or an error nothing waits for the guidelines' searches
             beside.shutdown(wait=False, cancel_futures=True)
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
@@ -300,7 +222,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
     summary.update(design_im=design_im, site_hazard=site.as_dict(curve),
                    friction=settings.friction)
-    summary["floor"] = floor_at_site(suite, entries, intensity, site_im)
+    summary["floor"] = floor_document
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)
@@ -346,5 +268,5 @@ def _warn_truncated(answers, curve) -> None:
                       stacklevel=3)
 
 
-__all__ = ["run_check", "CheckRun", "CheckWork", "check_record", "check_levels",
+__all__ = ["run_check", "CheckRun", "check_levels",
            "SITE_STRIPES", "STRIPE_STEP", "TARGETS"]
