@@ -27,7 +27,6 @@ site, not its whole grid. From it, per object:
 from __future__ import annotations
 
 import math
-from concurrent.futures import ThreadPoolExecutor
 import warnings
 from dataclasses import dataclass
 
@@ -52,7 +51,7 @@ from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.engine.design.stripes import StripeSettings
 from audit.engine.design.risk import LognormalFragility, StripeFragility
 from audit.engine.shared.runtime import Runtime
-from audit.engine.shared.scheduler import computed_parts, open_scheduler
+from audit.engine.shared.scheduler import computed_parts, open_scheduler, side_thread
 from audit.errors import InputError, InputWarning
 from audit.physics.building.floor import Floor
 from records.sites import NTC2018_SITE_KEYS
@@ -158,11 +157,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                      for b, obj in enumerate(objects)],
                     floor_at_site(suite, entries, intensity, site_im))
 
-        # the guidelines' searches (Python, holding the GIL) and, on a floor, the spectra of
-        # the floor and ground motions run on a thread of their own beside the exact search
-        # (compiled solves, one call per record, which release the GIL)
-        beside = ThreadPoolExecutor(1)
-        try:
+        # the guidelines' searches and, on a floor, the spectra of the floor and ground motions
+        # run on a side thread beside the exact search (one solver call per record)
+        with side_thread() as beside:
             guidelines = beside.submit(beside_the_exact_search)
             solved = []
             # objects of one height share their search: the width it finds is the height's
@@ -172,8 +169,6 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             others = other_im_answers(family, objects, suite.design_site, check_levels)
             _stage(progress, "the width each guideline requires at each object's height")
             judged, floor_document = guidelines.result()
-        finally:  # after Ctrl-C or an error nothing waits for the guidelines' searches
-            beside.shutdown(wait=False, cancel_futures=True)
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
         exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None

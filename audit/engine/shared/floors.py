@@ -133,11 +133,11 @@ def on_floor(suite, floor: Floor):
     from audit.physics.building.floor_motion import floor_motion, interpreted_time_s
     from audit.physics.tiers import expect
     motions = [entry.motion for entry in suite if entry.motion is not None]
-    expect(sum(interpreted_time_s(motion, floor) for motion in motions))
+    expect(sum(interpreted_time_s(m.acceleration.size, m.dt, floor) for m in motions))
     # the records filtered two at a time: the compiled filter releases the GIL
     with ThreadPoolExecutor(2) as pool:
-        on_floor = iter(pool.map(lambda motion: floor_motion(motion, floor), motions))
-        entries = tuple(entry if entry.motion is None else replace(entry, motion=next(on_floor))
+        filtered = iter(pool.map(lambda motion: floor_motion(motion, floor), motions))
+        entries = tuple(entry if entry.motion is None else replace(entry, motion=next(filtered))
                         for entry in suite)
     peaks = {entry.id: floor_peaks(entry.motion) for entry in entries if entry.motion is not None}
     return replace(suite, entries=entries, description=f"{suite.description}; {floor.describe()}",

@@ -225,6 +225,18 @@ class DaskScheduler:
 
 
 @contextmanager
+def side_thread():
+    """One worker thread for Python work (holding the GIL) to run beside the caller's compiled
+    solves (which release it), not after them with a core idle. On exit, after Ctrl-C or an
+    error too, nothing waits for it: what is still queued is dropped."""
+    pool = ThreadPoolExecutor(1)
+    try:
+        yield pool
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
+
+
+@contextmanager
 def open_scheduler(spec: str, jobs: int):
     """The scheduler named by ``spec`` (see :func:`check_scheduler`), closed on exit.
 
@@ -333,4 +345,4 @@ def computed_parts(task, entries, procedures, settings, scheduler: str, store=No
 
 
 __all__ = ["computed_parts", "open_scheduler", "check_scheduler", "LocalScheduler", "DaskScheduler",
-           "timed"]
+           "side_thread", "timed"]

@@ -70,15 +70,14 @@ def _free_vibration_samples(samples: int, dt: float, floor: Floor) -> int:
     return int(math.ceil(tail / dt))
 
 
-def interpreted_time_s(motion, floor: Floor) -> float:
-    """Estimated time [s] of the floor filter of ``motion`` run by the interpreter (for
-    :func:`audit.physics.tiers.tiered`)."""
+def interpreted_time_s(samples: int, dt: float, floor: Floor) -> float:
+    """Estimated time [s] of the floor filter of a record of ``samples`` samples ``dt`` apart
+    run by the interpreter (for :func:`audit.physics.tiers.tiered`): every kept mode at every
+    sample, the building's free vibration included."""
     if floor.on_ground:
         return 0.0
-    samples = motion.acceleration.size
-    modes = floor_modes(floor, motion.dt)[0].size
-    return (samples + _free_vibration_samples(samples, motion.dt, floor)) * modes \
-        * INTERPRETED_STEP_S
+    modes = floor_modes(floor, dt)[0].size
+    return (samples + _free_vibration_samples(samples, dt, floor)) * modes * INTERPRETED_STEP_S
 
 
 def floor_acceleration(acceleration, dt: float, floor: Floor) -> np.ndarray:
@@ -99,6 +98,7 @@ def floor_acceleration(acceleration, dt: float, floor: Floor) -> np.ndarray:
     if floor.on_ground:
         return acc.copy()
     periods, weights = floor_modes(floor, dt)
+    run_s = interpreted_time_s(acc.size, dt, floor)
     acc = np.concatenate((acc, np.zeros(_free_vibration_samples(acc.size, dt, floor)
                                         if periods.size else 0)))
     out = (1.0 - weights.sum()) * acc
@@ -106,7 +106,7 @@ def floor_acceleration(acceleration, dt: float, floor: Floor) -> np.ndarray:
         damping = np.full(periods.size, floor.building_damping)
         omega = 2.0 * np.pi / periods
         coeffs = recurrence_coefficients(periods, damping, dt)
-        tiered(_modal_sum, acc.size * periods.size * INTERPRETED_STEP_S)(
+        tiered(_modal_sum, run_s)(
             acc, coeffs, np.ascontiguousarray(weights, dtype=float), 2.0 * damping * omega,
             omega ** 2, out)
     return out
