@@ -52,11 +52,16 @@ def timed(task, item, *args):
 #: that one record's Python work (guidelines' iterations, rows, files), which holds the GIL,
 #: runs beside the other's compiled kernels, which release it.
 RECORDS_IN_FLIGHT = 2
+#: Records a local run may have computed ahead of the one the caller waits for: a thread whose
+#: record finished before an earlier one (or while the caller writes the last) starts the next
+#: at once instead of idling, and memory holds at most this many parts more.
+RECORDS_AHEAD = 2
 
 
 class LocalScheduler:
-    """Records in this process, two at a time and handed back in order; the solver uses
-    ``settings.jobs`` threads."""
+    """Records in this process, two at a time and handed back in order (up to
+    :data:`RECORDS_AHEAD` computed ahead of their turn); the solver uses ``settings.jobs``
+    threads."""
 
     description = "this process"
     #: Solver threads of a task: None keeps the settings' ``jobs``.
@@ -75,14 +80,14 @@ class LocalScheduler:
             The task's other arguments.
         """
         pool = ThreadPoolExecutor(RECORDS_IN_FLIGHT)
+        window = RECORDS_IN_FLIGHT + RECORDS_AHEAD  # queued ones start as a thread frees
         try:
             futures = deque(pool.submit(timed, task, entry, *args)
-                            for entry in entries[:RECORDS_IN_FLIGHT])
+                            for entry in entries[:window])
             for index in range(len(entries)):
                 done = futures.popleft().result()
-                if index + RECORDS_IN_FLIGHT < len(entries):
-                    futures.append(pool.submit(timed, task, entries[index + RECORDS_IN_FLIGHT],
-                                               *args))
+                if index + window < len(entries):
+                    futures.append(pool.submit(timed, task, entries[index + window], *args))
                 yield (index, *done)
         finally:  # on an interrupt or an error nothing waits for the records still queued
             pool.shutdown(wait=False, cancel_futures=True)

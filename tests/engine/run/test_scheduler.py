@@ -195,6 +195,25 @@ def test_local_scheduler_overlaps_two_records_and_yields_in_order():
     assert most[0] == RECORDS_IN_FLIGHT
 
 
+def test_local_scheduler_starts_the_next_record_when_a_later_one_finishes_first():
+    # the first record waits until the third has run: the third must start on the thread the
+    # second frees, before anyone has taken the first (which the caller waits for)
+    import threading
+    from audit.engine.shared.scheduler import LocalScheduler
+    third_ran = threading.Event()
+
+    def task(item, factor):
+        if item.value == 0:
+            assert third_ran.wait(timeout=60), "the third record never started"
+        if item.value == 2:
+            third_ran.set()
+        return item.value * factor
+
+    items = [_Item(f"r{i}", i) for i in range(5)]
+    yielded = [(index, value) for index, value, _ in LocalScheduler().map(task, items, 3)]
+    assert yielded == [(i, 3 * i) for i in range(5)]
+
+
 def _tripled_with(item, procedures, factor):
     return item.value * factor
 
