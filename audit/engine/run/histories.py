@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from audit.engine.run.ranking import WORST_CLASSES, rank_worst
+from audit.engine.run.ranking import WORST_CLASSES, worst_positions
 from audit.engine.run.settings import HISTORY_POINTS, AuditSettings
 from audit.physics.block import RigidBlock
 from audit.physics.rocking import simulate
@@ -52,11 +52,18 @@ def history_blocks(results: pd.DataFrame, spectrum, alpha_deg, per_class: int = 
         key = (round(float(alpha), 9), round(float(size), 9))
         picks.setdefault(key, []).append(reason)
 
-    for procedure, rows in results.groupby("procedure", sort=False):
+    # ranked on the columns' arrays (rank_worst's order), each procedure's rows in turn
+    names = results["procedure"].to_numpy()
+    verdicts = results["verdict"].to_numpy()
+    fragile = results["exact_fragile"].eq(True).to_numpy()
+    alphas, sizes = results["alpha_deg"].to_numpy(), results["size_s"].to_numpy()
+    ranked = {column: results[column].to_numpy(dtype=float) for _, column, _, _ in WORST_CLASSES}
+    for procedure in pd.unique(names):
+        rows = np.flatnonzero(names == procedure)
         for verdict, column, largest, reason in WORST_CLASSES:
-            hits = rank_worst(rows[rows["verdict"] == verdict], column, largest).head(per_class)
-            for alpha, size in zip(hits["alpha_deg"], hits["size_s"]):
-                pick(alpha, size, f"{reason}, {procedure}")
+            for i in rows[worst_positions(verdicts[rows], fragile[rows], ranked[column][rows],
+                                          verdict, largest, per_class)]:
+                pick(alphas[i], sizes[i], f"{reason}, {procedure}")
     alpha_index = int(np.argmin(np.abs(np.asarray(alpha_deg) - 15.0)))
     for size in _representative_sizes(spectrum, alpha_index):
         pick(alpha_deg[alpha_index], size, "representative")

@@ -52,6 +52,27 @@ def _worst_first(fragile: np.ndarray, value: np.ndarray, largest: bool) -> np.nd
     return np.lexsort((np.where(missing, 0.0, -value if largest else value), missing, fragile))
 
 
+def worst_positions(verdicts: np.ndarray, fragile: np.ndarray, values: np.ndarray, verdict: str,
+                    largest: bool, count: int) -> np.ndarray:
+    """Positions of the ``count`` worst rows of class ``verdict``, in :func:`rank_worst`'s order,
+    from the rows' columns as arrays: no frame is indexed (a record's histories and its bottom
+    line pick a few rows of each class).
+
+    Parameters
+    ----------
+    verdicts, fragile, values : numpy.ndarray
+        The rows' verdicts, exact fragility flags and ranked values.
+    verdict : str
+        The class.
+    largest : bool
+        Whether the largest value is the worst.
+    count : int
+        Rows wanted (fewer where the class has fewer).
+    """
+    hits = np.flatnonzero(verdicts == verdict)
+    return hits[_worst_first(fragile[hits], values[hits], largest)[:count]]
+
+
 def worst_case(rows: pd.DataFrame):
     """The block a procedure's bottom line names: a missed overturning where the procedure's
     rotation is smallest (robust before fragile), else the largest underestimate, else the
@@ -71,10 +92,10 @@ def worst_case(rows: pd.DataFrame):
     fragile = rows["exact_fragile"].eq(True).to_numpy()
     for verdict, column, largest, _ in order:
         # ranked on the columns' arrays: one row taken from the frame, not every hit
-        hits = np.flatnonzero(verdicts == verdict)
-        if hits.size:
-            value = rows[column].to_numpy(dtype=float)[hits]
-            return rows.iloc[hits[_worst_first(fragile[hits], value, largest)[0]]]
+        first = worst_positions(verdicts, fragile, rows[column].to_numpy(dtype=float), verdict,
+                                largest, 1)
+        if first.size:
+            return rows.iloc[first[0]]
     return None
 
 
@@ -167,5 +188,5 @@ class ShownRecords:
         return list(blocks.values())
 
 
-__all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst",
+__all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst", "worst_positions",
            "worst_case", "block_key", "is_drawn", "ShownRecords"]
