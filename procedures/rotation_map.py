@@ -133,7 +133,8 @@ def _bisected(excess_of, low, high, positive_low, args) -> np.ndarray:
     audit's start, and a bracket a scan step wide needs about 28 halvings, each one array
     expression over every root."""
     width = float(np.max(high - low, initial=0.0))
-    halvings = max(0, math.ceil(math.log2(width / ROOT_TOLERANCE_RATIO))) if width > 0 else 0
+    halvings = (math.ceil(math.log2(width / ROOT_TOLERANCE_RATIO))
+                if width > ROOT_TOLERANCE_RATIO else 0)
     for _ in range(halvings):
         middle = 0.5 * (low + high)
         same = (excess_of(middle, *args) > 0.0) == positive_low
