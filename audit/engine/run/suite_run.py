@@ -17,7 +17,7 @@ from pathlib import Path
 import pandas as pd
 
 from audit.engine.shared import fields as check
-from audit.engine.claims.checklist import claimed_records, evaluate_claims
+from audit.engine.claims.checklist import claimed_records, evaluate_claims, load_claims
 from audit.engine.shared.heap import return_freed_memory_promptly
 from audit.engine.shared.partial import PartialStore
 from audit.engine.run.record_audit import audit_record
@@ -112,7 +112,8 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
                          f"{suite.description}", "detail")
     kept = (None if runtime.partial_dir is None
             else PartialStore(runtime.partial_dir, procedures, settings, runtime.resume))
-    writer = RunWriter(Path(folder), procedures, claimed_records() if claims else ())
+    checklist = load_claims() if claims else []  # read once: the records kept, then judged
+    writer = RunWriter(Path(folder), procedures, claimed_records(checklist))
     in_order = _InOrder(entries, writer.add, kept, procedures, settings)
     try:
         _, resumed, where = computed_parts(audit_record, entries, procedures, settings,
@@ -128,7 +129,7 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
                        f"statistics and the claims")
     summary = writer.summary(suite, settings, detail)
     summary.update(scheduler=where, resumed=resumed)
-    writer.finish(summary, evaluate_claims(writer.kept_run(summary), suite)
+    writer.finish(summary, evaluate_claims(writer.kept_run(summary), suite, checklist)
                   if claims else pd.DataFrame(columns=CLAIM_COLUMNS))
     return summary
 
