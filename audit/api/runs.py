@@ -276,7 +276,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
         stage.stage(f"auditing {', '.join(p.name for p in chosen)} on {len(suite)} records")
         if compiles_first():
             stage.stage("compiling the rocking solver and the oscillator kernels for this "
-                        "machine (only the first run after installing or updating: about 20 s)")
+                        "machine (only the first run after installing or updating: about 40 s)")
     stage = stage if hasattr(stage, "stage") else None
     if out_dir is None:
         scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")

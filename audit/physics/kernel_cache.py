@@ -7,7 +7,7 @@ kernels it calls from other modules. After an update that changed ``motion_equat
 ``kernel.py``'s cached solver would go on integrating the old equation of motion, silently. The
 kernels of ``audit/physics`` and ``procedures`` are stamped instead with one digest of every
 module that defines kernels, so that a change to any of them recompiles them all (once, about
-20 s). The cache stays where numba puts it: ``NUMBA_CACHE_DIR`` if set, else ``__pycache__``
+40 s). The cache stays where numba puts it: ``NUMBA_CACHE_DIR`` if set, else ``__pycache__``
 beside the source, else numba's folder in the user's cache.
 """
 
