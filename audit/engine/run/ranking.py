@@ -188,5 +188,5 @@ class ShownRecords:
         return list(blocks.values())
 
 
-__all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst", "worst_positions",
-           "worst_case", "block_key", "is_drawn", "ShownRecords"]
+__all__ = ["WORST_CLASSES", "LARGE_SUITE", "WORST_RECORDS", "WORST_ROWS", "rank_worst",
+           "worst_positions", "worst_case", "block_key", "is_drawn", "ShownRecords"]

@@ -280,7 +280,8 @@ def open_scheduler(spec: str, jobs: int):
 
 def _with_jobs(settings, jobs: int):
     """``settings`` with ``jobs`` solver threads: a dataclass with a ``jobs`` field, or one that
-    says how (:meth:`~audit.engine.check.record_part.CheckWork.with_jobs`, whose threads are its stripes')."""
+    says how (:meth:`~audit.engine.check.record_part.CheckWork.with_jobs`, whose threads are
+    its stripes')."""
     with_jobs = getattr(settings, "with_jobs", None)
     return with_jobs(jobs) if with_jobs is not None else replace(settings, jobs=jobs)
 
