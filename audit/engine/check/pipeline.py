@@ -141,7 +141,6 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     targets = TARGETS + ((settings.risk_target,) if curve is not None else ())
 
     def measure(overturned, levels):  # P at the site for TARGETS, P in 50 years for the risk
-        overturned, levels = overturned[:, fitted], levels[fitted]  # the lattice fragility's
         p_site = probability_at_site(overturned, levels, site_im)
         if curve is None:
             return p_site
@@ -154,7 +153,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         _stage(progress, "the exact width for P(overturn) ≤ 10 % and ≤ 50 % at each height"
                + (" and for the risk target" if curve is not None else ""))
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
-        family = Family(entries, levels, intensity, settings, jobs, executor, progress)
+        # the width searches read the fragility alone: the lattice's stripes, not the site's
+        family = Family(entries, levels[fitted], intensity, settings, jobs, executor, progress)
         contexts = {}  # records scaled to the site, on the spectra their parts computed
 
         def site_context(i: int):
@@ -188,14 +188,14 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             judged, floor_document = guidelines.result()
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
         exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
-        guideline_p50 = (_guideline_risk(family, objects, judged, curve, fitted)
-                         if curve is not None else {})
+        guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
+                         else {})
     frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],
                        settings.limit_state, fitted)
     answers = []
     for b, obj in enumerate(objects):
         over = exact_over[:, :, b]  # (record, stripe)
-        family_widths = _family_widths(obj, over[:, fitted], solved, levels, site_im, fitted)
+        family_widths = _family_widths(obj, over[:, fitted], solved, levels[fitted], site_im)
         fit, boot = lattice_fragility(levels[fitted], over[:, fitted], settings.seed)
         risk = None
         if curve is not None:
@@ -235,16 +235,17 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     return CheckRun(answers, summary)
 
 
-def _family_widths(obj, over, solved, levels, site_im, fitted):
+def _family_widths(obj, over, solved, levels, site_im):
     """The object's height as one fragility family (:mod:`audit.engine.check.width_family`), fitted on
-    the object's own outcomes (on the lattice, ``over``) and every width solved at its height."""
+    the object's own outcomes and every width solved at its height, on the lattice's stripes
+    ``levels``."""
     widths, outcomes = [obj.width_m], [over[:, :, None]]
     for heights, solved_widths, overturned in solved:
         mine = heights == obj.height_m
         widths += solved_widths[mine].tolist()
-        outcomes.append(overturned[:, fitted][:, :, mine])
-    return width_answer(widths, levels[fitted], np.concatenate(outcomes, axis=2), site_im,
-                        TARGETS, obj.height_m)
+        outcomes.append(overturned[:, :, mine])
+    return width_answer(widths, levels, np.concatenate(outcomes, axis=2), site_im, TARGETS,
+                        obj.height_m)
 
 
 def _stage(progress, text: str) -> None:
@@ -252,7 +253,7 @@ def _stage(progress, text: str) -> None:
         progress.stage(text)
 
 
-def _guideline_risk(family: Family, objects, judged, curve, fitted) -> dict:
+def _guideline_risk(family: Family, objects, judged, curve) -> dict:
     """P in 50 years of each object at the width each guideline requires, {object: {procedure
     name: P}}: every such block solved together."""
     pairs = [(b, proc.name, width) for b, row in enumerate(judged)
@@ -261,8 +262,7 @@ def _guideline_risk(family: Family, objects, judged, curve, fitted) -> dict:
     if pairs:
         overturned = family.overturned([objects[b].height_m for b, _, _ in pairs],
                                        [w for _, _, w in pairs])
-        for (b, name, _), p50 in zip(pairs, p50_of_blocks(overturned[:, fitted],
-                                                          family.levels[fitted], curve)):
+        for (b, name, _), p50 in zip(pairs, p50_of_blocks(overturned, family.levels, curve)):
             out[b][name] = float(p50)
     return out
 

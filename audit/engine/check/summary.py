@@ -31,7 +31,7 @@ CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.shared.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 TEXT_COLUMNS = ("object", "procedure", "limit_state", "verdict", "compares", "unit", "basis",
-                "reason", "im", "building_model")
+                "reason", "im", "building_model", "p_estimator")
 
 
 def _number(value) -> float | None:
@@ -259,6 +259,7 @@ def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
                 "im": exact["im"], "site_im": exact["site_im_g"],
                 "p_overturn_at_site": exact["p_overturn_at_site"],
                 "p_band_low": exact["p_band"][0], "p_band_high": exact["p_band"][1],
+                "p_estimator": exact["p_at_site"]["estimator"],
                 "exact_median": exact["median_g"], "exact_beta": exact["beta"],
                 "exact_required_width_m_10pct": exact["required_width_m_10pct"],
                 "exact_required_width_m_50pct": exact["required_width_m_50pct"],
