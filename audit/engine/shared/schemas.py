@@ -278,8 +278,10 @@ GUIDE["check.csv"] = {
     "share_of_records_overturning": ("-", "information only: share of the records it can "
                                           "evaluate for which it predicts overturning"),
     "exact_p_exceed": ("-", "exact P at site_im of the exact peak rotation reaching this limit "
-                            "(θ(d_LS) for a limit state on d, α for overturning), from a "
-                            "lognormal fitted to the stripes; ≥ p_overturn_at_site"),
+                            "(θ(d_LS) for a limit state on d, α for overturning), by the rule of "
+                            "p_overturn_at_site (the lognormal fitted to the lattice's stripes "
+                            "unless the count at the site's stripe lies outside its band); "
+                            "≥ p_overturn_at_site, and equal to it for overturning"),
     "required_width_m": ("m", "narrowest width at the object's height it passes (empty where "
                               "none up to 0.99 × the height)"),
     "guideline_im": ("g", "intensity from which it predicts overturning for half the records "
