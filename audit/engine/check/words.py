@@ -81,7 +81,8 @@ def _judged(entries) -> str:
 def p_words(exact: dict, records: int) -> str:
     """The exact P(overturn) at the site as its headline says it, and which estimate that is:
     the lognormal's with its band, the count at the site's stripe with its exact band (where it
-    lies outside the lognormal's), or the one-sided 95 % bound where no record (or every
+    rejects the lognormal's P: it lies outside the count's band), or the one-sided 95 % bound
+    where no record (or every
     record) overturns the object there (:mod:`audit.engine.design.site_probability`).
 
     Parameters
@@ -99,7 +100,7 @@ def p_words(exact: dict, records: int) -> str:
                 "the site's intensity)")
     if at["estimator"] == "count":
         return (f"{at['headline']} ({k} of {n} records at the site's intensity, exact band; "
-                + (f"the lognormal's {100 * at['model']['p']:.0f} % misfits there)"
+                + (f"they reject the lognormal's {100 * at['model']['p']:.0f} %)"
                    if at["model"]["p"] is not None else "no lognormal fits)"))
     return f"{at['headline']} (lognormal; {k} of {n} records at the site's intensity)"
 
@@ -225,7 +226,8 @@ def summary_text(document: dict) -> str:
              f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility "
              "(a fixed lattice, √2 apart, which the fragility is fitted on, and the site's own "
              "stripe; P at the site is the lognormal's unless the count at the site's stripe "
-             "lies outside its band, then the count's: see docs/check.md).", ""]
+             "rejects it (the lognormal's P outside the count's exact band), then the count's: "
+             "see docs/check.md).", ""]
     site_hazard = document.get("site_hazard")
     if site_hazard and site_hazard.get("warning"):
         lines[-1:-1] = [f"Warning: {site_hazard['warning']}."]

@@ -9,16 +9,20 @@ Two estimates of P at an intensity x stand side by side:
   (Clopper & Pearson 1934, Biometrika 26(4) 404–413): B⁻¹(a/2; k, n − k + 1) and
   B⁻¹(1 − a/2; k + 1, n − k), a = 1 − confidence, 0 and 1 at k = 0 and k = n.
 
-The headline is the model's unless the count lies outside the model's band: then the lognormal
-misfits at x (one curve across the whole lattice, pulled by the stripes far from x) and the
-headline is the count with its band. Where no record (or every record) overturns the block at
-x, the headline is the one-sided bound at :data:`BOUND_CONFIDENCE`: P < 1 − 0.05^(1/n) (or
-P > 0.05^(1/n)), never a certain-looking 0 % or 100 %.
+The headline is the model's unless the records at x reject it: the model's P lies outside the
+count's exact band, i.e. the exact binomial test of k against n·P rejects the lognormal at 10 %
+(one curve across the whole lattice can be pulled off at x by the stripes far from it). Then the
+headline is the count with its exact band. The test is the count's band, not the model's: the
+model's bootstrap band holds the uncertainty of the expected P, not the binomial noise of k
+records, so a count outside it is no evidence of misfit (1 of 44 records where the lognormal says
+6.9 % [2.4–11.8 %] happens with probability 0.19). Either way the headline's P lies inside the
+count's exact band. Where no record (or every record) overturns the block at x, the headline is
+the one-sided bound at :data:`BOUND_CONFIDENCE`: P < 1 − 0.05^(1/n) (or P > 0.05^(1/n)), never a
+certain-looking 0 % or 100 %.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -176,15 +180,17 @@ def site_probability(model_p: float | None, model_band, overturned: int,
                                f"{'no' if k == 0 else 'every'} record of {n} overturns it at "
                                f"this intensity: the one-sided {BOUND_CONFIDENCE:.0%} bound",
                                bound, **common)
-    low, high = model_band if model_band is not None else (math.nan, math.nan)
-    if model_p is None or not low <= share <= high:
+    low, high = count_band
+    if model_p is None or not low <= model_p <= high:
         return SiteProbability(share, count_band, COUNT,
-                               f"the count {k}/{n} lies outside the lognormal's band "
-                               f"[{100 * low:.1f}–{100 * high:.1f} %]: the lognormal misfits "
-                               "here" if model_p is not None else "no lognormal fits",
-                               None, **common)
+                               f"the lognormal's {100 * model_p:.1f} % lies outside the exact "
+                               f"band of the count {k}/{n} [{100 * low:.1f}–{100 * high:.1f} %]: "
+                               "the records here reject it" if model_p is not None
+                               else "no lognormal fits", None, **common)
     return SiteProbability(float(model_p), model_band, MODEL,
-                           f"the count {k}/{n} lies inside the lognormal's band", None, **common)
+                           f"the lognormal's {100 * model_p:.1f} % lies inside the exact band of "
+                           f"the count {k}/{n} [{100 * low:.1f}–{100 * high:.1f} %]", None,
+                           **common)
 
 
 __all__ = ["site_probability", "lattice_fragility", "SiteProbability", "clopper_pearson", "one_sided_bound",

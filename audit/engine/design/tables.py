@@ -291,7 +291,8 @@ ACHIEVED_COLUMNS = ("achieved_p", "achieved_p_low", "achieved_p_high", "achieved
 def _achieved(fit, boot, stripe: float, line: float, overturned) -> dict:
     """The achieved P at a guideline's line by the rule of P at a site
     (:mod:`audit.engine.design.site_probability`): the lognormal's at the line unless the count at
-    the nearest stripe lies outside the lognormal's band there, then that count with its exact
+    the nearest stripe rejects the lognormal's P there (it lies outside the count's exact band),
+    then that count with its exact
     band (a one-sided 95 % bound where it is 0 or every record)."""
     model = float(fit.probability(stripe)) if fit is not None else None
     at = site_probability(model, boot.probability_band(stripe) if fit is not None else None,

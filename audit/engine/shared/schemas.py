@@ -240,8 +240,8 @@ GUIDE["capacity.csv"] = {
     "achieved_p_stripe": ("-", "exact share of records that overturn at the stripe nearest "
                                "guideline_im"),
     "achieved_p": ("-", "exact P(overturn) at guideline_im as the check's P at a site is "
-                        "given: achieved_p_fit unless the share at the nearest stripe lies "
-                        "outside the fit's bootstrap band there, then that share "
+                        "given: achieved_p_fit unless the fit's P at the nearest stripe lies "
+                        "outside the exact band of the share there, then that share "
                         "(achieved_p_from says which)"),
     "achieved_p_low": ("-", "lower end of achieved_p's band: the bootstrap's, or the share's "
                             "exact 90 % Clopper–Pearson band"),
@@ -280,7 +280,8 @@ GUIDE["check.csv"] = {
     "exact_p_exceed": ("-", "exact P at site_im of the exact peak rotation reaching this limit "
                             "(θ(d_LS) for a limit state on d, α for overturning), by the rule of "
                             "p_overturn_at_site (the lognormal fitted to the lattice's stripes "
-                            "unless the count at the site's stripe lies outside its band); "
+                            "unless it lies outside the exact band of the count at the site's "
+                            "stripe); "
                             "≥ p_overturn_at_site, and equal to it for overturning"),
     "required_width_m": ("m", "narrowest width at the object's height it passes (empty where "
                               "none up to 0.99 × the height)"),
@@ -291,15 +292,16 @@ GUIDE["check.csv"] = {
                    "ω²·S_d [g]) or pga [g]"),
     "site_im": ("g", "the site's intensity at the hazard level of the S_XS, S_X1 given"),
     "p_overturn_at_site": ("-", "exact P(overturn) at site_im as the headline gives it: the "
-                                "lognormal fitted to the lattice's stripes, unless the share of "
-                                "records overturning at the site's own stripe lies outside its "
-                                "band, then that share (p_estimator says which)"),
+                                "lognormal fitted to the lattice's stripes, unless it lies outside "
+                                "the exact 90 % band of the share of records overturning at the "
+                                "site's own stripe (the records there reject it), then that "
+                                "share (p_estimator says which)"),
     "p_band_low": ("-", "lower end of its 90 % band: the bootstrap over records (lognormal), "
                         "or the exact Clopper–Pearson band (count)"),
     "p_band_high": ("-", "upper end of its 90 % band; with no record overturning at the site, "
                          "the one-sided 95 % bound 1 − 0.05^(1/n)"),
     "p_estimator": ("text", "lognormal, or count (the share at the site's own stripe, where the "
-                            "lognormal misfits there or no record, or every record, overturns "
+                            "records there reject the lognormal, or no record, or every record, overturns "
                             "the object there)"),
     "exact_median": ("g", "the exact fragility's median"),
     "exact_beta": ("-", "the exact fragility's β"),
