@@ -26,8 +26,8 @@ def _number(value) -> float | None:
 class ExactRotations:
     """The object's exact response at the check's stripes: peak rotations and overturning
     (record, stripe), the stripes (the site's among them), the site's intensity and
-    P(overturn) there, which stripes the fragility is fitted on and the bootstrap's seed; the
-    answers per limit found so far (one per limit rotation: guidelines share theirs)."""
+    P(overturn) there, and which stripes the fragility is fitted on; the answers per limit found
+    so far (one per limit rotation: guidelines share theirs)."""
 
     theta_rad: np.ndarray
     overturned: np.ndarray
@@ -35,7 +35,6 @@ class ExactRotations:
     site_im: float
     p_overturn: float
     fitted: np.ndarray | None = None
-    seed: int | None = None
     found: dict = field(default_factory=dict)
 
     def p_exceed(self, limit_rad: float) -> float:
@@ -50,7 +49,7 @@ class ExactRotations:
         if limit_rad not in self.found:
             self.found[limit_rad] = p_exceed_at_site(
                 self.theta_rad, self.overturned, self.levels, self.site_im, limit_rad,
-                self.p_overturn, self.fitted, self.seed)
+                self.p_overturn, self.fitted)
         return self.found[limit_rad]
 
 

@@ -207,12 +207,13 @@ def verdict(demand: float, capacity: float) -> str:
 
 
 def p_exceed_at_site(theta_rad, overturned, levels, site_im: float, limit_rad: float,
-                     p_overturn: float, fitted=None, seed: int | None = None) -> float:
+                     p_overturn: float, fitted=None) -> float:
     """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or
     overturning), from the records' exact peaks at the stripes (shaped (record, stripe)), by the
     rule of P(overturn) at the site (:mod:`audit.engine.design.site_probability`): the lognormal
-    fitted to the lattice stripes' counts, unless the count at the site's own stripe lies
-    outside its bootstrap band. A limit no record reaches short of overturning is P(overturn)
+    fitted to the lattice stripes' counts (its maximum by Fisher scoring,
+    :func:`~audit.engine.design.lognormal_fit.lognormal_fits`), unless the count at the site's
+    own stripe rejects it (the rule reads no band, so none is drawn). A limit no record reaches short of overturning is P(overturn)
     itself; exceeding a limit ≤ α includes overturning, so the answer is at least
     ``p_overturn`` even where the two estimates cross.
 
@@ -232,21 +233,18 @@ def p_exceed_at_site(theta_rad, overturned, levels, site_im: float, limit_rad: f
         P(overturn) at the site [-], the least the answer can be.
     fitted : array_like of bool, optional
         Which stripes the lognormal is fitted on (the lattice's); every one when None.
-    seed : int, optional
-        The bootstrap's seed (its default when None).
     """
-    from audit.engine.design.site_probability import lattice_fragility, site_probability
+    from audit.engine.check.widths import probability_at_site
+    from audit.engine.design.site_probability import site_probability
     overturned = np.asarray(overturned, dtype=bool)
     exceeded = overturned | (np.asarray(theta_rad) >= limit_rad)
     if np.array_equal(exceeded, overturned):
         return p_overturn
     levels = np.asarray(levels, dtype=float)
     fitted = np.ones(levels.size, dtype=bool) if fitted is None else np.asarray(fitted)
-    fit, boot = lattice_fragility(levels[fitted], exceeded[:, fitted], seed)
+    model = float(probability_at_site(exceeded[:, fitted, None], levels[fitted], site_im)[0])
     site = int(np.argmin(np.abs(levels - site_im)))
-    at = site_probability(float(fit.probability(site_im)) if fit else None,
-                          boot.probability_band(site_im) if fit else None,
-                          int(exceeded[:, site].sum()), exceeded.shape[0])
+    at = site_probability(model, None, int(exceeded[:, site].sum()), exceeded.shape[0])
     return max(at.p, p_overturn)
 
 

@@ -191,7 +191,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
                          else {})
     frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],
-                       settings.limit_state, fitted, settings.seed)
+                       settings.limit_state, fitted)
     answers = []
     for b, obj in enumerate(objects):
         over = exact_over[:, :, b]  # (record, stripe)

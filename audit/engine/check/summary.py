@@ -68,8 +68,7 @@ class CheckFrame:
     """What every object of a check shares: the stripes [unit of ``im``], the site's intensity
     (one of them), the intensity measure, the records' ids, the first record (whose unmet
     requirements say why a procedure judged none), the limit state asked for (SLV, SLC or
-    both), which stripes the fragility is fitted on (the lattice's; every one when None), and
-    the bootstrap's seed (its default when None)."""
+    both), and which stripes the fragility is fitted on (the lattice's; every one when None)."""
 
     levels: np.ndarray
     site_im: float
@@ -78,7 +77,6 @@ class CheckFrame:
     first_entry: object
     limit_state: str = "both"
     fitted: np.ndarray | None = None
-    seed: int | None = None
 
 
 @dataclass
@@ -152,7 +150,7 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
     p_site = at_site.p
     curve = site_im * np.geomspace(0.2, 5.0, 61)
     theta = found.theta_rad if found.theta_rad is not None else np.zeros(overturned.shape)
-    exact = ExactRotations(theta, overturned, levels, site_im, p_site, fitted, frame.seed)
+    exact = ExactRotations(theta, overturned, levels, site_im, p_site, fitted)
     curve_low, curve_high = boot.probability_band(curve)
     answer = {
         "name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,

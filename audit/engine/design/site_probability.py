@@ -161,7 +161,8 @@ def site_probability(model_p: float | None, model_band, overturned: int,
     model_p : float or None
         The lognormal's P at the intensity [-]; None where no lognormal fits.
     model_band : (float, float) or None
-        Its band [-].
+        Its band [-] (the headline's where the lognormal is; None where only the P is wanted:
+        the rule reads the count's band alone).
     overturned, records : int
         k of the n records scaled to the intensity overturn the block.
     """
