@@ -63,9 +63,6 @@ from records.sites import NTC2018_SITE_KEYS
 LATTICE_EVERY = 2
 #: Exact P(overturn) at the site that the exact required widths target.
 TARGETS = (0.10, 0.50)
-#: Intensities at which the bootstrap band is drawn, as multiples of the site's.
-BAND_SPAN = (0.2, 5.0)
-BAND_POINTS = 61
 
 
 def check_levels(site_im: float) -> np.ndarray:

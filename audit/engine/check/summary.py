@@ -148,7 +148,7 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                                if fit is not None else None,
                                int(overturned[:, site].sum()), overturned.shape[0])
     p_site = at_site.p
-    curve = site_im * np.geomspace(0.2, 5.0, 61)
+    curve = np.geomspace(levels.min(), levels.max(), 61)  # the band over every stripe
     theta = found.theta_rad if found.theta_rad is not None else np.zeros(overturned.shape)
     exact = ExactRotations(theta, overturned, levels, site_im, p_site, fitted)
     curve_low, curve_high = boot.probability_band(curve)
