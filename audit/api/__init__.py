@@ -38,6 +38,9 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           # an inventory, --block and --alpha/--size as objects of a check, checked
           "read_objects": "audit.api.object_check", "parse_block_text": "audit.api.object_check",
           "object_by_slenderness": "audit.api.object_check",
+          "build_atlas": "audit.api.atlas", "find_atlas": "audit.api.atlas",
+          "atlas_check": "audit.api.atlas", "list_atlases": "audit.api.atlas",
+          "remove_atlas": "audit.api.atlas", "atlas_folder": "audit.api.atlas",
           "floor_motion": "audit.api.floors", "FloorMotion": "audit.api.floors",
           "validate": "audit.api.validation", "ValidationResult": "audit.api.validation",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
@@ -79,4 +82,5 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "read_objects", "parse_block_text", "object_by_slenderness",
            "floor_motion", "FloorMotion", "record_suite", "built_in_suites", "PULSE_SUITE",
            "one_pulse", "new_figure", "png_bytes", "draw_rocking_spectra",
-           "draw_response_spectra"]
+           "draw_response_spectra", "build_atlas", "find_atlas", "atlas_check", "list_atlases",
+           "remove_atlas", "atlas_folder"]

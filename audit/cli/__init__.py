@@ -1,5 +1,5 @@
 """Command-line interface: ``python -m audit COMMAND``, COMMAND one of list, check, rock,
-spectrum, design-spectrum, floor-motion, run, margins, fragility, report, validate.
+spectrum, design-spectrum, floor-motion, run, margins, fragility, report, validate, atlas.
 
 One module per command, each with ``add_parser(subparsers)`` and ``run(args)``; a command's
 scientific imports happen inside its ``run``, so start-up and ``--help`` stay light. Angles are
@@ -16,14 +16,14 @@ import sys
 import warnings
 
 from audit import __version__
-from audit.cli import (check, design_spectrum, floor_motion, fragility, listing, margins, options,
+from audit.cli import (atlas, check, design_spectrum, floor_motion, fragility, listing, margins, options,
                        report, rock, run, spectrum, validate)
 from audit.cli.flags import with_flags
 from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible
 from audit.errors import InputError, InputWarning
 
 COMMANDS = (listing, check, rock, spectrum, design_spectrum, floor_motion, run, margins, fragility,
-            report, validate)
+            report, validate, atlas)
 
 
 #: A value that starts with a minus sign but is numbers, not an option: ``-118,34``,

@@ -83,8 +83,9 @@ def bootstrap_lognormal(levels, overturned, resamples: int = BOOTSTRAP_RESAMPLES
     ----------
     levels : array
         Intensity of each stripe (> 0), ascending.
-    overturned : array of bool
-        Outcomes, shaped (record, stripe).
+    overturned : array of bool or float
+        Outcomes, shaped (record, stripe) (or per-record probabilities, as an atlas
+        interpolates them between its nodes: :mod:`audit.engine.atlas.answers`).
     resamples : int
         Number of resampled suites.
     confidence : float
@@ -96,7 +97,7 @@ def bootstrap_lognormal(levels, overturned, resamples: int = BOOTSTRAP_RESAMPLES
     -------
     BootstrapFits
     """
-    overturned = np.asarray(overturned, dtype=bool)
+    overturned = np.asarray(overturned, dtype=float)  # the counts of bools are whole numbers
     records = overturned.shape[0]
     rows = np.random.default_rng(seed).integers(0, records, size=(resamples, records))
     counts = overturned[rows].sum(axis=1)  # (resample, stripe)

@@ -1,0 +1,177 @@
+"""``audit.build_atlas``, ``audit.find_atlas``, ``audit.atlas_check``: the exact-fragility atlas
+of a record set on a floor (:mod:`audit.engine.atlas`), built once into the user cache and read
+for answers in seconds.
+
+    import audit
+    audit.build_atlas("p695-far-field")                     # once: minutes
+    answer = audit.atlas_check(["0.6x1.8"], site=(1.5, 0.9), records="p695-far-field")
+    answer[0]["p_overturn_at_site"]
+"""
+
+from __future__ import annotations
+
+from audit import G
+from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S,
+                                          DEFAULT_IM, DEFAULT_JOBS, DEFAULT_RESTITUTION,
+                                          DEFAULT_SCHEDULER)
+from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+
+
+def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
+                   restitution=DEFAULT_RESTITUTION, free_motion_s=DEFAULT_FREE_MOTION_S,
+                   g=G, floor: float = 0.0, building=None, building_model=None,
+                   building_damping=DEFAULT_BUILDING_DAMPING, jobs: int = DEFAULT_JOBS,
+                   grid=None):
+    """(the records on their floor, :class:`~audit.engine.atlas.settings.AtlasSettings`): what
+    an atlas of ``records`` on the floor is, each argument checked (InputError naming it).
+
+    Parameters
+    ----------
+    records : str, path or records.RecordSuite
+    im : str
+        ``sa:T`` or ``pga``.
+    restitution : str
+    free_motion_s, g : float
+    floor, building, building_model, building_damping :
+        The floor, as for :func:`audit.check`.
+    jobs : int
+        Solver threads of a record (worker processes of ``scheduler="dask"``).
+    grid : (sequence, sequence), optional
+        The (α [degrees], 2π/p [s]) grid; default the atlas's
+        (:data:`~audit.engine.atlas.settings.ALPHA_DEG`, :data:`~audit.engine.atlas.settings.SIZE_S`).
+    """
+    from audit.api.inputs import record_suite
+    from audit.engine.atlas.settings import ALPHA_DEG, SIZE_S, AtlasSettings, floor_words, \
+        records_digest
+    from audit.engine.check.settings import CheckSettings
+    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.runtime import Runtime
+    checked = CheckSettings.parse(im=im, restitution=restitution, free_motion_s=free_motion_s,
+                                  g=g)
+    runtime = Runtime.parse(jobs=jobs)
+    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
+                            building_damping=building_damping)
+    suite = site.apply(record_suite(records))
+    entries = [entry for entry in suite if entry.motion is not None]
+    alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
+    name = records if isinstance(records, str) else str(getattr(records, "description", records))
+    return entries, AtlasSettings(name, records_digest(entries), checked.im,
+                                  floor_words(site.floor), checked.restitution, checked.g,
+                                  checked.free_motion_s,
+                                  tuple(float(a) for a in alpha_deg),
+                                  tuple(float(s) for s in size_s), runtime.jobs)
+
+
+def build_atlas(records=DEFAULT_CHECK_RECORDS, *, scheduler=DEFAULT_SCHEDULER,
+                progress=False, **keywords) -> dict:
+    """Build the atlas (or complete an interrupted build: its chunks are reused) and return
+    its provenance. Keywords as :func:`atlas_settings`; ``scheduler`` ``local``, ``dask`` or
+    ``tcp://HOST:PORT``; ``progress`` a bar on standard error."""
+    from audit.engine.atlas.pipeline import build_atlas as build
+    from audit.engine.shared.progress import Progress
+    from audit.engine.shared.runtime import check_scheduler
+    scheduler = check_scheduler(scheduler)
+    entries, settings = atlas_settings(records, **keywords)
+    bar = Progress(len(entries), "record") if progress else None
+    try:
+        return build(entries, settings, scheduler, progress=bar)
+    finally:
+        if bar is not None:
+            bar.done()
+
+
+def find_atlas(records=DEFAULT_CHECK_RECORDS, **keywords):
+    """The complete atlas of ``records`` on the floor (keywords as :func:`atlas_settings`), or
+    None where none is built."""
+    from audit.engine.atlas.answers import Atlas
+    from audit.engine.atlas.store import ATLAS_NPZ, atlas_dir
+    _, settings = atlas_settings(records, **keywords)
+    directory = atlas_dir(settings.key())
+    return Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
+
+
+def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **keywords) -> list:
+    """Each object's exact P(overturn) at the site and its exact widths for P ≤ 10 % and
+    ≤ 50 % at its height, read from the atlas of ``records`` on the floor (InputError naming
+    ``records`` where none is built), each P with the atlas's error there.
+
+    Parameters
+    ----------
+    objects :
+        As for :func:`audit.check`.
+    site : (float, float)
+        S_XS, S_X1 [g] of the hazard level assessed.
+    records :
+        The record set of the atlas.
+    seed : int, optional
+        The bootstrap's seed.
+    **keywords
+        Of :func:`atlas_settings` (the atlas's intensity measure, floor, restitution, ...):
+        explicit there, passed on unchanged.
+
+    Returns
+    -------
+    list of dict
+        Per object: ``name``, ``width_m``, ``height_m``, ``alpha_deg``, ``size_s``,
+        ``p_overturn_at_site`` (as ``check.json``'s, with ``method`` ``atlas`` and ``error``),
+        ``exact_required_width_m`` (per target).
+    """
+    import numpy as np
+
+    from audit.api.object_check import _objects
+    from audit.engine.atlas.answers import atlas_required_widths
+    from audit.engine.check.pipeline import TARGETS
+    from audit.errors import InputError
+    atlas = find_atlas(records, **keywords)
+    if atlas is None:
+        raise InputError(f"records: no atlas of {records} on this floor; build it with "
+                         "'python -m audit atlas build'", "records")
+    chosen = _objects(objects, atlas.provenance["g"])
+    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.intensity import IntensityMeasure
+    sxs_g, sx1_g = DesignSite.parse(site=site).site
+    site_im = IntensityMeasure.parse(atlas.provenance["im"]).of_design_site(
+        {"sxs_g": sxs_g, "sx1_g": sx1_g})
+    heights, height_of = np.unique([o.height_m for o in chosen], return_inverse=True)
+    widths = atlas_required_widths(atlas, heights, site_im, TARGETS,
+                                   atlas.provenance["g"])[height_of]
+    out = []
+    for obj, width in zip(chosen, widths):
+        point = atlas.at(obj.alpha_deg, obj.size_s, site_im, seed)
+        p = {**point.site.as_dict(), "method": "atlas", "error": point.error,
+             "text": f"{point.site.words()}, from the atlas, ±{100 * point.error:.1f} %"}
+        out.append({"name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
+                    "alpha_deg": obj.alpha_deg, "size_s": obj.size_s, "site_im": site_im,
+                    "p_overturn_at_site": p,
+                    "exact_required_width_m": {f"{100 * t:g}%": float(w)
+                                               for t, w in zip(TARGETS, width)}})
+    return out
+
+
+def list_atlases() -> list:
+    """The atlases in the cache (:class:`~audit.engine.atlas.store.StoredAtlas`: folder,
+    provenance, whether complete)."""
+    from audit.engine.atlas.store import stored_atlases
+    return stored_atlases()
+
+
+def remove_atlas(key: str) -> list[str]:
+    """Remove the atlases whose key starts with ``key``; their keys (InputError naming ``key``
+    where there is none)."""
+    from audit.engine.atlas.store import remove_atlas as remove
+    from audit.errors import InputError
+    gone = remove(key)
+    if not gone:
+        raise InputError(f"key: no atlas whose key starts with {key!r} (see 'atlas list')",
+                         "key")
+    return gone
+
+
+def atlas_folder():
+    """The folder of every atlas (``$ROCKING_AUDIT_ATLAS_DIR``, else the user cache's)."""
+    from audit.engine.atlas.store import atlas_root
+    return atlas_root()
+
+
+__all__ = ["atlas_settings", "build_atlas", "find_atlas", "atlas_check", "list_atlases",
+           "remove_atlas", "atlas_folder"]

@@ -1,0 +1,277 @@
+"""Answers read from an atlas: an object's stripe outcomes interpolated in (α, ln 2π/p), then
+the check's own rules on them.
+
+Per record, the outcome at a stripe (overturned: 1, not: 0) is interpolated bilinearly in α
+and ln(2π/p) (ln p up to its sign) between the grid's four nodes around the object: a
+per-record probability, whose sum over records is the stripe's count (fractional between
+nodes, exact at a node). On them:
+
+* the lognormal fragility and its bootstrap over records, the count at the site's intensity and
+  the headline P at the site: :mod:`audit.engine.design.site_probability`, as ``check`` does.
+  The site's stripe is not a lattice level: its per-record outcome is interpolated linearly in
+  ln(IM) between the two lattice stripes around it, and its count rounded to a whole record for
+  the exact binomial band (the one approximation beyond the grid's);
+* the exact width for P(overturn) at the site ≤ 10 % (and 50 %): the lognormal's P on the
+  interpolated counts (:func:`audit.engine.check.widths.probability_at_site`'s rule) in the
+  check's width search (:func:`audit.engine.check.widths.required_width`).
+
+Each P comes with the atlas's error at that point (:meth:`Atlas.local_error`): the grid's own
+estimate from the curvature of P across the cell's nodes, whose adequacy docs/atlas.md measures
+against direct solves of held-out objects.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy.stats import norm
+
+from audit import G
+from audit.engine.atlas.store import ATLAS_JSON, ATLAS_NPZ
+from audit.engine.design.lognormal_fit import lognormal_fits
+from audit.engine.design.site_probability import lattice_fragility, site_probability
+from audit.errors import InputError
+from audit.physics.block import frequency_parameter, slenderness
+
+#: Bilinear interpolation's error at a grid spacing h grows as h²: an interpolation across two
+#: cells (2h) errs about this many times one cell's (the local error's estimate divides by it).
+DOUBLE_SPACING_ERROR_RATIO = 4.0
+
+
+def size_of(width_m, height_m, g: float = G):
+    """(α [degrees], 2π/p [s]) of rectangular blocks.
+
+    Parameters
+    ----------
+    width_m, height_m : array_like of float
+        Full base width and full height [m].
+    g : float
+        Gravity [m/s²].
+    """
+    b, h = np.asarray(width_m, dtype=float) / 2.0, np.asarray(height_m, dtype=float) / 2.0
+    return (np.degrees(slenderness(b, h)),
+            2.0 * np.pi / frequency_parameter(np.hypot(b, h), g))
+
+
+@dataclass(frozen=True)
+class AtlasPoint:
+    """What the atlas says about one object at one site intensity.
+
+    Attributes
+    ----------
+    alpha_deg, size_s : float
+    outcomes : numpy.ndarray
+        Per-record interpolated outcomes at the lattice's stripes, shaped (record, stripe) [-].
+    site : audit.engine.design.site_probability.SiteProbability
+        The headline P at the site, by the check's rule.
+    error : float
+        The atlas's error of P at this point (absolute) [-].
+    """
+
+    alpha_deg: float
+    size_s: float
+    outcomes: np.ndarray
+    site: object
+    error: float
+
+
+class Atlas:
+    """A complete atlas, loaded (:mod:`audit.engine.atlas.store`).
+
+    Parameters
+    ----------
+    directory : pathlib.Path
+        Its folder.
+    """
+
+    def __init__(self, directory):
+        directory = Path(directory)
+        self.provenance = json.loads((directory / ATLAS_JSON).read_text())
+        with np.load(directory / ATLAS_NPZ) as data:
+            shape = tuple(int(v) for v in data["shape"])
+            bits = np.unpackbits(data["overturned"])[:int(np.prod(shape))]
+            #: outcomes (record, stripe, α, size)
+            self.overturned = bits.astype(bool).reshape(shape)
+            self.levels = data["levels"]
+            self.alpha_deg = data["alpha_deg"]
+            self.size_s = data["size_s"]
+        self.records = shape[0]
+        self._ln_size = np.log(self.size_s)
+
+    def covers(self, alpha_deg, size_s) -> np.ndarray:
+        """Whether each object lies within the grid.
+
+        Parameters
+        ----------
+        alpha_deg, size_s : array_like of float
+            The objects [degrees], [s].
+        """
+        alpha_deg, size_s = np.asarray(alpha_deg), np.asarray(size_s)
+        return ((alpha_deg >= self.alpha_deg[0]) & (alpha_deg <= self.alpha_deg[-1])
+                & (size_s >= self.size_s[0]) & (size_s <= self.size_s[-1]))
+
+    def _cell(self, alpha_deg, size_s):
+        """Lower node indices and weights (i, j, u, v) of each point's cell."""
+        alpha_deg, size_s = np.atleast_1d(alpha_deg).astype(float), np.atleast_1d(size_s)
+        if not np.all(self.covers(alpha_deg, size_s)):
+            raise InputError(f"object: outside the atlas (α {self.alpha_deg[0]:g}–"
+                             f"{self.alpha_deg[-1]:g}°, 2π/p {self.size_s[0]:g}–"
+                             f"{self.size_s[-1]:g} s)", "object")
+        x, y = alpha_deg, np.log(size_s)
+        i = np.clip(np.searchsorted(self.alpha_deg, x, side="right") - 1, 0,
+                    self.alpha_deg.size - 2)
+        j = np.clip(np.searchsorted(self._ln_size, y, side="right") - 1, 0,
+                    self.size_s.size - 2)
+        u = (x - self.alpha_deg[i]) / (self.alpha_deg[i + 1] - self.alpha_deg[i])
+        v = (y - self._ln_size[j]) / (self._ln_size[j + 1] - self._ln_size[j])
+        return i, j, u, v
+
+    def outcomes(self, alpha_deg, size_s) -> np.ndarray:
+        """Per-record outcomes at the lattice's stripes, interpolated bilinearly in (α,
+        ln 2π/p), shaped (point, record, stripe) [-]; at a node, the node's own (0 or 1).
+
+        Parameters
+        ----------
+        alpha_deg, size_s : array_like of float
+            The objects [degrees], [s].
+        """
+        i, j, u, v = self._cell(alpha_deg, size_s)
+        o = self.overturned
+        corner = lambda di, dj: np.moveaxis(o[:, :, i + di, j + dj], 2, 0)  # (point, rec, stripe)
+        u, v = u[:, None, None], v[:, None, None]
+        return ((1 - u) * (1 - v) * corner(0, 0) + u * (1 - v) * corner(1, 0)
+                + (1 - u) * v * corner(0, 1) + u * v * corner(1, 1))
+
+    def site_outcomes(self, outcomes, site_im: float) -> np.ndarray:
+        """Per-record outcomes at ``site_im``, linear in ln(IM) between the lattice's stripes
+        around it, shaped (point, record) [-].
+
+        Parameters
+        ----------
+        outcomes : numpy.ndarray
+            (point, record, stripe), from :meth:`outcomes`.
+        site_im : float
+            The site's intensity [unit of the IM].
+        """
+        x = np.log(site_im)
+        ln_levels = np.log(self.levels)
+        if not ln_levels[0] <= x <= ln_levels[-1]:
+            raise InputError(f"site: its intensity {site_im:g} lies outside the lattice "
+                             f"({self.levels[0]:g}–{self.levels[-1]:g})", "site")
+        k = min(int(np.searchsorted(ln_levels, x, side="right")) - 1, ln_levels.size - 2)
+        t = (x - ln_levels[k]) / (ln_levels[k + 1] - ln_levels[k])
+        return (1 - t) * outcomes[:, :, k] + t * outcomes[:, :, k + 1]
+
+    def probability_at_site(self, alpha_deg, size_s, site_im: float) -> np.ndarray:
+        """The lognormal's P(overturn) at ``site_im`` on each object's interpolated counts (the
+        measure of the check's width search), shaped (point,) [-].
+
+        Parameters
+        ----------
+        alpha_deg, size_s : array_like of float
+            The objects [degrees], [s].
+        site_im : float
+            The site's intensity [unit of the IM].
+        """
+        counts = self.outcomes(alpha_deg, size_s).sum(axis=1)
+        return _lognormal_p(self.levels, self.records, counts, site_im)
+
+    def local_error(self, alpha_deg, size_s, site_im: float) -> np.ndarray:
+        """The atlas's error of P at each object (see the module): at each node of its cell,
+        P there against P interpolated from the nodes one step either side (along α and along
+        ln 2π/p, an interpolation across 2h), the largest of those differences divided by
+        :data:`DOUBLE_SPACING_ERROR_RATIO`; shaped (point,) [-].
+
+        Parameters
+        ----------
+        alpha_deg, size_s : array_like of float
+            The objects [degrees], [s].
+        site_im : float
+            The site's intensity [unit of the IM].
+        """
+        i, j, _, _ = self._cell(alpha_deg, size_s)
+        counts = self.overturned.sum(axis=0)  # (stripe, α, size)
+        na, ns = self.alpha_deg.size, self.size_s.size
+        worst = np.zeros(i.size)
+        for di in (0, 1):
+            for dj in (0, 1):
+                a, s = i + di, j + dj
+                here = _lognormal_p(self.levels, self.records, counts[:, a, s].T, site_im)
+                for step_a, step_s in ((1, 0), (0, 1)):
+                    lo_a, hi_a = np.clip(a - step_a, 0, na - 1), np.clip(a + step_a, 0, na - 1)
+                    lo_s, hi_s = np.clip(s - step_s, 0, ns - 1), np.clip(s + step_s, 0, ns - 1)
+                    mid = (counts[:, lo_a, lo_s] + counts[:, hi_a, hi_s]).T / 2.0
+                    across = _lognormal_p(self.levels, self.records, mid, site_im)
+                    worst = np.maximum(worst, np.abs(here - across))
+        return worst / DOUBLE_SPACING_ERROR_RATIO
+
+    def at(self, alpha_deg: float, size_s: float, site_im: float,
+           seed: int | None = None) -> AtlasPoint:
+        """One object's P at the site by the check's rule (see the module).
+
+        Parameters
+        ----------
+        alpha_deg, size_s : float
+            The object [degrees], [s].
+        site_im : float
+            The site's intensity [unit of the IM].
+        seed : int, optional
+            The bootstrap's seed (its default when None).
+        """
+        outcomes = self.outcomes(alpha_deg, size_s)
+        fit, boot = lattice_fragility(self.levels, outcomes[0], seed)
+        model_p = float(norm.cdf(np.log(site_im / fit.median) / fit.beta)) if fit else None
+        band = tuple(float(v) for v in boot.probability_band(site_im)) if fit else None
+        site_count = int(round(float(self.site_outcomes(outcomes, site_im)[0].sum())))
+        site = site_probability(model_p, band, site_count, self.records)
+        error = float(self.local_error(alpha_deg, size_s, site_im)[0])
+        return AtlasPoint(float(alpha_deg), float(size_s), outcomes[0], site, error)
+
+
+def _lognormal_p(levels, records: int, counts, site_im: float) -> np.ndarray:
+    """Φ(ln(x/θ)/β) of the lognormal fitted to each row of ``counts`` (P = 0 where no record
+    overturns at any stripe, 1 where every record does at every stripe)."""
+    medians, betas = lognormal_fits(levels, records, counts)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = norm.cdf(np.log(site_im / medians) / betas)
+    return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, p))
+
+
+
+
+def atlas_required_widths(atlas: Atlas, heights_m, site_im: float, targets,
+                          g: float = G) -> np.ndarray:
+    """The exact width for P(overturn) at the site ≤ each target at each height, by the check's
+    width search (:func:`audit.engine.check.widths.required_width`) on the atlas's P, scanned
+    over the widths whose α lies on the atlas's grid; shaped (height, target) [m], NaN where
+    the P exceeds the target still at the widest.
+
+    Parameters
+    ----------
+    atlas : Atlas
+    heights_m : array_like of float
+        Full heights [m].
+    site_im : float
+        The site's intensity [unit of the IM].
+    targets : sequence of float
+        P(overturn) at the site [-].
+    g : float
+        Gravity [m/s²] (the atlas's).
+    """
+    from audit.engine.check.widths import SCAN_WIDTHS, required_width
+    # width/height = tan α: the scan stays within the grid's slendernesses
+    scan = (float(np.tan(np.radians(atlas.alpha_deg[0]))) * (1 + 1e-9),
+            float(np.tan(np.radians(atlas.alpha_deg[-1]))) * (1 - 1e-9))
+
+    def measure(heights, widths):
+        alpha_deg, size_s = size_of(widths, heights, g)
+        return atlas.probability_at_site(alpha_deg, size_s, site_im)
+
+    return required_width(measure, heights_m, list(targets), scan=scan, count=SCAN_WIDTHS)
+
+
+__all__ = ["Atlas", "AtlasPoint", "size_of", "atlas_required_widths",
+           "DOUBLE_SPACING_ERROR_RATIO"]
