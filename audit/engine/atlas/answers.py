@@ -39,6 +39,9 @@ from audit.physics.block import frequency_parameter, slenderness
 #: Bilinear interpolation's error at a grid spacing h grows as h²: an interpolation across two
 #: cells (2h) errs about this many times one cell's (the local error's estimate divides by it).
 DOUBLE_SPACING_ERROR_RATIO = 4.0
+#: Standard deviations of the count's error from the records undecided within a cell that the
+#: stated error allows (:meth:`Atlas.local_error`).
+RECORD_SPREAD = 2.0
 
 
 def size_of(width_m, height_m, g: float = G):
@@ -180,10 +183,18 @@ class Atlas:
         return _lognormal_p(self.levels, self.records, counts, site_im)
 
     def local_error(self, alpha_deg, size_s, site_im: float) -> np.ndarray:
-        """The atlas's error of P at each object (see the module): at each node of its cell,
-        P there against P interpolated from the nodes one step either side (along α and along
-        ln 2π/p, an interpolation across 2h), the largest of those differences divided by
-        :data:`DOUBLE_SPACING_ERROR_RATIO`; shaped (point,) [-].
+        """The atlas's error of P at each object (see the module), the sum of two terms:
+
+        * the smooth part's: at each node of its cell, P there against P interpolated from the
+          nodes one step either side (along α and along ln 2π/p, an interpolation across 2h),
+          the largest of those differences divided by :data:`DOUBLE_SPACING_ERROR_RATIO`;
+        * the records': a record whose outcome differs between the cell's nodes is, at the
+          object itself, overturned or not, not the fraction w interpolated; taken as a
+          Bernoulli of mean w, the count's error has the standard deviation √Σ w(1 − w), and
+          P's :data:`RECORD_SPREAD` of them over n records, at the site's level (between the
+          lattice's stripes around it). Zero at a node.
+
+        Shaped (point,) [-].
 
         Parameters
         ----------
@@ -206,7 +217,9 @@ class Atlas:
                     mid = (counts[:, lo_a, lo_s] + counts[:, hi_a, hi_s]).T / 2.0
                     across = _lognormal_p(self.levels, self.records, mid, site_im)
                     worst = np.maximum(worst, np.abs(here - across))
-        return worst / DOUBLE_SPACING_ERROR_RATIO
+        outcomes = self.outcomes(alpha_deg, size_s)
+        spread = np.sqrt(self.site_outcomes(outcomes * (1.0 - outcomes), site_im).sum(axis=1))
+        return worst / DOUBLE_SPACING_ERROR_RATIO + RECORD_SPREAD * spread / self.records
 
     def at(self, alpha_deg: float, size_s: float, site_im: float,
            seed: int | None = None) -> AtlasPoint:
@@ -245,9 +258,9 @@ def _lognormal_p(levels, records: int, counts, site_im: float) -> np.ndarray:
 def atlas_required_widths(atlas: Atlas, heights_m, site_im: float, targets,
                           g: float = G) -> np.ndarray:
     """The exact width for P(overturn) at the site ≤ each target at each height, by the check's
-    width search (:func:`audit.engine.check.widths.required_width`) on the atlas's P, scanned
-    over the widths whose α lies on the atlas's grid; shaped (height, target) [m], NaN where
-    the P exceeds the target still at the widest.
+    width search (:func:`audit.engine.check.widths.required_width`) on the atlas's P; shaped
+    (height, target) [m], NaN where the P exceeds the target still at the widest, or where the
+    width's α lies beyond the grid's.
 
     Parameters
     ----------
@@ -261,17 +274,18 @@ def atlas_required_widths(atlas: Atlas, heights_m, site_im: float, targets,
     g : float
         Gravity [m/s²] (the atlas's).
     """
-    from audit.engine.check.widths import SCAN_WIDTHS, required_width
-    # width/height = tan α: the scan stays within the grid's slendernesses
-    scan = (float(np.tan(np.radians(atlas.alpha_deg[0]))) * (1 + 1e-9),
-            float(np.tan(np.radians(atlas.alpha_deg[-1]))) * (1 - 1e-9))
+    from audit.engine.check.widths import required_width
+    low, high = atlas.alpha_deg[0], atlas.alpha_deg[-1]
 
+    # the check's own scan of widths (its last crossing depends on where it looks); a width
+    # whose α lies beyond the grid is measured at the grid's edge, and an answer there refused
     def measure(heights, widths):
         alpha_deg, size_s = size_of(widths, heights, g)
-        return atlas.probability_at_site(alpha_deg, size_s, site_im)
+        return atlas.probability_at_site(np.clip(alpha_deg, low, high), size_s, site_im)
 
-    return required_width(measure, heights_m, list(targets), scan=scan, count=SCAN_WIDTHS)
-
+    widths = required_width(measure, heights_m, list(targets))
+    alpha_deg, _ = size_of(widths, np.asarray(heights_m, dtype=float)[:, None], g)
+    return np.where((alpha_deg >= low) & (alpha_deg <= high), widths, np.nan)
 
 __all__ = ["Atlas", "AtlasPoint", "size_of", "atlas_required_widths",
-           "DOUBLE_SPACING_ERROR_RATIO"]
+           "DOUBLE_SPACING_ERROR_RATIO", "RECORD_SPREAD"]
