@@ -98,7 +98,7 @@ def main() -> int:
             model_p = float(norm.cdf(np.log(site_im / fit.median) / fit.beta)) if fit else None
             band = tuple(boot.probability_band(site_im)) if fit else None
             d = site_probability(model_p, band, int(over[:, site_col, b].sum()), len(entries))
-            point = atlas.at(a, s, site_im)
+            point = atlas.at(a, s, site_im)[0]
             ok = (abs(point.site.p - d.p) <= TOLERANCE
                   or d.band[0] - 1e-12 <= point.site.p <= d.band[1] + 1e-12)
             rows.append({"object": name, "alpha_deg": a, "size_s": s, "site_im": site_im,

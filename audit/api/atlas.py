@@ -135,9 +135,9 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
     heights, height_of = np.unique([o.height_m for o in chosen], return_inverse=True)
     widths = atlas_required_widths(atlas, heights, site_im, TARGETS,
                                    atlas.provenance["g"])[height_of]
+    points = atlas.at([o.alpha_deg for o in chosen], [o.size_s for o in chosen], site_im, seed)
     out = []
-    for obj, width in zip(chosen, widths):
-        point = atlas.at(obj.alpha_deg, obj.size_s, site_im, seed)
+    for obj, width, point in zip(chosen, widths, points):
         p = {**point.site.as_dict(), "method": "atlas", "error": point.error,
              "text": f"{point.site.words()}, from the atlas, ±{100 * point.error:.1f} %"}
         out.append({"name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,

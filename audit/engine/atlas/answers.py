@@ -32,7 +32,7 @@ from scipy.stats import norm
 from audit import G
 from audit.engine.atlas.store import ATLAS_JSON, ATLAS_NPZ
 from audit.engine.design.lognormal_fit import lognormal_fits
-from audit.engine.design.site_probability import lattice_fragility, site_probability
+from audit.engine.design.site_probability import COUNT_CONFIDENCE, site_probability
 from audit.errors import InputError
 from audit.physics.block import frequency_parameter, slenderness
 
@@ -221,27 +221,57 @@ class Atlas:
         spread = np.sqrt(self.site_outcomes(outcomes * (1.0 - outcomes), site_im).sum(axis=1))
         return worst / DOUBLE_SPACING_ERROR_RATIO + RECORD_SPREAD * spread / self.records
 
-    def at(self, alpha_deg: float, size_s: float, site_im: float,
-           seed: int | None = None) -> AtlasPoint:
-        """One object's P at the site by the check's rule (see the module).
+    def at(self, alpha_deg, size_s, site_im: float, seed: int | None = None) -> list:
+        """Each object's P at the site by the check's rule (see the module), every object's
+        fit, site count and error computed together; the bootstrap band one object at a time.
 
         Parameters
         ----------
-        alpha_deg, size_s : float
-            The object [degrees], [s].
+        alpha_deg, size_s : array_like of float
+            The objects [degrees], [s].
         site_im : float
             The site's intensity [unit of the IM].
         seed : int, optional
             The bootstrap's seed (its default when None).
+
+        Returns
+        -------
+        list of AtlasPoint
         """
+        alpha_deg, size_s = np.atleast_1d(alpha_deg), np.atleast_1d(size_s)
         outcomes = self.outcomes(alpha_deg, size_s)
-        fit, boot = lattice_fragility(self.levels, outcomes[0], seed)
-        model_p = float(norm.cdf(np.log(site_im / fit.median) / fit.beta)) if fit else None
-        band = tuple(float(v) for v in boot.probability_band(site_im)) if fit else None
-        site_count = int(round(float(self.site_outcomes(outcomes, site_im)[0].sum())))
-        site = site_probability(model_p, band, site_count, self.records)
-        error = float(self.local_error(alpha_deg, size_s, site_im)[0])
-        return AtlasPoint(float(alpha_deg), float(size_s), outcomes[0], site, error)
+        model_p = _lognormal_p(self.levels, self.records, outcomes.sum(axis=1), site_im)
+        counts = np.rint(self.site_outcomes(outcomes, site_im).sum(axis=1)).astype(int)
+        errors = self.local_error(alpha_deg, size_s, site_im)
+        total = outcomes.sum(axis=(1, 2))
+        fits = (total > 0.0) & (total < outcomes[0].size)  # lognormal_fits' limits
+        bands = _bootstrap_bands(self.levels, outcomes, fits, site_im, seed)
+        out = []
+        for k in range(alpha_deg.size):
+            site = site_probability(float(model_p[k]) if fits[k] else None, bands[k],
+                                    int(counts[k]), self.records)
+            out.append(AtlasPoint(float(alpha_deg[k]), float(size_s[k]), outcomes[k], site,
+                                  float(errors[k])))
+        return out
+
+
+def _bootstrap_bands(levels, outcomes, fits, site_im: float, seed) -> list:
+    """Each object's bootstrap band of P at ``site_im`` (None where no lognormal fits): the
+    resampling of :func:`~audit.engine.design.bootstrap.bootstrap_lognormal` (its seed and
+    resamples: the same records drawn for every object, so drawn once), one object's
+    resamples fitted at a time (fitting many objects' together measured slower: the scoring
+    runs until its slowest row settles)."""
+    from audit.engine.design.bootstrap import (BOOTSTRAP_RESAMPLES, BOOTSTRAP_SEED,
+                                               BootstrapFits)
+    records = outcomes.shape[1]
+    rows = np.random.default_rng(BOOTSTRAP_SEED if seed is None else seed).integers(
+        0, records, size=(BOOTSTRAP_RESAMPLES, records))
+    bands = [None] * len(outcomes)
+    for k in np.flatnonzero(fits):
+        medians, betas = lognormal_fits(levels, records, outcomes[k][rows].sum(axis=1))
+        band = BootstrapFits(medians, betas, COUNT_CONFIDENCE).probability_band(site_im)
+        bands[k] = tuple(float(v) for v in band)
+    return bands
 
 
 def _lognormal_p(levels, records: int, counts, site_im: float) -> np.ndarray:

@@ -14,9 +14,10 @@ from audit.engine.shared.intensity import IntensityMeasure
 from audit.engine.shared.lattice import stripe_lattice
 from audit.physics.block import Restitution
 
-#: The atlas's slenderness grid [degrees]: 4–35° every 1.5° (the spacing whose interpolation
-#: error docs/atlas.md measures).
-ALPHA_DEG = tuple(float(a) for a in np.arange(4.0, 35.0 + 1e-9, 1.5))
+#: The atlas's slenderness grid [degrees]: 4–44.5° every 1.5° (the spacing whose interpolation
+#: error docs/atlas.md measures): to 44.5° so that the check's width search, which scans up to
+#: 0.95 of the height (α 43.5°), finds the 10 % width of a small object too.
+ALPHA_DEG = tuple(float(a) for a in np.arange(4.0, 44.5 + 1e-9, 1.5))
 #: The atlas's size grid 2π/p [s]: 0.4–8 s, 2^(1/4) apart (ln-uniform: interpolation is in ln p).
 SIZE_S = tuple(float(s) for s in 0.4 * 2.0 ** (np.arange(0, 18) / 4.0)) + (8.0,)
 
