@@ -59,9 +59,10 @@ def main() -> int:
         times = []
         for _ in range(args.repeat if count <= 1000 else 1):
             start = time.perf_counter()
-            atlas_check(objects, SITE, RECORDS)
+            answers = atlas_check(objects, SITE, RECORDS)
             times.append(time.perf_counter() - start)
-        print(f"{count} objects: median {statistics.median(times):.1f} s of "
+        outside = sum(a["p_overturn_at_site"] is None for a in answers)
+        print(f"{count} objects ({outside} outside the atlas): median {statistics.median(times):.1f} s of "
               f"{[round(t, 1) for t in times]}; load {os.getloadavg()[0]:.1f}")
     return 0
 

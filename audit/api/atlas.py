@@ -114,7 +114,8 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
     list of dict
         Per object: ``name``, ``width_m``, ``height_m``, ``alpha_deg``, ``size_s``,
         ``p_overturn_at_site`` (as ``check.json``'s, with ``method`` ``atlas`` and ``error``),
-        ``exact_required_width_m`` (per target).
+        ``exact_required_width_m`` (per target); both None, and ``outside`` saying why, for an
+        object outside the atlas's grid.
     """
     import numpy as np
 
@@ -132,19 +133,32 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
     sxs_g, sx1_g = DesignSite.parse(site=site).site
     site_im = IntensityMeasure.parse(atlas.provenance["im"]).of_design_site(
         {"sxs_g": sxs_g, "sx1_g": sx1_g})
-    heights, height_of = np.unique([o.height_m for o in chosen], return_inverse=True)
-    widths = atlas_required_widths(atlas, heights, site_im, TARGETS,
-                                   atlas.provenance["g"])[height_of]
-    points = atlas.at([o.alpha_deg for o in chosen], [o.size_s for o in chosen], site_im, seed)
+    g = atlas.provenance["g"]
+    inside = atlas.covers([o.alpha_deg for o in chosen], [o.size_s for o in chosen])
+    mine = [o for o, covered in zip(chosen, inside) if covered]
+    heights, height_of = np.unique([o.height_m for o in mine], return_inverse=True)
+    widths = iter(atlas_required_widths(atlas, heights, site_im, TARGETS, g)[height_of]
+                  if mine else [])
+    points = iter(atlas.at([o.alpha_deg for o in mine], [o.size_s for o in mine], site_im,
+                           seed) if mine else [])
     out = []
-    for obj, width, point in zip(chosen, widths, points):
+    for obj, covered in zip(chosen, inside):
+        answer = {"name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
+                  "alpha_deg": obj.alpha_deg, "size_s": obj.size_s, "site_im": site_im}
+        if not covered:  # answered by the direct check, not here
+            answer.update(p_overturn_at_site=None, exact_required_width_m=None,
+                          outside=f"α {obj.alpha_deg:.3g}°, 2π/p {obj.size_s:.3g} s: outside "
+                                  f"the atlas (α {atlas.alpha_deg[0]:g}–"
+                                  f"{atlas.alpha_deg[-1]:g}°, 2π/p {atlas.size_s[0]:g}–"
+                                  f"{atlas.size_s[-1]:g} s); check it directly")
+            out.append(answer)
+            continue
+        point, width = next(points), next(widths)
         p = {**point.site.as_dict(), "method": "atlas", "error": point.error,
              "text": f"{point.site.words()}, from the atlas, ±{100 * point.error:.1f} %"}
-        out.append({"name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
-                    "alpha_deg": obj.alpha_deg, "size_s": obj.size_s, "site_im": site_im,
-                    "p_overturn_at_site": p,
-                    "exact_required_width_m": {f"{100 * t:g}%": float(w)
-                                               for t, w in zip(TARGETS, width)}})
+        answer.update(p_overturn_at_site=p, exact_required_width_m={
+            f"{100 * t:g}%": float(w) for t, w in zip(TARGETS, width)})
+        out.append(answer)
     return out
 
 

@@ -107,6 +107,9 @@ def run_check(args) -> int:
                          "--block")
     answers = atlas_check(objects, args.site, args.records, **_keywords(args))
     for a in answers:
+        if a["p_overturn_at_site"] is None:
+            print(f"{a['name']}: {a['outside']}")
+            continue
         w = a["exact_required_width_m"]
         print(f"{a['name']}: P(overturn) at the site {a['p_overturn_at_site']['text']}; exact "
               f"width for P ≤ 10 %: {w['10%']:.3g} m, ≤ 50 %: {w['50%']:.3g} m")
