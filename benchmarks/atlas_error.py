@@ -123,7 +123,9 @@ def main() -> int:
     atlas_w = atlas_required_widths(atlas, heights, WIDTH_SITE_IM, [0.10], settings.g)[:, 0]
     widths = [{"height_m": float(h), "direct_w10": float(w[1]), "band": [float(w[0]), float(w[2])],
                "atlas_w10": float(aw),
-               "within_band": bool(math.isfinite(aw) and w[0] * 0.995 <= aw <= w[2] * 1.005)}
+               # a band end where the direct P stays above 7 % even at the widest is open
+               "within_band": bool(math.isfinite(aw) and w[0] * 0.995 <= aw
+                                   and (not math.isfinite(w[2]) or aw <= w[2] * 1.005))}
               for h, w, aw in zip(heights, direct_w, atlas_w)]
     load = os.getloadavg()[0]
     for r in rows:
