@@ -559,6 +559,7 @@ def test_long_history_is_decimated_with_exact_peaks(monkeypatch):
     assert small.peak_angular_velocity == full.peak_angular_velocity
 
 
+@pytest.mark.slow  # ~20 s: writes and reads a five-million-sample record
 def test_five_million_sample_record_refused_before_work(workdir, capsys):
     # 5,000,000 samples at 0.01 s: the record of issue 14 that took 347 s
     (workdir / "long.txt").write_text("% in g, dt = 0.01\n" + "0.01\n-0.02\n0.03\n-0.01\n"

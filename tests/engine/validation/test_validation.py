@@ -211,6 +211,7 @@ def test_api_and_command_write_predictions_for_the_unknown_tests(synthetic, tmp_
     assert result.scores.set_index("method").loc["rocking model"].n == len(tests)
 
 
+@pytest.mark.slow  # end to end: the validation command on the campaign
 def test_command_writes_every_file(tmp_path):
     folder = tmp_path / "small"
     _campaign(folder, unknown=2, periods=(1.0,), scales=4)  # the default grid: keep it small
