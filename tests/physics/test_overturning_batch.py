@@ -7,10 +7,10 @@ beyond both ends): both are the same correctly rounded +, −, ×, ÷ in the sam
 into an FMA). The compiled iteration against the array one on spectra that are not tabulated
 (a lambda): the two are the same operations but for Eq. 8.1's acosh, which the kernel takes
 from the C library and the array iteration from numpy's own SIMD kernel (on a machine with
-AVX-512 the two differ by up to 3 ulp). With the array iteration reading acosh from the C
-library too (:func:`c_library_acosh`), the iterates are bit for bit the same, and that is
-asserted; with numpy's acosh, the stated bound of :func:`test_fema_356_map_compiled_is_the_array_map_to_its_rounding`
-and :func:`test_fema_356_iteration_with_numpys_acosh_is_within_its_bound`. The batched
+AVX-512 they differ by up to 3 ulp, 2 seen). With the array iteration reading acosh from the
+C library too (``c_library_acosh``), the iterates are asserted the same bit for bit; with
+numpy's acosh, within the bounds stated by the tests ``..._to_its_rounding`` (one step) and
+``..._within_its_bound`` (converged iterates). The batched
 predictions against ``Procedure.evaluate`` called case by case on a real record scaled to
 several levels (both compiled), where chaotic and cycling iterations make any difference in
 the last bit of an iterate show. The same holds for spectra computed only where the iteration
@@ -78,7 +78,7 @@ def c_library_acosh():
 
 def test_the_c_library_period_is_numpys_but_for_acosh():
     """The stand-in period differs from numpy's by acosh alone: within the bound of
-    :func:`test_fema_356_map_compiled_is_the_array_map_to_its_rounding` (8 U of T), and equal
+    ``test_fema_356_map_compiled_is_the_array_map_to_its_rounding`` (8 U of T), and equal
     where acosh is the same."""
     ratio = np.random.default_rng(5).uniform(0.0, 0.999, 5000)
     p = np.random.default_rng(6).uniform(0.5, 20.0, ratio.size)
@@ -179,16 +179,16 @@ def test_fema_356_iteration_compiled_is_the_array_iteration(seed):
 @given(seed=st.integers(0, 2**32 - 1))
 def test_fema_356_map_compiled_is_the_array_map_to_its_rounding(seed):
     """One step of the iteration, F(θ)/α = Sd(T(θ))·scale, compiled and by numpy's arrays with
-    numpy's own acosh, within 40 ulp.
+    numpy's own acosh, within 42 ulp (10 seen in 200 seeds).
 
-    The bound: the two are the same operations but for acosh. The C library's (glibc: ≤ 2 ulp,
-    its published libm-test-ulps) and numpy's float64 arccosh (≤ 1 ulp, numpy's accuracy
-    tests) each err by ≤ 2 ulp ≤ 4 U relative, so they differ by ≤ 6 U, and T = (4/p)·acosh,
-    each product rounded (≤ U), by ≤ 8 U. Sd is ∝ T² on the plateau, ∝ T beyond T_S, and below
-    T_0 ∝ (c·T/T_S + 0.4)·T² with c = 5/B_S − 2 and c·T/T_S in [−0.07, 0.85]: its relative
-    sensitivity to T is at most 3, so ≤ 24 U; the nine operations after T (branch, ×g, T², ÷4π²,
-    ×scale) each round once on each side, on operands no longer equal: ≤ 16 U more. 40 U, and
-    one ulp of a value x is at least |x|·U: ≤ 40 ulp."""
+    The bound, to first order in the rounding: the two are the same operations but for acosh.
+    The C library's (glibc: ≤ 2 ulp ≤ 4 U relative, its published libm-test-ulps) and numpy's
+    float64 arccosh (≤ 1 ulp ≤ 2 U, numpy's accuracy tests) differ by ≤ 6 U, and T = (4/p)·acosh,
+    rounded on each side (≤ U each), by ≤ 8 U. Sd is ∝ T² on the plateau, ∝ T beyond T_S, and
+    below T_0 ∝ (c·T/T_S + 0.4)·T² with c = 5/B_S − 2 and c·T/T_S in [−0.07, 0.85]: its
+    relative sensitivity to T is at most 3, so ≤ 24 U. The nine operations after T on operands
+    no longer equal (×T, ÷T_S, +0.4, ×S_XS, ×g, T², ×, ÷4π², ×scale) each round on each side
+    on its own: ≤ 2 U each, 18 U. 42 U, and one ulp of a value x is at least |x|·U."""
     for p, alpha, displacement in _fema_356_cases(seed):
         rng = np.random.default_rng(seed)
         ratio = np.concatenate((rng.uniform(0.0, 1.0, p.size), [0.1] * p.size))
@@ -200,27 +200,27 @@ def test_fema_356_map_compiled_is_the_array_map_to_its_rounding(seed):
         site = spectrum.spectrum.branch_constants(spectrum.damping, p.size)
         compiled = [fema356_displacement(rocking_period(x, block_p), *constants, G) * s
                     for x, block_p, constants, s in zip(ratio, p, site, scale)]
-        np.testing.assert_array_max_ulp(np.array(compiled), by_arrays, maxulp=40)
+        np.testing.assert_array_max_ulp(np.array(compiled), by_arrays, maxulp=42)
 
 
 @settings(max_examples=25, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1))
 def test_fema_356_iteration_with_numpys_acosh_is_within_its_bound(seed):
-    """The iterations of :func:`test_fema_356_iteration_compiled_is_the_array_iteration` with
+    """The iterations of ``test_fema_356_iteration_compiled_is_the_array_iteration`` with
     numpy's own acosh in the array iteration: the same outcomes and iteration counts, and final
-    iterates θ/α within 43·n·U of each other after n iterations.
+    iterates θ/α within 45·n·U of each other after n iterations (0.13·n·U seen in 300 seeds).
 
-    The bound, to first order in the rounding: the map F is evaluated from fl(1 − θ/α) and
-    fl(1/(1 − θ/α)), so each side reads θ/α within 1.5 U of its iterate, and its step adds
-    ≤ 40 U of F (< 1) of its own (:func:`test_fema_356_map_compiled_is_the_array_map_to_its_rounding`):
-    a discrepancy r ≤ 43 U a step, measured in θ/α where F′ takes it. Carried to the last
-    iterate n, the discrepancy of step j is multiplied by F′ along the way, which on the
-    monotone sequence of iterates (Sd never falls with T, T grows with θ) is the ratio of the
-    last step to step j: ≤ 1 for a converged block, whose every step but the last exceeded the
-    tolerance and the last did not. So |Δ| ≤ n·r. Overturned blocks end at 1 on both sides.
+    The bound, to first order in the rounding: each side evaluates F from fl(1 − θ/α) and
+    fl(1/(1 − θ/α)), reading θ/α to within 1.5 U of its iterate (3 U between the two sides),
+    and its step adds ≤ 42 U of F (< 1) of its own (``..._map_..._to_its_rounding``): a
+    discrepancy ≤ 45 U a step. Carried to the last iterate n, the discrepancy of step j is
+    multiplied by F′ along the way, which on the monotone sequence of iterates (Sd never falls
+    with T, T grows with θ) is the ratio of the last step to step j: ≤ 1 for a converged block,
+    whose every step but the last exceeded the tolerance and the last did not. So |Δ| ≤ 45·n·U.
+    Overturned blocks end at 1 on both sides.
 
     The outcome or the count differs only where a test (|Δθ|/α ≤ 10⁻⁶, θ/α ≥ 1) is met within
-    2·n·r of its threshold, a chance of ~10⁻⁸·n per block; the blocks where it does are left
+    2·45·n·U of its threshold, a chance of ~10⁻⁸·n per block; the blocks where it does are left
     out, and must be at most 1 in 1000 (none were seen in 300 seeds: 123 600 blocks)."""
     compared, knife_edge = 0, 0
     for case in _fema_356_cases(seed):
@@ -228,7 +228,7 @@ def test_fema_356_iteration_with_numpys_acosh_is_within_its_bound(seed):
         same = (compiled[1] == by_arrays[1]) & (compiled[2] == by_arrays[2])
         compared, knife_edge = compared + same.size, knife_edge + int((~same).sum())
         converged = same & (compiled[1] == CONVERGED)
-        bound = 43.0 * compiled[2][converged] * U
+        bound = 45.0 * compiled[2][converged] * U
         assert np.all(np.abs(compiled[0][converged] - by_arrays[0][converged]) <= bound)
         over = same & (compiled[1] == OVERTURN)
         assert np.all(compiled[0][over] == 1.0) and np.all(by_arrays[0][over] == 1.0)
