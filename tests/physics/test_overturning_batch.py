@@ -58,7 +58,8 @@ def _c_library_housner_period(theta_ratio, p):
     """:func:`audit.physics.damping.housner_period` in its own operations, acosh taken from the
     C library (Python's ``math.acosh``, the function the compiled kernel calls) instead of
     numpy's SIMD kernel."""
-    y = 1.0 / (1.0 - np.asarray(theta_ratio, dtype=float))
+    with np.errstate(divide="ignore"):
+        y = 1.0 / (1.0 - np.asarray(theta_ratio, dtype=float))
     return 4.0 / np.asarray(p, dtype=float) * np.vectorize(math.acosh, otypes=[float])(y)
 
 
