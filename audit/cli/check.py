@@ -73,6 +73,10 @@ def add_parser(sub):
                         "rocking; without it, no sliding is assumed and the friction the "
                         "records need is given")
     options.add_floor_options(p)
+    options.add_param_option(p)
+    p.add_argument("--mass", type=options.POSITIVE, metavar="KG",
+                   help="the mass of each object [kg]: the anchorage forces of the component "
+                        "provisions it fails also in kN")
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -137,7 +141,8 @@ def run(args) -> int:
                 raise InputError(f"--{flag.replace('_', '-')}: read on the --hazard file; no "
                                  "--hazard given")
     result = check(objects, site["site"], procedures=args.procedure, records=args.records,
-                   ntc_site=site.get("ntc_site"), **options.reading(args),
+                   ntc_site=site.get("ntc_site"), params=args.param, mass_kg=args.mass,
+                   **options.reading(args),
                    jobs=args.jobs, scheduler=args.scheduler, progress=True, force=args.force,
                    **values)
     if out_dir is not None:
