@@ -143,7 +143,7 @@ def parse_params(params, plug_ins: dict, field: str = "params") -> dict:
     if params is None:
         return {}
     if isinstance(params, (list, tuple)):
-        params = _from_texts(params, field)
+        params = params_of_texts(params, field)
     if not isinstance(params, dict):
         raise InputError(f"{field}: expected {{procedure: {{key: value}}}}, got {params!r}",
                          field)
@@ -171,7 +171,7 @@ def parse_params(params, plug_ins: dict, field: str = "params") -> dict:
     return out
 
 
-def _from_texts(texts, field: str) -> dict:
+def params_of_texts(texts, field: str) -> dict:
     """``["asce7_22.I_p=1.5", …]`` as ``{"asce7_22": {"I_p": "1.5"}}``; a key given twice is
     refused."""
     out: dict = {}
@@ -187,5 +187,5 @@ def _from_texts(texts, field: str) -> dict:
     return out
 
 
-__all__ = ["Parameter", "check_parameters", "parameter_defaults", "parameters_used",
+__all__ = ["Parameter", "check_parameters", "parameter_defaults", "parameters_used", "params_of_texts",
            "parse_params"]

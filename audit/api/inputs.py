@@ -62,11 +62,21 @@ def parameters_of(params, chosen: list, *, provisions: bool = True) -> tuple[lis
     naming ``params``. ``provisions``: whether the command applies the component provisions
     (``check`` does)."""
     from dataclasses import replace
-    from procedures.parameters import parse_params
-    from procedures.registry import available_component_provisions
+    from procedures.parameters import params_of_texts, parse_params
+    from procedures.registry import available_component_provisions, available_procedures
     takers = {proc.name: type(proc) for proc in chosen}
+    component = available_component_provisions()
     if provisions:
-        takers.update(available_component_provisions())
+        takers.update(component)
+    if isinstance(params, (list, tuple)):  # the command line's NAME.KEY=VALUE texts
+        params = params_of_texts(params, "params")
+    if isinstance(params, dict):  # a registered plug-in this command does not apply, named so
+        for name in params:
+            if name in component and not provisions:
+                raise InputError(f"params: {name} is a component provision, which only check "
+                                 "applies", "params")
+            if name in available_procedures() and name not in takers:
+                raise InputError(f"params: {name} is not among the procedures chosen", "params")
     parsed = parse_params(params, takers)
     with_params = [replace(proc, **parsed[proc.name]) if parsed.get(proc.name) else proc
                    for proc in chosen]
