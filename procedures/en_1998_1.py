@@ -65,7 +65,7 @@ class EN19981(ComponentProvision):
                   "§4.3.5.3: 1.0 (≥ 1.5 where its failure endangers life or it serves "
                   "essential equipment)", True, 1.0, 3.0),
         Parameter("T_a", "object_period_s", "s", "fundamental period of the element",
-                  "a rigid block before it rocks (0): an assumption", False, 0.0, 10.0,
+                  "a rigid block before it rocks (0)", False, 0.0, 10.0,
                   words=((RESONANT, RESONANT, "the building's T1: resonance"),)),
     )
 

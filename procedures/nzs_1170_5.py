@@ -71,7 +71,7 @@ class NZS11705(ComponentProvision):
     requires = ("c0_g", "z_over_h", "building_period_s", "object_period_s")
     parameters = (
         Parameter("h_n", "building_height_m", "m", "height of the building",
-                  "estimated from T1 as 35 m per second (ten 3.5 m storeys): an assumption",
+                  "estimated from T1 as 35 m per second (ten 3.5 m storeys)",
                   False, 0.0, 1000.0, low_open=True,
                   words=(("estimate", None, "35 m per second of T1"),)),
         Parameter("R_p", "risk", "-", "part risk factor",
@@ -81,7 +81,7 @@ class NZS11705(ComponentProvision):
                   "Table 8.2, ductility μ_p = 1 (a rocking block dissipates nothing before it "
                   "overturns): 1.0", True, 0.0, 1.0, low_open=True),
         Parameter("T_p", "object_period_s", "s", "period of the part in C_i(T_p)",
-                  "a rigid block before it rocks (0): an assumption", False, 0.0, 10.0),
+                  "a rigid block before it rocks (0)", False, 0.0, 10.0),
         Parameter("k", "stabilising", "-", "factor on G resisting overturning",
                   "AS/NZS 1170.0 §4.2.1(a), stability: stabilising 0.9G", True, 0.0, 1.0,
                   low_open=True),
