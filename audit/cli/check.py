@@ -43,7 +43,10 @@ def add_parser(sub):
                    help="FEMA 356 / ASCE 41 design spectral accelerations S_XS,S_X1 [g] at the "
                         "hazard level assessed (required): the site's intensity")
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
-                   help="NTC 2018 site as for 'run' (NTC 2018 then reads its code spectrum)")
+                   help="NTC 2018 site as for 'run', its values those of the --limit-state's "
+                        "return period (with 'both', read for SLV and SLC alike): NTC 2018 then "
+                        "reads its code spectrum S_De and EN 1998-1 its a_g·S_S·S_T; the "
+                        "records stay the exact answer's")
     p.add_argument("procedure", nargs="?", default="all",
                    help="registered procedure name ({registered}), or 'all'")
     p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
