@@ -21,6 +21,7 @@ from typing import Callable, ClassVar
 import numpy as np
 
 from audit import G
+from procedures.parameters import check_parameters
 from procedures.iteration import (CONVERGED, NO_UPLIFT, NOT_CONVERGED, OVERTURN, Estimate,
                                   estimate_rotation)
 
@@ -93,6 +94,9 @@ class Procedure:
         if missing:
             return f"no {self.title} site parameters ({', '.join(missing)})"
         return None
+
+    def __post_init__(self):  # a dataclass subclass's declared parameters, checked once
+        check_parameters(self)
 
     def spectrum_read(self, entry) -> str:
         """Which spectrum the procedure reads for ``entry``, in words (check.json's

@@ -48,7 +48,7 @@ from audit.physics.building.floor import Floor
 from audit.physics.ntc2018_floor_spectrum import NTC2018FloorSpectrum
 from audit.physics.ntc2018_spectrum import NTC2018Spectrum
 from records.sites import NTC2018_SITE_KEYS as SITE_KEYS
-from procedures.parameters import Parameter, check_parameters
+from procedures.parameters import Parameter
 from procedures.base import (CONVERGED, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, OVERTURN,
                              STORED_SPECTRUM_PERIODS_S, Check, Estimate, Evaluation, Procedure)
 
@@ -169,7 +169,7 @@ class NTC2018(Procedure):
     )
 
     def __post_init__(self):
-        check_parameters(self)
+        super().__post_init__()
         if self.demand not in (AUTO, RECORD_BASED, CODE_SPECTRUM):
             raise InputError(f"ntc2018 demand: must be {AUTO}, {RECORD_BASED} or "
                              f"{CODE_SPECTRUM}, got {self.demand!r}")

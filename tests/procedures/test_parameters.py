@@ -142,3 +142,19 @@ def test_component_entries_takes_numpy_and_text_site():
     # the API's site text "S_XS,S_X1" reads both numbers (S_XS = 1.5 g), numpy scalars as numbers
     entries = component_entries(np.float64(0.4), np.int64(2), site="1.5,0.9")
     assert {e["key"]: e for e in entries}["asce7_22"]["demand"] == pytest.approx(0.45)
+
+
+def test_parameters_of_a_command():
+    from audit.api.inputs import parameters_of, procedures_of
+    chosen = procedures_of(["ntc2018", "fema356"])
+    # run and margins: the procedures' parameters, applied to the instances (checked again)
+    procedures, provision_params = parameters_of(["ntc2018.q=1.5"], chosen, provisions=False)
+    assert procedures[0].behaviour_factor == 1.5 and provision_params == {}
+    assert type(procedures[1]) is type(chosen[1])
+    with pytest.raises(InputError, match="asce7_22 is a component provision"):
+        parameters_of({"asce7_22": {"I_p": 1.5}}, chosen, provisions=False)
+    with pytest.raises(InputError, match="priestley1978 is not among the procedures chosen"):
+        parameters_of(["priestley1978.x=1"], chosen)
+    # check: the provisions' too, returned by attribute
+    _, provision_params = parameters_of({"nzs1170_5": {"k": 1.0}}, chosen)
+    assert provision_params == {"nzs1170_5": {"stabilising": 1.0}}
