@@ -43,7 +43,10 @@ def add_parser(sub):
                    help="FEMA 356 / ASCE 41 design spectral accelerations S_XS,S_X1 [g] at the "
                         "hazard level assessed (required): the site's intensity")
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
-                   help="NTC 2018 site as for 'run' (NTC 2018 then reads its code spectrum)")
+                   help="NTC 2018 site as for 'run', its values those of the --limit-state's "
+                        "return period (with 'both', read for SLV and SLC alike): NTC 2018 then "
+                        "reads its code spectrum S_De and EN 1998-1 its a_g·S_S·S_T; the "
+                        "records stay the exact answer's")
     p.add_argument("procedure", nargs="?", default="all",
                    help="registered procedure name ({registered}), or 'all'")
     p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
@@ -73,6 +76,10 @@ def add_parser(sub):
                         "rocking; without it, no sliding is assumed and the friction the "
                         "records need is given")
     options.add_floor_options(p)
+    options.add_param_option(p)
+    p.add_argument("--mass", type=options.POSITIVE, metavar="KG",
+                   help="the mass of each object [kg]: the anchorage forces of the component "
+                        "provisions it fails also in kN")
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -137,7 +144,8 @@ def run(args) -> int:
                 raise InputError(f"--{flag.replace('_', '-')}: read on the --hazard file; no "
                                  "--hazard given")
     result = check(objects, site["site"], procedures=args.procedure, records=args.records,
-                   ntc_site=site.get("ntc_site"), **options.reading(args),
+                   ntc_site=site.get("ntc_site"), params=args.param, mass_kg=args.mass,
+                   **options.reading(args),
                    jobs=args.jobs, scheduler=args.scheduler, progress=True, force=args.force,
                    **values)
     if out_dir is not None:

@@ -50,6 +50,7 @@ def add_parser(sub):
                         "design (the CMR is over 1.5 × them, the MCE of ASCE 7)")
     options.add_scaling_options(p)
     options.add_floor_options(p)
+    options.add_param_option(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
     options.add_block_option(p)
@@ -89,7 +90,7 @@ def run(args) -> int:
     site = options.design_site(args)
     del site["site_override"]  # one design site: the audit is of that site
     try:
-        result = margins(args.procedure, args.records, **options.reading(args),
+        result = margins(args.procedure, args.records, **options.reading(args), params=args.param,
                          force=args.force, **values, **site,
                          jobs=args.jobs, scheduler=args.scheduler,
                          partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True)

@@ -361,6 +361,15 @@ def add_floor_options(parser):
                         help="the building's damping ratio in every mode [-]")
 
 
+def add_param_option(parser):
+    """``--param PROCEDURE.KEY=VALUE``, repeatable: a plug-in's declared parameter
+    (:mod:`procedures.parameters`)."""
+    parser.add_argument("--param", action="append", metavar="PROCEDURE.KEY=VALUE",
+                        help="a procedure's or component provision's parameter, e.g. "
+                             "asce7_22.I_p=1.5 or nzs1170_5.h_n=28; repeat it for several "
+                             "(docs/procedures.md lists each one's keys, ranges and defaults)")
+
+
 def floor_values(args) -> dict:
     """The API keywords of the floor flags."""
     return {"floor": args.floor, "building": args.building,

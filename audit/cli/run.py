@@ -51,6 +51,7 @@ def add_parser(sub):
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
                         "its demand off this code spectrum instead of the record's")
     options.add_floor_options(p)
+    options.add_param_option(p)
     options.add_restitution_option(p)
     options.add_ground_truth_options(p)
     options.add_force_option(p)
@@ -72,7 +73,7 @@ def run(args) -> int:
     site = options.design_site(args)
     start = time.perf_counter()
     try:
-        result = run_api(args.procedure, args.records, **options.reading(args),
+        result = run_api(args.procedure, args.records, **options.reading(args), params=args.param,
                          out_dir=out_dir, force=args.force,
                          **grid, free_motion_s=args.free_motion, agree_band=args.agree_band,
                          robustness=args.robustness, restitution=args.restitution,

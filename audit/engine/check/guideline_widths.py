@@ -70,7 +70,9 @@ class GuidelineWidths:
                                    [j.width_high[b] for j in mine], refine)
         rule_widths = {}
         rule = suite_rule(proc.name, len(records))
-        if mine and not site_only and rule != MEDIAN:
+        # a site-only guideline has one demand, whatever its rule: the width where it meets its
+        # capacity is the entry's (its line of overturning is not: NTC's SLV fails before d₀)
+        if mine and rule != MEDIAN:
             for state in {r.limit_state for r in mine[0].readings[b]}:
                 key = (proc.name, state, obj.height_m)
                 if key not in self.rule_widths:

@@ -43,7 +43,7 @@ from audit.engine.check.record_part import CheckWork, check_record
 from audit.engine.check.guideline_widths import GuidelineWidths
 from audit.engine.check.widths import Family, exact_required_widths, probability_at_site
 from audit.engine.check.other_im import other_im_answers
-from audit.engine.check.component_checks import component_entries
+from audit.engine.check.component_checks import component_entries, component_provisions
 from audit.engine.shared.floors import floor_at_site
 from audit.engine.design.bootstrap import bootstrap_lognormal
 from audit.engine.check.width_family import width_answer
@@ -54,6 +54,7 @@ from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts, open_scheduler, side_thread
 from audit.errors import InputError, InputWarning
 from audit.physics.building.floor import Floor
+from procedures.parameters import parameters_used
 from records.sites import NTC2018_SITE_KEYS
 
 #: Stripes either side of the site's intensity, and the ratio between neighbours: 0.25–4 ×.
@@ -88,7 +89,8 @@ class CheckRun:
 
 
 def run_check(procedures, suite, objects, settings: CheckSettings,
-              runtime: Runtime, floor: Floor = Floor()) -> CheckRun:
+              runtime: Runtime, floor: Floor = Floor(), provision_params: dict | None = None,
+              mass_kg: float | None = None) -> CheckRun:
     """Check every object at the suite's design site (see the module).
 
     Parameters
@@ -104,6 +106,10 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     floor : audit.physics.building.floor.Floor
         Where the objects stand, for the component provisions' static checks
         (:mod:`audit.engine.check.component_checks`, ``component_provisions`` of each object).
+    provision_params : dict, optional
+        The component provisions' parameters, ``{name: {attribute: value}}`` (checked).
+    mass_kg : float, optional
+        Each object's mass [kg]: the anchorage forces also in kN.
     """
     from audit.engine.check.summary import (CheckFrame, ObjectFindings, object_answer,
                                             run_summary)
@@ -206,18 +212,25 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     ntc = entries[0].site
     ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
                 if all(ntc.get(key) is not None for key in NTC2018_SITE_KEYS) else None)
+    provisions = component_provisions(provision_params)
     for obj, answer in zip(objects, answers):
         answer["component_provisions"] = [
             {**entry, "exact_p_exceed": answer["exact"]["p_overturn_at_site"]}
             for entry in component_entries(obj.width_m, obj.height_m,
                                            site=(design_site["sxs_g"], design_site["sx1_g"]),
-                                           ntc_site=ntc_site, floor=floor)]
+                                           ntc_site=ntc_site, floor=floor,
+                                           provisions=provisions, mass_kg=mass_kg)]
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
     summary.update(design_im=design_im, site_hazard=site.as_dict(curve),
                    friction=settings.friction)
     summary["floor"] = floor_document
+    # every parameter the guidelines and provisions used, with the clause of its default
+    summary["parameters"] = {plug_in.name: parameters_used(plug_in)
+                             for plug_in in (*procedures, *provisions)
+                             if type(plug_in).parameters}
+    summary["mass_kg"] = mass_kg
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)

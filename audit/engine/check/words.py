@@ -168,6 +168,21 @@ def _compared(proc: dict, half_width_m: float) -> str:
     return f"demand {demand:.3g} vs capacity {capacity:.3g} {unit}"
 
 
+def anchorage_words(anchorage: dict) -> str:
+    """The anchorage forces of a failing component provision: shear V and the far edge's
+    tension T per unit weight (and in kN with the mass), and times Ω0p where the code asks."""
+    def forces(suffix: str) -> str:
+        words = [f"{name} {anchorage[key + suffix]:.3g} W"
+                 + (f" = {anchorage[key + suffix + '_kN']:.3g} kN"
+                    if key + suffix + "_kN" in anchorage else "")
+                 for name, key in (("V", "shear"), ("T", "tension"))]
+        return ", ".join(words)
+    text = forces("")
+    if "omega_0p" in anchorage:
+        text += f"; ×Ω0p {anchorage['omega_0p']:g} (non-ductile anchors): {forces('_omega')}"
+    return text
+
+
 def _percent(p: float | None) -> str:
     """Two significant figures, in fixed notation: "100 %", never "1e+02 %"."""
     return "—" if p is None else f"{float(f'{100 * p:.2g}'):g} %"
@@ -250,6 +265,10 @@ def summary_text(document: dict) -> str:
                          metres(width) if width is not None else "—",
                          _percent(entry["exact_p_exceed"]))
                         + (("",) if hazard else ()))
+            if entry.get("anchorage"):
+                rows.append(("  its anchorage (if anchored)", "", "",
+                             anchorage_words(entry["anchorage"]), "", "")
+                            + (("",) if hazard else ()))
         exact = obj["exact"]
         for target in ("10", "50"):
             rows.append((f"exact, P(overturn) ≤ {target} %", "overturning", "", "",
@@ -283,4 +302,4 @@ def summary_text(document: dict) -> str:
     return "\n".join(lines).rstrip() + "\n"
 
 
-__all__ = ["sentence", "summary_text", "im_words", "EXTRAPOLATED_SHARE"]
+__all__ = ["sentence", "summary_text", "im_words", "anchorage_words", "EXTRAPOLATED_SHARE"]

@@ -45,6 +45,7 @@ from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts
 from audit.engine.design.stripes import StripeSettings, record_stripes
 from audit.errors import InputError
+from procedures.parameters import parameters_used
 
 
 @dataclass
@@ -200,7 +201,9 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
                "restitution": str(run.settings.restitution),
                "scheduler": run.where, "resumed": run.resumed,
                "procedures": [{"name": proc.name, "title": proc.title,
-                               "reads": reading(proc, entries)} for proc in procedures],
+                               "reads": reading(proc, entries),
+                               **({"parameters": parameters_used(proc)}
+                                  if type(proc).parameters else {})} for proc in procedures],
                "grid": {"alpha_deg": [float(a) for a in settings.alpha_deg],
                         "size_s": np.asarray(settings.size_s if settings.size_s is not None
                                              else (), dtype=float).tolist()},
