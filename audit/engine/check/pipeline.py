@@ -46,6 +46,7 @@ from audit.engine.check.other_im import other_im_answers
 from audit.engine.check.component_checks import component_entries
 from audit.engine.shared.floors import floor_at_site
 from audit.engine.design.bootstrap import bootstrap_lognormal
+from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.check.width_family import width_answer
 from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.engine.design.stripes import StripeSettings
@@ -152,7 +153,13 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
                            for p in procedures if p.name not in per_record
                            and p.unmet_requirements(site_context(0)[0]) is None}
-            search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
+            lines = guideline_lines(
+                procedures, entries, work.stripes,
+                {p.name: np.stack([part.stripes.predicted[p.name] for part in parts])
+                 for p in procedures},
+                {p.name: np.array([part.stripes.evaluated[p.name] for part in parts])
+                 for p in procedures})
+            search = GuidelineWidths(parts, lines, site_judged, site_context, settings)
             return ([[search.of(proc, b, obj) for proc in procedures]
                      for b, obj in enumerate(objects)],
                     floor_at_site(suite, entries, intensity, site_im))
