@@ -208,7 +208,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                  obj.alpha_deg, settings.friction)
         answer = answers[-1]
         answer["exact"]["site_return_period_years"] = site.return_period_years
-        answer.update(sliding=sliding, sentence=f"{sentence(answer, im)} {sliding['text']}")
+        answer.update(sliding=sliding, sentence=sentence(answer, im, sliding))
     design_site = suite.design_site or {}
     ntc = entries[0].site
     ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
