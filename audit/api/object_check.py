@@ -128,7 +128,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False, floor: float = 0.0,
           building: float | None = None, building_model: str | None = None,
           building_damping: float = DEFAULT_BUILDING_DAMPING,
-          limit_state: str = BOTH) -> CheckResult:
+          limit_state: str = BOTH, guideline_spectrum: str = "ground") -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check.risk`).
@@ -213,6 +213,11 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     limit_state : str
         The limit state the site's values are for, of a guideline that names its own (NTC
         2018): ``SLV``, ``SLC`` or ``both`` (the default: each reported).
+    guideline_spectrum : {"ground", "floor"}
+        On a floor, the spectrum FEMA 356 (a guideline reading the site's design spectrum)
+        reads: the ground's design spectrum ``site`` as its text is written (the default), or
+        the floor's response spectrum (:mod:`audit.engine.check.spectrum_read`); its entry
+        gives its verdict on the other too.
 
     Returns
     -------
@@ -238,6 +243,10 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     site = DesignSite.parse(site=site, site_override=True, scale_to_site=False,
                             ntc_site=ntc_site, floor=floor, building=building,
                             building_model=building_model, building_damping=building_damping)
+    if settings.guideline_spectrum == "floor" and site.floor.on_ground:
+        raise InputError("guideline_spectrum: 'floor' reads the floor's response spectrum; the "
+                         "objects stand on the ground (give floor and building)",
+                         "guideline_spectrum")
     chosen = procedures_of(procedures)
     given = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
     # the work, before the records are scaled to the site (scaling keeps their samples)

@@ -73,6 +73,11 @@ def add_parser(sub):
                         "rocking; without it, no sliding is assumed and the friction the "
                         "records need is given")
     options.add_floor_options(p)
+    p.add_argument("--guideline-spectrum", default="ground", choices=("ground", "floor"),
+                   help="on a floor, the spectrum FEMA 356 reads: the ground's design spectrum "
+                        "of --site as its text is written (default), or the floor's response "
+                        "spectrum (the median of the floor motions at the site, as S_XS, S_X1); "
+                        "its entry gives its verdict on the other too")
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -124,7 +129,8 @@ def run(args) -> int:
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
               "risk_target": args.risk_target, "friction": args.friction,
-              "limit_state": args.limit_state, **options.floor_values(args)}
+              "limit_state": args.limit_state,
+              "guideline_spectrum": args.guideline_spectrum, **options.floor_values(args)}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from statistics import median
 
+from audit.engine.check.spectrum_read import reading_words
 from records.suite import counted_records
 
 #: Share of an annual rate from outside the stripes above which the sentence warns of it.
@@ -293,7 +294,9 @@ def summary_text(document: dict) -> str:
         lines += [""]
         lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."
                   for proc in obj["procedures"] if proc["basis"]
-                  and proc["basis"].startswith("applied record by record")] + [""]
+                  and proc["basis"].startswith("applied record by record")]
+        lines += [f"  {reading_words(proc)}." for proc in obj["procedures"]
+                  if proc.get("other_spectrum")] + [""]
     return "\n".join(lines).rstrip() + "\n"
 
 
