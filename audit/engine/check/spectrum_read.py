@@ -253,6 +253,9 @@ class GuidelineSpectra:
                 proc = by_name[entry["key"]]
                 if reads_design_site(proc, first_entry):
                     entry["spectrum_read"] = spectrum_words(self.choice, self.read, on_floor)
+                    if self.choice == FLOOR:  # the basis names the site's, which it did not read
+                        entry["basis"] = entry["basis"].replace(
+                            "the site's design spectrum", "a design spectrum (the floor's here)")
                     if proc.name in others and entry["verdict"] != "cannot judge":
                         name, site = self.other
                         entry["other_spectrum"] = other_reading(

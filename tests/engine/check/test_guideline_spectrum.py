@@ -47,6 +47,7 @@ def test_fema356_on_a_roof_says_which_spectrum_it_read(roof):
     ground, floor = (_entry(roof[c], "fema356") for c in ("ground", "floor"))
     assert ground["spectrum_read"] == "the ground's design spectrum (S_XS = 1 g, S_X1 = 0.6 g)"
     assert floor["spectrum_read"].startswith("the floor's response spectrum")
+    assert "the floor's here" in floor["basis"] and "site's" in ground["basis"]
     assert _entry(roof["ground"], "priestley1978")["spectrum_read"] == "each record's floor motion"
     spectra = roof["floor"]["guideline_spectrum"]
     assert spectra["read"] == "floor" and roof["ground"]["guideline_spectrum"]["read"] == "ground"
