@@ -126,6 +126,9 @@ def run(args) -> int:
     site = options.design_site(args)
     out_dir = check_output_dir(Path(args.out)) if args.out else None
     objects = objects_of(args)
+    if args.guideline_spectrum == "floor" and not args.floor:
+        raise InputError("--guideline-spectrum floor: reads the floor's response spectrum; the "
+                         "objects stand on the ground (give --floor Z/H and --building T1)")
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
               "risk_target": args.risk_target, "friction": args.friction,

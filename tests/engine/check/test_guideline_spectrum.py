@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 import audit
+from audit.cli import main
 from audit.engine.check.spectrum_read import floor_design_site
 from audit.engine.check.words import summary_text
 from audit.errors import InputError
@@ -85,3 +86,12 @@ def test_floor_on_the_ground_and_a_bad_choice_are_refused_by_name():
     for options in ({"guideline_spectrum": "floor"}, {"guideline_spectrum": "roof", **ROOF}):
         with pytest.raises(InputError, match="guideline_spectrum"):
             audit.check(BLOCK, SITE, records=eight_pulses(), **options)
+
+
+def test_the_command_line_refuses_floor_on_the_ground_in_one_line(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["check", "--block", BLOCK, "--site", "1.0,0.6", "--guideline-spectrum", "floor",
+                 "--out", str(out)]) == 2
+    error = capsys.readouterr().err.strip().splitlines()
+    assert len(error) == 1 and "--guideline-spectrum floor" in error[0] and "--floor" in error[0]
+    assert not out.exists()
