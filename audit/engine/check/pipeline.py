@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -41,11 +41,14 @@ from audit.engine.check.words import sentence
 from audit.engine.check.judgement import at_site, judge
 from audit.engine.check.record_part import CheckWork, check_record
 from audit.engine.check.guideline_widths import GuidelineWidths
+from audit.engine.check.spectrum_read import (FLOOR, GuidelineSpectra, floor_design_site,
+                                              floor_site)
 from audit.engine.check.widths import Family, exact_required_widths, probability_at_site
 from audit.engine.check.other_im import other_im_answers
 from audit.engine.check.component_checks import component_entries, component_provisions
 from audit.engine.shared.floors import floor_at_site
 from audit.engine.design.bootstrap import bootstrap_lognormal
+from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.check.width_family import width_answer
 from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.engine.design.stripes import StripeSettings
@@ -120,6 +123,12 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     site = site_intensity(im, suite.design_site, settings.hazard,
                           settings.site_return_period_years)
     site_im, design_im = site.site_im, site.design_im  # the exact answer's; the guidelines'
+    spectra = GuidelineSpectra(settings.guideline_spectrum,
+                               {key: suite.design_site[key] for key in ("sxs_g", "sx1_g")})
+    if not floor.on_ground and settings.guideline_spectrum == FLOOR:
+        # the design-site guidelines read the floor's spectrum from the start, stripes and all
+        spectra.floor = floor_site(suite, entries, im, settings.free_motion_s, design_im)
+        entries = [replace(entry, site={**entry.site, **spectra.floor}) for entry in entries]
     levels = check_levels(site_im)
     objects = tuple(objects)
     jobs, progress = runtime.jobs, runtime.progress
@@ -158,10 +167,25 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
                            for p in procedures if p.name not in per_record
                            and p.unmet_requirements(site_context(0)[0]) is None}
-            search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
+            lines = guideline_lines(
+                procedures, entries, work.stripes,
+                {p.name: np.stack([part.stripes.predicted[p.name] for part in parts])
+                 for p in procedures},
+                {p.name: np.array([part.stripes.evaluated[p.name] for part in parts])
+                 for p in procedures})
+            search = GuidelineWidths(parts, lines, site_judged, site_context, settings)
+            document = floor_at_site(suite, entries, intensity, site_im)
+            on_other = {}
+            if not floor.on_ground:  # the design-site guidelines on the other spectrum too
+                if spectra.floor is None:
+                    spectra.floor = floor_design_site(
+                        (document if site_im == design_im else
+                         floor_at_site(suite, entries, intensity, design_im))["spectra"])
+                on_other = spectra.judged_on_other(
+                    [p for p in procedures if p.name in site_judged], *site_context(0),
+                    objects, restitution, g)
             return ([[search.of(proc, b, obj) for proc in procedures]
-                     for b, obj in enumerate(objects)],
-                    floor_at_site(suite, entries, intensity, site_im))
+                     for b, obj in enumerate(objects)], document, on_other)
 
         # the guidelines' searches and, on a floor, the spectra of the floor and ground motions
         # run on a side thread beside the exact search (one solver call per record)
@@ -174,7 +198,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             _stage(progress, "the exact P(overturn) at the other standard intensity measure")
             others = other_im_answers(family, objects, suite.design_site, check_levels)
             _stage(progress, "the width each guideline requires at each object's height")
-            judged, floor_document = guidelines.result()
+            judged, floor_document, on_other = guidelines.result()
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
         exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
@@ -207,7 +231,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                  obj.alpha_deg, settings.friction)
         answer = answers[-1]
         answer["exact"]["site_return_period_years"] = site.return_period_years
-        answer.update(sliding=sliding, sentence=f"{sentence(answer, im)} {sliding['text']}")
+        answer.update(sliding=sliding, sentence=sentence(answer, im, sliding))
     design_site = suite.design_site or {}
     ntc = entries[0].site
     ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
@@ -220,6 +244,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                            site=(design_site["sxs_g"], design_site["sx1_g"]),
                                            ntc_site=ntc_site, floor=floor,
                                            provisions=provisions, mass_kg=mass_kg)]
+    spectra.annotate(answers, procedures, entries[0], on_other)
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
@@ -231,6 +256,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                              for plug_in in (*procedures, *provisions)
                              if type(plug_in).parameters}
     summary["mass_kg"] = mass_kg
+    summary["guideline_spectrum"] = spectra.as_dict()
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from statistics import median
 
+from audit.engine.check.spectrum_read import reading_words
 from records.suite import counted_records
 
 #: Share of an annual rate from outside the stripes above which the sentence warns of it.
@@ -98,9 +99,11 @@ def p_words(exact: dict, records: int) -> str:
     return f"{100 * exact['p_overturn_at_site']:.0f} % [{100 * low:.0f}–{100 * high:.0f} %]"
 
 
-def sentence(answer: dict, im) -> str:
+def sentence(answer: dict, im, sliding: dict | None = None) -> str:
     """One sentence for a calculation note: the guidelines' verdicts by their own limit states,
-    the exact P(overturn) at the site with its band, the exact widths.
+    the exact P(overturn) at the site with its band, the exact widths; with ``sliding``, what
+    the base's friction does: first, the rest following as "if it could not slide", where
+    sliding governs (``sliding["governs"]``: most records slide it), else after.
 
     Parameters
     ----------
@@ -108,7 +111,20 @@ def sentence(answer: dict, im) -> str:
         The object's entry of ``check.json``.
     im : IntensityMeasure
         The check's intensity measure.
+    sliding : dict, optional
+        The object's ``sliding`` entry (:func:`~audit.engine.check.sliding.sliding_answer`).
     """
+    head = f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m tall): "
+    rocking = _rocking_words(answer, im)
+    if sliding is None:
+        return head + rocking
+    if sliding.get("governs"):
+        return f"{head}{sliding['text']} If it could not slide: {rocking}"
+    return f"{head}{rocking} {sliding['text']}"
+
+
+def _rocking_words(answer: dict, im) -> str:
+    """:func:`sentence` after the object's name: the answers of rocking."""
     by = {v: [p for p in answer["procedures"] if p["verdict"] == v]
           for v in ("passes", "fails", "cannot judge")}
     parts = []
@@ -119,8 +135,7 @@ def sentence(answer: dict, im) -> str:
     if by["cannot judge"]:
         parts.append(f"{_judged(by['cannot judge'])} cannot judge it")
     exact = answer["exact"]
-    text = (f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m "
-            f"tall): " + "; ".join(parts) + f"; the exact P(overturn) at "
+    text = ("; ".join(parts) + f"; the exact P(overturn) at "
             f"{im_words(im, exact['site_im_g'], exact.get('site_return_period_years'))} is "
             f"{p_words(exact, exact['stripes']['records'])}")
     w10, w50 = exact["required_width_m_10pct"], exact["required_width_m_50pct"]
@@ -298,7 +313,9 @@ def summary_text(document: dict) -> str:
         lines += [""]
         lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."
                   for proc in obj["procedures"] if proc["basis"]
-                  and proc["basis"].startswith("applied record by record")] + [""]
+                  and proc["basis"].startswith("applied record by record")]
+        lines += [f"  {reading_words(proc)}." for proc in obj["procedures"]
+                  if proc.get("other_spectrum")] + [""]
     return "\n".join(lines).rstrip() + "\n"
 
 

@@ -38,8 +38,9 @@ from audit.engine.shared.floors import suite_floor
 from audit.engine.shared.defaults import SITE_LEVELS
 from audit.engine.design.fragility import stripe_levels
 from audit.engine.design.settings import MarginsSettings
+from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.design.tables import (capacity_rows, fragility_rows, reading, site_factor,
-                                         step_levels, stripe_rows)
+                                         stripe_rows)
 from audit.engine.shared.partial import PartialStore
 from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts
@@ -190,8 +191,8 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
     site_factors = np.array([site_factor(suite, e.id) for e in entries])
     stripes = stripe_rows(run, site_factors)
     fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, run.mce_im)
-    steps = step_levels(procedures, entries, run.settings, run.predicted, run.evaluated)
-    capacity = capacity_rows(procedures, run, fits, boots, steps)
+    lines = guideline_lines(procedures, entries, run.settings, run.predicted, run.evaluated)
+    capacity = capacity_rows(procedures, run, fits, boots, lines)
     named_blocks = settings.blocks
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
                "design_im": run.settings.design_im, "site_level": settings.site_level,
