@@ -119,7 +119,9 @@ def procedure_entries(proc, judgements, line: float, width: float, rule_widths: 
         entry.update(
             verdict="fails" if math.isinf(demand) else verdict(demand, capacity),
             demand=_number(demand), capacity=_number(capacity), unit=readings[0].unit,
-            basis=basis(rule, len(readings), readings[0].unit), share_of_records_overturning=share,
+            basis=basis(rule, len(readings), readings[0].unit) + (
+                f"; {proc.basis_note}" if proc.basis_note else ""),
+            share_of_records_overturning=share,
             exact_p_exceed=exact.p_exceed(readings[0].theta_limit_rad),
             required_width_m=_number(required), quantity=readings[0].quantity,
             factors=readings[0].factors,
