@@ -158,6 +158,8 @@ def _wavelet(scale: int, centre: int, coefficient: float, n: int) -> np.ndarray:
 
 
 def _late(signal: np.ndarray, pulse: np.ndarray) -> bool:
+    if not (np.any(signal) and np.any(pulse)):
+        return False
     signal_energy = np.cumsum(signal ** 2) / np.sum(signal ** 2) * 100.0
     pulse_energy = np.cumsum(pulse ** 2) / np.sum(pulse ** 2) * 100.0
     early = np.flatnonzero(pulse_energy <= 5.0)
@@ -181,8 +183,10 @@ def classify_candidate(signal: np.ndarray, dt: float, sample: int, row: int,
         pulse += _wavelet(scale, found, coefficients[found], n)
         residual = signal - pulse
     pgv = float(np.max(np.abs(signal)))
-    pgv_ratio = float(np.max(np.abs(residual))) / pgv
-    energy_ratio = _approximation_energy(residual) / _approximation_energy(signal)
+    # a record at rest has nothing to extract: both ratios 1 (and PI < 0)
+    pgv_ratio = float(np.max(np.abs(residual))) / pgv if pgv else 1.0
+    energy = _approximation_energy(signal)
+    energy_ratio = _approximation_energy(residual) / energy if energy else 1.0
     return PulseCandidate(direction_rad, sample, scale, scale * dt / centre_frequency(),
                           pulse_indicator(pgv, pgv_ratio, energy_ratio), pgv, pgv_ratio,
                           energy_ratio, _late(signal, pulse), signal, pulse, dt)
