@@ -84,3 +84,28 @@ def record_pulses(records=None, *, plot: bool = False, dt_s: float | None = None
         return frame, None
     from reports.pulse_figure import draw_record_pulses
     return frame, draw_record_pulses(panels) if panels else None
+
+
+def pulse_words(entry, *, cached_only: bool = True) -> str:
+    """The pulse of a suite's record in one line, for ``list``: from the cache only by default
+    (``python -m audit pulse`` fills it), "" when there is no motion or nothing cached.
+
+    Parameters
+    ----------
+    entry : records.RecordEntry
+        The record.
+    cached_only : bool
+        Compute nothing (about a second a record otherwise).
+    """
+    from audit import G
+    from audit.physics.pulses.record_pulse import record_pulse
+    found = record_pulse(entry, cached_only=cached_only)
+    if found is None:
+        return ""
+    if not found.pulse_like:
+        return f"not pulse-like (Shahi & Baker 2014: PI {found.pulse_indicator:.2f})"
+    return (f"pulse-like (Shahi & Baker 2014): T_p {found.tp_s:.2f} s, PI "
+            f"{found.pulse_indicator:.1f}, θ {found.direction_deg:.0f}° (× "
+            f"{found.component_factor:.2f} on this component); Mavroeidis-Papageorgiou fit "
+            f"1/f_p {found.fit.period_s:.2f} s, γ {found.fit.gamma:.2f}, peak "
+            f"{found.fit.peak_acceleration_m_s2 / G:.3f} g along the pulse")

@@ -101,3 +101,12 @@ def test_a_pulse_added_to_noise_is_found(period_s, gamma, nu_deg, direction):
     fit = fit_mp_pulse(found.pulse_cm_s / 100.0, dt, found.tp_s)
     assert fit.period_s == pytest.approx(period_s, rel=0.10)
     assert fit.t0_s == pytest.approx(10.0, abs=0.2 * period_s)
+
+
+def test_rock_takes_an_mp_pulse_and_refuses_gamma_without_it(capsys):
+    from audit.cli import main
+    assert main(["rock", "--block", "0.6x1.8", "--pulse", "mp", "--amplitude", "0.4",
+                 "--pulse-period", "1", "--gamma", "2", "--nu", "90", "--json"]) == 0
+    assert main(["rock", "--block", "0.6x1.8", "--pulse", "cosine", "--amplitude", "0.4",
+                 "--pulse-period", "1", "--gamma", "2"]) == 2
+    assert "--gamma and --nu: only for --pulse mp" in capsys.readouterr().err
