@@ -27,7 +27,7 @@ from audit.physics.pulses.shahi_baker_2014 import (PulseClassification, shahi_ba
 from records.p695 import cache_dir, station_components
 
 #: Part of the cache key: bump when the identification or the fit changes.
-CACHE_VERSION = "shahi-baker-2014-matlab-2000226/mp-fit-1"
+CACHE_VERSION = "shahi-baker-2014-matlab-2000226/mp-fit-2"
 #: The MATLAB's limit on the difference of the components' lengths [samples] (the longer is cut).
 MAX_LENGTH_DIFFERENCE = 20
 
