@@ -153,19 +153,32 @@ def classification_summary(accelerations_m_s2: list[np.ndarray], dt: float) -> d
     return summary
 
 
+_STATIONS: dict[tuple, tuple] = {}
+
+
+def _station(metadata: dict):
+    """(component ids, accelerations [m/s²], words) of a P695 station, read once a process (a
+    check asks for every record at every stripe)."""
+    key = (metadata["p695_record_set"], metadata["p695_record_id"])
+    if key not in _STATIONS:
+        metas, accelerations = station_components(metadata)
+        words = " and ".join(meta["component_name"] for meta in metas)
+        _STATIONS[key] = ([meta["id"] for meta in metas], [a * G for a in accelerations],
+                          f"{words} (as the package gives them)")
+    return _STATIONS[key]
+
+
 def _components(entry):
     """(accelerations as classified [m/s²], which one is this entry's, words, scale factor)."""
     motion = entry.motion
-    pair = station_components(entry.metadata)
-    if pair is None:
+    if entry.metadata.get("p695_record_set") is None:
         return [motion.acceleration], 0, f"{entry.id} alone (one component)", 1.0
-    metas, accelerations = pair
-    index = [meta["id"] for meta in metas].index(entry.metadata["id"])
-    own = accelerations[index] * G
+    ids, accelerations, words = _station(entry.metadata)
+    index = ids.index(entry.metadata["id"])
+    own = accelerations[index]
     peak = int(np.argmax(np.abs(own)))
     scale = float(motion.acceleration[peak] / own[peak]) if own[peak] else 1.0
-    words = " and ".join(meta["component_name"] for meta in metas)
-    return [a * G for a in accelerations], index, f"{words} (as the package gives them)", scale
+    return accelerations, index, words, scale
 
 
 def classify_entry(entry) -> tuple[PulseClassification, int, float]:
