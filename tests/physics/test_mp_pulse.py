@@ -110,3 +110,19 @@ def test_rock_takes_an_mp_pulse_and_refuses_gamma_without_it(capsys):
     assert main(["rock", "--block", "0.6x1.8", "--pulse", "cosine", "--amplitude", "0.4",
                  "--pulse-period", "1", "--gamma", "2"]) == 2
     assert "--gamma and --nu: only for --pulse mp" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("t0_s,late", [(8.0, False), (30.0, True)])
+def test_a_pulse_after_the_strong_shaking_is_late(t0_s, late):
+    """The late-pulse test: a pulse arriving after 15 s of strong shaking (well over 17 % of
+    the record's Σv² before the pulse's first 5 %) is late; one inside the shaking is not."""
+    dt = 0.01
+    t = np.arange(4000) * dt
+    shaking = (np.random.default_rng(3).normal(scale=0.15 * G, size=t.size) * (t < 15)
+               * np.sin(np.pi * t / 15) ** 2)
+    record = shaking + mp_acceleration(t - t0_s, 0.5, 0.5, 2.0, math.pi / 2)
+    first = shahi_baker_2014(velocity_cm_s(record, dt), np.zeros(t.size), dt).candidates[0]
+    assert first.sample * dt == pytest.approx(t0_s, abs=1.0)  # the pulse is the candidate
+    assert first.late == late
+    if late:
+        assert not first.is_pulse  # whatever its PI
