@@ -27,6 +27,7 @@ by hand.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -60,6 +61,8 @@ def pulse_of(entry):
         return (ONE_COSINE, motion.pga, facts.pulse_period_s,
                 "Table 5.1's T_p with the record's PGA, one-cosine assumed")
     found = record_pulse(entry)
+    if math.isnan(found.pulse_indicator):
+        return f"no pulse identified: {found.classified}"
     if not found.pulse_like:
         return (f"not pulse-like (PI {found.pulse_indicator:.2f} ≤ 0, Shahi & Baker 2014 on "
                 f"{found.classified})")

@@ -74,6 +74,7 @@ def record_pulses(records=None, *, plot: bool = False, dt_s: float | None = None
             words = (f"pulse-like: T_p {found.tp_s:.2f} s (fit 1/f_p {fit.period_s:.2f} s), "
                      f"PI {found.pulse_indicator:.1f}, θ {found.direction_deg:.0f}°, × "
                      f"{found.component_factor:.2f} on this component" if found.pulse_like
+                     else found.classified if math.isnan(found.pulse_indicator)
                      else f"not pulse-like (PI {found.pulse_indicator:.2f})")
             panels.append({"title": f"{entry.id}: {words}", "time_s": time,
                            "velocity_cm_s": velocity, "pulse_cm_s": pulse,
@@ -102,6 +103,8 @@ def pulse_words(entry, *, cached_only: bool = True) -> str:
     found = record_pulse(entry, cached_only=cached_only)
     if found is None:
         return ""
+    if math.isnan(found.pulse_indicator):
+        return f"pulse {found.classified}"
     if not found.pulse_like:
         return f"not pulse-like (Shahi & Baker 2014: PI {found.pulse_indicator:.2f})"
     return (f"pulse-like (Shahi & Baker 2014): T_p {found.tp_s:.2f} s, PI "

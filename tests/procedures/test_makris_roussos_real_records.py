@@ -74,3 +74,11 @@ def test_pulse_command_on_one_component_finds_the_matlab_pulse(tmp_path):
     assert float(row["tp_s"]) == pytest.approx(4.788, abs=1e-3)
     assert float(row["pulse_indicator"]) == pytest.approx(20.06, abs=0.5)
     assert float(row["mp_tp_s"]) == pytest.approx(4.788, rel=0.15)
+
+
+def test_a_pair_of_unequal_lengths_is_not_classified():
+    """Manjil, Abbar (P695 far-field): components of 2676 and 2300 samples; the MATLAB skips a
+    pair that differs by more than 20."""
+    entry = next(e for e in p695_suite("p695-far-field") if e.id == "rsn1633_abbar_l")
+    reason = MakrisRoussos2000().unmet_requirements(entry)
+    assert reason.startswith("no pulse identified: not classified") and "376 samples" in reason

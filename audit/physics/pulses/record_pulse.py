@@ -192,14 +192,26 @@ def classify_entry(entry) -> tuple[PulseClassification, int, float]:
 
 def record_pulse(entry, cached_only: bool = False) -> RecordPulse | None:
     """The pulse of a suite's entry (see the module docstring); None without a motion, or
-    with ``cached_only`` when it has not been identified yet (nothing is computed)."""
+    with ``cached_only`` when it has not been identified yet (nothing is computed).
+
+    A record whose two components differ in length by more than 20 samples is not classified,
+    as the MATLAB skips it (its components may not start together): ``pulse_like`` False,
+    ``pulse_indicator`` NaN and ``classified`` saying why.
+    """
     if entry.motion is None:
         return None
     accelerations, index, words, scale = _components(entry)
+    nan = math.nan
+    lengths = {a.size for a in accelerations}
+    if max(lengths) - min(lengths) > MAX_LENGTH_DIFFERENCE:
+        return RecordPulse(entry.id, f"not classified: its components {words} differ by "
+                                     f"{max(lengths) - min(lengths)} samples (Shahi & Baker's "
+                                     f"MATLAB classifies a pair that differs by at most "
+                                     f"{MAX_LENGTH_DIFFERENCE})", False, nan, nan, 0, (), nan,
+                           nan, nan, nan, None, scale)
     if cached_only and not is_cached(accelerations, entry.motion.dt):
         return None
     summary = classification_summary(accelerations, entry.motion.dt)
-    nan = math.nan
     if not summary["candidate"]:
         return RecordPulse(entry.id, words, False, summary["pulse_indicator"], nan, 0,
                            tuple(summary["candidate_tp_s"]), nan, nan, summary["pgv_cm_s"],
