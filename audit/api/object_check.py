@@ -73,7 +73,7 @@ class CheckResult(Files):
 
     def _repr_html_(self) -> str:
         table = self.table[["object", "procedure", "verdict", "demand", "capacity", "unit",
-                            "required_width_m", "p_overturn_at_site",
+                            "required_width_m", "p_overturn_at_site", "p_estimator",
                             "exact_required_width_m_10pct"]]
         return ("".join(f"<p>{html.escape(s)}</p>" for s in self.sentences)
                 + table.to_html(index=False, float_format=lambda v: f"{v:.3g}", na_rep="—"))

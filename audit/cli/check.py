@@ -51,7 +51,8 @@ def add_parser(sub):
                    help="registered procedure name ({registered}), or 'all'")
     p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
                    help="record suite (see 'list'), manifest, file or folder; each record is "
-                        "scaled to the site's intensity and to stripes around it")
+                        "scaled to the site's intensity and to a fixed lattice of stripes, "
+                        "0.0625–5.66 g")
     options.add_record_file_options(p)
     p.add_argument("--im", default=None, metavar="pga|sa:T",
                    help=f"intensity measure (default {DEFAULT_IM}, or the --hazard file's IMT): "

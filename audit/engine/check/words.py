@@ -80,8 +80,11 @@ def _judged(entries) -> str:
 
 
 def p_words(exact: dict, records: int) -> str:
-    """The exact P(overturn) at the site with its band, or, where no record overturns the
-    object at any stripe, the 95 % upper bound that leaves (1 − 0.05^(1/n)).
+    """The exact P(overturn) at the site as its headline says it, and which estimate that is:
+    the lognormal's with its band, the count at the site's stripe with its exact band (where it
+    rejects the lognormal's P: it lies outside the count's band), or the one-sided 95 % bound
+    where no record (or every
+    record) overturns the object there (:mod:`audit.engine.design.site_probability`).
 
     Parameters
     ----------
@@ -90,13 +93,17 @@ def p_words(exact: dict, records: int) -> str:
     records : int
         Number of records.
     """
-    low, high = exact["p_band"]
-    overturned = exact["stripes"]["overturned"]
-    if exact["median_g"] is None and not any(overturned):
-        bound = 1.0 - 0.05 ** (1.0 / records)
-        return (f"< {100 * bound:.2g} % (95 % bound: no record overturns it at any stripe up "
-                f"to {max(exact['stripes']['im']):.3g} {exact['im_unit']})")
-    return f"{100 * exact['p_overturn_at_site']:.0f} % [{100 * low:.0f}–{100 * high:.0f} %]"
+    at = exact["p_at_site"]
+    count = at["count"]
+    k, n = count["overturned"], count["records"]
+    if at["bound"] is not None:
+        return (f"{at['headline']} (one-sided 95 % bound: {k} of {n} records overturn it at "
+                "the site's intensity)")
+    if at["estimator"] == "count":
+        return (f"{at['headline']} ({k} of {n} records at the site's intensity, exact band; "
+                + (f"they reject the lognormal's {100 * at['model']['p']:.0f} %)"
+                   if at["model"]["p"] is not None else "no lognormal fits)"))
+    return f"{at['headline']} (lognormal; {k} of {n} records at the site's intensity)"
 
 
 def sentence(answer: dict, im, sliding: dict | None = None) -> str:
@@ -246,7 +253,11 @@ def summary_text(document: dict) -> str:
              f"{counted_records(len(document['records']), source)}, each scaled "
              f"to {_scaled_to(document)} and to "
              f"{len(document['levels'])} stripes {min(document['levels']):.3g}–"
-             f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility.", ""]
+             f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility "
+             "(a fixed lattice, √2 apart, which the fragility is fitted on, and the site's own "
+             "stripe; P at the site is the lognormal's unless the count at the site's stripe "
+             "rejects it (the lognormal's P outside the count's exact band), then the count's: "
+             "see docs/check.md).", ""]
     site_hazard = document.get("site_hazard")
     if site_hazard and site_hazard.get("warning"):
         lines[-1:-1] = [f"Warning: {site_hazard['warning']}."]
@@ -308,7 +319,7 @@ def summary_text(document: dict) -> str:
         if other:
             lines += [f"  (at the other standard intensity measure, the records scaled to "
                       f"{im_words(_intensity(other['im']), other['site_im'])} instead: exact "
-                      f"P(overturn) {100 * other['p_overturn_at_site']:.0f} %; use the IM of "
+                      f"P(overturn) {other['p_at_site']['headline']}; use the IM of "
                       "your hazard, see docs/check.md)"]
         lines += [""]
         lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."

@@ -36,7 +36,7 @@ from audit.engine.shared.blocks import BlockList
 from audit.engine.shared.csv_text import csv_bytes
 from audit.engine.shared.floors import suite_floor
 from audit.engine.shared.defaults import SITE_LEVELS
-from audit.engine.design.fragility import stripe_levels
+from audit.engine.shared.lattice import stripe_lattice
 from audit.engine.design.settings import MarginsSettings
 from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.design.tables import (capacity_rows, fragility_rows, reading, site_factor,
@@ -140,9 +140,8 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
                          + (f" ({len(zero) - 1} other record(s) too)" if len(zero) > 1 else ""),
                          "records")
     design = im.of_design_site(suite.design_site)
-    if levels is None:
-        centre = design if design else float(np.median(list(intensities.values())))
-        levels = stripe_levels(centre)
+    if levels is None:  # the fixed lattice: the fragility is the block's, not the site's
+        levels = stripe_lattice()
     blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
     if not len(blocks):
         raise InputError("size_s, alpha_deg, blocks: no block to audit", "size_s",
@@ -177,9 +176,8 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
     suite : records.RecordSuite
         Its ``design_site`` gives the design intensity.
     settings : MarginsSettings
-        The intensity measure, the stripes (default
-        :func:`~audit.engine.design.fragility.stripe_levels` around the design intensity, else the
-        suite's median intensity), the grid and the named blocks, the impact model, gravity
+        The intensity measure, the stripes (default the fixed lattice,
+        :func:`~audit.engine.shared.lattice.stripe_lattice`), the grid and the named blocks, the impact model, gravity
         and the free motion.
     runtime : Runtime
         Solver threads (worker processes of ``scheduler="dask"``), where records are computed,

@@ -14,6 +14,7 @@ from audit.engine.shared.blocks import BlockList
 from audit.engine.design.fragility import overturning_pattern
 from audit.engine.design.bootstrap import bootstrap_lognormal
 from audit.engine.design.lognormal_fit import fit_lognormal, lognormal_estimate
+from audit.engine.design.site_probability import MODEL, site_probability
 
 
 #: How a procedure meets the stripes, by whether it reads the records (the report says it).
@@ -229,14 +230,37 @@ def capacity_rows(procedures, run, fits, boots, lines) -> pd.DataFrame:
             nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
                 else None
             band = boots[b].probability_band(line) if known else (math.nan, math.nan)
+            achieved = (_achieved(fit, boots[b], levels[nearest], line,
+                                  run.exact_overturned[:, nearest, b]) if nearest is not None
+                        else {name: math.nan for name in ACHIEVED_COLUMNS})
             rows.append({
                 "procedure": proc.name, **_block_columns(blocks, b), "guideline_im": line,
                 "ratio_to_exact_median": line / fit.median if known else math.nan,
                 "achieved_p_fit": float(fit.probability(line)) if known else math.nan,
                 "achieved_p_boot_low": float(band[0]), "achieved_p_boot_high": float(band[1]),
                 "achieved_p_stripe": float(exact_fraction[nearest, b])
-                if nearest is not None else math.nan})
+                if nearest is not None else math.nan, **achieved})
     return pd.DataFrame(rows)
+
+
+#: The achieved P as the headline rule gives it (:func:`_achieved`).
+ACHIEVED_COLUMNS = ("achieved_p", "achieved_p_low", "achieved_p_high", "achieved_p_from")
+
+
+def _achieved(fit, boot, stripe: float, line: float, overturned) -> dict:
+    """The achieved P at a guideline's line by the rule of P at a site
+    (:mod:`audit.engine.design.site_probability`): the lognormal's at the line unless the count at
+    the nearest stripe rejects the lognormal's P there (it lies outside the count's exact band),
+    then that count with its exact
+    band (a one-sided 95 % bound where it is 0 or every record)."""
+    model = float(fit.probability(stripe)) if fit is not None else None
+    at = site_probability(model, boot.probability_band(stripe) if fit is not None else None,
+                          int(np.sum(overturned)), len(overturned))
+    if at.estimator == MODEL:
+        low, high = boot.probability_band(line)
+        return dict(zip(ACHIEVED_COLUMNS, (float(fit.probability(line)), float(low),
+                                           float(high), MODEL)))
+    return dict(zip(ACHIEVED_COLUMNS, (at.p, *at.band, at.words())))
 
 
 __all__ = ["stripe_rows", "fragility_rows", "exact_fit", "collapse_margin",

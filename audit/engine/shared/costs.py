@@ -124,9 +124,10 @@ def check_cost(procedures, suite, objects: int, settings: CheckSettings,
         How it runs (the number of jobs).
     """
     # imported here: run and margins estimate their work without the check's modules
-    from audit.engine.check.pipeline import SITE_STRIPES, TARGETS
+    from audit.engine.check.pipeline import LATTICE_EVERY, TARGETS
     from audit.engine.check.widths import SCAN_WIDTHS
-    stripes = 2 * SITE_STRIPES + 1
+    from audit.engine.shared.lattice import stripe_lattice
+    stripes = stripe_lattice(LATTICE_EVERY).size + 1  # and the site's own
     targets = len(TARGETS) + (settings.hazard is not None)
     per_object = 1 + SCAN_WIDTHS + targets * width_halvings()
     per_object += len(procedures) if settings.hazard is not None else 0

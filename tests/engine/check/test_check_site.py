@@ -55,8 +55,8 @@ def test_return_period_sets_the_exact_answers_intensity_from_the_curve(hazard_di
     document = result.document
     assert document["site_im"] == pytest.approx(expected, rel=0.01)
     assert document["objects"][0]["exact"]["site_im_g"] == document["site_im"]
-    # the stripes centre on the curve's intensity; the guidelines keep S_X1 = 0.9 g
-    assert document["levels"][len(document["levels"]) // 2] == pytest.approx(document["site_im"])
+    # a stripe at the curve's intensity, beside the fixed lattice; the guidelines keep S_X1 = 0.9 g
+    assert document["site_im"] in document["levels"]
     assert document["design_im"] == pytest.approx(0.9)
     site_hazard = document["site_hazard"]
     assert site_hazard["return_period_years"] == 2475

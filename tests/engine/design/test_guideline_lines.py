@@ -35,10 +35,11 @@ def test_fema356_line_is_its_uplift_step_in_check_and_in_margins():
     assert entry["guideline_im"] == pytest.approx(uplift_g, rel=1e-6)
     assert margins_line == pytest.approx(uplift_g, rel=1e-6)
     # the check's stripes bracket the step: interpolating the step between them (what the check
-    # did) puts the line at their geometric mean instead
+    # did) puts the line at their geometric mean instead, off by more than the 1 % the two
+    # commands must agree within (on the lattice's stripes √2 apart, ~4 %)
     levels = np.array(checked.document["objects"][0]["exact"]["stripes"]["im"])
     below = levels[levels < uplift_g].max()
     above = levels[levels > uplift_g].min()
     interpolated = half_crossing(np.array([below, above]), np.array([0.0, 1.0]))
     assert interpolated == pytest.approx(math.sqrt(below * above))
-    assert abs(interpolated / uplift_g - 1.0) > 0.05
+    assert abs(interpolated / uplift_g - 1.0) > 0.02
