@@ -24,7 +24,7 @@ FLAGS = {
     "hazard_imt": "--hazard-imt", "return_period": "--return-period", "poe": "--poe",
     "floor": "--floor", "building": "--building", "building_model": "--building-model",
     "building_damping": "--building-damping",
-    "dt_s": "--dt", "units": "--units",
+    "dt_s": "--dt", "units": "--units", "limit_state": "--limit-state",
 }
 
 

@@ -355,10 +355,11 @@ def add_floor_options(parser):
                              "Miranda & Taghavi's shear-flexure beam of lateral stiffness ratio "
                              "α0 (0-2 walls, 5-20 frames); default "
                              f"{DEFAULT_BUILDING_MODEL}")
-    parser.add_argument("--building-damping", type=number("must lie in (0, 1]", 0.0, 1.0,
-                                                          low_open=True),
+    parser.add_argument("--building-damping", type=number("must lie in (0, 1), a ratio", 0.0, 1.0,
+                                                          low_open=True, high_open=True),
                         default=DEFAULT_BUILDING_DAMPING, metavar="ZETA",
-                        help="the building's damping ratio in every mode [-]")
+                        help="the building's damping ratio in every mode, 0 < ζ < 1 [-] "
+                             "(0.05 for 5 %%)")
 
 
 def floor_values(args) -> dict:

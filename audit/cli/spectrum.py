@@ -39,8 +39,9 @@ def add_parser(sub):
 
 def run(args) -> int:
     import audit.api as api
-    csv = outputs.output_file(args.csv, "--csv")
-    plot = outputs.output_file(args.plot, "--plot")
+    paths = outputs.checked(files={"--csv": args.csv, "--plot": args.plot},
+                            inputs={"--record": args.record, "--records": args.records})
+    csv, plot = paths["--csv"], paths["--plot"]
     if args.free_motion is None:
         args.free_motion = (DEFAULT_FREE_MOTION_S if args.kind == "rocking"
                             else DEFAULT_RESPONSE_FREE_MOTION_S)
