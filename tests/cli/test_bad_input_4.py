@@ -337,3 +337,29 @@ def test_ctrl_c_at_three_moments_exits_130_without_a_crash(command, tmp_path):
         assert not left, (command, pattern, left)
         assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")], \
             (command, pattern, list(tmp_path.iterdir()))
+
+
+def test_stop_kernels_waits_for_running_chunks_and_starts_none():
+    """In a process of its own (the stop is for the process's life): the chunk running when
+    the stop comes is waited for, and a later call starts nothing (KeyboardInterrupt)."""
+    script = """
+import threading, time
+from audit.physics.kernel_threads import run_chunks, stop_kernels
+done, started = [], threading.Event()
+def work(chunk):
+    started.set()
+    time.sleep(0.5)
+    done.append(chunk)
+caller = threading.Thread(target=lambda: run_chunks(work, [1]), daemon=True)
+caller.start()
+started.wait(60)
+assert stop_kernels(30.0) and done == [1], done
+try:
+    run_chunks(work, [2])
+except KeyboardInterrupt:
+    print("stopped", done)
+"""
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            env={**os.environ, "PYTHONPATH": str(REPO)}, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == "stopped [1]"
