@@ -87,16 +87,32 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     raise InputError(f"{option}: expected START:STOP:STEP or a comma list in seconds, got '{text}'")
 
 
-def sizes(text: str) -> np.ndarray:
-    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list."""
-    return time_grid(text, "--size")
+def sizes(args) -> np.ndarray:
+    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list; a message names
+    the flag as typed (``--sizes``, its old name, too)."""
+    return time_grid(args.size, typed_flag(args, "size", "--size"))
+
+
+class _Alias(argparse.Action):
+    """Stores the value as the flag does, and which alias was typed (:func:`typed_flag`)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        setattr(namespace, self.dest, values)
+        namespace.typed_flags = {**getattr(namespace, "typed_flags", {}),
+                                 self.dest: option_string}
 
 
 def add_alias(parser, alias: str, dest: str, type=None) -> None:
     """``alias``, the name a flag had before one quantity had one flag on every command: it
-    sets the same ``dest`` (parsed by the same ``type``), so old scripts run; not in ``--help``."""
+    sets the same ``dest`` (parsed by the same ``type``), so old scripts run; not in ``--help``.
+    A message about its value names it as typed (:func:`typed_flag`)."""
     parser.add_argument(alias, dest=dest, type=type, help=argparse.SUPPRESS,
-                        default=argparse.SUPPRESS)
+                        default=argparse.SUPPRESS, action=_Alias)
+
+
+def typed_flag(args, dest: str, flag: str) -> str:
+    """The flag of ``dest`` as the user typed it: an alias (:func:`add_alias`), else ``flag``."""
+    return getattr(args, "typed_flags", {}).get(dest, flag)
 
 
 def number(rule: str, low: float | None = None, high: float | None = None, *,

@@ -267,6 +267,14 @@ def test_rock_size_beyond_the_records_names_size(workdir, capsys):
     assert "--block" not in line
 
 
+def test_an_alias_is_named_as_typed(workdir, capsys):
+    line = _refused(workdir, capsys, ["run", "all", "--records", "pulses", "--sizes", "1:0:1",
+                                      "--out", "out"], "--sizes", "1:0:1")
+    assert "--size:" not in line
+    _refused(workdir, capsys, ["run", "all", "--records", "pulses", "--size", "1:0:1",
+                               "--out", "out"], "--size:")
+
+
 def test_records_load_dt_as_text(tmp_path):
     path = tmp_path / "acc.txt"
     path.write_text("0.1\n0.2\n-0.1\n0.05\n")
