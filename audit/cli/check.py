@@ -100,7 +100,7 @@ def objects_of(args) -> list:
         raise InputError("--alpha and --size go together: objects by slenderness and size")
     if args.alpha:
         for alpha in options.float_list(args.alpha, "--alpha"):
-            for size in options.sizes(args):
+            for size in options.sizes(args.size):
                 name = f"α={alpha:g}°, 2π/p={size:g} s"
                 objects.append(object_by_slenderness(name, alpha, size, f"--alpha/--size {name}"))
     if not objects:

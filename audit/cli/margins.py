@@ -76,7 +76,8 @@ def run(args) -> int:
                       inputs={"--records": args.records, "--hazard": args.hazard})["--out"]
     out_dir_existed = out_dir.exists()
     values = {"alpha_deg": options.alphas_deg(args.alpha),
-              "size_s": options.sizes(args), "blocks": args.block or (),
+              "size_s": options.sizes(args.size, options.typed_flag(args, "size")),
+              "blocks": args.block or (),
               "restitution": args.restitution, "free_motion_s": args.free_motion,
               "site_level": args.level, "risk_target": args.risk_target}
     if args.im is not None:  # without it, the default or the hazard file's IMT

@@ -87,10 +87,10 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     raise InputError(f"{option}: expected START:STOP:STEP or a comma list in seconds, got '{text}'")
 
 
-def sizes(args) -> np.ndarray:
-    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list; a message names
-    the flag as typed (``--sizes``, its old name, too)."""
-    return time_grid(args.size, typed_flag(args, "size", "--size"))
+def sizes(text: str, option: str = "--size") -> np.ndarray:
+    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list; ``option`` the
+    flag as typed (``--sizes``, its old name: :func:`typed_flag`)."""
+    return time_grid(text, option)
 
 
 class _Alias(argparse.Action):
@@ -110,9 +110,10 @@ def add_alias(parser, alias: str, dest: str, type=None) -> None:
                         default=argparse.SUPPRESS, action=_Alias)
 
 
-def typed_flag(args, dest: str, flag: str) -> str:
-    """The flag of ``dest`` as the user typed it: an alias (:func:`add_alias`), else ``flag``."""
-    return getattr(args, "typed_flags", {}).get(dest, flag)
+def typed_flag(args, dest: str) -> str:
+    """The flag of ``dest`` as the user typed it: an alias (:func:`add_alias`), else the
+    flag of that name (``size`` → ``--size``)."""
+    return getattr(args, "typed_flags", {}).get(dest, "--" + dest.replace("_", "-"))
 
 
 def number(rule: str, low: float | None = None, high: float | None = None, *,

@@ -71,7 +71,8 @@ def run(args) -> int:
     out = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
     out_dir = checked(folders={"--out": (out, WRITES)}, inputs={"--records": args.records})["--out"]
     out_dir_existed = out_dir.exists()
-    grid = {"alpha_deg": options.alphas_deg(args.alpha), "size_s": options.sizes(args)}
+    grid = {"alpha_deg": options.alphas_deg(args.alpha),
+            "size_s": options.sizes(args.size, options.typed_flag(args, "size"))}
     site = options.design_site(args)
     start = time.perf_counter()
     try:

@@ -52,7 +52,8 @@ def run(args) -> int:
                                      damping_pct=100.0 * damping, free_motion_s=args.free_motion,
                                      force=args.force, **options.floor_values(args))
     else:
-        alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args)
+        alphas = options.alphas_deg(args.alpha)
+        sizes = options.sizes(args.size, options.typed_flag(args, "size"))
         frame = api.rocking_spectrum(**options.motion(args), size_s=sizes, alpha_deg=alphas,
                                      restitution=args.restitution, free_motion_s=args.free_motion,
                                      vertical=args.vertical, jobs=args.jobs, force=args.force,
