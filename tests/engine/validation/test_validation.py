@@ -18,7 +18,8 @@ from audit.cli import main
 from conftest import REQUIRE_RECORDS, unavailable
 from audit.engine.validation.baselines import ThresholdFragility, VectorLogistic, scores
 from audit.engine.validation.cross_validation import folds_by_record
-from audit.engine.validation.fit import fit_block, slenderness_weights
+from audit.engine.validation.fit import fit_block
+from audit.engine.validation.link import slenderness_weights
 from audit.engine.validation.grid import ValidationSettings, band_passed, overturning_grid
 from audit.engine.validation.pipeline import fitted_restitution, methods_statement
 from audit.errors import InputError
@@ -183,11 +184,11 @@ def test_fit_recovers_the_block_that_made_the_outcomes(synthetic):
     known = ~np.isnan(observed)
     grid = overturning_grid([m for m, k in zip(campaign.motions, known) if k], SMALL)
     assert grid.solves == known.sum() * 15 * 3 * 3
-    fit = fit_block(grid.overturned, observed[known], SMALL)
+    fit = fit_block(grid.overturned, observed[known], grid.blocks, SMALL.lapse)
     assert fit.p_rad_s == TRUE_P
     assert fit.alpha_deg == pytest.approx(TRUE_ALPHA_DEG, rel=0.1)
-    assert fit.alpha_deg_95[0] < TRUE_ALPHA_DEG < fit.alpha_deg_95[1]
-    assert fit.restitution_factor_95[0] <= TRUE_FACTOR <= fit.restitution_factor_95[1]
+    assert fit.alpha.low < TRUE_ALPHA_DEG < fit.alpha.high and fit.alpha.identified
+    assert fit.restitution.low <= TRUE_FACTOR <= fit.restitution.high
     assert fit.sigma < 0.3
 
 
