@@ -3,7 +3,8 @@
 Per specimen: the outcome map in the dimensionless plane (PGA/(g tan α̂), p̂·PGV/PGA) with the
 fitted model's 50 % line, the calibration of the cross-validated probabilities and the α–p
 ridge of the profile likelihood; then the fitted blocks beside the geometry (the ridge's 95 %
-region where α̂ or p is not identified), the predictions and their bands, the scores of model, baselines and peer columns, and where
+region where α̂ or p is not identified), the predictions and their bands, the scores of model,
+baselines and peer columns, and where
 the model fails.
 """
 
@@ -260,7 +261,7 @@ def render_validation_page(folder, title: str, solves: int) -> str:
             f"<h2>Fitted blocks and geometry</h2>"
             f"{_fits_table(fits)}<p>Every interval is a profile-likelihood interval: the set "
             f"where the log-likelihood, maximised over the other parameters, is within 1.92 "
-            f"of the best, widened by half the fine grid's step (its resolution, given beside). "
+            f"of the best, widened by one step of the fine grid (its resolution, given beside). "
             f"The folds' fits (each on ~80 % of the ground motions) show how far α̂, p and f "
             f"move between subsets.</p>{_ridge_text(fits, ridge)}"
             f"<h2>Predictions of the tests without an outcome</h2>{_predictions(predictions)}"

@@ -156,7 +156,7 @@ def fit_block(overturned: np.ndarray, outcomes: np.ndarray, blocks, lapse: float
         p=profile_interval(blocks.p_rad_s, values.max(axis=(0, 2, 3)), best),
         restitution_factor=float(blocks.restitution_factors[j]),
         restitution=profile_interval(blocks.restitution_factors, values.max(axis=(1, 2, 3)),
-                                     best, log=False),
+                                     best),
         log_likelihood=best, n_tests=int(np.asarray(outcomes).size), blocks=blocks,
         lapse=lapse, surface=surface, ridge=ridge(surface, best))
 

@@ -192,7 +192,13 @@ class BlockGrid:
 
     @classmethod
     def from_settings(cls, settings: ValidationSettings) -> BlockGrid:
-        """The settings' grid: the same α nodes at every (f, p)."""
+        """The settings' grid: the same α nodes at every (f, p).
+
+        Parameters
+        ----------
+        settings : ValidationSettings
+            ``restitution_factors`` [-], ``p_rad_s`` [rad/s] and ``alpha_deg`` [degrees].
+        """
         f = np.asarray(settings.restitution_factors, dtype=float)
         p = np.asarray(settings.p_rad_s, dtype=float)
         alpha = np.broadcast_to(np.asarray(settings.alpha_deg, dtype=float),
@@ -251,5 +257,5 @@ def overturning_grid(motions, settings: ValidationSettings, progress=None,
     return OverturningGrid(out, blocks, len(motions) * blocks.solves_per_test)
 
 
-__all__ = ["ValidationSettings", "Intensities", "BlockGrid", "OverturningGrid", "band_passed", "intensities",
-           "overturning_grid"]
+__all__ = ["ValidationSettings", "Intensities", "BlockGrid", "OverturningGrid", "band_passed",
+           "intensities", "overturning_grid"]

@@ -146,8 +146,9 @@ def _fine_grid(motions, settings, coarse, known, y, progress):
         fine = refined_blocks(grid.blocks, [fit_block(grid.overturned[known], y, grid.blocks,
                                                       settings.lapse)], settings.refined_solves)
         if hasattr(progress, "stage"):
-            progress.stage(f"fine grid: α {fine.alpha_deg.min():.3g}–{fine.alpha_deg.max():.3g}°"
-                           f" ({fine.alpha_deg.shape[-1]} per (f, p)), p {fine.p_rad_s[0]:.3g}–"
+            progress.stage(f"fine grid: α {fine.alpha_deg.min():.3g}–"
+                           f"{fine.alpha_deg.max():.3g}° ({fine.alpha_deg.shape[-1]} per (f, p)), "
+                           f"p {fine.p_rad_s[0]:.3g}–"
                            f"{fine.p_rad_s[-1]:.3g} rad/s ({fine.p_rad_s.size}), f "
                            f"{fine.restitution_factors[0]:g}–{fine.restitution_factors[-1]:g} "
                            f"({fine.restitution_factors.size}): {fine.solves_per_test} blocks "

@@ -4,10 +4,11 @@ parameters the outcomes allow.
 
 The lattice holds the log-likelihood at every (restitution factor f, frequency parameter p) of
 the solved grid × a line of medians α̂ (log-spaced at half the α nodes' step, each (f, p)
-searched within its own α nodes) × a set of dispersions σ. A parameter's profile is the lattice maximised over the others (not a
-slice at their best values: p and α trade off, and a slice hides the trade-off); its 95 % set is
-where the profile is within χ²₁(0.95)/2 = 1.92 of the best log-likelihood. A set that reaches an
-end of the search range says the outcomes do not identify the parameter there.
+searched within its own α nodes) × a set of dispersions σ. A parameter's profile is the
+lattice maximised over the others (not a slice at their best values: p and α trade off, and a
+slice hides the trade-off); its 95 % set is where the profile is within χ²₁(0.95)/2 = 1.92 of
+the best log-likelihood, widened by one lattice step. A set that reaches an end of the search
+range says the outcomes do not identify the parameter there.
 """
 
 from __future__ import annotations
@@ -55,12 +56,25 @@ class Lattice:
     sigma: np.ndarray
 
     def log_nodes(self, j: int, k: int) -> np.ndarray:
-        """ln α [rad] of the α nodes of (f_j, p_k)."""
+        """ln α [rad] of the α nodes of (f_j, p_k).
+
+        Parameters
+        ----------
+        j, k : int
+            Indices of the restitution factor and of p.
+        """
         return np.log(np.radians(self.blocks.alpha_deg[j, k]))
 
     def columns(self, j: int, k: int, keep=None):
-        """Node weights of (f_j, p_k) for the (median, σ) columns ``keep`` (flat indices; all
-        by default), shaped (node, column)."""
+        """Node weights of (f_j, p_k) for some (median, σ) columns, shaped (node, column).
+
+        Parameters
+        ----------
+        j, k : int
+            Indices of the restitution factor and of p.
+        keep : array of int, optional
+            Flat indices into (median, σ) of the columns; all by default.
+        """
         medians, sigma = np.meshgrid(self.log_medians, self.sigma, indexing="ij")
         medians, sigma = medians.ravel(), sigma.ravel()
         if keep is not None:
@@ -70,7 +84,13 @@ class Lattice:
 
 def median_line(blocks) -> np.ndarray:
     """ln α̂ [rad] of the medians searched: log-spaced over every node, at half the median
-    node step of the grid (the α nodes and the midpoints between them on a shared grid)."""
+    node step of the grid (the α nodes and the midpoints between them on a shared grid).
+
+    Parameters
+    ----------
+    blocks : BlockGrid
+        The grid solved (α nodes [degrees] of each (f, p)).
+    """
     u = np.log(np.radians(blocks.alpha_deg))
     step = 0.5 * float(np.median(np.diff(u, axis=-1)))
     count = min(int(math.ceil((u.max() - u.min()) / step)) + 1, _MEDIANS)
@@ -127,31 +147,30 @@ class Interval:
     identified: bool
 
 
-def profile_interval(values, profile, best: float, log: bool = True) -> Interval:
+def profile_interval(values, profile, best: float) -> Interval:
     """The 95 % set of a parameter from its profile log-likelihood on ``values`` (increasing),
-    as its hull widened to the midpoints with the lattice values outside it: a value between
-    two lattice points is not excluded by the one inside (the lattice's resolution).
+    as its hull widened to the lattice values next to it: a true value between two lattice
+    points is represented by neither (the outcomes between α nodes are interpolated, and p and
+    f are solved only on theirs), so it costs likelihood at both; the lattice's step is the
+    set's resolution.
 
     Parameters
     ----------
     values : array_like of float
-        The parameter's lattice values, increasing (positive where ``log``).
+        The parameter's lattice values, increasing.
     profile : array_like of float
         The log-likelihood maximised over the other parameters at each value.
     best : float
         The best log-likelihood (≥ every profile value).
-    log : bool
-        Midpoints in the logarithm (log-spaced values) rather than the values.
     """
     inside = np.flatnonzero(np.asarray(profile) >= best - PROFILE_DROP_95)
     if inside.size == 0:  # only the continuous refinement reached the best: its lattice point
         inside = np.array([int(np.argmax(profile))])
     values = np.asarray(values, dtype=float)
     first, last = inside[0], inside[-1]
-    mid = (lambda a, b: math.sqrt(a * b)) if log else (lambda a, b: 0.5 * (a + b))
-    low = values[first] if first == 0 else mid(values[first - 1], values[first])
-    high = values[last] if last == values.size - 1 else mid(values[last], values[last + 1])
-    return Interval(float(low), float(high), bool(first > 0 and last < values.size - 1))
+    return Interval(float(values[max(first - 1, 0)]),
+                    float(values[min(last + 1, values.size - 1)]),
+                    bool(first > 0 and last < values.size - 1))
 
 
 def ridge(surface: Lattice, best: float) -> dict:

@@ -4,7 +4,8 @@ One per cent of α flips several of a hundred outcomes, while the coarse grid st
 and 18 % in p; a fit on it can only land on its nodes, and a true block between two nodes
 costs likelihood it would not cost on finer ones. The region (every lattice point within
 :data:`REGION_DROP` of the best) is widened by one step of the coarser grid in f and p and solved
-at half its step in ln p (f keeps its values: the outcomes hardly tell them apart). α and p trade off along a ridge, so each new (f, p) gets its own α nodes, spread
+at half its step in ln p (f keeps its values: the outcomes hardly tell them apart). α and p
+trade off along a ridge, so each new (f, p) gets its own α nodes, spread
 over the α̂ the region holds at the neighbouring (f, p) of the coarser grid (widened by one of
 its α steps and by 2σ of the largest dispersion of the 95 % set, which reaches beyond α̂): the
 nodes follow the ridge instead of filling a rectangle. ``settings.refined_solves`` bounds the

@@ -19,7 +19,8 @@ from conftest import REQUIRE_RECORDS, unavailable
 from audit.engine.validation.baselines import ThresholdFragility, VectorLogistic, scores
 from audit.engine.validation.cross_validation import folds_by_record
 from audit.engine.validation.fit import fit_block
-from audit.engine.validation.link import slenderness_weights
+from audit.engine.validation.link import overturning_probability, slenderness_weights
+from audit.engine.validation.profile import profile_interval
 from audit.engine.validation.grid import ValidationSettings, band_passed, overturning_grid
 from audit.engine.validation.pipeline import fitted_restitution, methods_statement
 from audit.errors import InputError
@@ -104,6 +105,45 @@ def test_weights_collapse_to_interpolation_as_sigma_vanishes():
     weights = slenderness_weights(nodes, mu, 1e-6)
     share = (mu - nodes[0]) / (nodes[1] - nodes[0])
     assert weights == pytest.approx([1 - share, share, 0.0], abs=1e-6)
+
+
+def test_vectorised_weights_are_the_scalar_ones_column_by_column():
+    nodes = np.log(np.radians(np.geomspace(2.0, 30.0, 9)))
+    mu = np.log(np.radians([3.0, 7.5, 29.0]))
+    sigma = np.array([0.01, 0.3, 1.1])
+    columns = slenderness_weights(nodes, mu, sigma)
+    for c in range(3):
+        assert columns[:, c] == pytest.approx(slenderness_weights(nodes, mu[c], sigma[c]),
+                                              abs=1e-15)
+
+
+def test_profile_interval_is_the_set_within_1_92_widened_by_a_step():
+    values = np.arange(1.0, 11.0)
+    profile = -0.5 * (values - 5.0) ** 2  # within 1.92 of 0 for |v − 5| ≤ 1.96: 4, 5, 6
+    interval = profile_interval(values, profile, 0.0)
+    assert (interval.low, interval.high, interval.identified) == (3.0, 7.0, True)
+    flat = profile_interval(values, np.zeros(10) - 1.0, 0.0)  # a ridge: the whole range
+    assert (flat.low, flat.high, flat.identified) == (1.0, 10.0, False)
+
+
+def test_profile_is_the_maximum_over_the_other_parameters_not_a_slice(synthetic):
+    """On the synthetic campaign, the α profile at a median is the lattice's best over
+    (f, p, σ), and that value is the likelihood recomputed from the link at its point."""
+    folder, _ = synthetic
+    campaign = read_campaign(folder)
+    observed = campaign.outcomes["spec"]
+    known = ~np.isnan(observed)
+    grid = overturning_grid([m for m, k in zip(campaign.motions, known) if k], SMALL)
+    fit = fit_block(grid.overturned, observed[known], grid.blocks, SMALL.lapse)
+    values = fit.surface.log_likelihood
+    m = values.shape[2] // 3
+    j, k, s = np.unravel_index(np.argmax(values[:, :, m, :]), values[:, :, m, :].shape)
+    p = overturning_probability(grid.overturned[:, j, k, :].astype(float),
+                                fit.surface.log_nodes(j, k), fit.surface.log_medians[m],
+                                fit.surface.sigma[s], SMALL.lapse)
+    y = observed[known]
+    direct = np.sum(y * np.log(p) + (1 - y) * np.log1p(-p))
+    assert values.max(axis=(0, 1, 3))[m] == pytest.approx(direct, abs=1e-9)
 
 
 def test_band_pass_removes_the_offset_and_keeps_the_rocking_band():
@@ -222,11 +262,17 @@ def test_command_writes_every_file(tmp_path):
                  "--geometry", str(geometry), "--free-motion", "5"]) == 0
     names = {p.name for p in out.iterdir()}
     assert {"predictions.csv", "validation-fits.csv", "validation-scores.csv",
-            "validation-tests.csv", "validation.html"} <= names
+            "validation-tests.csv", "validation-ridge.csv", "validation.html"} <= names
+    predicted = pd.read_csv(out / "predictions.csv")
+    assert (predicted["p_overturn_low"] <= predicted["p_overturn"]).all()
+    assert (predicted["p_overturn"] <= predicted["p_overturn_high"]).all()
+    ridge = pd.read_csv(out / "validation-ridge.csv")
+    assert ridge["inside_95"].any() and set(ridge["specimen"]) == {"spec"}
     fits = pd.read_csv(out / "validation-fits.csv")
     assert fits["geometry_alpha_deg"].iloc[0] == 8
     page = (out / "validation.html").read_text()
     assert "<script>" in page and "PGV threshold" in page and "one laboratory" in page
+    assert "Predictions of the tests without an outcome" in page and "ridge" in page
 
 
 @pytest.mark.parametrize("edit, field", [
