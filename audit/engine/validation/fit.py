@@ -149,11 +149,13 @@ def fit_block(overturned: np.ndarray, outcomes: np.ndarray, blocks, lapse: float
     alpha_line = np.degrees(np.exp(surface.log_medians))
     return BlockFit(
         alpha_deg=math.degrees(math.exp(x[0])),
-        alpha=profile_interval(alpha_line, values.max(axis=(0, 1, 3)), best),
+        alpha=profile_interval(alpha_line, values.max(axis=(0, 1, 3)), best,
+                               blocks.search_alpha_deg),
         sigma=math.exp(x[1]),
         sigma_95=profile_interval(surface.sigma, values.max(axis=(0, 1, 2)), best),
         p_rad_s=float(blocks.p_rad_s[k]),
-        p=profile_interval(blocks.p_rad_s, values.max(axis=(0, 2, 3)), best),
+        p=profile_interval(blocks.p_rad_s, values.max(axis=(0, 2, 3)), best,
+                           blocks.search_p_rad_s),
         restitution_factor=float(blocks.restitution_factors[j]),
         restitution=profile_interval(blocks.restitution_factors, values.max(axis=(1, 2, 3)),
                                      best),

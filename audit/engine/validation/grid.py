@@ -184,11 +184,17 @@ class BlockGrid:
         Frequency parameters [rad/s], shape (P,).
     alpha_deg : numpy.ndarray
         Slenderness nodes [degrees], shape (F, P, N), increasing along the last axis.
+    search_alpha_deg, search_p_rad_s : tuple
+        The range searched (the coarse grid's, which a fine grid inherits): a 95 % set that
+        reaches its end does not identify the parameter; one that reaches only a fine grid's
+        end is bounded there by the coarser grid's likelihood.
     """
 
     restitution_factors: np.ndarray
     p_rad_s: np.ndarray
     alpha_deg: np.ndarray
+    search_alpha_deg: tuple
+    search_p_rad_s: tuple
 
     @classmethod
     def from_settings(cls, settings: ValidationSettings) -> BlockGrid:
@@ -203,7 +209,8 @@ class BlockGrid:
         p = np.asarray(settings.p_rad_s, dtype=float)
         alpha = np.broadcast_to(np.asarray(settings.alpha_deg, dtype=float),
                                 (f.size, p.size, len(settings.alpha_deg))).copy()
-        return cls(f, p, alpha)
+        return cls(f, p, alpha, (float(alpha.min()), float(alpha.max())),
+                   (float(p.min()), float(p.max())))
 
     @property
     def solves_per_test(self) -> int:

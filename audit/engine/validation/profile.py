@@ -147,7 +147,7 @@ class Interval:
     identified: bool
 
 
-def profile_interval(values, profile, best: float) -> Interval:
+def profile_interval(values, profile, best: float, search=None) -> Interval:
     """The 95 % set of a parameter from its profile log-likelihood on ``values`` (increasing),
     as its hull widened to the lattice values next to it: a true value between two lattice
     points is represented by neither (the outcomes between α nodes are interpolated, and p and
@@ -162,15 +162,20 @@ def profile_interval(values, profile, best: float) -> Interval:
         The log-likelihood maximised over the other parameters at each value.
     best : float
         The best log-likelihood (≥ every profile value).
+    search : tuple of float, optional
+        The range searched, if wider than ``values``' (a fine grid's): the set identifies the
+        parameter unless it reaches an end of ``values`` that is an end of this range.
     """
     inside = np.flatnonzero(np.asarray(profile) >= best - PROFILE_DROP_95)
     if inside.size == 0:  # only the continuous refinement reached the best: its lattice point
         inside = np.array([int(np.argmax(profile))])
     values = np.asarray(values, dtype=float)
     first, last = inside[0], inside[-1]
+    low, high = (values[0], values[-1]) if search is None else search
+    at_end = (first == 0 and values[0] <= low * (1 + 1e-6)) or \
+        (last == values.size - 1 and values[-1] >= high * (1 - 1e-6))
     return Interval(float(values[max(first - 1, 0)]),
-                    float(values[min(last + 1, values.size - 1)]),
-                    bool(first > 0 and last < values.size - 1))
+                    float(values[min(last + 1, values.size - 1)]), not at_end)
 
 
 def ridge(surface: Lattice, best: float) -> dict:

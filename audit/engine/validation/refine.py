@@ -105,7 +105,8 @@ def refined_blocks(blocks, fits, budget: int) -> BlockGrid:
     nodes = max(_MIN_NODES, min(budget // (new_f.size * new_p.size),
                                 int(math.ceil(widest / _FINEST_ALPHA_STEP)) + 1))
     alpha = np.exp(np.linspace(spans[..., 0], spans[..., 1], nodes, axis=-1))
-    return BlockGrid(np.round(new_f, 4), np.round(new_p, 5), alpha)
+    return BlockGrid(np.round(new_f, 4), np.round(new_p, 5), alpha, blocks.search_alpha_deg,
+                     blocks.search_p_rad_s)
 
 
 __all__ = ["refined_blocks", "REGION_DROP", "REFINEMENTS"]
