@@ -123,7 +123,7 @@ class CampaignValidation:
 
 def _score_rows(name, outcomes, probabilities: dict, lapse) -> list:
     rows = []
-    model_brier = (probabilities[MODEL] - outcomes) ** 2
+    model_brier = (np.clip(probabilities[MODEL], lapse, 1.0 - lapse) - outcomes) ** 2
     for method, probability in probabilities.items():
         probability = np.clip(probability, lapse, 1.0 - lapse)
         s = scores(probability, outcomes)
