@@ -88,21 +88,6 @@ class BlockFit:
         """Whether the outcomes bound both α̂ and p inside the searched range."""
         return self.alpha.identified and self.p.identified
 
-    def probability(self, overturned: np.ndarray) -> np.ndarray:
-        """P(overturn) of each test at the best parameters.
-
-        Parameters
-        ----------
-        overturned : numpy.ndarray of bool
-            Exact outcomes on the fit's grid, shaped (test, restitution factor, p, α).
-        """
-        j = list(self.blocks.restitution_factors).index(self.restitution_factor)
-        k = list(self.blocks.p_rad_s).index(self.p_rad_s)
-        return overturning_probability(overturned[:, j, k, :].astype(float),
-                                       self.surface.log_nodes(j, k),
-                                       math.log(math.radians(self.alpha_deg)), self.sigma,
-                                       self.lapse)
-
     def predict(self, overturned: np.ndarray) -> Prediction:
         """P(overturn) of each test averaged over the parameters, weighted by the likelihood,
         with its 95 % band (:func:`~audit.engine.validation.profile.predictive`).

@@ -18,7 +18,6 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from audit.engine.validation.cross_validation import folds_by_record
 from audit.engine.validation.fit import fit_block
 from audit.engine.validation.grid import ValidationSettings, overturning_grid
 from audit.engine.validation.pipeline import _fine_grid
