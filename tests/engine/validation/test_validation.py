@@ -338,3 +338,11 @@ def test_methods_statement_gives_the_fit_the_score_and_the_limits():
     for part in ("α = 3.5° (95 % 3.3–3.7°)", "p = 4.90 rad/s", "0.6 × Eq. 4.8", "accuracy 92%",
                  "Brier 0.062 over 327 tests", "one laboratory", "3-D"):
         assert part in text
+
+
+@pytest.mark.parametrize("field, value", [("band_pass", "yes"), ("band_pass", 1),
+                                          ("refined_solves", -1), ("refined_solves", 2.5)])
+def test_settings_refuse_a_bad_processing_or_budget(field, value):
+    with pytest.raises(InputError, match=field):
+        ValidationSettings(**{field: value})
+
