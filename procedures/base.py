@@ -21,6 +21,7 @@ from typing import Callable, ClassVar
 import numpy as np
 
 from audit import G
+from procedures.parameters import check_parameters
 from procedures.iteration import (CONVERGED, NO_UPLIFT, NOT_CONVERGED, OVERTURN, Estimate,
                                   estimate_rotation)
 
@@ -69,6 +70,12 @@ class Procedure:
     #: Damping law and spectrum source, in words with equation numbers (for the report).
     damping_law: ClassVar[str] = ""
     spectrum_source: ClassVar[str] = ""
+    #: Settable parameters (:class:`~procedures.parameters.Parameter`), checked when an
+    #: instance is constructed (:func:`~procedures.parameters.check_parameters`).
+    parameters: ClassVar[tuple] = ()
+    #: A sentence ``check`` adds to the basis of the procedure's verdicts: where an input the
+    #: guideline leaves to the user comes from (e.g. a pulse's period).
+    basis_note: ClassVar[str] = ""
     #: Figure series of the reference report that this procedure's audit reproduces.
     figure_series: ClassVar[str] = ""
     #: True when the recorded acceleration itself is needed (its spectrum, its PGA).
@@ -90,6 +97,14 @@ class Procedure:
         if missing:
             return f"no {self.title} site parameters ({', '.join(missing)})"
         return None
+
+    def __post_init__(self):  # a dataclass subclass's declared parameters, checked once
+        check_parameters(self)
+
+    def spectrum_read(self, entry) -> str:
+        """Which spectrum the procedure reads for ``entry``, in words (check.json's
+        ``spectrum_read``): its :attr:`spectrum_source` unless it chooses per record."""
+        return self.spectrum_source
 
     def reads_record(self, entry) -> bool:
         """Whether the procedure reads the record itself for ``entry`` (its spectrum, its PGA),

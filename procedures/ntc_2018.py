@@ -48,6 +48,7 @@ from audit.physics.building.floor import Floor
 from audit.physics.ntc2018_floor_spectrum import NTC2018FloorSpectrum
 from audit.physics.ntc2018_spectrum import NTC2018Spectrum
 from records.sites import NTC2018_SITE_KEYS as SITE_KEYS
+from procedures.parameters import Parameter
 from procedures.base import (CONVERGED, EXACT_ROTATION, EXACT_UPLIFT, NO_UPLIFT, OVERTURN,
                              STORED_SPECTRUM_PERIODS_S, Check, Estimate, Evaluation, Procedure)
 
@@ -153,7 +154,22 @@ class NTC2018(Procedure):
                        "site, or the record's largest Sd over [0, T_LS]; read at T_SLV "
                        "[C8.7.1.10] and T_SLC [C8.7.1.11]")
 
+    parameters = (
+        Parameter("q", "behaviour_factor", "-", "behaviour factor of the linear SLV check",
+                  "§C8.7.1.2.1.7: q = 2.0", True, 1.0, 4.0),
+        Parameter("e_star", "e_star", "-", "participating mass fraction e*",
+                  "[C8.7.1.5] for one rigid block: 1.0", True, 0.0, 1.0, low_open=True),
+        Parameter("FC", "confidence_factor", "-", "confidence factor",
+                  "1.0, the audit's choice (the Circolare's knowledge levels LC1–LC3 give "
+                  "1.35, 1.2, 1.0)", False, 1.0, 1.35),
+        Parameter("xi_SLV", "damping_slv", "-", "damping ratio of the mechanism at SLV",
+                  "§C8.7.1.2.1.8: 0.08", True, 0.0, 0.3),
+        Parameter("xi_SLC", "damping_slc", "-", "damping ratio of the mechanism at SLC",
+                  "§C8.7.1.2.1.8: 0.10", True, 0.0, 0.3),
+    )
+
     def __post_init__(self):
+        super().__post_init__()
         if self.demand not in (AUTO, RECORD_BASED, CODE_SPECTRUM):
             raise InputError(f"ntc2018 demand: must be {AUTO}, {RECORD_BASED} or "
                              f"{CODE_SPECTRUM}, got {self.demand!r}")
@@ -163,6 +179,20 @@ class NTC2018(Procedure):
         if self.demand != AUTO:
             return self.demand
         return CODE_SPECTRUM if any(key in entry.site for key in SITE_KEYS) else RECORD_BASED
+
+    def spectrum_read(self, entry) -> str:
+        """The site's code spectrum (its parameters, S and on a floor the Circolare's floor
+        spectrum) or the record's own, in words."""
+        if self.demand_variant(entry) == RECORD_BASED:
+            return "each record's own displacement spectrum (its largest Sd over [0, T_LS])"
+        ground = NTC2018Spectrum.from_site(entry.site)
+        words = (f"NTC 2018 elastic spectrum S_De (§3.2.3.2) of the site a_g = {ground.ag_g:g} g, "
+                 f"F0 = {ground.f0:g}, T_C* = {ground.tc_star_s:g} s, soil {ground.soil}, "
+                 f"topography {ground.topography} (S = S_S·S_T = {ground.soil_factor:.4g}), "
+                 "the values of the limit state assessed")
+        if self.floor.on_ground:
+            return words
+        return f"the Circolare's floor spectrum (§C7.2.3) at z/H = {self.floor.z_over_h:g} of the {words}"
 
     def reads_record(self, entry) -> bool:
         return self.demand_variant(entry) == RECORD_BASED

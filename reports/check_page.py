@@ -19,7 +19,8 @@ import numpy as np
 from scipy.special import ndtr
 
 from audit.engine.check.risk import quiet_risk
-from audit.engine.check.words import exact_width_words, metres
+from audit.engine.check.spectrum_read import reading_words
+from audit.engine.check.words import anchorage_words, exact_width_words, metres
 from audit.engine.design.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
 from records.suite import counted_records
@@ -170,12 +171,14 @@ def render_check_page(folder) -> str:
                 "width_10": exact_width_words(obj["exact"], "10"),
                 "width_50": exact_width_words(obj["exact"], "50"),
                 "other_im_name": (im_name(obj["exact"]["other_im"]["im"])
-                                  if obj["exact"].get("other_im") else None)}
+                                  if obj["exact"].get("other_im") else None),
+                "spectrum_notes": [reading_words(p) for p in obj["procedures"]
+                                   if p.get("other_spectrum")]}
                for obj in document["objects"]]
     return page_templates().get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs(),
         floor_figure=floor_spectra_figure(document.get("floor") or {}),
-        im_words=im_name(document["im"]), page_style=PAGE_STYLE,
+        im_words=im_name(document["im"]), page_style=PAGE_STYLE, anchorage_words=anchorage_words,
         records_words=counted_records(len(document["records"]), document["records_source"]))
 
 

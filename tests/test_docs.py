@@ -20,6 +20,9 @@ import pytest
 
 from conftest import REQUIRE_DOCS, unavailable
 
+#: End to end: the site built by sphinx, the front page opened in headless Chromium.
+pytestmark = pytest.mark.slow
+
 REPO = Path(__file__).resolve().parents[1]
 #: The entry points the API reference must list (``docs/api.rst``).
 ENTRY_POINTS = ("audit.rock", "audit.run", "audit.margins", "records.load")

@@ -15,6 +15,7 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 PACKAGES = ("audit", "procedures", "reports", "records")
@@ -156,6 +157,7 @@ def _import_alone(name: str) -> tuple[str, str]:
     return name, done.stderr.strip().splitlines()[-1] if done.returncode else ""
 
 
+@pytest.mark.slow  # ~200 s: an interpreter started for each module
 def test_every_module_imports_alone_in_a_fresh_interpreter():
     with ThreadPoolExecutor(2) as pool:
         failed = [f"{name}: {error}" for name, error in pool.map(

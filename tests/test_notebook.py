@@ -6,10 +6,12 @@ from pathlib import Path
 
 import nbclient
 import nbformat
+import pytest
 
 NOTEBOOK = Path(__file__).resolve().parents[1] / "docs" / "quickstart.ipynb"
 
 
+@pytest.mark.slow  # end to end: a Jupyter kernel runs the notebook
 def test_quickstart_notebook_runs(monkeypatch):
     monkeypatch.delenv("ROCKING_AUDIT_RECORDS", raising=False)  # the shipped seed records
     notebook = nbformat.read(NOTEBOOK, as_version=4)

@@ -86,7 +86,8 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
             skip_bad_records: bool = False, dt_s: float | None = None,
             units: str | None = None, force: bool = False,
             jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
-            resume: bool = False, progress=False) -> MarginsResult:
+            resume: bool = False, progress=False,
+            params: dict | None = None) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
     procedure draws its line against it (see :mod:`audit.engine.design.margins`).
 
@@ -150,12 +151,14 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
     jobs, scheduler, partial_dir, resume, progress :
         How, as for :func:`audit.run`.
+    params : dict, optional
+        The procedures' parameters, as for :func:`audit.run`.
 
     Returns
     -------
     MarginsResult
     """
-    from audit.api.inputs import procedures_of, record_suite, settings_fields
+    from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
     from audit.engine.shared import fields as check
     from audit.engine.shared import guards
     from audit.engine.shared.costs import margins_cost
@@ -172,7 +175,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
                             resume=resume, progress=progress if callable(progress) else None)
     force = check.flag("force", force)
-    chosen = procedures_of(procedures)
+    chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
     suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
                                     skip_bad_records=skip_bad_records))
     guards.check(margins_cost(chosen, suite, settings, runtime), force)

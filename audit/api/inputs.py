@@ -55,6 +55,35 @@ def procedures_of(procedures) -> list[Procedure]:
     return out
 
 
+def parameters_of(params, chosen: list, *, provisions: bool = True) -> tuple[list, dict]:
+    """(the ``chosen`` procedures, each with its parameters of ``params``; the component
+    provisions' parameters ``{name: {attribute: value}}``), checked once
+    (:func:`procedures.parameters.parse_params`): an unknown procedure or key is refused
+    naming ``params``. ``provisions``: whether the command applies the component provisions
+    (``check`` does)."""
+    from dataclasses import replace
+    from procedures.parameters import params_of_texts, parse_params
+    from procedures.registry import available_component_provisions, available_procedures
+    takers = {proc.name: type(proc) for proc in chosen}
+    component = available_component_provisions()
+    if provisions:
+        takers.update(component)
+    if isinstance(params, (list, tuple)):  # the command line's NAME.KEY=VALUE texts
+        params = params_of_texts(params, "params")
+    if isinstance(params, dict):  # a registered plug-in this command does not apply, named so
+        for name in params:
+            if name in component and not provisions:
+                raise InputError(f"params: {name} is a component provision, which only check "
+                                 "applies", "params")
+            if name in available_procedures() and name not in takers:
+                raise InputError(f"params: {name} is not among the procedures chosen", "params")
+    parsed = parse_params(params, takers)
+    with_params = [replace(proc, **parsed[proc.name]) if parsed.get(proc.name) else proc
+                   for proc in chosen]
+    return with_params, {name: value for name, value in parsed.items() if name not in
+                         {proc.name for proc in chosen}}
+
+
 def _check_plug_in(proc: Procedure, registered: dict) -> None:
     kind = type(proc).__name__
     if not isinstance(proc.name, str) or not proc.name.strip():
@@ -219,4 +248,4 @@ def on_floor_of(motion, floor: dict, records=None, reading: dict | None = None):
 #: The keywords of how records are read, which every function that reads them takes.
 READING_FIELDS = ("dt_s", "units", "skip_bad_records")
 
-__all__ = ["procedures_of", "record_suite", "built_in_suites", "RECORD_UNITS", "READING_FIELDS", "motion_of", "settings_fields", "on_floor_of"]
+__all__ = ["procedures_of", "parameters_of", "record_suite", "built_in_suites", "RECORD_UNITS", "READING_FIELDS", "motion_of", "settings_fields", "on_floor_of"]

@@ -128,7 +128,8 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False, floor: float = 0.0,
           building: float | None = None, building_model: str | None = None,
           building_damping: float = DEFAULT_BUILDING_DAMPING,
-          limit_state: str = BOTH) -> CheckResult:
+          limit_state: str = BOTH, params: dict | None = None,
+          mass_kg: float | None = None, guideline_spectrum: str = "ground") -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check.risk`).
@@ -212,13 +213,27 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         ζ in every mode of the building [-] (default 0.05).
     limit_state : str
         The limit state the site's values are for, of a guideline that names its own (NTC
-        2018): ``SLV``, ``SLC`` or ``both`` (the default: each reported).
+        2018): ``SLV``, ``SLC`` or ``both`` (the default: each reported). An ``ntc_site``'s
+        a_g, F0, T_C* are the values of this limit state's return period; with ``both`` the
+        one set is read for SLV and SLC alike.
+    params : dict, optional
+        Parameters of the procedures and component provisions, ``{name: {key: value}}`` with
+        keys as the code writes them (``{"asce7_22": {"I_p": 1.5}}``); each plug-in declares
+        its own (docs/procedures.md), and an unknown one is refused.
+    mass_kg : float, optional
+        The mass of each object [kg]: the anchorage forces of the component provisions it
+        fails also in kN.
+    guideline_spectrum : {"ground", "floor"}
+        On a floor, the spectrum FEMA 356 (a guideline reading the site's design spectrum)
+        reads: the ground's design spectrum ``site`` as its text is written (the default), or
+        the floor's response spectrum (:mod:`audit.engine.check.spectrum_read`); its entry
+        gives its verdict on the other too.
 
     Returns
     -------
     CheckResult
     """
-    from audit.api.inputs import procedures_of, record_suite, settings_fields
+    from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
     from audit.engine.shared import guards
     from audit.engine.shared.costs import check_cost
     from audit.engine.check.pipeline import run_check
@@ -238,7 +253,14 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     site = DesignSite.parse(site=site, site_override=True, scale_to_site=False,
                             ntc_site=ntc_site, floor=floor, building=building,
                             building_model=building_model, building_damping=building_damping)
-    chosen = procedures_of(procedures)
+    if settings.guideline_spectrum == "floor" and site.floor.on_ground:
+        raise InputError("guideline_spectrum: 'floor' reads the floor's response spectrum; the "
+                         "objects stand on the ground (give floor and building)",
+                         "guideline_spectrum")
+    chosen, provision_params = parameters_of(params, procedures_of(procedures))
+    if mass_kg is not None:
+        mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,
+                                     low_open=True)
     given = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
     # the work, before the records are scaled to the site (scaling keeps their samples)
     guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
@@ -247,7 +269,8 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, settings,
-                        replace(runtime, progress=bar) if bar else runtime, site.floor)
+                        replace(runtime, progress=bar) if bar else runtime, site.floor,
+                        provision_params, mass_kg)
     finally:
         if bar is not None:
             bar.done()

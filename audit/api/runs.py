@@ -163,7 +163,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
         dt_s: float | None = None, units: str | None = None,
         detail=(), out_dir=None, force: bool = False, jobs: int = DEFAULT_JOBS,
         scheduler=DEFAULT_SCHEDULER, partial_dir=None, resume: bool = False,
-        progress=False) -> AuditResult:
+        progress=False, params: dict | None = None) -> AuditResult:
     """Audit guideline procedures on a suite of records over a grid of blocks.
 
     Every argument is checked before anything is read or computed (by
@@ -242,12 +242,15 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
         Reuse the matching per-record results already in ``partial_dir``.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, record_id, how)``.
+    params : dict, optional
+        The procedures' parameters, ``{name: {key: value}}`` (``{"ntc2018": {"q": 1.5}}``),
+        each declared by its procedure (docs/procedures.md); an unknown one is refused.
 
     Returns
     -------
     AuditResult
     """
-    from audit.api.inputs import procedures_of, record_suite
+    from audit.api.inputs import parameters_of, procedures_of, record_suite
     from audit.engine.shared import guards
     from audit.engine.shared.costs import audit_cost
     from audit.engine.shared.progress import Progress
@@ -264,7 +267,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     force = check.flag("force", force)
     if out_dir is not None:
         out_dir = check.path("out_dir", out_dir, "a folder")
-    chosen = procedures_of(procedures)
+    chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
     suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
                                     skip_bad_records=skip_bad_records))
     _warn_without_vertical(suite, settings)

@@ -1,5 +1,5 @@
 """Command-line interface: ``python -m audit COMMAND``, COMMAND one of list, check, rock,
-spectrum, design-spectrum, floor-motion, run, margins, fragility, report, validate, atlas.
+spectrum, design-spectrum, floor-motion, run, margins, fragility, report, validate, pulse, atlas.
 
 One module per command, each with ``add_parser(subparsers)`` and ``run(args)``; a command's
 scientific imports happen inside its ``run``, so start-up and ``--help`` stay light. Angles are
@@ -16,14 +16,14 @@ import sys
 import warnings
 
 from audit import __version__
-from audit.cli import (atlas, check, design_spectrum, floor_motion, fragility, listing, margins, options,
-                       report, rock, run, spectrum, validate)
+from audit.cli import (atlas, check, design_spectrum, floor_motion, fragility, listing, margins,
+                       options, pulse, report, rock, run, spectrum, validate)
 from audit.cli.flags import with_flags
-from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible
+from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible, stop_threads
 from audit.errors import InputError, InputWarning
 
 COMMANDS = (listing, check, rock, spectrum, design_spectrum, floor_motion, run, margins, fragility,
-            report, validate, atlas)
+            report, validate, pulse, atlas)
 
 
 #: A value that starts with a minus sign but is numbers, not an option: ``-118,34``,
@@ -72,7 +72,10 @@ def main(argv=None) -> int:
         warnings.simplefilter("ignore", PendingDeprecationWarning)
         warnings.simplefilter("always", InputWarning)
         warnings.showwarning = _one_line_warning
-        return _run(args)
+        code = _run(args)
+        if code == EXIT_INTERRUPTED:
+            stop_threads()
+        return code
 
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None):

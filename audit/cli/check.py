@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import sys
 import time
-from pathlib import Path
 
 from audit.cli import options
 from audit.api import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
                        DEFAULT_JOBS)
 from audit.errors import InputError
 
+#: The files check writes in its --out folder.
+WRITES = ("check.json", "check.csv", "check.html")
 
 
 def add_parser(sub):
@@ -43,7 +44,10 @@ def add_parser(sub):
                    help="FEMA 356 / ASCE 41 design spectral accelerations S_XS,S_X1 [g] at the "
                         "hazard level assessed (required): the site's intensity")
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
-                   help="NTC 2018 site as for 'run' (NTC 2018 then reads its code spectrum)")
+                   help="NTC 2018 site as for 'run', its values those of the --limit-state's "
+                        "return period (with 'both', read for SLV and SLC alike): NTC 2018 then "
+                        "reads its code spectrum S_De and EN 1998-1 its a_g·S_S·S_T; the "
+                        "records stay the exact answer's")
     p.add_argument("procedure", nargs="?", default="all",
                    help="registered procedure name ({registered}), or 'all'")
     p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
@@ -74,6 +78,15 @@ def add_parser(sub):
                         "rocking; without it, no sliding is assumed and the friction the "
                         "records need is given")
     options.add_floor_options(p)
+    options.add_param_option(p)
+    p.add_argument("--mass", type=options.POSITIVE, metavar="KG",
+                   help="the mass of each object [kg]: the anchorage forces of the component "
+                        "provisions it fails also in kN")
+    p.add_argument("--guideline-spectrum", default="ground", choices=("ground", "floor"),
+                   help="on a floor, the spectrum FEMA 356 reads: the ground's design spectrum "
+                        "of --site as its text is written (default), or the floor's response "
+                        "spectrum (the median of the floor motions at the site, as S_XS, S_X1); "
+                        "its entry gives its verdict on the other too")
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -106,26 +119,33 @@ def objects_of(args) -> list:
     if not objects:
         raise InputError("check: give the objects: --block WIDTHxHEIGHT, --objects FILE.csv or "
                          "--alpha DEG --size S")
-    names = [o.name for o in objects]
-    repeated = sorted({n for n in names if names.count(n) > 1})
-    if repeated:
-        raise InputError(f"check: object '{repeated[0]}' is given twice")
+    seen = set()
+    for obj in objects:  # one pass: an inventory may hold tens of thousands of objects
+        if obj.name in seen:
+            raise InputError(f"check: object '{obj.name}' is given twice")
+        seen.add(obj.name)
     return objects
 
 
 def run(args) -> int:
     from audit.api import check
-    from audit.files import check_output_dir
+    from audit.cli.outputs import checked
     if not args.site:
         raise InputError("--site: required, S_XS,S_X1 [g] of the hazard level assessed "
                          "(e.g. --site 1.5,0.9)")
+    out_dir = checked(folders={"--out": (args.out, WRITES)},
+                      inputs={"--records": args.records, "--objects": args.objects,
+                              "--hazard": args.hazard}).get("--out")
     site = options.design_site(args)
-    out_dir = check_output_dir(Path(args.out)) if args.out else None
     objects = objects_of(args)
+    if args.guideline_spectrum == "floor" and not args.floor:
+        raise InputError("--guideline-spectrum floor: reads the floor's response spectrum; the "
+                         "objects stand on the ground (give --floor Z/H and --building T1)")
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
               "risk_target": args.risk_target, "friction": args.friction,
-              "limit_state": args.limit_state, **options.floor_values(args)}
+              "limit_state": args.limit_state,
+              "guideline_spectrum": args.guideline_spectrum, **options.floor_values(args)}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:
@@ -138,7 +158,8 @@ def run(args) -> int:
                 raise InputError(f"--{flag.replace('_', '-')}: read on the --hazard file; no "
                                  "--hazard given")
     result = check(objects, site["site"], procedures=args.procedure, records=args.records,
-                   ntc_site=site.get("ntc_site"), **options.reading(args),
+                   ntc_site=site.get("ntc_site"), params=args.param, mass_kg=args.mass,
+                   **options.reading(args),
                    jobs=args.jobs, scheduler=args.scheduler, progress=True, force=args.force,
                    **values)
     if out_dir is not None:

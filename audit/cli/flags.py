@@ -24,7 +24,8 @@ FLAGS = {
     "hazard_imt": "--hazard-imt", "return_period": "--return-period", "poe": "--poe",
     "floor": "--floor", "building": "--building", "building_model": "--building-model",
     "building_damping": "--building-damping",
-    "dt_s": "--dt", "units": "--units",
+    "dt_s": "--dt", "units": "--units", "params": "--param", "mass_kg": "--mass",
+    "limit_state": "--limit-state",
 }
 
 

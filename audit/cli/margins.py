@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import shutil
 import sys
-from pathlib import Path
 
 from audit.cli import options
 from audit.api import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
@@ -13,6 +12,9 @@ from audit.api import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
 from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out/margins"
+#: The files margins writes in its --out folder, and its parts' folder.
+WRITES = ("margins.html", "stripes.csv", "fragility.csv", "capacity.csv", "required_alpha.csv",
+          "scan.csv", "summary.json", "risk.csv", "risk_alpha.csv", "hazard.csv", ".partial")
 
 
 def add_parser(sub):
@@ -50,6 +52,7 @@ def add_parser(sub):
                         "design (the CMR is over 1.5 × them, the MCE of ASCE 7)")
     options.add_scaling_options(p)
     options.add_floor_options(p)
+    options.add_param_option(p)
     p.add_argument("--ntc-site", metavar="AG,F0,TC,SOIL,TOPO",
                    help="NTC 2018 site for every record (see 'run --help')")
     options.add_block_option(p)
@@ -69,11 +72,13 @@ def add_parser(sub):
 
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, margins
-    from audit.files import check_output_dir
-    out_dir = check_output_dir(Path(args.out))
+    from audit.cli.outputs import checked
+    out_dir = checked(folders={"--out": (args.out, WRITES)},
+                      inputs={"--records": args.records, "--hazard": args.hazard})["--out"]
     out_dir_existed = out_dir.exists()
     values = {"alpha_deg": options.alphas_deg(args.alpha),
-              "size_s": options.sizes(args.size), "blocks": args.block or (),
+              "size_s": options.sizes(args.size, options.typed_flag(args, "size")),
+              "blocks": args.block or (),
               "restitution": args.restitution, "free_motion_s": args.free_motion,
               "site_level": args.level, "risk_target": args.risk_target}
     if args.im is not None:  # without it, the default or the hazard file's IMT
@@ -89,7 +94,7 @@ def run(args) -> int:
     site = options.design_site(args)
     del site["site_override"]  # one design site: the audit is of that site
     try:
-        result = margins(args.procedure, args.records, **options.reading(args),
+        result = margins(args.procedure, args.records, **options.reading(args), params=args.param,
                          force=args.force, **values, **site,
                          jobs=args.jobs, scheduler=args.scheduler,
                          partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True)

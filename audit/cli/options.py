@@ -87,16 +87,33 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     raise InputError(f"{option}: expected START:STOP:STEP or a comma list in seconds, got '{text}'")
 
 
-def sizes(text: str) -> np.ndarray:
-    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list."""
-    return time_grid(text, "--size")
+def sizes(text: str, option: str = "--size") -> np.ndarray:
+    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list; ``option`` the
+    flag as typed (``--sizes``, its old name: :func:`typed_flag`)."""
+    return time_grid(text, option)
+
+
+class _Alias(argparse.Action):
+    """Stores the value as the flag does, and which alias was typed (:func:`typed_flag`)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        setattr(namespace, self.dest, values)
+        namespace.typed_flags = {**getattr(namespace, "typed_flags", {}),
+                                 self.dest: option_string}
 
 
 def add_alias(parser, alias: str, dest: str, type=None) -> None:
     """``alias``, the name a flag had before one quantity had one flag on every command: it
-    sets the same ``dest`` (parsed by the same ``type``), so old scripts run; not in ``--help``."""
+    sets the same ``dest`` (parsed by the same ``type``), so old scripts run; not in ``--help``.
+    A message about its value names it as typed (:func:`typed_flag`)."""
     parser.add_argument(alias, dest=dest, type=type, help=argparse.SUPPRESS,
-                        default=argparse.SUPPRESS)
+                        default=argparse.SUPPRESS, action=_Alias)
+
+
+def typed_flag(args, dest: str) -> str:
+    """The flag of ``dest`` as the user typed it: an alias (:func:`add_alias`), else the
+    flag of that name (``size`` → ``--size``)."""
+    return getattr(args, "typed_flags", {}).get(dest, "--" + dest.replace("_", "-"))
 
 
 def number(rule: str, low: float | None = None, high: float | None = None, *,
@@ -257,10 +274,17 @@ def motion(args) -> dict:
             raise InputError("give either --record or --pulse, not both")
         if args.amplitude is None or args.pulse_period is None:
             raise InputError("--pulse needs --amplitude G and --pulse-period S")
+        if args.pulse == "mp":
+            if args.gamma is None or args.nu is None:
+                raise InputError("--pulse mp needs --gamma and --nu DEG")
+            from audit.api import mp_pulse
+            return {"motion": mp_pulse(args.amplitude, args.pulse_period, args.gamma, args.nu)}
+        if args.gamma is not None or args.nu is not None:
+            raise InputError("--gamma and --nu: only for --pulse mp")
         from audit.api import one_pulse
         return {"motion": one_pulse(args.pulse, args.amplitude, args.pulse_period)}
     if not args.record:
-        raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine")
+        raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine|mp")
     return {"motion": args.record, "records": args.records, **reading(args)}
 
 
@@ -300,9 +324,17 @@ def add_excitation_options(parser):
     add_records_option(parser)
     add_skip_bad_records_option(parser)
     parser.add_argument("--record", metavar="ID_OR_PATH", help="record id of the suite, or a file")
-    parser.add_argument("--pulse", choices=("cosine", "sine"), help="analytic one-cycle pulse")
-    parser.add_argument("--amplitude", type=POSITIVE, metavar="G", help="pulse amplitude a_p [g]")
-    parser.add_argument("--pulse-period", type=POSITIVE, metavar="S", help="pulse period T_p [s]")
+    parser.add_argument("--pulse", choices=("cosine", "sine", "mp"),
+                        help="analytic pulse: one-cycle cosine or sine, or mp (Mavroeidis & "
+                             "Papageorgiou 2003, with --gamma and --nu)")
+    parser.add_argument("--amplitude", type=POSITIVE, metavar="G",
+                        help="pulse amplitude a_p [g] (mp: its peak acceleration)")
+    parser.add_argument("--pulse-period", type=POSITIVE, metavar="S",
+                        help="pulse period T_p [s] (mp: 1/f_p)")
+    parser.add_argument("--gamma", type=number("must exceed 1", 1, low_open=True),
+                        help="mp pulse: oscillatory character gamma > 1")
+    parser.add_argument("--nu", type=number("must lie between -360 and 360 degrees", -360, 360),
+                        metavar="DEG", help="mp pulse: phase nu [degrees]")
 
 
 def add_hazard_options(parser):
@@ -355,10 +387,20 @@ def add_floor_options(parser):
                              "Miranda & Taghavi's shear-flexure beam of lateral stiffness ratio "
                              "α0 (0-2 walls, 5-20 frames); default "
                              f"{DEFAULT_BUILDING_MODEL}")
-    parser.add_argument("--building-damping", type=number("must lie in (0, 1]", 0.0, 1.0,
-                                                          low_open=True),
+    parser.add_argument("--building-damping", type=number("must lie in (0, 1), a ratio", 0.0, 1.0,
+                                                          low_open=True, high_open=True),
                         default=DEFAULT_BUILDING_DAMPING, metavar="ZETA",
-                        help="the building's damping ratio in every mode [-]")
+                        help="the building's damping ratio in every mode, 0 < ζ < 1 [-] "
+                             "(0.05 for 5 %%)")
+
+
+def add_param_option(parser):
+    """``--param PROCEDURE.KEY=VALUE``, repeatable: a plug-in's declared parameter
+    (:mod:`procedures.parameters`)."""
+    parser.add_argument("--param", action="append", metavar="PROCEDURE.KEY=VALUE",
+                        help="a procedure's or component provision's parameter, e.g. "
+                             "asce7_22.I_p=1.5 or nzs1170_5.h_n=28; repeat it for several "
+                             "(docs/procedures.md lists each one's keys, ranges and defaults)")
 
 
 def floor_values(args) -> dict:

@@ -12,6 +12,8 @@ from audit.api import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                        DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
 
 DEFAULT_OUT = "audit-out"
+#: The files a run writes in its --out folder (audit.engine.run.results), and its parts' folder.
+WRITES = ("report.html", "columns.json", "*.csv", "summary.json", ".partial")
 
 
 def add_parser(sub):
@@ -51,6 +53,7 @@ def add_parser(sub):
                         "(A–E), topography (T1–T4), e.g. 0.25,2.4,0.3,B,T1; NTC 2018 then reads "
                         "its demand off this code spectrum instead of the record's")
     options.add_floor_options(p)
+    options.add_param_option(p)
     options.add_restitution_option(p)
     options.add_ground_truth_options(p)
     options.add_force_option(p)
@@ -65,14 +68,16 @@ def add_parser(sub):
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, REPORT_HTML
     from audit.api import run as run_api
-    from audit.files import check_output_dir
-    out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
+    from audit.cli.outputs import checked
+    out = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
+    out_dir = checked(folders={"--out": (out, WRITES)}, inputs={"--records": args.records})["--out"]
     out_dir_existed = out_dir.exists()
-    grid = {"alpha_deg": options.alphas_deg(args.alpha), "size_s": options.sizes(args.size)}
+    grid = {"alpha_deg": options.alphas_deg(args.alpha),
+            "size_s": options.sizes(args.size, options.typed_flag(args, "size"))}
     site = options.design_site(args)
     start = time.perf_counter()
     try:
-        result = run_api(args.procedure, args.records, **options.reading(args),
+        result = run_api(args.procedure, args.records, **options.reading(args), params=args.param,
                          out_dir=out_dir, force=args.force,
                          **grid, free_motion_s=args.free_motion, agree_band=args.agree_band,
                          robustness=args.robustness, restitution=args.restitution,

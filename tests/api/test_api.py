@@ -19,6 +19,7 @@ from records import ENV_VARIABLE
 GRID = ["--alpha", "15,20", "--size", "1:3:0.5"]
 
 
+@pytest.mark.slow  # end to end: a run by the API and by the command line
 def test_run_from_python_gives_the_command_line_results_and_claims(tmp_path, monkeypatch):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
     assert main(["run", "fema356", *GRID, "--out", str(tmp_path / "cli")]) == 0

@@ -132,7 +132,7 @@ CASES = {
                   {"procedure": CHOICE, "records": PATH, **READING, "progress": FLAG}),
     "validate": (audit.validate, {"folder": "campaign"},
                  {"folder": PATH | st.none(), "geometry": PATH, "folds": WHOLE, "jobs": WHOLE,
-                  "free_motion_s": NUMBER, "progress": CALLBACK,
+                  "free_motion_s": NUMBER, "band_pass": FLAG, "progress": CALLBACK,
                   "settings": JUNK | TEXTS | NUMBERS}),
     "rocking_spectrum": (audit.rocking_spectrum, {"motion": _pulse(), "size_s": [1.0],
                                                   "alpha_deg": [15.0]},
@@ -165,6 +165,8 @@ CASES = {
     "floor_motion": (audit.floor_motion, {"motion": _pulse(), "building": 1.0},
                      {"motion": OBJECTS, "building": NUMBER, "floor": NUMBER,
                       "building_damping": NUMBER, **READING}),
+    "record_pulses": (audit.record_pulses, {"records": "pulses"},
+                      {"records": PATH, "plot": FLAG, **READING}),
     "floor_motion by id": (audit.floor_motion, {"motion": "pacoima_dam_1971", "building": 1.0},
                            {"records": PATH}),
 }

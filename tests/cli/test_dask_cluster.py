@@ -19,6 +19,9 @@ distributed = pytest.importorskip("distributed")
 
 from audit.engine.shared.partial import PARTIAL_DIR, kept_parts  # noqa: E402
 
+#: End to end: a cluster of processes, killed and resumed.
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[2]
 #: About 1–2 s per record on one thread, so that a kill lands while records are under way.
 GRID = ["--alpha", "3,6,9", "--size", "0.5:8:0.01", "--free-motion", "30", "--jobs", "1"]

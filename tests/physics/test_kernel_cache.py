@@ -7,6 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 from numba.core.registry import CPUDispatcher
 
 from audit.physics.kernel_cache import kernel_modules, kernel_sources_digest
@@ -47,6 +48,7 @@ def _spectrum_probe(tree: Path) -> str:
     return done.stdout.strip()
 
 
+@pytest.mark.slow  # ~25 s: compiles kernels afresh
 def test_a_change_to_a_called_kernel_in_another_file_recompiles_its_caller(tmp_path):
     """numba alone would reuse spectrum_peaks' cached machine code, with the old step of
     oscillator.py compiled in, after a change to oscillator.py only."""

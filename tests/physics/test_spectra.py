@@ -96,6 +96,7 @@ def test_sampled_peaks_and_histories_match_lsim_on_the_seed_records(seed_suite):
                                    rtol=0, atol=1e-10 * np.max(np.abs(u)))
 
 
+@pytest.mark.slow  # ~25 s: scipy's lsim on a 200x finer record
 def test_peaks_between_samples_match_lsim_on_a_200x_finer_record(seed_suite):
     """Pacoima (dt = 0.01 s), T = 0.05–0.2 s: sampled peaks are percents low, located ones exact.
 

@@ -58,7 +58,16 @@ def test_asce_7_22_branches_and_bounds():
     # T1 = 0.3 s: a1 = min(3.33, 2.5) = 2.5, a2 = max(1 − 1.78, 0) = 0; z/h = 0.5: H_f = 2.25
     assert code.height_factor(0.5, 0.3) == pytest.approx(2.25)
     # T_a unknown (Eq. 13.3-5) on the roof: 1 + 2.5 = 3.5
-    assert ASCE722(period_known=False).height_factor(1.0, 1.0) == pytest.approx(3.5)
+    assert ASCE722().height_factor(1.0, None) == pytest.approx(3.5)
+    unknown = ASCE722(approximate_period="unknown").check(B, H, SITE, ROOF_1S)
+    # F_p/W_p = 0.4·1·(3.5/1.712698)/1.5 = 0.4·2.043560/1.5 = 0.544949
+    assert unknown.factors["H_f"] == pytest.approx(3.5)
+    assert unknown.force_over_weight == pytest.approx(0.544949, abs=2e-6)
+    # T_a = 0.5 s given (not the modal 1 s): a1 = 2, a2 = 1 − 0.64 = 0.36, H_f = 3.36 on the roof
+    assert ASCE722(approximate_period=0.5).check(B, H, SITE, ROOF_1S).factors["H_f"] \
+        == pytest.approx(3.36)
+    # the supporting structure not known: R_μ = 1.3
+    assert ASCE722(building_omega0=None).ductility_reduction() == 1.3
     # on the ground 0.4·1·(1/1.712698)/1.5 = 0.1557 < 0.3: the lower bound 0.3·S_DS·I_p binds
     assert code.check(B, H, SITE, GROUND).force_over_weight == pytest.approx(0.3)
     # C_AR = 2.8, R_po = 1: 0.4·2.84/1.712698·2.8 = 1.8572 > 1.6: the upper bound 1.6 binds
@@ -98,6 +107,12 @@ def test_nzs_1170_5():
     result = code.check(B, H, SITE, ROOF_1S)
     assert (result.factors["C_Hi"], result.factors["C_i"]) == (3.0, 2.0)
     assert result.force_over_weight == pytest.approx(2.4) and not result.passes
+    # stability (AS/NZS 1170.0 §4.2.1): 0.9G resists, capacity 0.9·0.4 = 0.36
+    assert result.capacity_over_weight == pytest.approx(0.36)
+    # h_n = 10 m given: h_i = 10 m < 12 m, ≥ 0.2·10 = 2 m: the lesser of 1 + 10/6 = 2.666667 and
+    # 3.0: C_p = 0.4·2.666667·2 = 2.133333
+    assert NZS11705(building_height_m=10.0).check(B, H, SITE, ROOF_1S).force_over_weight \
+        == pytest.approx(2.133333, abs=1e-6)
     # a low building, h_n = 7 m: at h_i = 0.7 m (< 1.4 m = 0.2·h_n, < 12 m) the lesser of
     # 1 + 0.7/6 = 1.116667 and 1 + 10·0.7/7 = 2.0; on its roof the lesser of 1 + 7/6 = 2.166667
     # and 3.0
@@ -125,7 +140,7 @@ def test_entries_in_the_agreed_shape():
     entries = component_entries(0.8, 2.0, site=(1.0, 0.6), floor=ROOF_1S)
     keys = {"procedure", "key", "limit_state", "verdict", "demand", "capacity", "unit", "basis",
             "share_of_records_overturning", "factors", "anchorage_force_over_weight",
-            "exact_p_exceed", "required_width_m"}
+            "exact_p_exceed", "required_width_m", "anchorage", "spectrum_read", "parameters"}
     by_key = {entry["key"]: entry for entry in entries}
     assert all(set(entry) == keys for entry in entries)
     for entry in entries:
@@ -136,7 +151,8 @@ def test_entries_in_the_agreed_shape():
     # ASCE: the width at which 0.7·b/h = 0.442187: 2·1.0·0.442187/0.7 = 1.263393 m
     assert by_key["asce7_22"]["required_width_m"] == pytest.approx(1.263393, abs=1e-6)
     assert by_key["asce7_22"]["anchorage_force_over_weight"] == pytest.approx(0.442187, abs=2e-6)
-    # a squat block passes every code on the ground: b/h = 2: capacity 1.4 (ASCE), 2 (EN, NZS)
+    # a squat block passes every code on the ground: b/h = 2: capacity 1.4 (ASCE), 2 (EN),
+    # 1.8 (NZS)
     squat = component_entries(2.0, 1.0, site=(1.0, 0.6))
     assert {entry["verdict"] for entry in squat} == {"passes"}
     assert {entry["anchorage_force_over_weight"] for entry in squat} == {None}
@@ -158,7 +174,7 @@ def test_check_lists_the_provisions():
     # lower bound; capacity (0.9 − 0.2·1.5)·0.3/0.9 = 0.6/3 = 0.2: fails
     assert (by_key["asce7_22"]["demand"], by_key["asce7_22"]["capacity"]) \
         == pytest.approx((0.45, 0.2))
-    # EN: a_g·S = 0.4·1.5 = 0.6; 0.6·1·1/2 = 0.3 ≤ 1/3: passes. NZS: 0.6·1·2 = 1.2 > 1/3: fails
+    # EN: a_g·S = 0.4·1.5 = 0.6; 0.6·1·1/2 = 0.3 ≤ 1/3: passes. NZS: 0.6·1·2 = 1.2 > 0.9/3: fails
     assert [by_key[k]["verdict"] for k in ("asce7_22", "en1998_1", "nzs1170_5")] \
         == ["fails", "passes", "fails"]
     assert by_key["en1998_1"]["demand"] == pytest.approx(0.3)

@@ -97,6 +97,7 @@ def test_mutated_at2_reads_or_raises_input_error(raw_dir, data):
         _valid(motion)
 
 
+@pytest.mark.slow  # ~20 s of mutated files
 @FUZZ
 @given(data=st.data())
 def test_mutated_text_reads_or_raises_input_error(raw_dir, data):
@@ -120,6 +121,7 @@ def _absolute_manifest(path: Path) -> bytes:
     return path.read_text().replace('file = "', f'file = "{path.parent}/').encode()
 
 
+@pytest.mark.slow  # ~30 s of mutated manifests
 @FUZZ
 @given(data=st.data())
 def test_mutated_manifest_loads_or_raises_input_error(seed_manifest, data):

@@ -96,6 +96,7 @@ def parsed(html):
     return _parse(html)
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_every_audited_record_has_its_section_and_figures(parsed):
     numbers = {"pacoima_dam_1971": 1, "el_centro_5_1979": 2, "los_gatos_1989": 3,
                "rinaldi_1994": 4, "sylmar_1994": 5, "erzincan_1992": 6, "takatori_1995": 7}
@@ -117,6 +118,7 @@ def test_every_audited_record_has_its_section_and_figures(parsed):
     assert set(parsed.plots) == set(parsed.specs)
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_bottom_line_counts_unsafe_and_uneconomic(parsed, html, seed_report):
     results = pd.read_csv(seed_report / "results.csv")
     for name in ("priestley1978", "fema356"):
@@ -136,6 +138,7 @@ def test_bottom_line_counts_unsafe_and_uneconomic(parsed, html, seed_report):
     assert "overturns" in worst and "missed-overturn" in worst
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_worst_cases_link_to_drawn_time_histories(parsed, seed_report):
     assert "worst-table" in parsed.tables
     results = pd.read_csv(seed_report / "results.csv")
@@ -158,6 +161,7 @@ def test_worst_cases_link_to_drawn_time_histories(parsed, seed_report):
     assert {h["alpha_deg"] for h in summary["histories"]} > {15.0}
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_a_block_can_be_looked_up_by_hover(parsed, seed_report):
     """Every cell of a verdict map carries exact, guideline and verdict in its hover data, its
     panel's hover template the record; its axes give α and 2π/p; the verdict matches
@@ -186,6 +190,7 @@ def test_a_block_can_be_looked_up_by_hover(parsed, seed_report):
     assert checked == len(results)
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_tables_and_methods(parsed, html):
     assert {"table-3-1", "table-5-1", "verdict-table", "unauditable",
             "column-guide"} <= parsed.tables
@@ -193,6 +198,7 @@ def test_tables_and_methods(parsed, html):
     assert "0.379" in html  # Table 5.1 PGA of El Centro, a missing record, still tabulated
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_self_contained_and_small(parsed, html, seed_report):
     assert (seed_report / "report.html").stat().st_size <= MAX_HTML_BYTES
     assert html.count("<script>") == 2  # plotly.js once, the loader once
@@ -202,6 +208,7 @@ def test_self_contained_and_small(parsed, html, seed_report):
     assert "@import" not in own and "url(" not in own and "<img" not in own
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_results_csv_booleans_and_units(seed_report):
     frame = pd.read_csv(seed_report / "results.csv")
     for column in ("exact_overturned", "exact_uplifted", "exact_fragile", "approx_overturned"):
@@ -211,12 +218,14 @@ def test_results_csv_booleans_and_units(seed_report):
     assert list(guide) == list(frame.columns)
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_rerendered_report_matches(seed_report, html):
     again = render_report(load_run(seed_report))
     strip = lambda text: re.sub(r"generated \d{4}-\d\d-\d\d \d\d:\d\d UTC", "", text)  # noqa: E731
     assert strip(again) == strip(html)
 
 
+@pytest.mark.slow  # end to end: the seed suite's run, in headless Chromium
 def test_report_renders_offline_in_headless_chromium(seed_report, parsed, tmp_path, browse):
     """Every figure is drawn (plotly's SVG in each figure div), with no console error."""
     moved = tmp_path / "elsewhere" / "report.html"  # alone: nothing beside it to load
@@ -298,6 +307,7 @@ def test_sections_fed_by_other_parts_of_the_audit():
                                             "agrees-unsafe")
 
 
+@pytest.mark.slow  # end to end: runs of the command line
 def test_empty_optional_sections_are_left_out():
     run = _small_run()
     run.checks = run.checks.iloc[0:0]
@@ -308,6 +318,7 @@ def test_empty_optional_sections_are_left_out():
         parsed.ids | parsed.tables)
 
 
+@pytest.mark.slow  # end to end: runs of the command line
 def test_paths_do_not_depend_on_the_working_directory(seed_manifest, tmp_path):
     """Run from one folder with a relative --records and --out elsewhere: every path written
     is absolute (or relative to the output folder), none relative to the working directory."""
@@ -368,6 +379,7 @@ def test_large_suite_puts_statistics_first_and_details_only_where_asked():
     assert f"{len(run.summary['records']) - 1} records of the suite have no detail section" in html
 
 
+@pytest.mark.slow  # ~25 s: a large suite's report
 def test_a_large_suite_details_the_records_asked_for_or_the_worst_and_reads_only_those(
         seed_suite, tmp_path):
     from dataclasses import replace
@@ -494,6 +506,7 @@ def test_mechanics_figures_are_drawn_from_the_saved_files():
     assert law["y"][law["x"].index(0.8)] == pytest.approx(7.587, abs=1e-3)
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_csv_text_is_the_bytes_pandas_writes(seed_report):
     """The fast CSV writer against pandas' own ``to_csv`` on every table of a real run, and on
     the cells that need care: quotes, commas, line breaks, NaN, None, ±inf, booleans, ints,
@@ -526,6 +539,7 @@ def test_grid_pivot_is_pandas_pivot_table():
     assert np.array_equal(z, pivot.to_numpy(dtype=float), equal_nan=True)
 
 
+@pytest.mark.slow  # end to end: the seed suite's run
 def test_suite_statistics_and_bottom_line_folded_record_by_record_equal_the_whole(seed_report):
     """The run folds each record's rows as it passes; over the same rows, any split into parts
     gives what the whole table gives (verdict counts, percentiles, the bottom line's worst

@@ -59,7 +59,7 @@ def _blank(proc, limit_state: str) -> dict:
             "basis": None, "share_of_records_overturning": None, "factors": {},
             "anchorage_force_over_weight": None, "exact_p_exceed": None,
             "required_width_m": None, "quantity": None, "records_judged": 0,
-            "guideline_im": None, "reason": None, "risk_p50": None}
+            "guideline_im": None, "reason": None, "risk_p50": None, "spectrum_read": None}
 
 
 def procedure_entries(proc, judgements, line: float, width: float, rule_widths: dict, b: int,
@@ -119,19 +119,22 @@ def procedure_entries(proc, judgements, line: float, width: float, rule_widths: 
                            + ": θ ≥ α")
         elif math.isnan(demand):
             reasons.append("its iteration settles on no rotation for any record")
-        required = width if (rule in (None, MEDIAN)) else rule_widths.get(state, math.nan)
+        by_width = state in rule_widths or rule not in (None, MEDIAN)
+        required = rule_widths.get(state, math.nan) if by_width else width
         if math.isinf(required):
             reasons.append("no width up to 0.99 × the height passes it (restrain the object)")
         entry.update(
             verdict="fails" if math.isinf(demand) else verdict(demand, capacity),
             demand=_number(demand), capacity=_number(capacity), unit=readings[0].unit,
-            basis=basis(rule, len(readings), readings[0].unit), share_of_records_overturning=share,
+            basis=basis(rule, len(readings), readings[0].unit) + (
+                f"; {proc.basis_note}" if proc.basis_note else ""),
+            share_of_records_overturning=share,
             exact_p_exceed=exact.p_exceed(readings[0].theta_limit_rad),
             required_width_m=_number(required), quantity=readings[0].quantity,
             factors=readings[0].factors,
             records_judged=len(readings), guideline_im=_number(line),
             reason="; ".join(reasons) or None,
-            risk_p50=risk_p50 if rule in (None, MEDIAN) else None)
+            risk_p50=None if by_width else risk_p50, spectrum_read=proc.spectrum_read(first_entry))
         out.append(entry)
     return out
 

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -45,10 +45,13 @@ from audit.engine.check.words import sentence
 from audit.engine.check.judgement import at_site, judge
 from audit.engine.check.record_part import CheckWork, check_record
 from audit.engine.check.guideline_widths import GuidelineWidths
+from audit.engine.check.spectrum_read import (FLOOR, GuidelineSpectra, floor_design_site,
+                                              floor_site)
 from audit.engine.check.widths import Family, exact_required_widths, probability_at_site
 from audit.engine.check.other_im import other_im_answers
-from audit.engine.check.component_checks import component_entries
+from audit.engine.check.component_checks import component_entries, component_provisions
 from audit.engine.shared.floors import floor_at_site
+from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.check.width_family import width_answer
 from audit.engine.design.site_probability import lattice_fragility
 from audit.engine.design.stripes import StripeSettings
@@ -57,6 +60,7 @@ from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts, open_scheduler, side_thread
 from audit.errors import InputError, InputWarning
 from audit.physics.building.floor import Floor
+from procedures.parameters import parameters_used
 from records.sites import NTC2018_SITE_KEYS
 
 #: Every how many levels of the lattice a check solves (2: √2 apart).
@@ -99,7 +103,8 @@ class CheckRun:
 
 
 def run_check(procedures, suite, objects, settings: CheckSettings,
-              runtime: Runtime, floor: Floor = Floor()) -> CheckRun:
+              runtime: Runtime, floor: Floor = Floor(), provision_params: dict | None = None,
+              mass_kg: float | None = None) -> CheckRun:
     """Check every object at the suite's design site (see the module).
 
     Parameters
@@ -115,6 +120,10 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     floor : audit.physics.building.floor.Floor
         Where the objects stand, for the component provisions' static checks
         (:mod:`audit.engine.check.component_checks`, ``component_provisions`` of each object).
+    provision_params : dict, optional
+        The component provisions' parameters, ``{name: {attribute: value}}`` (checked).
+    mass_kg : float, optional
+        Each object's mass [kg]: the anchorage forces also in kN.
     """
     from audit.engine.check.summary import (CheckFrame, ObjectFindings, object_answer,
                                             run_summary)
@@ -125,6 +134,12 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     site = site_intensity(im, suite.design_site, settings.hazard,
                           settings.site_return_period_years)
     site_im, design_im = site.site_im, site.design_im  # the exact answer's; the guidelines'
+    spectra = GuidelineSpectra(settings.guideline_spectrum,
+                               {key: suite.design_site[key] for key in ("sxs_g", "sx1_g")})
+    if not floor.on_ground and settings.guideline_spectrum == FLOOR:
+        # the design-site guidelines read the floor's spectrum from the start, stripes and all
+        spectra.floor = floor_site(suite, entries, im, settings.free_motion_s, design_im)
+        entries = [replace(entry, site={**entry.site, **spectra.floor}) for entry in entries]
     levels = check_levels(site_im)
     fitted = fitted_stripes(levels)  # the fragility's stripes: the lattice, not the site's
     objects = tuple(objects)
@@ -165,10 +180,25 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
                            for p in procedures if p.name not in per_record
                            and p.unmet_requirements(site_context(0)[0]) is None}
-            search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
+            lines = guideline_lines(
+                procedures, entries, work.stripes,
+                {p.name: np.stack([part.stripes.predicted[p.name] for part in parts])
+                 for p in procedures},
+                {p.name: np.array([part.stripes.evaluated[p.name] for part in parts])
+                 for p in procedures})
+            search = GuidelineWidths(parts, lines, site_judged, site_context, settings)
+            document = floor_at_site(suite, entries, intensity, site_im)
+            on_other = {}
+            if not floor.on_ground:  # the design-site guidelines on the other spectrum too
+                if spectra.floor is None:
+                    spectra.floor = floor_design_site(
+                        (document if site_im == design_im else
+                         floor_at_site(suite, entries, intensity, design_im))["spectra"])
+                on_other = spectra.judged_on_other(
+                    [p for p in procedures if p.name in site_judged], *site_context(0),
+                    objects, restitution, g)
             return ([[search.of(proc, b, obj) for proc in procedures]
-                     for b, obj in enumerate(objects)],
-                    floor_at_site(suite, entries, intensity, site_im))
+                     for b, obj in enumerate(objects)], document, on_other)
 
         # the guidelines' searches and, on a floor, the spectra of the floor and ground motions
         # run on a side thread beside the exact search (one solver call per record)
@@ -182,7 +212,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             others = other_im_answers(family, objects, suite.design_site, check_levels,
                                       fitted_stripes, settings.seed)
             _stage(progress, "the width each guideline requires at each object's height")
-            judged, floor_document = guidelines.result()
+            judged, floor_document, on_other = guidelines.result()
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
         exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
@@ -210,23 +240,32 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                  obj.alpha_deg, settings.friction)
         answer = answers[-1]
         answer["exact"]["site_return_period_years"] = site.return_period_years
-        answer.update(sliding=sliding, sentence=f"{sentence(answer, im)} {sliding['text']}")
+        answer.update(sliding=sliding, sentence=sentence(answer, im, sliding))
     design_site = suite.design_site or {}
     ntc = entries[0].site
     ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
                 if all(ntc.get(key) is not None for key in NTC2018_SITE_KEYS) else None)
+    provisions = component_provisions(provision_params)
     for obj, answer in zip(objects, answers):
         answer["component_provisions"] = [
             {**entry, "exact_p_exceed": answer["exact"]["p_overturn_at_site"]}
             for entry in component_entries(obj.width_m, obj.height_m,
                                            site=(design_site["sxs_g"], design_site["sx1_g"]),
-                                           ntc_site=ntc_site, floor=floor)]
+                                           ntc_site=ntc_site, floor=floor,
+                                           provisions=provisions, mass_kg=mass_kg)]
+    spectra.annotate(answers, procedures, entries[0], on_other)
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
     summary.update(design_im=design_im, site_hazard=site.as_dict(curve),
                    friction=settings.friction)
     summary["floor"] = floor_document
+    # every parameter the guidelines and provisions used, with the clause of its default
+    summary["parameters"] = {plug_in.name: parameters_used(plug_in)
+                             for plug_in in (*procedures, *provisions)
+                             if type(plug_in).parameters}
+    summary["mass_kg"] = mass_kg
+    summary["guideline_spectrum"] = spectra.as_dict()
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)

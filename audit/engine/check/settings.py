@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 from audit import G
 from audit.engine.shared import fields as check
+from audit.engine.check.spectrum_read import GROUND, GUIDELINE_SPECTRA
 from audit.engine.check.limits import BOTH, LIMIT_STATES
 from audit.engine.shared.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_RESTITUTION,
                                    DEFAULT_RISK_TARGET)
@@ -20,7 +22,7 @@ CHECK_DEFAULTS = {"im": None, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
                   "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET,
                   "hazard_imt": None, "return_period": None, "poe": None, "friction": None,
-                  "limit_state": BOTH}
+                  "limit_state": BOTH, "guideline_spectrum": GROUND}
 CHECK_FIELDS = tuple(CHECK_DEFAULTS)
 
 
@@ -51,6 +53,10 @@ class CheckSettings:
     limit_state : str
         The limit state the site's S_XS, S_X1 are for, of a guideline that names its own
         (NTC 2018): ``SLV``, ``SLC`` or ``both`` (each reported).
+    guideline_spectrum : str
+        On a floor, the spectrum a guideline reading the site's design spectrum (FEMA 356)
+        reads: ``ground`` (as written) or ``floor``
+        (:mod:`audit.engine.check.spectrum_read`).
 
     Build it with :meth:`parse`, which checks every field once.
     """
@@ -65,6 +71,7 @@ class CheckSettings:
     site_return_period_years: float | None = None
     friction: float | None = None
     limit_state: str = BOTH
+    guideline_spectrum: str = GROUND
 
     @classmethod
     def parse(cls, **values) -> CheckSettings:
@@ -95,6 +102,8 @@ class CheckSettings:
             Friction coefficient μ > 0 of the object's base.
         limit_state : str
             ``SLV``, ``SLC`` or ``both`` (any case).
+        guideline_spectrum : str
+            ``ground`` or ``floor``.
         """
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
@@ -123,7 +132,7 @@ class CheckSettings:
         if im.kind == "pgv":
             raise InputError("im: a design spectrum gives no PGV; choose pga or sa:T", "im")
         seed = value["seed"]
-        if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)
+        if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)
                                  or seed < 0):
             raise InputError(f"seed: expected a whole number ≥ 0, got {seed!r}", "seed")
         limit_state = value["limit_state"]
@@ -133,6 +142,14 @@ class CheckSettings:
             raise InputError(f"limit_state: expected {', '.join(choices)}, got {limit_state!r}",
                              "limit_state")
         limit_state = limit_state.upper() if limit_state.upper() in LIMIT_STATES else BOTH
+        spectrum = value["guideline_spectrum"]
+        if spectrum not in GUIDELINE_SPECTRA:
+            raise InputError(f"guideline_spectrum: expected {' or '.join(GUIDELINE_SPECTRA)}, "
+                             f"got {spectrum!r}", "guideline_spectrum")
+        return_period_years = site_return_period(value["return_period"], value["poe"])
+        if return_period_years is not None:  # on the curve, or refused naming what was given
+            hazard.im_at_rate(1.0 / return_period_years,
+                              "return_period" if value["poe"] is None else "poe")
         return cls(
             im=im,
             restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
@@ -141,8 +158,8 @@ class CheckSettings:
                                        "a duration ≥ 0 s", 0),
             g=check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True),
             seed=seed, hazard=hazard, risk_target=risk_target,
-            site_return_period_years=site_return_period(value["return_period"], value["poe"]),
-            friction=friction, limit_state=limit_state)
+            site_return_period_years=return_period_years,
+            friction=friction, limit_state=limit_state, guideline_spectrum=spectrum)
 
 
 def site_return_period(return_period, poe) -> float | None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from statistics import median
 
+from audit.engine.check.spectrum_read import reading_words
 from records.suite import counted_records
 
 #: Share of an annual rate from outside the stripes above which the sentence warns of it.
@@ -105,9 +106,11 @@ def p_words(exact: dict, records: int) -> str:
     return f"{at['headline']} (lognormal; {k} of {n} records at the site's intensity)"
 
 
-def sentence(answer: dict, im) -> str:
+def sentence(answer: dict, im, sliding: dict | None = None) -> str:
     """One sentence for a calculation note: the guidelines' verdicts by their own limit states,
-    the exact P(overturn) at the site with its band, the exact widths.
+    the exact P(overturn) at the site with its band, the exact widths; with ``sliding``, what
+    the base's friction does: first, the rest following as "if it could not slide", where
+    sliding governs (``sliding["governs"]``: most records slide it), else after.
 
     Parameters
     ----------
@@ -115,7 +118,20 @@ def sentence(answer: dict, im) -> str:
         The object's entry of ``check.json``.
     im : IntensityMeasure
         The check's intensity measure.
+    sliding : dict, optional
+        The object's ``sliding`` entry (:func:`~audit.engine.check.sliding.sliding_answer`).
     """
+    head = f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m tall): "
+    rocking = _rocking_words(answer, im)
+    if sliding is None:
+        return head + rocking
+    if sliding.get("governs"):
+        return f"{head}{sliding['text']} If it could not slide: {rocking}"
+    return f"{head}{rocking} {sliding['text']}"
+
+
+def _rocking_words(answer: dict, im) -> str:
+    """:func:`sentence` after the object's name: the answers of rocking."""
     by = {v: [p for p in answer["procedures"] if p["verdict"] == v]
           for v in ("passes", "fails", "cannot judge")}
     parts = []
@@ -126,8 +142,7 @@ def sentence(answer: dict, im) -> str:
     if by["cannot judge"]:
         parts.append(f"{_judged(by['cannot judge'])} cannot judge it")
     exact = answer["exact"]
-    text = (f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m "
-            f"tall): " + "; ".join(parts) + f"; the exact P(overturn) at "
+    text = ("; ".join(parts) + f"; the exact P(overturn) at "
             f"{im_words(im, exact['site_im_g'], exact.get('site_return_period_years'))} is "
             f"{p_words(exact, exact['stripes']['records'])}")
     w10, w50 = exact["required_width_m_10pct"], exact["required_width_m_50pct"]
@@ -173,6 +188,28 @@ def _compared(proc: dict, half_width_m: float) -> str:
                  f"{capacity / half_width_m:.2g})")
         return ("no uplift (d = 0) vs " + f"{capacity:.3g} m" if demand == 0.0 else words)
     return f"demand {demand:.3g} vs capacity {capacity:.3g} {unit}"
+
+
+def anchorage_words(anchorage: dict) -> str:
+    """The anchorage forces of a failing component provision: shear V and the far edge's
+    tension T per unit weight (and in kN with the mass), and times Ω0p where the code asks.
+
+    Parameters
+    ----------
+    anchorage : dict
+        A provision entry's ``anchorage`` in check.json: ``shear``, ``tension`` [W], their
+        ``_kN`` with the mass, ``omega_0p`` and the ``_omega`` forces where the code asks.
+    """
+    def forces(suffix: str) -> str:
+        words = [f"{name} {anchorage[key + suffix]:.3g} W"
+                 + (f" = {anchorage[key + suffix + '_kN']:.3g} kN"
+                    if key + suffix + "_kN" in anchorage else "")
+                 for name, key in (("V", "shear"), ("T", "tension"))]
+        return ", ".join(words)
+    text = forces("")
+    if "omega_0p" in anchorage:
+        text += f"; ×Ω0p {anchorage['omega_0p']:g} (non-ductile anchors): {forces('_omega')}"
+    return text
 
 
 def _percent(p: float | None) -> str:
@@ -261,6 +298,10 @@ def summary_text(document: dict) -> str:
                          metres(width) if width is not None else "—",
                          _percent(entry["exact_p_exceed"]))
                         + (("",) if hazard else ()))
+            if entry.get("anchorage"):
+                rows.append(("  its anchorage (if anchored)", "", "",
+                             anchorage_words(entry["anchorage"]), "", "")
+                            + (("",) if hazard else ()))
         exact = obj["exact"]
         for target in ("10", "50"):
             rows.append((f"exact, P(overturn) ≤ {target} %", "overturning", "", "",
@@ -290,8 +331,10 @@ def summary_text(document: dict) -> str:
         lines += [""]
         lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."
                   for proc in obj["procedures"] if proc["basis"]
-                  and proc["basis"].startswith("applied record by record")] + [""]
+                  and proc["basis"].startswith("applied record by record")]
+        lines += [f"  {reading_words(proc)}." for proc in obj["procedures"]
+                  if proc.get("other_spectrum")] + [""]
     return "\n".join(lines).rstrip() + "\n"
 
 
-__all__ = ["sentence", "summary_text", "im_words", "EXTRAPOLATED_SHARE"]
+__all__ = ["sentence", "summary_text", "im_words", "anchorage_words", "EXTRAPOLATED_SHARE"]

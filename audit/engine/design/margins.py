@@ -38,13 +38,15 @@ from audit.engine.shared.floors import suite_floor
 from audit.engine.shared.defaults import SITE_LEVELS
 from audit.engine.shared.lattice import stripe_lattice
 from audit.engine.design.settings import MarginsSettings
+from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.design.tables import (capacity_rows, fragility_rows, reading, site_factor,
-                                         step_levels, stripe_rows)
+                                         stripe_rows)
 from audit.engine.shared.partial import PartialStore
 from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts
 from audit.engine.design.stripes import StripeSettings, record_stripes
 from audit.errors import InputError
+from procedures.parameters import parameters_used
 
 
 @dataclass
@@ -187,8 +189,8 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
     site_factors = np.array([site_factor(suite, e.id) for e in entries])
     stripes = stripe_rows(run, site_factors)
     fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, run.mce_im)
-    steps = step_levels(procedures, entries, run.settings, run.predicted, run.evaluated)
-    capacity = capacity_rows(procedures, run, fits, boots, steps)
+    lines = guideline_lines(procedures, entries, run.settings, run.predicted, run.evaluated)
+    capacity = capacity_rows(procedures, run, fits, boots, lines)
     named_blocks = settings.blocks
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
                "design_im": run.settings.design_im, "site_level": settings.site_level,
@@ -198,7 +200,9 @@ def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) 
                "restitution": str(run.settings.restitution),
                "scheduler": run.where, "resumed": run.resumed,
                "procedures": [{"name": proc.name, "title": proc.title,
-                               "reads": reading(proc, entries)} for proc in procedures],
+                               "reads": reading(proc, entries),
+                               **({"parameters": parameters_used(proc)}
+                                  if type(proc).parameters else {})} for proc in procedures],
                "grid": {"alpha_deg": [float(a) for a in settings.alpha_deg],
                         "size_s": np.asarray(settings.size_s if settings.size_s is not None
                                              else (), dtype=float).tolist()},

@@ -29,6 +29,7 @@ from audit.engine.run.results import (DESIGN_SPECTRA_CSV, RECORD_TABLES, suite_f
 from audit.engine.shared.schemas import GUIDE
 from audit.engine.run.suite import VERDICT_CODE, BottomLine, SuiteStatistics, suite_summary
 from audit.engine.shared.verdicts import VERDICTS
+from procedures.parameters import parameters_used
 
 
 def record_summary(entry) -> dict:
@@ -178,7 +179,9 @@ class RunWriter:
             "version": __version__,
             "procedures": [{"name": p.name, "title": p.title, "reference": p.reference,
                             "damping_law": p.damping_law, "spectrum_source": p.spectrum_source,
-                            "figure_series": p.figure_series} for p in self.procedures],
+                            "figure_series": p.figure_series,
+                            **({"parameters": parameters_used(p)} if type(p).parameters else {})}
+                           for p in self.procedures],
             "records_source": suite.description,
             "pulse_idealised": suite.is_pulse_idealised,
             "records": [record_summary(entry) for entry in suite],

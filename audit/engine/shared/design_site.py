@@ -115,17 +115,19 @@ class DesignSite:
         """
         from audit.engine.shared.floors import on_floor
         from audit.engine.shared.sites import scale_to_site, with_design_site, with_ntc_site
-        if self.ntc_site is not None:
-            try:
-                suite = with_ntc_site(suite, *self.ntc_site)
-            except InputError as exc:  # the spectrum names its parameter
-                raise InputError(f"ntc_site: {exc}", "ntc_site") from None
         if self.site is not None:
             sxs_g, sx1_g = self.site
             suite = with_design_site(suite, sxs_g, sx1_g, override=self.site_override)
             if self.scale_to_site:
                 suite = scale_to_site(suite, sxs_g, sx1_g, DEFAULT_ANCHOR_PERIOD_S
                                       if self.anchor_period_s is None else self.anchor_period_s)
+        # after the FEMA site, whose records' sites it replaces (override, or records without
+        # one): applied first, the NTC site was wiped from them and NTC read the records
+        if self.ntc_site is not None:
+            try:
+                suite = with_ntc_site(suite, *self.ntc_site)
+            except InputError as exc:  # the spectrum names its parameter
+                raise InputError(f"ntc_site: {exc}", "ntc_site") from None
         return on_floor(suite, self.floor)
 
 

@@ -70,6 +70,7 @@ def test_every_verdict_is_what_demand_against_capacity_says(vitrine):
         assert entry["basis"]
 
 
+@pytest.mark.slow  # ~30 s: scipy's lsim is the reference
 def test_ntc_judges_the_vitrine_by_its_own_slv_and_slc_on_d(vitrine):
     obj = vitrine.document["objects"][0]
     ntc = {e["limit_state"]: e for e in obj["procedures"] if e["key"] == "ntc2018"}

@@ -56,6 +56,7 @@ def test_local_run_fills_suite_statistics(local_run):
     assert local_run.summary["detail"] == ["sylmar_1994"] and local_run.summary["resumed"] == []
 
 
+@pytest.mark.slow  # end to end: a local dask cluster
 def test_dask_local_cluster_gives_identical_values(three_records, local_run):
     run = run_audit(get_procedures("all"), three_records, jobs=2, scheduler="dask",
                     detail=["sylmar_1994"], **GRID)
@@ -218,6 +219,7 @@ def _tripled_with(item, procedures, factor):
     return item.value * factor
 
 
+@pytest.mark.slow  # end to end: a local dask cluster
 def test_dask_maps_one_after_another_with_the_same_arguments():
     # a design-level audit maps several times on one cluster with the same procedures (the
     # stripes, then the required α and its bisections): each map's arguments must outlive the
