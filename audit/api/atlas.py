@@ -155,6 +155,9 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
             continue
         point, width = next(points), next(widths)
         p = {**point.site.as_dict(), "method": "atlas", "error": point.error,
+             "count_at_site": "each record's outcome interpolated between the lattice's "
+                              "stripes around the site (linear in ln IM), the count rounded "
+                              "to a whole record",
              "text": f"{point.site.words()}, from the atlas, ±{100 * point.error:.1f} %"}
         answer.update(p_overturn_at_site=p, exact_required_width_m={
             f"{100 * t:g}%": float(w) for t, w in zip(TARGETS, width)})

@@ -84,6 +84,8 @@ def run_list(args) -> int:
         state = "complete" if a.complete else "incomplete (build again to complete it)"
         print(f"{a.key[:12]}  {p['records']} ({len(p.get('record_ids', []))} records)  "
               f"{p['im']}  {p['floor']}  restitution {p['restitution']}  "
+              f"α {p['alpha_deg'][0]:g}–{p['alpha_deg'][-1]:g}° ×{len(p['alpha_deg'])}, "
+              f"2π/p {p['size_s'][0]:g}–{p['size_s'][-1]:g} s ×{len(p['size_s'])}  "
               f"{a.size_bytes() / 1e6:.1f} MB  {state}")
     return 0
 
