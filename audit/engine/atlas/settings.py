@@ -69,8 +69,10 @@ class AtlasSettings:
                 "alpha_deg": list(self.alpha_deg), "size_s": list(self.size_s)}
 
     def key(self) -> str:
-        """SHA-256 of :meth:`as_dict`: the atlas's name in the cache."""
-        return hashlib.sha256(json.dumps(self.as_dict(), sort_keys=True).encode()).hexdigest()
+        """SHA-256 of :meth:`as_dict` but the record set's name (its content, the digest,
+        decides: a suite named by two paths is one atlas): the atlas's name in the cache."""
+        content = {k: v for k, v in self.as_dict().items() if k != "records"}
+        return hashlib.sha256(json.dumps(content, sort_keys=True).encode()).hexdigest()
 
 
 def records_digest(entries) -> str:
