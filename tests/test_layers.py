@@ -101,8 +101,23 @@ def test_imports_go_one_way_down_the_layers():
 def test_the_graph_sees_imports():
     # the checks above would pass on an empty graph: these edges are known to exist
     assert "procedures.base" in GRAPH["audit.engine.shared.verdicts"]
-    assert "audit.engine.run.record_audit" in GRAPH["audit.engine.shared.scheduler"]
+    assert "audit.engine.shared.runtime" in GRAPH["audit.engine.shared.scheduler"]
     assert _layer("audit.cli.run") > _layer("audit.api") > _layer("reports.render")
+
+
+#: The engine's workflows: each a room of its own, with its settings and its pipeline.
+WORKFLOWS = ("check", "design", "run", "validation", "fragility", "claims")
+
+
+def test_the_engine_shared_room_imports_no_workflow():
+    """``audit.engine.shared`` holds what every workflow uses; a workflow's own things (its
+    costs, its unit of work, its result files) live in its room."""
+    into = [f"{name} → {target}" for name, targets in GRAPH.items()
+            if name.startswith("audit.engine.shared") for target in targets
+            if any(target.startswith(f"audit.engine.{room}") for room in WORKFLOWS)]
+    assert not into, "engine/shared into a workflow: " + "; ".join(sorted(into))
+    # the check sees shared's imports
+    assert "audit.engine.shared.runtime" in GRAPH["audit.engine.shared.scheduler"]
 
 
 #: What the command line may import besides the base modules: the API (the defaults its

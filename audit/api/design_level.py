@@ -160,7 +160,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
     from audit.engine.shared import fields as check
     from audit.engine.shared import guards
-    from audit.engine.shared.costs import margins_cost
+    from audit.engine.design.costs import margins_cost
     from audit.engine.design.pipeline import design_level_audit
     from audit.engine.shared.progress import Progress
     given = locals()

@@ -252,7 +252,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     """
     from audit.api.inputs import parameters_of, procedures_of, record_suite
     from audit.engine.shared import guards
-    from audit.engine.shared.costs import audit_cost
+    from audit.engine.run.costs import audit_cost
     from audit.engine.shared.progress import Progress
     from audit.engine.run.results import REPORT_HTML
     from audit.engine.run.suite_run import audit_suite, compiles_first

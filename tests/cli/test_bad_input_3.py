@@ -235,7 +235,7 @@ def test_site_bound_in_the_api():
 # --- check's cost guard --------------------------------------------------------------------------
 
 def test_width_search_halvings_by_hand():
-    from audit.engine.shared.costs import width_halvings
+    from audit.engine.check.costs import width_halvings
     # scan 0.03 h to 0.95 h in 12 widths: neighbours (0.95/0.03)^(1/11) = 1.3690 apart;
     # halving ln 1.3690 = 0.31412 down to ln 1.005 = 0.0049875 takes ⌈log2 62.98⌉ = 6
     assert width_halvings() == 6
@@ -248,7 +248,7 @@ def _entries(n_records, samples, dt=0.01):
 
 def test_check_cost_counts_objects_stripes_and_widths():
     from audit.engine.shared import guards
-    from audit.engine.shared.costs import check_cost
+    from audit.engine.check.costs import check_cost
     procedures = [SimpleNamespace(requires_motion=True), SimpleNamespace(requires_motion=False)]
     settings = SimpleNamespace(hazard=None, free_motion_s=0.0)
     runtime = SimpleNamespace(jobs=1)

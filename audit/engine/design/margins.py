@@ -34,6 +34,7 @@ import pandas as pd
 
 from audit.engine.shared.blocks import BlockList
 from audit.engine.shared.csv_text import csv_bytes
+from audit.engine.shared.json_text import json_ready
 from audit.engine.shared.floors import suite_floor
 from audit.engine.shared.defaults import SITE_LEVELS
 from audit.engine.design.fragility import stripe_levels
@@ -226,7 +227,6 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
     dict of str to bytes
         File name → contents.
     """
-    from audit.engine.run.results import json_ready
     from audit.engine.shared.schemas import column_guide
     files = {"stripes.csv": csv_bytes(run.stripes, "%.8g"),
              "fragility.csv": csv_bytes(run.fragility, "%.6g"),

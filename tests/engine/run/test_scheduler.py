@@ -78,7 +78,8 @@ def test_existing_cluster_by_address_gives_identical_values(three_records, local
         settings = AuditSettings(alpha_deg=(20.0,), size_s=(6.0,))
         with open_scheduler(address, 1) as scheduler:
             [(_, remote, _), (_, unscaled, _)] = sorted(
-                scheduler.audit([scaled, pacoima], get_procedures("all"), settings),
+                scheduler.map(audit_record, [scaled, pacoima], get_procedures("all"),
+                              replace(settings, jobs=scheduler.solver_threads)),
                 key=lambda done: done[0])
         assert scheduler.by_value == ["pacoima_dam_1971"]       # the scaled one, once
     assert address in run.summary["scheduler"]
