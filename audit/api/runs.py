@@ -255,7 +255,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     from audit.engine.run.costs import audit_cost
     from audit.engine.shared.progress import Progress
     from audit.engine.run.results import REPORT_HTML
-    from audit.engine.run.suite_run import audit_suite, compiles_first
+    from audit.engine.run.pipeline import audit_suite, compiles_first
     from audit.files import staged_folder
     given = locals()
     settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))

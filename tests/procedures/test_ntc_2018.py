@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from audit import G
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import run_audit
 from audit.engine.shared.verdicts import check_verdicts, exact_exceeded
 from procedures.context import RecordContext
 from audit.errors import InputError

@@ -11,7 +11,7 @@ from audit.physics.block import coefficient_of_restitution, radius_from_p
 from audit.physics.damping import housner_period
 from audit.errors import InputError
 from audit.engine.shared.grid import size_grid
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import run_audit
 from procedures.context import RecordContext
 from procedures import available_procedures, get_procedures, iterate_rotation
 from procedures.fema_356 import FEMA356

@@ -23,7 +23,7 @@ import audit.api
 from audit.engine.run.results import load_run
 from audit.engine.run.suite import suite_summary
 from audit.engine.shared.schemas import CHECK_COLUMNS, CLAIM_COLUMNS, SUITE_COLUMNS
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import run_audit
 from audit.engine.shared.verdicts import VERDICTS
 from procedures import get_procedures
 from records import pulse_suite

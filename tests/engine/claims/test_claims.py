@@ -10,7 +10,7 @@ from audit.engine.claims.checklist import (CLAIM_FIELDS, EVALUATORS, STATUSES, C
                                  evaluate_claims, evaluate_method, grade, load_claims)
 from audit.engine.shared.schemas import CLAIM_COLUMNS
 from audit.engine.run.audit_run import AuditRun
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import run_audit
 from audit.errors import InputError
 from procedures import get_procedures
 

@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import run_audit
 from procedures import get_procedures
 from records import RecordSuite
 

@@ -12,7 +12,7 @@ import pytest
 from audit.engine.run.record_audit import audit_record
 from audit.engine.shared.schemas import SUITE_COLUMNS
 from audit.engine.run.settings import AuditSettings
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import run_audit
 from audit.engine.shared.record_references import RecordReference, by_reference, resolve
 from audit.engine.shared.scheduler import check_scheduler, open_scheduler
 from audit.cli import main
@@ -243,7 +243,7 @@ def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_re
     """A Dask cluster hands records back as they complete, and a resumed run's reused parts
     come first: the files are the local run's byte for byte, and each part ahead of its turn
     waits on disk, not in memory (in a scratch folder, or among the parts kept to resume)."""
-    from audit.engine.run import suite_run
+    from audit.engine.run import pipeline as suite_run
     from audit.engine.shared.runtime import Runtime
     from audit.engine.shared.scheduler import LocalScheduler
 

@@ -120,7 +120,7 @@ def test_an_exact_rotation_of_1e_14_rad_gives_no_ratio_of_1e12():
     ~5e-14 rad (θ grows with the excess), Priestley's iteration to ~0.04 rad: the ratio was
     ~8e11."""
     import math
-    from audit.engine.run.suite_run import run_audit
+    from audit.engine.run.pipeline import run_audit
     from audit.engine.shared.verdicts import ROCKING_FLOOR
     from procedures import get_procedures
     from records import RecordEntry, RecordSuite, one_pulse

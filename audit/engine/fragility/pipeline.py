@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.engine.run.calibration import PGV_LEVELS_M_S, brier_score, calibration, log_likelihood
+from audit.engine.fragility.calibration import PGV_LEVELS_M_S, brier_score, calibration, log_likelihood
 from audit.engine.design.fragility import stripe_outcomes
 from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.errors import InputError
