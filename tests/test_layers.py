@@ -105,8 +105,12 @@ def test_the_graph_sees_imports():
     assert _layer("audit.cli.run") > _layer("audit.api") > _layer("reports.render")
 
 
-#: The engine's workflows: each a room of its own, with its settings and its pipeline.
-WORKFLOWS = ("check", "design", "run", "validation", "fragility", "claims")
+#: The engine's workflows: each a room of its own, with its settings and its pipeline (``design``
+#: is ``audit margins``'), and the claims the run checks.
+WORKFLOWS = ("check", "design", "run", "validation", "fragility")
+#: Each workflow's pipeline entry: ``run_<name>`` in its ``pipeline.py``.
+PIPELINES = {"check": "run_check", "design": "run_margins", "run": "run_audit",
+             "validation": "run_validation", "fragility": "run_fragility"}
 
 
 def test_the_engine_shared_room_imports_no_workflow():
@@ -114,10 +118,24 @@ def test_the_engine_shared_room_imports_no_workflow():
     costs, its unit of work, its result files) live in its room."""
     into = [f"{name} → {target}" for name, targets in GRAPH.items()
             if name.startswith("audit.engine.shared") for target in targets
-            if any(target.startswith(f"audit.engine.{room}") for room in WORKFLOWS)]
+            if any(target.startswith(f"audit.engine.{room}") for room in (*WORKFLOWS, "claims"))]
     assert not into, "engine/shared into a workflow: " + "; ".join(sorted(into))
     # the check sees shared's imports
     assert "audit.engine.shared.runtime" in GRAPH["audit.engine.shared.scheduler"]
+
+
+@pytest.mark.parametrize("room", WORKFLOWS)
+def test_every_workflow_has_its_settings_and_one_pipeline_entry_named_alike(room):
+    """``settings.py`` holds its Settings (a class whose name ends so), ``pipeline.py`` its one
+    entry, named ``run_<workflow>`` in every room."""
+    folder = REPO / "audit" / "engine" / room
+    settings = ast.parse((folder / "settings.py").read_text(encoding="utf-8"))
+    assert any(isinstance(node, ast.ClassDef) and node.name.endswith("Settings")
+               for node in settings.body)
+    pipeline = ast.parse((folder / "pipeline.py").read_text(encoding="utf-8"))
+    entries = [node.name for node in pipeline.body if isinstance(node, ast.FunctionDef)
+               and node.name.startswith("run_")]
+    assert entries == [PIPELINES[room]]
 
 
 #: What the command line may import besides the base modules: the API (the defaults its

@@ -110,7 +110,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     FragilityResult
     """
     from audit.api.inputs import record_suite
-    from audit.engine.fragility.pipeline import audit_procedure
+    from audit.engine.fragility.pipeline import run_fragility
     from audit.engine.shared.progress import Progress
     from audit.errors import InputError
     from procedures.registry import available_procedures
@@ -133,7 +133,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     if progress:
         Progress(0, "step").stage(f"{chosen.title}: exact overturning of its components under "
                                   f"{len(entries)} records scaled to each PGV stripe")
-    tables = audit_procedure(chosen, [e.id for e in entries], [e.motion for e in entries])
+    tables = run_fragility(chosen, [e.id for e in entries], [e.motion for e in entries])
     return FragilityResult(chosen, tables, records if isinstance(records, str) and where.on_ground
                            else suite.description)
 

@@ -91,7 +91,7 @@ def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
     """
     from audit.engine.shared import fields as check
     from audit.engine.shared.progress import Progress
-    from audit.engine.validation.grid import ValidationSettings
+    from audit.engine.validation.settings import ValidationSettings
     from audit.engine.validation.pipeline import run_validation
     from audit.errors import InputError
     from records.campaign import campaign_geometry, read_campaign

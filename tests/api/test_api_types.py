@@ -63,10 +63,10 @@ def _no_work(monkeypatch):
     import audit.physics.rocking
     import records.campaign
     for module, name in ((audit.engine.check.pipeline, "run_check"),
-                         (audit.engine.run.pipeline, "audit_suite"),
-                         (audit.engine.design.pipeline, "design_level_audit"),
+                         (audit.engine.run.pipeline, "run_audit"),
+                         (audit.engine.design.pipeline, "run_margins"),
                          (audit.engine.validation.pipeline, "run_validation"),
-                         (audit.engine.fragility.pipeline, "audit_procedure"),
+                         (audit.engine.fragility.pipeline, "run_fragility"),
                          (audit.api.rocking, "simulate"),
                          (audit.physics.rocking, "rocking_spectrum"),
                          (audit.physics.response_spectra, "response_spectra"),

@@ -169,7 +169,8 @@ def test_campaign_motion_too_short_for_the_band_pass(workdir, capsys):
 def test_band_pass_refuses_exactly_what_scipy_cannot_filter():
     # the oracle is scipy's own zero-phase filter on the same design: it raises ValueError
     # for a signal no longer than its padding; the guard must refuse exactly those lengths
-    from audit.engine.validation.grid import ValidationSettings, band_passed
+    from audit.engine.validation.grid import band_passed
+    from audit.engine.validation.settings import ValidationSettings
     settings = ValidationSettings()
     sos = butter(4, [settings.highpass_hz, settings.lowpass_hz], "bandpass", fs=100.0,
                  output="sos")
@@ -188,7 +189,8 @@ def test_band_pass_refuses_exactly_what_scipy_cannot_filter():
 
 
 def test_band_pass_above_the_nyquist_frequency_is_refused():
-    from audit.engine.validation.grid import ValidationSettings, band_passed
+    from audit.engine.validation.grid import band_passed
+    from audit.engine.validation.settings import ValidationSettings
     motion = GroundMotion("m", np.sin(np.arange(500) * 0.3), 0.04, source="m.csv")
     # Nyquist 1/(2 × 0.04 s) = 12.5 Hz, below a 20 Hz high-pass
     with pytest.raises(InputError, match=r"^m\.csv: .*Nyquist frequency 12\.5 Hz"):

@@ -19,7 +19,7 @@ SEARCH_ALPHAS, SEARCH_BISECTIONS = 20, 8
 
 def margins_cost(procedures, suite, settings: MarginsSettings,
                  runtime: Runtime) -> guards.Estimate:
-    """The work of :func:`audit.engine.design.pipeline.design_level_audit`: every block at every
+    """The work of :func:`audit.engine.design.pipeline.run_margins`: every block at every
     stripe, then the required-slenderness grid and its bisections; the spectra each procedure
     that reads the record's spectra (its rotation estimate) computes at each slenderness (once
     per record, scaled to every stripe) and at each of the search's.

@@ -112,7 +112,7 @@ class MarginsStripes:
 def margins_stripes(procedures, suite, settings: MarginsSettings,
                     runtime: Runtime) -> MarginsStripes:
     """Every record of ``suite`` scaled to the stripes, with the exact response of every block
-    and each procedure's prediction there (the arguments of :func:`run_margins`).
+    and each procedure's prediction there (the arguments of :func:`margins_tables`).
 
     Parameters
     ----------
@@ -168,7 +168,7 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
         resumed, where)
 
 
-def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
+def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
     """Multiple-stripe exact fragility of every block and each procedure's line against it.
 
     Parameters
@@ -253,4 +253,4 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
             "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
 
 
-__all__ = ["run_margins", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]
+__all__ = ["margins_tables", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]

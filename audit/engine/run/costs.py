@@ -16,7 +16,7 @@ RECORD_SPECTRA = 3
 
 
 def audit_cost(procedures, suite, settings: AuditSettings, runtime: Runtime) -> guards.Estimate:
-    """The work of :func:`audit.engine.run.pipeline.audit_suite`: every block solved once, twice
+    """The work of :func:`audit.engine.run.pipeline.run_audit`: every block solved once, twice
     more for the fragility flag (record × (1 ± ε)), once more per alternative model; the
     record's spectra and each procedure's at each slenderness.
 

@@ -14,8 +14,8 @@ from audit.errors import InputError
 from audit.engine.validation.baselines import scores
 from audit.engine.validation.cross_validation import MODEL, folds_by_record, out_of_fold
 from audit.engine.validation.fit import fit_block
-from audit.engine.validation.grid import (Intensities, ValidationSettings, band_passed,
-                                          intensities, overturning_grid)
+from audit.engine.validation.grid import Intensities, band_passed, intensities, overturning_grid
+from audit.engine.validation.settings import ValidationSettings
 
 PREDICTIONS_CSV = "predictions.csv"
 FITS_CSV = "validation-fits.csv"

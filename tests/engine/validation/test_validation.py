@@ -19,7 +19,8 @@ from conftest import REQUIRE_RECORDS, unavailable
 from audit.engine.validation.baselines import ThresholdFragility, VectorLogistic, scores
 from audit.engine.validation.cross_validation import folds_by_record
 from audit.engine.validation.fit import fit_block, slenderness_weights
-from audit.engine.validation.grid import ValidationSettings, band_passed, overturning_grid
+from audit.engine.validation.grid import band_passed, overturning_grid
+from audit.engine.validation.settings import ValidationSettings
 from audit.engine.validation.pipeline import fitted_restitution, methods_statement
 from audit.errors import InputError
 from audit.physics.block import Restitution
