@@ -120,12 +120,11 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     if not isinstance(procedure, str) or procedure not in found:
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
-    from audit.engine.shared.floors import on_floor
-    from audit.physics.building.floor import Floor
-    where = Floor.parse(floor=floor, building=building, building_model=building_model,
-                        building_damping=building_damping)
-    suite = on_floor(record_suite(records, dt_s=dt_s, units=units,
-                                  skip_bad_records=skip_bad_records), where)
+    from audit.engine.shared.design_site import DesignSite
+    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
+                            building_damping=building_damping)
+    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
+                                    skip_bad_records=skip_bad_records))
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")
@@ -134,7 +133,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         Progress(0, "step").stage(f"{chosen.title}: exact overturning of its components under "
                                   f"{len(entries)} records scaled to each PGV stripe")
     tables = run_fragility(chosen, [e.id for e in entries], [e.motion for e in entries])
-    return FragilityResult(chosen, tables, records if isinstance(records, str) and where.on_ground
+    return FragilityResult(chosen, tables, records if isinstance(records, str) and site.floor.on_ground
                            else suite.description)
 
 
