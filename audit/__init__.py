@@ -6,7 +6,7 @@ Shortcomings of Design Guidelines*, PEER 2001/07.
 The Python API (:mod:`audit.api`) is here too: ``audit.Block``, ``audit.rock``, ``audit.run``,
 ``audit.margins``, ``audit.check``, ``audit.risk``, ``audit.fragility``, ``audit.validate``,
 ``audit.rocking_spectrum``, ``audit.design_spectrum``, ``audit.load_result``,
-``audit.floor_motion`` (loaded on first use, so that the command line starts light).
+``audit.floor_motion``, ``audit.record_pulses`` (loaded on first use, so that the command line starts light).
 """
 
 __version__ = "0.1.0"
@@ -24,7 +24,7 @@ G = 9.81
 _API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
         "run", "margins", "fragility", "design_suite", "risk", "read_hazard", "check",
         "CheckResult", "validate", "ValidationResult", "rocking_spectrum", "response_spectra",
-        "design_spectrum", "load_result", "floor_motion", "FloorMotion")
+        "design_spectrum", "load_result", "floor_motion", "FloorMotion", "record_pulses")
 
 
 def __getattr__(name):

@@ -73,6 +73,9 @@ class Procedure:
     #: Settable parameters (:class:`~procedures.parameters.Parameter`), checked when an
     #: instance is constructed (:func:`~procedures.parameters.check_parameters`).
     parameters: ClassVar[tuple] = ()
+    #: A sentence ``check`` adds to the basis of the procedure's verdicts: where an input the
+    #: guideline leaves to the user comes from (e.g. a pulse's period).
+    basis_note: ClassVar[str] = ""
     #: Figure series of the reference report that this procedure's audit reproduces.
     figure_series: ClassVar[str] = ""
     #: True when the recorded acceleration itself is needed (its spectrum, its PGA).

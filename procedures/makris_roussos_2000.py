@@ -14,13 +14,20 @@ the minimum overturning amplitude a_p0. Variants:
 Small-angle αg as published; ``tan_alpha`` uses g tan α instead. The pulse comes from the
 record itself when it is an analytic pulse (its shape, amplitude and period), else from the
 record's catalogue: Table 5.1's main-pulse period with the record's PGA as a_p, and a
-one-cosine (type B, forward-and-back) pulse assumed, the shape of the built-in pulse suite. A
-record with neither is not audited ("no pulse"). The equations were transcribed from the
-papers by the project and tested against numbers worked by hand.
+one-cosine (type B, forward-and-back) pulse assumed, the shape of the built-in pulse suite.
+Any other real record is classified by Shahi & Baker (2014) (:mod:`audit.physics.pulses`): a
+pulse-like record is judged with T_p = 1/f_p and a_p = the peak acceleration of the
+Mavroeidis & Papageorgiou pulse fitted to the extracted pulse (the extracted pulse is a sum of
+db4 wavelets whose own acceleration is rough), along the record's component, one-cosine
+assumed; the basis names Shahi & Baker's T_p and candidate too, since the two periods differ by
+up to ~20 %. A record that is not pulse-like is not audited ("not pulse-like (PI …)"). The
+equations were transcribed from the papers by the project and tested against numbers worked
+by hand.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,6 +40,7 @@ from audit.physics.overturning_criteria import (HALF_SINE, ONE_COSINE, ONE_SINE,
                                                 impulse_minimum_amplitude,
                                                 linear_minimum_amplitude,
                                                 one_sine_no_impact_amplitude)
+from audit.physics.pulses.record_pulse import record_pulse
 from procedures.base import EXACT_OVERTURNING, Check, Procedure
 
 PUBLISHED, EXACT_LINEAR, HOUSNER = "published", "exact-linear", "housner"
@@ -41,16 +49,30 @@ _SHAPES = {"cosine": ONE_COSINE, "sine": ONE_SINE}
 
 
 def pulse_of(entry):
-    """(shape, a_p [m/s²], T_p [s], where from) of a record's pulse, or None."""
+    """(shape, a_p [m/s²], T_p [s], where from) of a record's pulse, or (why not) a string."""
     motion = entry.motion
-    if motion is not None and motion.pulse is not None:
+    if motion is None:
+        return "no record"
+    if motion.pulse is not None:
         pulse = motion.pulse
         return _SHAPES[pulse.shape], pulse.amplitude, pulse.period_s, "the analytic pulse"
     facts = entry.facts
-    if motion is not None and facts is not None and facts.pulse_period_s:
+    if facts is not None and facts.pulse_period_s:
         return (ONE_COSINE, motion.pga, facts.pulse_period_s,
                 "Table 5.1's T_p with the record's PGA, one-cosine assumed")
-    return None
+    found = record_pulse(entry)
+    if math.isnan(found.pulse_indicator):
+        return f"no pulse identified: {found.classified}"
+    if not found.pulse_like:
+        return (f"not pulse-like (PI {found.pulse_indicator:.2f} ≤ 0, Shahi & Baker 2014 on "
+                f"{found.classified})")
+    fit = found.fit
+    return (ONE_COSINE, found.amplitude_m_s2, fit.period_s,
+            f"T_p = 1/f_p of the Mavroeidis-Papageorgiou pulse fitted to the Shahi & Baker "
+            f"(2014) pulse (their T_p = {found.tp_s:.3g} s, candidate {found.candidate}, "
+            f"PI {found.pulse_indicator:.1f}, θ = {found.direction_deg:.0f}° on "
+            f"{found.classified}); a_p its peak acceleration × {abs(found.component_factor):.2f} "
+            f"along this component; one-cosine assumed")
 
 
 def minimum_amplitude_ratio(frequency_ratio, shape: str, variant: str):
@@ -90,7 +112,13 @@ class MakrisRoussos2000(Procedure):
     damping_law = "no equivalent damping: a limit state on the pulse's amplitude and period"
     spectrum_source = ("a_p0/(αg) = 1 + β ω_p/p (β = 1/2 half-sine, 1/6 one-sine, 1/4 "
                        "one-cosine); pulse from the analytic pulse, or Table 5.1's T_p with the "
-                       "record's PGA (one-cosine assumed)")
+                       "record's PGA (one-cosine assumed), else the Mavroeidis-Papageorgiou "
+                       "pulse fitted to the Shahi & Baker (2014) pulse of a pulse-like record")
+    basis_note = ("T_p and a_p of each record: the analytic pulse's; for a seed record, Table "
+                  "5.1's T_p with its PGA; else T_p = 1/f_p and a_p = the peak acceleration "
+                  "along the component of the Mavroeidis-Papageorgiou pulse fitted to the Shahi "
+                  "& Baker (2014) pulse (not their wavelet T_p); one-cosine assumed; a record "
+                  "that is not pulse-like is not judged")
     requires_motion = True
     estimates_rotation = False
     alpha_per_block = True
@@ -102,8 +130,10 @@ class MakrisRoussos2000(Procedure):
 
     def unmet_requirements(self, entry) -> str | None:
         reason = super().unmet_requirements(entry)
-        if reason is None and pulse_of(entry) is None:
-            return "no pulse: neither an analytic pulse nor a Table 5.1 pulse period"
+        if reason is None:
+            pulse = pulse_of(entry)
+            if isinstance(pulse, str):
+                return pulse
         return reason
 
     def checks(self, entry, p, alpha_rad: float, r: float, context, g: float = G) -> list[Check]:

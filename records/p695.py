@@ -253,3 +253,17 @@ def shipped_seed_suite() -> RecordSuite:
         f"the seed records shipped in {PACKAGE} {package_version()}: Rinaldi, Sylmar and "
         "Erzincan, fault-normal components of the FEMA P695 near-field set; the other four "
         f"seed records are not shipped: {ADD_SEED_RECORDS}"))
+
+
+def station_components(metadata: dict) -> tuple[list[dict], list[np.ndarray]] | None:
+    """Both horizontal components of the P695 record a component belongs to, as the package
+    gives them (not scaled), component a first: (metadata dicts, accelerations [g]); None
+    where ``metadata`` is not a P695 component's (no ``p695_record_set``)."""
+    name = metadata.get("p695_record_set")
+    if name is None:
+        return None
+    components, accelerations = record_set(name)
+    pair = sorted((meta for meta in components
+                   if meta["p695_record_id"] == metadata["p695_record_id"]),
+                  key=lambda meta: meta["p695_component"])
+    return pair, [accelerations[meta["id"]] for meta in pair]

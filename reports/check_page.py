@@ -19,6 +19,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from audit.engine.check.risk import quiet_risk
+from audit.engine.check.spectrum_read import reading_words
 from audit.engine.check.words import anchorage_words, exact_width_words, metres
 from audit.engine.design.risk import LognormalFragility, StripeFragility
 from records.hazard import HazardCurve
@@ -102,7 +103,10 @@ def _fragility(obj, document, colours) -> dict:
              "name": "exact, bootstrap band over records (90 %)", "hoverinfo": "skip"},
             {"type": "scatter", "mode": "markers", "x": levels.tolist(),
              "y": (np.asarray(stripes["overturned"]) / stripes["records"]).tolist(),
-             "name": "exact, share of records at each stripe", "marker": {"color": "#000"},
+             "name": "exact, share of records at each stripe", "marker": {
+                 "color": "#000", "symbol": ["circle" if on else "circle-open"
+                                             for on in stripes.get("fitted",
+                                                                   [True] * levels.size)]},
              "hovertemplate": (f"{im_name(im)} = %{{x:.3g}} {unit}: %{{y:.0%}} overturn"
                                "<extra></extra>")}]
     if exact["median_g"]:
@@ -112,13 +116,14 @@ def _fragility(obj, document, colours) -> dict:
                      "name": f"exact, lognormal fit (median {exact['median_g']:.3g} {unit}, "
                              f"β {exact['beta']:.2f})", "line": {"color": "#000", "width": 2}})
     site = exact["site_im_g"]
-    data.append({"type": "scatter", "mode": "markers", "x": [site],
-                 "y": [exact["p_overturn_at_site"]], "marker": {"color": SITE_COLOUR, "size": 12,
-                                                                "symbol": "star"},
-                 "name": f"at the site, {im_name(im)} = {site:.3g} "
-                         f"{unit}: P = "
-                         f"{exact['p_overturn_at_site']:.0%} "
-                         f"[{exact['p_band'][0]:.0%}–{exact['p_band'][1]:.0%}]"})
+    at = exact["p_at_site"]
+    p, (low, high) = exact["p_overturn_at_site"], exact["p_band"]
+    data.append({"type": "scatter", "mode": "markers", "x": [site], "y": [p],
+                 "error_y": {"type": "data", "symmetric": False, "array": [high - p],
+                             "arrayminus": [p - low], "color": SITE_COLOUR},
+                 "marker": {"color": SITE_COLOUR, "size": 12, "symbol": "star"},
+                 "name": f"at the site, {im_name(im)} = {site:.3g} {unit}: P "
+                         f"{'' if at['bound'] else '= '}{at['headline']} ({'lognormal' if at['estimator'] == 'lognormal' else 'count at the site'})"})
     shapes = [vertical_line(site, SITE_COLOUR, "dot")]
     drawn = set()
     for proc in obj["procedures"]:
@@ -166,7 +171,9 @@ def render_check_page(folder) -> str:
                 "width_10": exact_width_words(obj["exact"], "10"),
                 "width_50": exact_width_words(obj["exact"], "50"),
                 "other_im_name": (im_name(obj["exact"]["other_im"]["im"])
-                                  if obj["exact"].get("other_im") else None)}
+                                  if obj["exact"].get("other_im") else None),
+                "spectrum_notes": [reading_words(p) for p in obj["procedures"]
+                                   if p.get("other_spectrum")]}
                for obj in document["objects"]]
     return page_templates().get_template("check.html.j2").render(
         document=document, objects=objects, plotly=get_plotlyjs(),

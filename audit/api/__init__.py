@@ -47,7 +47,8 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           "REPORT_HTML": "audit.engine.run.results",
           # the one place records are read, the suites built in, and an analytic pulse
           "record_suite": "audit.api.inputs", "built_in_suites": "audit.api.inputs",
-          "PULSE_SUITE": "records", "one_pulse": "records",
+          "PULSE_SUITE": "records", "one_pulse": "records", "mp_pulse": "records",
+          "record_pulses": "audit.api.pulses", "pulse_words": "audit.api.pulses",
           # the figures the command line saves as PNG
           "new_figure": "reports.figures", "png_bytes": "reports.figures",
           "draw_rocking_spectra": "reports.figures", "draw_response_spectra": "reports.figures"}
@@ -78,5 +79,6 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
            "read_objects", "parse_block_text", "object_by_slenderness",
            "floor_motion", "FloorMotion", "record_suite", "built_in_suites", "PULSE_SUITE",
-           "one_pulse", "new_figure", "png_bytes", "draw_rocking_spectra",
+           "one_pulse", "mp_pulse", "record_pulses", "pulse_words",
+           "new_figure", "png_bytes", "draw_rocking_spectra",
            "draw_response_spectra"]

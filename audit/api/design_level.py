@@ -105,8 +105,9 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         Intensity measure: ``pga`` [g], ``pgv`` [m/s] or ``sa:T`` (T in s) [g]; default
         ``sa:1.0``, or the hazard curve's IMT.
     stripes : float or sequence of float, optional
-        Intensity levels, increasing [unit of ``im``]; default 24 levels, 0.2–5 × the design
-        intensity or the suite's median.
+        Intensity levels, increasing [unit of ``im``]; default the fixed lattice, 27 levels
+        2^(k/4), k = −16 … 10 (0.0625–5.66 in the IM's unit,
+        :func:`audit.engine.shared.lattice.stripe_lattice`).
     alpha_deg : float or sequence of float
         Slendernesses [degrees], 0 < α < 45 (may be empty when ``blocks`` are given).
     size_s : float or sequence of float, optional

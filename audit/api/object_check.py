@@ -73,7 +73,7 @@ class CheckResult(Files):
 
     def _repr_html_(self) -> str:
         table = self.table[["object", "procedure", "verdict", "demand", "capacity", "unit",
-                            "required_width_m", "p_overturn_at_site",
+                            "required_width_m", "p_overturn_at_site", "p_estimator",
                             "exact_required_width_m_10pct"]]
         return ("".join(f"<p>{html.escape(s)}</p>" for s in self.sentences)
                 + table.to_html(index=False, float_format=lambda v: f"{v:.3g}", na_rep="—"))
@@ -129,7 +129,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           building: float | None = None, building_model: str | None = None,
           building_damping: float = DEFAULT_BUILDING_DAMPING,
           limit_state: str = BOTH, params: dict | None = None,
-          mass_kg: float | None = None) -> CheckResult:
+          mass_kg: float | None = None, guideline_spectrum: str = "ground") -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check.risk`).
@@ -223,6 +223,11 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     mass_kg : float, optional
         The mass of each object [kg]: the anchorage forces of the component provisions it
         fails also in kN.
+    guideline_spectrum : {"ground", "floor"}
+        On a floor, the spectrum FEMA 356 (a guideline reading the site's design spectrum)
+        reads: the ground's design spectrum ``site`` as its text is written (the default), or
+        the floor's response spectrum (:mod:`audit.engine.check.spectrum_read`); its entry
+        gives its verdict on the other too.
 
     Returns
     -------
@@ -248,6 +253,10 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     site = DesignSite.parse(site=site, site_override=True, scale_to_site=False,
                             ntc_site=ntc_site, floor=floor, building=building,
                             building_model=building_model, building_damping=building_damping)
+    if settings.guideline_spectrum == "floor" and site.floor.on_ground:
+        raise InputError("guideline_spectrum: 'floor' reads the floor's response spectrum; the "
+                         "objects stand on the ground (give floor and building)",
+                         "guideline_spectrum")
     chosen, provision_params = parameters_of(params, procedures_of(procedures))
     if mass_kg is not None:
         mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,

@@ -17,13 +17,13 @@ import warnings
 
 from audit import __version__
 from audit.cli import (check, design_spectrum, floor_motion, fragility, listing, margins, options,
-                       report, rock, run, spectrum, validate)
+                       pulse, report, rock, run, spectrum, validate)
 from audit.cli.flags import with_flags
 from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible
 from audit.errors import InputError, InputWarning
 
 COMMANDS = (listing, check, rock, spectrum, design_spectrum, floor_motion, run, margins, fragility,
-            report, validate)
+            report, validate, pulse)
 
 
 #: A value that starts with a minus sign but is numbers, not an option: ``-118,34``,

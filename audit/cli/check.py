@@ -51,7 +51,8 @@ def add_parser(sub):
                    help="registered procedure name ({registered}), or 'all'")
     p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
                    help="record suite (see 'list'), manifest, file or folder; each record is "
-                        "scaled to the site's intensity and to stripes around it")
+                        "scaled to the site's intensity and to a fixed lattice of stripes, "
+                        "0.0625–5.66 g")
     options.add_record_file_options(p)
     p.add_argument("--im", default=None, metavar="pga|sa:T",
                    help=f"intensity measure (default {DEFAULT_IM}, or the --hazard file's IMT): "
@@ -80,6 +81,11 @@ def add_parser(sub):
     p.add_argument("--mass", type=options.POSITIVE, metavar="KG",
                    help="the mass of each object [kg]: the anchorage forces of the component "
                         "provisions it fails also in kN")
+    p.add_argument("--guideline-spectrum", default="ground", choices=("ground", "floor"),
+                   help="on a floor, the spectrum FEMA 356 reads: the ground's design spectrum "
+                        "of --site as its text is written (default), or the floor's response "
+                        "spectrum (the median of the floor motions at the site, as S_XS, S_X1); "
+                        "its entry gives its verdict on the other too")
     options.add_restitution_option(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -128,10 +134,14 @@ def run(args) -> int:
     site = options.design_site(args)
     out_dir = check_output_dir(Path(args.out)) if args.out else None
     objects = objects_of(args)
+    if args.guideline_spectrum == "floor" and not args.floor:
+        raise InputError("--guideline-spectrum floor: reads the floor's response spectrum; the "
+                         "objects stand on the ground (give --floor Z/H and --building T1)")
     start = time.perf_counter()
     values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
               "risk_target": args.risk_target, "friction": args.friction,
-              "limit_state": args.limit_state, **options.floor_values(args)}
+              "limit_state": args.limit_state,
+              "guideline_spectrum": args.guideline_spectrum, **options.floor_values(args)}
     if args.im is not None:  # without it, the default or the hazard file's IMT
         values["im"] = args.im
     if args.hazard:

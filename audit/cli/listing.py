@@ -15,7 +15,8 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.api import PULSE_SUITE, available_procedures, built_in_suites, record_suite
+    from audit.api import (PULSE_SUITE, available_procedures, built_in_suites, pulse_words,
+                           record_suite)
     print("Procedures:")
     for name, cls in available_procedures().items():
         print(f"  {name:<16} {cls.title} — {cls.damping_law}; {cls.spectrum_source}")
@@ -31,6 +32,7 @@ def run(args) -> int:
         print(f"  {name:<26} {holds}")
     suite = record_suite(args.records, **options.reading(args))
     print(f"\nRecords ({suite.description}):")
+    unknown = 0
     for entry in suite:
         if entry.missing:
             state = f"MISSING: {entry.missing_reason}"
@@ -44,6 +46,13 @@ def run(args) -> int:
         facts = seismology(entry.metadata)
         if facts:
             print(f"  {'':<20} {facts}")
+        pulse = "" if entry.missing or entry.motion.pulse else pulse_words(entry)
+        if pulse:
+            print(f"  {'':<20} {pulse}")
+        unknown += bool(not entry.missing and not entry.motion.pulse and not pulse)
+    if unknown:
+        print(f"\n{unknown} records' velocity pulses not identified yet (list reads them from "
+              f"the cache): python -m audit pulse --records ...")
     return 0
 
 

@@ -34,8 +34,8 @@ def add_parser(sub):
                         f"pseudo-spectral acceleration ω²·S_d at T [g] (default: {DEFAULT_IM}, "
                         "or the --hazard file's IMT)")
     p.add_argument("--stripes", metavar="IM,...",
-                   help="intensity levels (unit of --im); default 24 levels, geometric, "
-                        "0.2–5 × the site's design intensity (or the suite's median)")
+                   help="intensity levels (unit of --im); default the fixed lattice, 27 "
+                        "levels 2^(k/4) from 0.0625 to 5.66 (whatever the site)")
     p.add_argument("--alpha", default=alpha_text(), metavar="DEG,...",
                    help="slendernesses [degrees]")
     p.add_argument("--size", default=sizes_text(DEFAULT_MARGINS_SIZES), metavar="START:STOP:STEP",

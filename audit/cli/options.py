@@ -257,10 +257,17 @@ def motion(args) -> dict:
             raise InputError("give either --record or --pulse, not both")
         if args.amplitude is None or args.pulse_period is None:
             raise InputError("--pulse needs --amplitude G and --pulse-period S")
+        if args.pulse == "mp":
+            if args.gamma is None or args.nu is None:
+                raise InputError("--pulse mp needs --gamma and --nu DEG")
+            from audit.api import mp_pulse
+            return {"motion": mp_pulse(args.amplitude, args.pulse_period, args.gamma, args.nu)}
+        if args.gamma is not None or args.nu is not None:
+            raise InputError("--gamma and --nu: only for --pulse mp")
         from audit.api import one_pulse
         return {"motion": one_pulse(args.pulse, args.amplitude, args.pulse_period)}
     if not args.record:
-        raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine")
+        raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine|mp")
     return {"motion": args.record, "records": args.records, **reading(args)}
 
 
@@ -300,9 +307,17 @@ def add_excitation_options(parser):
     add_records_option(parser)
     add_skip_bad_records_option(parser)
     parser.add_argument("--record", metavar="ID_OR_PATH", help="record id of the suite, or a file")
-    parser.add_argument("--pulse", choices=("cosine", "sine"), help="analytic one-cycle pulse")
-    parser.add_argument("--amplitude", type=POSITIVE, metavar="G", help="pulse amplitude a_p [g]")
-    parser.add_argument("--pulse-period", type=POSITIVE, metavar="S", help="pulse period T_p [s]")
+    parser.add_argument("--pulse", choices=("cosine", "sine", "mp"),
+                        help="analytic pulse: one-cycle cosine or sine, or mp (Mavroeidis & "
+                             "Papageorgiou 2003, with --gamma and --nu)")
+    parser.add_argument("--amplitude", type=POSITIVE, metavar="G",
+                        help="pulse amplitude a_p [g] (mp: its peak acceleration)")
+    parser.add_argument("--pulse-period", type=POSITIVE, metavar="S",
+                        help="pulse period T_p [s] (mp: 1/f_p)")
+    parser.add_argument("--gamma", type=number("must exceed 1", 1, low_open=True),
+                        help="mp pulse: oscillatory character gamma > 1")
+    parser.add_argument("--nu", type=number("must lie between -360 and 360 degrees", -360, 360),
+                        metavar="DEG", help="mp pulse: phase nu [degrees]")
 
 
 def add_hazard_options(parser):

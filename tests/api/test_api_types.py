@@ -165,6 +165,8 @@ CASES = {
     "floor_motion": (audit.floor_motion, {"motion": _pulse(), "building": 1.0},
                      {"motion": OBJECTS, "building": NUMBER, "floor": NUMBER,
                       "building_damping": NUMBER, **READING}),
+    "record_pulses": (audit.record_pulses, {"records": "pulses"},
+                      {"records": PATH, "plot": FLAG, **READING}),
     "floor_motion by id": (audit.floor_motion, {"motion": "pacoima_dam_1971", "building": 1.0},
                            {"records": PATH}),
 }

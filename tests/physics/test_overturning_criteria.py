@@ -122,10 +122,10 @@ def test_makris_roussos_check_on_a_one_cosine_pulse():
     housner = MakrisRoussos2000(variant="housner").checks(entry, p, alpha, 0.9, None, G)[0]
     np.testing.assert_allclose(housner.capacity_m_s2,
                                alpha * G * np.sqrt(1 + (math.pi / p) ** 2), rtol=1e-12)
-    # a record without a pulse is not audited, with that reason
+    # a record without a pulse is classified, found not pulse-like, and not audited
     from records import GroundMotion
     plain = RecordEntry("plain", GroundMotion("plain", np.zeros(10), 0.01))
-    assert "no pulse" in MakrisRoussos2000().unmet_requirements(plain)
+    assert "not pulse-like (PI -" in MakrisRoussos2000().unmet_requirements(plain)
 
 
 def test_housner_check_reads_the_peak_velocity_spectrum():

@@ -304,3 +304,26 @@ def test_a_batch_beyond_the_budget_runs_compiled_from_its_first_run(monkeypatch)
     assert tiers.tiered(oscillator._history, 0.5 * budget) is slow
     tiers.expect(0.6 * budget)
     assert tiers.tiered(oscillator._history, 1e-9) is oscillator._history
+
+
+def test_blocks_the_record_cannot_lift_are_at_rest_as_simulate_has_them(seed_suite):
+    """A block whose g tan α is at or above the scaled record's peak |üg| is answered without
+    the kernel (θ = 0, at rest): every field is ``simulate``'s for it, bit for bit, on both
+    sides of the threshold (just below it the block uplifts and is solved)."""
+    motion = seed_suite.get("pacoima_dam_1971").motion
+    alpha = math.radians(15.0)
+    # the record scaled so its peak is 2, 1.001, 1, 0.999 and 0.5 × g tan α
+    scales = (G * math.tan(alpha) / float(np.max(np.abs(motion.acceleration)))
+              * np.array([2.0, 1.001, 1.0, 0.999, 0.5]))
+    sizes, alphas = np.full(scales.size, 2.0), np.full(scales.size, alpha)
+    peaks = rocking_blocks(motion, sizes, alphas, jobs=2, scale=scales)
+    singles = [simulate(RigidBlock.from_size(2.0, alpha), motion.scaled(float(scale)))
+               for scale in scales]
+    assert [s.uplifted for s in singles] == [True, True, False, False, False]
+    for name, single_name in [("theta_peak", "peak_rotation"),
+                              ("omega_peak", "peak_angular_velocity"),
+                              ("theta_after", "peak_rotation_after_excitation"),
+                              ("overturned", "overturned"), ("uplifted", "uplifted")]:
+        np.testing.assert_array_equal(getattr(peaks, name),
+                                      [getattr(s, single_name) for s in singles], err_msg=name)
+    assert np.all(np.isnan(peaks.required_friction[2:]))  # no reactions asked for

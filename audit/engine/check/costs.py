@@ -7,8 +7,9 @@ from __future__ import annotations
 import math
 
 from audit.engine.shared import guards
+from audit.engine.shared.lattice import stripe_lattice
 from audit.engine.shared.runtime import Runtime
-from audit.engine.check.pipeline import SITE_STRIPES, TARGETS
+from audit.engine.check.pipeline import LATTICE_EVERY, TARGETS
 from audit.engine.check.settings import CheckSettings
 from audit.engine.check.widths import SCAN_FRACTIONS, SCAN_WIDTHS, WIDTH_TOLERANCE
 
@@ -48,7 +49,7 @@ def check_cost(procedures, suite, objects: int, settings: CheckSettings,
     runtime : Runtime
         How it runs (the number of jobs).
     """
-    stripes = 2 * SITE_STRIPES + 1
+    stripes = stripe_lattice(LATTICE_EVERY).size + 1  # and the site's own
     targets = len(TARGETS) + (settings.hazard is not None)
     per_object = 1 + SCAN_WIDTHS + targets * width_halvings()
     per_object += len(procedures) if settings.hazard is not None else 0

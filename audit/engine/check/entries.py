@@ -7,7 +7,7 @@ exceeding that same limit.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
@@ -55,13 +55,17 @@ class GuidelineJudgement(NamedTuple):
 @dataclass(frozen=True)
 class ExactRotations:
     """The object's exact response at the check's stripes: peak rotations and overturning
-    (record, stripe), the stripes, the site's intensity and P(overturn) there."""
+    (record, stripe), the stripes (the site's among them), the site's intensity and
+    P(overturn) there, and which stripes the fragility is fitted on; the answers per limit found
+    so far (one per limit rotation: guidelines share theirs)."""
 
     theta_rad: np.ndarray
     overturned: np.ndarray
     levels: np.ndarray
     site_im: float
     p_overturn: float
+    fitted: np.ndarray | None = None
+    found: dict = field(default_factory=dict)
 
     def p_exceed(self, limit_rad: float) -> float:
         """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or
@@ -72,8 +76,11 @@ class ExactRotations:
         limit_rad : float
             The limit rotation [rad].
         """
-        return p_exceed_at_site(self.theta_rad, self.overturned, self.levels, self.site_im,
-                                limit_rad, self.p_overturn)
+        if limit_rad not in self.found:
+            self.found[limit_rad] = p_exceed_at_site(
+                self.theta_rad, self.overturned, self.levels, self.site_im, limit_rad,
+                self.p_overturn, self.fitted)
+        return self.found[limit_rad]
 
 
 def _blank(proc, limit_state: str) -> dict:
@@ -139,7 +146,9 @@ def procedure_entries(guideline: GuidelineJudgement, b: int, exact: ExactRotatio
         entry.update(
             verdict="fails" if math.isinf(demand) else verdict(demand, capacity),
             demand=_number(demand), capacity=_number(capacity), unit=readings[0].unit,
-            basis=basis(rule, len(readings), readings[0].unit), share_of_records_overturning=share,
+            basis=basis(rule, len(readings), readings[0].unit) + (
+                f"; {proc.basis_note}" if proc.basis_note else ""),
+            share_of_records_overturning=share,
             exact_p_exceed=exact.p_exceed(readings[0].theta_limit_rad),
             required_width_m=_number(required), quantity=readings[0].quantity,
             factors=readings[0].factors,

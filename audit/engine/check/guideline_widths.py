@@ -16,19 +16,19 @@ from audit.engine.check.entries import GuidelineJudgement, rule_width
 from audit.engine.check.limits import MEDIAN, limit_readings, suite_rule
 from audit.engine.check.settings import CheckSettings
 from audit.engine.check.guideline_search import accepted_width, overturns_at
-from audit.engine.design.stripes import half_crossing
 
 
 @dataclass
 class GuidelineWidths:
-    """What the guidelines' width searches of a check read: the records' parts, the stripes,
-    the answers of procedures that read only the site, the records scaled to the site
+    """What the guidelines' width searches of a check read: the records' parts, each
+    procedure's line on the stripes by block
+    (:func:`~audit.engine.design.guideline_lines.guideline_lines`, as ``margins`` draws it), the answers of procedures that read only the site, the records scaled to the site
     (``site_context(i)``) and the settings; and the suite-rule widths found so far. A suite
     rule's width depends on the object's height alone (its search spans 1–99 % of the height),
     so the objects of one height share it, and a width's evaluation gives every limit state."""
 
     parts: list
-    levels: np.ndarray
+    lines: dict
     site_judged: dict
     site_context: object
     settings: CheckSettings
@@ -55,11 +55,7 @@ class GuidelineWidths:
                    [i for i, part in enumerate(parts) if proc.name in part.judged])
         mine = ([self.site_judged[proc.name]] if site_only
                 else [parts[i].judged[proc.name] for i in records])
-        evaluated = np.array([part.stripes.evaluated[proc.name] for part in parts])
-        fraction = (np.mean([part.stripes.predicted[proc.name][:, b]
-                             for part, ok in zip(parts, evaluated) if ok], axis=0)
-                    if evaluated.any() else None)
-        line = half_crossing(self.levels, fraction) if fraction is not None else math.nan
+        line = float(self.lines[proc.name][b])
         width = math.nan
         if mine:
             def refine(which, widths):

@@ -207,11 +207,15 @@ def verdict(demand: float, capacity: float) -> str:
 
 
 def p_exceed_at_site(theta_rad, overturned, levels, site_im: float, limit_rad: float,
-                     p_overturn: float) -> float:
+                     p_overturn: float, fitted=None) -> float:
     """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or
-    overturning), from the records' exact peaks at the stripes (shaped (record, stripe)): a
-    lognormal fitted to the counts, as P(overturn) is. Exceeding a limit ≤ α includes
-    overturning, so the answer is at least ``p_overturn`` even where the two fits cross.
+    overturning), from the records' exact peaks at the stripes (shaped (record, stripe)), by the
+    rule of P(overturn) at the site (:mod:`audit.engine.design.site_probability`): the lognormal
+    fitted to the lattice stripes' counts (its maximum by Fisher scoring,
+    :func:`~audit.engine.design.lognormal_fit.lognormal_fits`), unless the count at the site's
+    own stripe rejects it (the rule reads no band, so none is drawn). A limit no record reaches short of overturning is P(overturn)
+    itself; exceeding a limit ≤ α includes overturning, so the answer is at least
+    ``p_overturn`` even where the two estimates cross.
 
     Parameters
     ----------
@@ -220,24 +224,28 @@ def p_exceed_at_site(theta_rad, overturned, levels, site_im: float, limit_rad: f
     overturned : array_like of bool
         Whether each record overturns the block at each stripe, shaped alike.
     levels : array_like of float
-        The stripes' intensities (in the IM's unit, e.g. [g]).
+        The stripes' intensities (in the IM's unit, e.g. [g]), the site's among them.
     site_im : float
         The site's intensity, in the same unit.
     limit_rad : float
         The limit rotation [rad].
     p_overturn : float
         P(overturn) at the site [-], the least the answer can be.
+    fitted : array_like of bool, optional
+        Which stripes the lognormal is fitted on (the lattice's); every one when None.
     """
-    from audit.engine.design.lognormal_fit import fit_lognormal
-    exceeded = np.asarray(overturned, dtype=bool) | (np.asarray(theta_rad) >= limit_rad)
-    counts = exceeded.sum(axis=0)
-    records = exceeded.shape[0]
-    try:
-        p = float(fit_lognormal(np.asarray(levels), np.full(counts.size, records),
-                                counts).probability(site_im))
-    except ValueError:  # no stripe exceeds, or every record at every stripe does
-        p = 1.0 if exceeded.all() else 0.0
-    return max(p, p_overturn)
+    from audit.engine.check.widths import probability_at_site
+    from audit.engine.design.site_probability import site_probability
+    overturned = np.asarray(overturned, dtype=bool)
+    exceeded = overturned | (np.asarray(theta_rad) >= limit_rad)
+    if np.array_equal(exceeded, overturned):
+        return p_overturn
+    levels = np.asarray(levels, dtype=float)
+    fitted = np.ones(levels.size, dtype=bool) if fitted is None else np.asarray(fitted)
+    model = float(probability_at_site(exceeded[:, fitted, None], levels[fitted], site_im)[0])
+    site = int(np.argmin(np.abs(levels - site_im)))
+    at = site_probability(model, None, int(exceeded[:, site].sum()), exceeded.shape[0])
+    return max(at.p, p_overturn)
 
 
 __all__ = ["LimitReading", "limit_readings", "wanted", "suite_rule", "suite_demand", "basis",

@@ -5,8 +5,10 @@ P(overturn | site) depends on the IM the records are scaled on: scaled to one S_
 records spread in PGA, and the reverse, so the same site gives a different P (three-fold for
 a slender block). The IM to use is that of the user's hazard (the hazard curve or the design
 value the site's intensity comes from); the other is shown so the difference is seen, not
-hidden. The records are scaled to the other IM's stripes around the design spectrum's value
-at it and solved exactly, as for the chosen IM.
+hidden. The records are scaled to the other IM's stripes (the same lattice with a stripe at the
+design spectrum's value at it) and solved exactly, the fragility fitted on the lattice and P at
+the site chosen between it and the count at the site's stripe, as for the chosen IM
+(:mod:`audit.engine.design.site_probability`).
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import numpy as np
 
 from audit.engine.check.widths import Family
 from audit.engine.shared.intensity import IntensityMeasure
-from audit.engine.design.lognormal_fit import fit_lognormal
+from audit.engine.design.site_probability import lattice_fragility, site_probability
 
 #: The other standard IM of each kind.
 PGA_IM = IntensityMeasure("pga")
@@ -35,8 +37,10 @@ def other_im(im: IntensityMeasure) -> IntensityMeasure:
     return SA1_IM if im.kind == "pga" else PGA_IM
 
 
-def other_im_answers(family: Family, objects, design_site: dict, levels_of) -> list[dict]:
-    """Per object, ``{im, site_im, p_overturn_at_site, median, beta}`` at the other IM.
+def other_im_answers(family: Family, objects, design_site: dict, levels_of, fitted_of,
+                     seed: int | None = None) -> list[dict]:
+    """Per object, ``{im, site_im, p_overturn_at_site, median, beta, p_at_site}`` at the other
+    IM (``p_at_site``: :meth:`~audit.engine.design.site_probability.SiteProbability.as_dict`).
 
     Parameters
     ----------
@@ -46,7 +50,11 @@ def other_im_answers(family: Family, objects, design_site: dict, levels_of) -> l
     design_site : dict
         S_XS, S_X1 [g]: the site's intensity at the other IM.
     levels_of : callable
-        ``levels_of(site_im)`` → the stripes around a site's intensity.
+        ``levels_of(site_im)`` → a check's stripes with a site's intensity.
+    fitted_of : callable
+        ``fitted_of(levels)`` → which of them the fragility is fitted on.
+    seed : int, optional
+        The bootstrap's seed (its default when None).
     """
     settings = family.settings
     im = other_im(settings.im)
@@ -55,16 +63,18 @@ def other_im_answers(family: Family, objects, design_site: dict, levels_of) -> l
     intensity = {e.id: im.of_record(e.motion, settings.free_motion_s) for e in family.entries}
     theirs = replace(family, levels=levels, intensity=intensity)
     overturned = theirs.overturned([o.height_m for o in objects], [o.width_m for o in objects])
+    fitted, site = fitted_of(levels), int(np.argmin(np.abs(levels - site_im)))
     out = []
     for b in range(len(objects)):
-        counts = overturned[:, :, b].sum(axis=0)
-        try:
-            fit = fit_lognormal(levels, np.full(levels.size, overturned.shape[0]), counts)
-            p, median, beta = float(fit.probability(site_im)), fit.median, fit.beta
-        except ValueError:  # no stripe overturns it, or every record at every stripe does
-            p, median, beta = (1.0 if counts.min() == overturned.shape[0] else 0.0), None, None
+        mine = overturned[:, :, b]
+        fit, boot = lattice_fragility(levels[fitted], mine[:, fitted], seed)
+        at_site = site_probability(
+            float(fit.probability(site_im)) if fit else None,
+            [float(v) for v in boot.probability_band(site_im)] if fit else None,
+            int(mine[:, site].sum()), mine.shape[0])
         out.append({"im": im.name, "im_unit": im.unit, "site_im": site_im,
-                    "p_overturn_at_site": p, "median": median, "beta": beta})
+                    "p_overturn_at_site": at_site.p, "median": fit.median if fit else None,
+                    "beta": fit.beta if fit else None, "p_at_site": at_site.as_dict()})
     return out
 
 

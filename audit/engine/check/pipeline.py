@@ -5,13 +5,16 @@ For every object (:mod:`audit.engine.check.objects`) and a FEMA 356 site (S_XS, 
 hazard level the user assesses), the suite's records are each scaled to the site's intensity
 (S_X1 for the default S_a(1 s); the design spectrum at the intensity measure otherwise; with a
 hazard curve and a return period, the curve's, while the guidelines keep the design spectrum:
-:mod:`audit.engine.check.site`) and to :data:`SITE_STRIPES` stripes either side, a factor :data:`STRIPE_STEP` apart: the design-level
-audit's unit of work (:func:`audit.engine.design.stripes.record_stripes`) on a stripe set around the
-site, not its whole grid. From it, per object:
+:mod:`audit.engine.check.site`) and to the fixed stripe lattice, every other level (√2 apart,
+:func:`check_levels`, :mod:`audit.engine.shared.lattice`): the design-level audit's unit of work
+(:func:`audit.engine.design.stripes.record_stripes`). From it, per object:
 
-* the exact multiple-stripe fragility (:func:`~audit.engine.design.lognormal_fit.fit_lognormal`) and its
-  P(overturn) at the site's intensity, with a band from a bootstrap over records
-  (:func:`~audit.engine.design.bootstrap.bootstrap_lognormal`);
+* the exact multiple-stripe fragility (:func:`~audit.engine.design.lognormal_fit.fit_lognormal`),
+  fitted on the lattice's stripes only, so it is the object's (with the record set and the
+  floor), not the site's; its P(overturn) at the site's intensity with a band from a bootstrap
+  over records (:func:`~audit.engine.design.bootstrap.bootstrap_lognormal`), beside the count at
+  the site's own stripe with its exact band, the headline the one the count does not contradict
+  (:mod:`audit.engine.design.site_probability`);
 * per procedure and limit state, its verdict at the site by its own acceptance criterion,
   demand against capacity (:mod:`audit.engine.check.limits`: NTC 2018's SLV and SLC on d/d₀,
   θ against α, Housner's energy check; the records' demands made one by the guideline's rule
@@ -28,11 +31,12 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from audit.engine.shared.blocks import BlockList
+from audit.engine.shared.lattice import on_lattice, with_site
 from audit.engine.check.risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check.settings import CheckSettings
 from audit.engine.check.site import site_intensity
@@ -41,13 +45,15 @@ from audit.engine.check.words import sentence
 from audit.engine.check.judgement import at_site, judge
 from audit.engine.check.record_part import CheckWork, check_record
 from audit.engine.check.guideline_widths import GuidelineWidths
+from audit.engine.check.spectrum_read import (FLOOR, GuidelineSpectra, floor_design_site,
+                                              floor_site)
 from audit.engine.check.widths import Family, exact_required_widths, probability_at_site
 from audit.engine.check.other_im import other_im_answers
 from audit.engine.check.component_checks import component_entries, component_provisions
 from audit.engine.shared.floors import floor_at_site
-from audit.engine.design.bootstrap import bootstrap_lognormal
+from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.check.width_family import width_answer
-from audit.engine.design.lognormal_fit import fit_lognormal
+from audit.engine.design.site_probability import lattice_fragility
 from audit.engine.design.stripes import StripeSettings
 from audit.engine.design.risk import LognormalFragility, StripeFragility
 from audit.engine.shared.runtime import Runtime
@@ -57,26 +63,34 @@ from audit.physics.building.floor import Floor
 from procedures.parameters import parameters_used
 from records.sites import NTC2018_SITE_KEYS
 
-#: Stripes either side of the site's intensity, and the ratio between neighbours: 0.25–4 ×.
-SITE_STRIPES = 4
-STRIPE_STEP = math.sqrt(2.0)
+#: Every how many levels of the lattice a check solves (2: √2 apart).
+LATTICE_EVERY = 2
 #: Exact P(overturn) at the site that the exact required widths target.
 TARGETS = (0.10, 0.50)
-#: Intensities at which the bootstrap band is drawn, as multiples of the site's.
-BAND_SPAN = (0.2, 5.0)
-BAND_POINTS = 61
 
 
 def check_levels(site_im: float) -> np.ndarray:
-    """The stripes of a check: the site's intensity × STRIPE_STEP^k, |k| ≤ SITE_STRIPES (the
-    site's own level exactly at the middle).
+    """The stripes of a check, ascending: the lattice's levels √2 apart
+    (:func:`~audit.engine.shared.lattice.stripe_lattice`, every :data:`LATTICE_EVERY`) and one
+    stripe at the site's intensity (added, unless it is a lattice level).
 
     Parameters
     ----------
     site_im : float
         The site's intensity (in the IM's unit, e.g. [g]).
     """
-    return site_im * STRIPE_STEP ** np.arange(-SITE_STRIPES, SITE_STRIPES + 1)
+    return with_site(site_im, LATTICE_EVERY)
+
+
+def fitted_stripes(levels) -> np.ndarray:
+    """Which of a check's stripes the fragility is fitted on: the lattice's (not a site's).
+
+    Parameters
+    ----------
+    levels : array_like of float
+        The check's stripes (in the IM's unit).
+    """
+    return on_lattice(levels, LATTICE_EVERY)
 
 
 @dataclass
@@ -120,14 +134,21 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     site = site_intensity(im, suite.design_site, settings.hazard,
                           settings.site_return_period_years)
     site_im, design_im = site.site_im, site.design_im  # the exact answer's; the guidelines'
+    spectra = GuidelineSpectra(settings.guideline_spectrum,
+                               {key: suite.design_site[key] for key in ("sxs_g", "sx1_g")})
+    if not floor.on_ground and settings.guideline_spectrum == FLOOR:
+        # the design-site guidelines read the floor's spectrum from the start, stripes and all
+        spectra.floor = floor_site(suite, entries, im, settings.free_motion_s, design_im)
+        entries = [replace(entry, site={**entry.site, **spectra.floor}) for entry in entries]
     levels = check_levels(site_im)
+    fitted = fitted_stripes(levels)  # the fragility's stripes: the lattice, not the site's
     objects = tuple(objects)
     jobs, progress = runtime.jobs, runtime.progress
     per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
     work = CheckWork(StripeSettings(im, tuple(levels.tolist()), design_im,
                                     BlockList.of(named=objects), restitution, g,
                                     settings.free_motion_s, jobs),
-                     objects, per_record)
+                     objects, per_record, site_im)
     curve = settings.hazard
     targets = TARGETS + ((settings.risk_target,) if curve is not None else ())
 
@@ -144,7 +165,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         _stage(progress, "the exact width for P(overturn) ≤ 10 % and ≤ 50 % at each height"
                + (" and for the risk target" if curve is not None else ""))
         intensity = {e.id: part.stripes.intensity for e, part in zip(entries, parts)}
-        family = Family(entries, levels, intensity, settings, jobs, executor, progress)
+        # the width searches read the fragility alone: the lattice's stripes, not the site's
+        family = Family(entries, levels[fitted], intensity, settings, jobs, executor, progress)
         contexts = {}  # records scaled to the site, on the spectra their parts computed
 
         def site_context(i: int):
@@ -158,10 +180,25 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             site_judged = {p.name: judge(p, *site_context(0), objects, restitution, g)
                            for p in procedures if p.name not in per_record
                            and p.unmet_requirements(site_context(0)[0]) is None}
-            search = GuidelineWidths(parts, levels, site_judged, site_context, settings)
+            lines = guideline_lines(
+                procedures, entries, work.stripes,
+                {p.name: np.stack([part.stripes.predicted[p.name] for part in parts])
+                 for p in procedures},
+                {p.name: np.array([part.stripes.evaluated[p.name] for part in parts])
+                 for p in procedures})
+            search = GuidelineWidths(parts, lines, site_judged, site_context, settings)
+            document = floor_at_site(suite, entries, intensity, site_im)
+            on_other = {}
+            if not floor.on_ground:  # the design-site guidelines on the other spectrum too
+                if spectra.floor is None:
+                    spectra.floor = floor_design_site(
+                        (document if site_im == design_im else
+                         floor_at_site(suite, entries, intensity, design_im))["spectra"])
+                on_other = spectra.judged_on_other(
+                    [p for p in procedures if p.name in site_judged], *site_context(0),
+                    objects, restitution, g)
             return ([[search.of(proc, b, obj) for proc in procedures]
-                     for b, obj in enumerate(objects)],
-                    floor_at_site(suite, entries, intensity, site_im))
+                     for b, obj in enumerate(objects)], document, on_other)
 
         # the guidelines' searches and, on a floor, the spectra of the floor and ground motions
         # run on a side thread beside the exact search (one solver call per record)
@@ -172,31 +209,27 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             heights, height_of = np.unique([o.height_m for o in objects], return_inverse=True)
             widths = exact_required_widths(family, heights, targets, measure, solved)[height_of]
             _stage(progress, "the exact P(overturn) at the other standard intensity measure")
-            others = other_im_answers(family, objects, suite.design_site, check_levels)
+            others = other_im_answers(family, objects, suite.design_site, check_levels,
+                                      fitted_stripes, settings.seed)
             _stage(progress, "the width each guideline requires at each object's height")
-            judged, floor_document = guidelines.result()
+            judged, floor_document, on_other = guidelines.result()
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
         exact_theta = np.stack([part.stripes.exact_theta_rad for part in parts])
         guideline_p50 = (_guideline_risk(family, objects, judged, curve) if curve is not None
                          else {})
     frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],
-                       settings.limit_state)
+                       settings.limit_state, fitted)
     answers = []
     for b, obj in enumerate(objects):
         over = exact_over[:, :, b]  # (record, stripe)
-        family_widths = _family_widths(obj, over, solved, levels, site_im)
-        try:
-            fit = fit_lognormal(levels, np.full(levels.size, len(entries)), over.sum(axis=0))
-        except ValueError:
-            fit = None
-        boot = (bootstrap_lognormal(levels, over) if settings.seed is None
-                else bootstrap_lognormal(levels, over, seed=settings.seed))
+        family_widths = _family_widths(obj, over[:, fitted], solved, levels[fitted], site_im)
+        fit, boot = lattice_fragility(levels[fitted], over[:, fitted], settings.seed)
         risk = None
         if curve is not None:
-            fitted = LognormalFragility(fit.median, fit.beta) if fit else None
-            counted = StripeFragility(levels, over.mean(axis=0))
+            model = LognormalFragility(fit.median, fit.beta) if fit else None
+            counted = StripeFragility(levels[fitted], over[:, fitted].mean(axis=0))
             width = widths[b][len(TARGETS)]
-            risk = object_risk(fitted, counted, curve, settings.risk_target,
+            risk = object_risk(model, counted, curve, settings.risk_target,
                                float(width) if math.isfinite(width) else None)
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
@@ -207,7 +240,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                  obj.alpha_deg, settings.friction)
         answer = answers[-1]
         answer["exact"]["site_return_period_years"] = site.return_period_years
-        answer.update(sliding=sliding, sentence=f"{sentence(answer, im)} {sliding['text']}")
+        answer.update(sliding=sliding, sentence=sentence(answer, im, sliding))
     design_site = suite.design_site or {}
     ntc = entries[0].site
     ntc_site = (tuple(ntc[key] for key in NTC2018_SITE_KEYS)
@@ -220,6 +253,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                            site=(design_site["sxs_g"], design_site["sx1_g"]),
                                            ntc_site=ntc_site, floor=floor,
                                            provisions=provisions, mass_kg=mass_kg)]
+    spectra.annotate(answers, procedures, entries[0], on_other)
     if curve is not None:
         _warn_truncated(answers, curve)
     summary = run_summary(suite, entries, im, levels, site_im, procedures, restitution, where)
@@ -231,6 +265,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                              for plug_in in (*procedures, *provisions)
                              if type(plug_in).parameters}
     summary["mass_kg"] = mass_kg
+    summary["guideline_spectrum"] = spectra.as_dict()
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)
@@ -238,7 +273,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
 
 def _family_widths(obj, over, solved, levels, site_im):
     """The object's height as one fragility family (:mod:`audit.engine.check.width_family`), fitted on
-    the object's own outcomes and every width solved at its height."""
+    the object's own outcomes and every width solved at its height, on the lattice's stripes
+    ``levels``."""
     widths, outcomes = [obj.width_m], [over[:, :, None]]
     for heights, solved_widths, overturned in solved:
         mine = heights == obj.height_m
@@ -276,5 +312,5 @@ def _warn_truncated(answers, curve) -> None:
                       stacklevel=3)
 
 
-__all__ = ["run_check", "CheckRun", "check_levels",
-           "SITE_STRIPES", "STRIPE_STEP", "TARGETS"]
+__all__ = ["run_check", "CheckRun", "check_levels", "fitted_stripes",
+           "LATTICE_EVERY", "TARGETS"]

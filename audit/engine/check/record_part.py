@@ -27,11 +27,14 @@ class CheckWork:
     per_record : tuple of str
         Procedures judged on every record (those reading the record); the others read only the
         site and are judged once.
+    site_im : float
+        The site's intensity (one of the stripes) [unit of the IM].
     """
 
     stripes: StripeSettings
     objects: tuple
     per_record: tuple
+    site_im: float
 
     @property
     def jobs(self) -> int:
@@ -48,7 +51,8 @@ class CheckWork:
         return replace(self, stripes=replace(self.stripes, jobs=jobs))
 
     def as_dict(self) -> dict:
-        return {**self.stripes.as_dict(), "kind": "check", "per_record": list(self.per_record)}
+        return {**self.stripes.as_dict(), "kind": "check", "per_record": list(self.per_record),
+                "site_im": self.site_im}
 
 
 @dataclass
@@ -88,8 +92,8 @@ def check_record(entry, procedures, settings: CheckWork) -> CheckRecord:
         if proc.name in settings.per_record and proc.unmet_requirements(scaled) is None:
             judged[proc.name] = judge(proc, scaled, scaled_context, settings.objects,
                                       margins.restitution, margins.g)
-    site_level = margins.levels[len(margins.levels) // 2]  # the site's, mid-stripes
-    friction = required_friction(entry.motion, site_level / stripes.intensity, margins.blocks,
+    friction = required_friction(entry.motion, settings.site_im / stripes.intensity,
+                                 margins.blocks,
                                  margins.restitution, margins.g, margins.free_motion_s,
                                  margins.jobs)
     return CheckRecord(stripes, judged, context, friction)

@@ -1,8 +1,9 @@
 """``audit check`` with the site's hazard curve: each object's annual rate of overturning, the
 risk of the object as each guideline would size it, and the exact width for a risk target.
 
-The object's fragility is the one the check fitted on its stripes (the site's intensity
-× 0.25–4); outside them the risk integral (:func:`~audit.engine.design.risk.risk_integral`) reads the
+The object's fragility is the one the check fitted on the fixed lattice's stripes
+(:mod:`audit.engine.shared.lattice`, 0.0625–5.66 g; not the site's own stripe, so the integrand
+is the object's fragility whatever the site); outside them the risk integral (:func:`~audit.engine.design.risk.risk_integral`) reads the
 fitted lognormal, and the counted stripe shares beside it show what the fit adds. A family
 member (the object at another width) gets the same treatment from its own outcomes at the
 stripes; where no lognormal fits (no stripe overturns it, or every record at every stripe does)

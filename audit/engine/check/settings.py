@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from audit import G
 from audit.engine.shared import fields as check
+from audit.engine.check.spectrum_read import GROUND, GUIDELINE_SPECTRA
 from audit.engine.check.limits import BOTH, LIMIT_STATES
 from audit.engine.shared.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_RESTITUTION,
                                    DEFAULT_RISK_TARGET)
@@ -20,7 +21,7 @@ CHECK_DEFAULTS = {"im": None, "restitution": DEFAULT_RESTITUTION,
                   "free_motion_s": DEFAULT_FREE_MOTION_S, "g": G, "seed": None,
                   "hazard": None, "site_location": None, "risk_target": DEFAULT_RISK_TARGET,
                   "hazard_imt": None, "return_period": None, "poe": None, "friction": None,
-                  "limit_state": BOTH}
+                  "limit_state": BOTH, "guideline_spectrum": GROUND}
 CHECK_FIELDS = tuple(CHECK_DEFAULTS)
 
 
@@ -51,6 +52,10 @@ class CheckSettings:
     limit_state : str
         The limit state the site's S_XS, S_X1 are for, of a guideline that names its own
         (NTC 2018): ``SLV``, ``SLC`` or ``both`` (each reported).
+    guideline_spectrum : str
+        On a floor, the spectrum a guideline reading the site's design spectrum (FEMA 356)
+        reads: ``ground`` (as written) or ``floor``
+        (:mod:`audit.engine.check.spectrum_read`).
 
     Build it with :meth:`parse`, which checks every field once.
     """
@@ -65,6 +70,7 @@ class CheckSettings:
     site_return_period_years: float | None = None
     friction: float | None = None
     limit_state: str = BOTH
+    guideline_spectrum: str = GROUND
 
     @classmethod
     def parse(cls, **values) -> CheckSettings:
@@ -95,6 +101,8 @@ class CheckSettings:
             Friction coefficient μ > 0 of the object's base.
         limit_state : str
             ``SLV``, ``SLC`` or ``both`` (any case).
+        guideline_spectrum : str
+            ``ground`` or ``floor``.
         """
         check.unknown("the check", values, CHECK_FIELDS)
         value = {**CHECK_DEFAULTS, **values}
@@ -133,6 +141,10 @@ class CheckSettings:
             raise InputError(f"limit_state: expected {', '.join(choices)}, got {limit_state!r}",
                              "limit_state")
         limit_state = limit_state.upper() if limit_state.upper() in LIMIT_STATES else BOTH
+        spectrum = value["guideline_spectrum"]
+        if spectrum not in GUIDELINE_SPECTRA:
+            raise InputError(f"guideline_spectrum: expected {' or '.join(GUIDELINE_SPECTRA)}, "
+                             f"got {spectrum!r}", "guideline_spectrum")
         return cls(
             im=im,
             restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
@@ -142,7 +154,7 @@ class CheckSettings:
             g=check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True),
             seed=seed, hazard=hazard, risk_target=risk_target,
             site_return_period_years=site_return_period(value["return_period"], value["poe"]),
-            friction=friction, limit_state=limit_state)
+            friction=friction, limit_state=limit_state, guideline_spectrum=spectrum)
 
 
 def site_return_period(return_period, poe) -> float | None:

@@ -91,7 +91,7 @@ def sliding_answer(needed, record_ids, alpha_deg: float, friction: float | None)
            "required_friction_max_finite": _finite(float(finite.max())) if finite.size else None,
            "records_jumping": [r for r, j in zip(record_ids, jumping) if j]}
     if friction is None:
-        out.update(mode=None, records_sliding=None,
+        out.update(mode=None, records_sliding=None, governs=False,
                    text=(f"It assumes no sliding: at the site's intensity its rocking under the "
                          f"records needs a friction coefficient μ of {_mu(median)} (median over "
                          f"records) up to {_mu(_largest(needed))}; below tan α = "
@@ -100,26 +100,34 @@ def sliding_answer(needed, record_ids, alpha_deg: float, friction: float | None)
     slid = np.asarray(slides(needed, friction), dtype=bool)
     sliding = [r for r, s in zip(record_ids, slid) if s]
     n, k = len(record_ids), len(sliding)
+    governs = 2 * k > n  # most records slide it: the sentence leads with sliding
     if tan_alpha > friction:
         mode = SLIDING if k else REST
         text = (f"On μ = {friction:g} it slides before it can rock (tan α = {tan_alpha:.2f} > μ: "
+                f"the base cannot pass the force that would lift it): {k} of {n} records at the "
+                "site's intensity slide it (its sliding displacement is not computed)."
+                if governs else
+                f"On μ = {friction:g} it slides before it can rock (tan α = {tan_alpha:.2f} > μ: "
                 f"the base cannot pass the force that would lift it): {k} of {n} records at the "
                 "site's intensity slide it, and the rocking answer above does not apply to it "
                 "(its sliding displacement is not computed)." if k else
                 f"On μ = {friction:g} it would slide before rocking (tan α = {tan_alpha:.2f} > "
                 f"μ), but no record at the site's intensity needs more than μ: it stays at rest.")
     elif k:
-        mode = SLIDING if 2 * k > n else SLIDE_ROCK
-        text = (f"On μ = {friction:g} it rocks (tan α = {tan_alpha:.2f} ≤ μ), but {k} of {n} "
+        mode = SLIDING if governs else SLIDE_ROCK
+        text = (f"On μ = {friction:g} sliding governs: it rocks (tan α = {tan_alpha:.2f} ≤ μ), "
+                f"but {k} of {n} records at the site's intensity need more friction than μ (up "
+                f"to {_mu(_largest(needed))}) and slide it while it rocks (its sliding "
+                "displacement is not computed)." if governs else
+                f"On μ = {friction:g} it rocks (tan α = {tan_alpha:.2f} ≤ μ), but {k} of {n} "
                 f"records at the site's intensity need more friction than μ (up to "
                 f"{_mu(_largest(needed))}): it slides while rocking under them, and their rocking "
-                "answers assume a base that holds"
-                + (" — sliding governs." if mode == SLIDING else "."))
+                "answers assume a base that holds.")
     else:
         mode = ROCKING
         text = (f"On μ = {friction:g} rocking governs: no record at the site's intensity needs "
                 f"more friction than μ (at most {_mu(_largest(needed))}).")
-    out.update(mode=mode, records_sliding=sliding, text=text)
+    out.update(mode=mode, records_sliding=sliding, governs=governs, text=text)
     return out
 
 

@@ -19,6 +19,7 @@ import pandas as pd
 
 from audit.engine.check.entries import ExactRotations, procedure_entries
 from audit.engine.check.words import sentence
+from audit.engine.design.site_probability import MODEL, site_probability
 from audit.engine.shared.csv_text import csv_bytes
 from audit.engine.shared.floors import suite_floor
 from audit.engine.shared.schemas import GUIDE
@@ -30,7 +31,7 @@ CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.shared.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 TEXT_COLUMNS = ("object", "procedure", "limit_state", "verdict", "compares", "unit", "basis",
-                "reason", "im", "building_model")
+                "reason", "im", "building_model", "p_estimator")
 
 
 def _number(value) -> float | None:
@@ -64,9 +65,10 @@ def _family_widths(family, searched, height_m: float) -> dict:
 
 @dataclass(frozen=True)
 class CheckFrame:
-    """What every object of a check shares: the stripes [unit of ``im``], the site's intensity,
-    the intensity measure, the records' ids, the first record (whose unmet requirements
-    say why a procedure judged none), and the limit state asked for (SLV, SLC or both)."""
+    """What every object of a check shares: the stripes [unit of ``im``], the site's intensity
+    (one of them), the intensity measure, the records' ids, the first record (whose unmet
+    requirements say why a procedure judged none), the limit state asked for (SLV, SLC or
+    both), and which stripes the fragility is fitted on (the lattice's; every one when None)."""
 
     levels: np.ndarray
     site_im: float
@@ -74,6 +76,7 @@ class CheckFrame:
     record_ids: list
     first_entry: object
     limit_state: str = "both"
+    fitted: np.ndarray | None = None
 
 
 @dataclass
@@ -86,10 +89,11 @@ class ObjectFindings:
     index : int
         Its column in the stripes' outcomes and the judgements.
     fit : audit.engine.design.lognormal_fit.LognormalFit or None
-        Its exact fragility (None where no lognormal fits).
+        Its exact fragility, fitted on the lattice's stripes (None where no lognormal fits).
     boot : audit.engine.design.bootstrap.BootstrapFits
+        Its bootstrap over records, on the same stripes.
     overturned : numpy.ndarray
-        Exact outcomes, shaped (record, stripe).
+        Exact outcomes at every stripe (the site's too), shaped (record, stripe).
     widths : numpy.ndarray
         Exact widths for P(overturn) ≤ 10 % and ≤ 50 % at the site [m], then for the risk target
         with a hazard curve.
@@ -136,24 +140,33 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
     """
     obj, b, fit, boot, overturned = found.obj, found.index, found.fit, found.boot, found.overturned
     levels, site_im, im = frame.levels, frame.site_im, frame.im
-    site = int(np.argmin(np.abs(levels - site_im)))
-    if fit is not None:
-        p_site = float(fit.probability(site_im))
-    else:  # no stripe overturns it, or every record at every stripe does
-        p_site = 1.0 if overturned.all() else 0.0
-    low, high = boot.probability_band(site_im)
-    curve = site_im * np.geomspace(0.2, 5.0, 61)
+    fitted = frame.fitted if frame.fitted is not None else np.ones(levels.size, dtype=bool)
+    site = int(np.argmin(np.abs(levels - site_im)))  # the site's own stripe
+    at_site = site_probability(float(fit.probability(site_im)) if fit is not None else None,
+                               [float(v) for v in boot.probability_band(site_im)]
+                               if fit is not None else None,
+                               int(overturned[:, site].sum()), overturned.shape[0])
+    p_site = at_site.p
+    curve = np.geomspace(levels.min(), levels.max(), 61)  # the band over every stripe
     theta = found.theta_rad if found.theta_rad is not None else np.zeros(overturned.shape)
-    exact = ExactRotations(theta, overturned, levels, site_im, p_site)
+    exact = ExactRotations(theta, overturned, levels, site_im, p_site, fitted)
     curve_low, curve_high = boot.probability_band(curve)
     answer = {
         "name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
         "alpha_deg": obj.alpha_deg, "size_s": obj.size_s,
         "exact": {"im": im.name, "im_unit": im.unit,
                   "median_g": fit.median if fit else None, "beta": fit.beta if fit else None,
-                  "p_overturn_at_site": p_site, "p_band": [float(low), float(high)],
-                  "p_band_method": f"bootstrap over records, {len(boot.medians)} resamples, "
-                                   f"{boot.confidence:.0%} percentile band",
+                  "p_overturn_at_site": p_site, "p_band": [float(v) for v in at_site.band],
+                  "p_band_method": (f"bootstrap over records, {len(boot.medians)} resamples, "
+                                    f"{boot.confidence:.0%} percentile band"
+                                    if at_site.estimator == MODEL else
+                                    at_site.as_dict()["count"]["band_method"]),
+                  "p_at_site": {**at_site.as_dict(), "stripe_im": float(levels[site]),
+                                "model_band_method": f"bootstrap over records, "
+                                                     f"{len(boot.medians)} resamples, "
+                                                     f"{boot.confidence:.0%} percentile band"},
+                  "fitted_on": "the lattice's stripes (not the site's): "
+                               f"{int(fitted.sum())} of {levels.size}",
                   "site_im_g": site_im,
                   **_family_widths(found.family, found.widths, obj.height_m),
                   "other_im": found.other_im,
@@ -161,7 +174,8 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                                                                     overturned[:, site]) if o],
                   "stripes": {"im": levels.tolist(),
                               "overturned": overturned.sum(axis=0).tolist(),
-                              "records": int(overturned.shape[0])},
+                              "records": int(overturned.shape[0]),
+                              "fitted": fitted.tolist()},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
                                  "high": curve_high.tolist()}},
         "procedures": [entry for guideline in found.judged
@@ -242,6 +256,7 @@ def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
                 "im": exact["im"], "site_im": exact["site_im_g"],
                 "p_overturn_at_site": exact["p_overturn_at_site"],
                 "p_band_low": exact["p_band"][0], "p_band_high": exact["p_band"][1],
+                "p_estimator": exact["p_at_site"]["estimator"],
                 "exact_median": exact["median_g"], "exact_beta": exact["beta"],
                 "exact_required_width_m_10pct": exact["required_width_m_10pct"],
                 "exact_required_width_m_50pct": exact["required_width_m_50pct"],

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from statistics import median
 
+from audit.engine.check.spectrum_read import reading_words
 from records.suite import counted_records
 
 #: Share of an annual rate from outside the stripes above which the sentence warns of it.
@@ -79,8 +80,11 @@ def _judged(entries) -> str:
 
 
 def p_words(exact: dict, records: int) -> str:
-    """The exact P(overturn) at the site with its band, or, where no record overturns the
-    object at any stripe, the 95 % upper bound that leaves (1 − 0.05^(1/n)).
+    """The exact P(overturn) at the site as its headline says it, and which estimate that is:
+    the lognormal's with its band, the count at the site's stripe with its exact band (where it
+    rejects the lognormal's P: it lies outside the count's band), or the one-sided 95 % bound
+    where no record (or every
+    record) overturns the object there (:mod:`audit.engine.design.site_probability`).
 
     Parameters
     ----------
@@ -89,18 +93,24 @@ def p_words(exact: dict, records: int) -> str:
     records : int
         Number of records.
     """
-    low, high = exact["p_band"]
-    overturned = exact["stripes"]["overturned"]
-    if exact["median_g"] is None and not any(overturned):
-        bound = 1.0 - 0.05 ** (1.0 / records)
-        return (f"< {100 * bound:.2g} % (95 % bound: no record overturns it at any stripe up "
-                f"to {max(exact['stripes']['im']):.3g} {exact['im_unit']})")
-    return f"{100 * exact['p_overturn_at_site']:.0f} % [{100 * low:.0f}–{100 * high:.0f} %]"
+    at = exact["p_at_site"]
+    count = at["count"]
+    k, n = count["overturned"], count["records"]
+    if at["bound"] is not None:
+        return (f"{at['headline']} (one-sided 95 % bound: {k} of {n} records overturn it at "
+                "the site's intensity)")
+    if at["estimator"] == "count":
+        return (f"{at['headline']} ({k} of {n} records at the site's intensity, exact band; "
+                + (f"they reject the lognormal's {100 * at['model']['p']:.0f} %)"
+                   if at["model"]["p"] is not None else "no lognormal fits)"))
+    return f"{at['headline']} (lognormal; {k} of {n} records at the site's intensity)"
 
 
-def sentence(answer: dict, im) -> str:
+def sentence(answer: dict, im, sliding: dict | None = None) -> str:
     """One sentence for a calculation note: the guidelines' verdicts by their own limit states,
-    the exact P(overturn) at the site with its band, the exact widths.
+    the exact P(overturn) at the site with its band, the exact widths; with ``sliding``, what
+    the base's friction does: first, the rest following as "if it could not slide", where
+    sliding governs (``sliding["governs"]``: most records slide it), else after.
 
     Parameters
     ----------
@@ -108,7 +118,20 @@ def sentence(answer: dict, im) -> str:
         The object's entry of ``check.json``.
     im : IntensityMeasure
         The check's intensity measure.
+    sliding : dict, optional
+        The object's ``sliding`` entry (:func:`~audit.engine.check.sliding.sliding_answer`).
     """
+    head = f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m tall): "
+    rocking = _rocking_words(answer, im)
+    if sliding is None:
+        return head + rocking
+    if sliding.get("governs"):
+        return f"{head}{sliding['text']} If it could not slide: {rocking}"
+    return f"{head}{rocking} {sliding['text']}"
+
+
+def _rocking_words(answer: dict, im) -> str:
+    """:func:`sentence` after the object's name: the answers of rocking."""
     by = {v: [p for p in answer["procedures"] if p["verdict"] == v]
           for v in ("passes", "fails", "cannot judge")}
     parts = []
@@ -119,8 +142,7 @@ def sentence(answer: dict, im) -> str:
     if by["cannot judge"]:
         parts.append(f"{_judged(by['cannot judge'])} cannot judge it")
     exact = answer["exact"]
-    text = (f"{answer['name']} ({answer['width_m']:.3g} m wide × {answer['height_m']:.3g} m "
-            f"tall): " + "; ".join(parts) + f"; the exact P(overturn) at "
+    text = ("; ".join(parts) + f"; the exact P(overturn) at "
             f"{im_words(im, exact['site_im_g'], exact.get('site_return_period_years'))} is "
             f"{p_words(exact, exact['stripes']['records'])}")
     w10, w50 = exact["required_width_m_10pct"], exact["required_width_m_50pct"]
@@ -231,7 +253,11 @@ def summary_text(document: dict) -> str:
              f"{counted_records(len(document['records']), source)}, each scaled "
              f"to {_scaled_to(document)} and to "
              f"{len(document['levels'])} stripes {min(document['levels']):.3g}–"
-             f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility.", ""]
+             f"{max(document['levels']):.3g} {document['im_unit']} for the exact fragility "
+             "(a fixed lattice, √2 apart, which the fragility is fitted on, and the site's own "
+             "stripe; P at the site is the lognormal's unless the count at the site's stripe "
+             "rejects it (the lognormal's P outside the count's exact band), then the count's: "
+             "see docs/check.md).", ""]
     site_hazard = document.get("site_hazard")
     if site_hazard and site_hazard.get("warning"):
         lines[-1:-1] = [f"Warning: {site_hazard['warning']}."]
@@ -293,12 +319,14 @@ def summary_text(document: dict) -> str:
         if other:
             lines += [f"  (at the other standard intensity measure, the records scaled to "
                       f"{im_words(_intensity(other['im']), other['site_im'])} instead: exact "
-                      f"P(overturn) {100 * other['p_overturn_at_site']:.0f} %; use the IM of "
+                      f"P(overturn) {other['p_at_site']['headline']}; use the IM of "
                       "your hazard, see docs/check.md)"]
         lines += [""]
         lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."
                   for proc in obj["procedures"] if proc["basis"]
-                  and proc["basis"].startswith("applied record by record")] + [""]
+                  and proc["basis"].startswith("applied record by record")]
+        lines += [f"  {reading_words(proc)}." for proc in obj["procedures"]
+                  if proc.get("other_spectrum")] + [""]
     return "\n".join(lines).rstrip() + "\n"
 
 

@@ -1,5 +1,5 @@
 """Multiple-stripe overturning fragility of a block: the records of a suite scaled to a set of
-intensity levels (stripes), the exact response at every record × stripe, and a lognormal
+intensity levels (stripes; by default the fixed lattice, :mod:`audit.engine.shared.lattice`), the exact response at every record × stripe, and a lognormal
 fragility fitted to the stripe counts by maximum likelihood on the binomial likelihood (the
 standard method for multiple-stripe analysis, Baker 2015, Earthquake Spectra 31(1) 579–599).
 
@@ -16,25 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from audit.engine.shared.defaults import DEFAULT_STRIPE_SPAN as DEFAULT_SPAN
-from audit.engine.shared.defaults import DEFAULT_STRIPES
 from audit.physics.rocking import rocking_spectrum
-
-
-def stripe_levels(centre, count: int = DEFAULT_STRIPES, span=DEFAULT_SPAN) -> np.ndarray:
-    """Intensity levels of the stripes: ``count`` levels geometric in ``span`` × ``centre``
-    (the site's design intensity, or the suite's median), in the intensity's own unit.
-
-    Parameters
-    ----------
-    centre : float
-        The intensity the stripes are centred on (e.g. [g]).
-    count : int
-        Number of stripes.
-    span : tuple of two float
-        Lowest and highest stripe as multiples of ``centre`` [-].
-    """
-    return float(centre) * np.geomspace(span[0], span[1], count)
 
 
 @dataclass(frozen=True)
@@ -100,5 +82,4 @@ def stripe_outcomes(motion, factors, size_s, alpha_rad, g: float, free_motion_s:
             np.stack([s.theta_peak for s in spectra]))
 
 
-__all__ = ["stripe_levels", "overturning_pattern", "OverturningPattern", "stripe_outcomes",
-           "DEFAULT_STRIPES", "DEFAULT_SPAN"]
+__all__ = ["overturning_pattern", "OverturningPattern", "stripe_outcomes"]

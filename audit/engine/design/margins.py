@@ -37,10 +37,11 @@ from audit.engine.shared.csv_text import csv_bytes
 from audit.engine.shared.json_text import json_ready
 from audit.engine.shared.floors import suite_floor
 from audit.engine.shared.defaults import SITE_LEVELS
-from audit.engine.design.fragility import stripe_levels
+from audit.engine.shared.lattice import stripe_lattice
 from audit.engine.design.settings import MarginsSettings
+from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.design.tables import (capacity_rows, fragility_rows, reading, site_factor,
-                                         step_levels, stripe_rows)
+                                         stripe_rows)
 from audit.engine.shared.partial import PartialStore
 from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts
@@ -140,9 +141,8 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
                          + (f" ({len(zero) - 1} other record(s) too)" if len(zero) > 1 else ""),
                          "records")
     design = im.of_design_site(suite.design_site)
-    if levels is None:
-        centre = design if design else float(np.median(list(intensities.values())))
-        levels = stripe_levels(centre)
+    if levels is None:  # the fixed lattice: the fragility is the block's, not the site's
+        levels = stripe_lattice()
     blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
     if not len(blocks):
         raise InputError("size_s, alpha_deg, blocks: no block to audit", "size_s",
@@ -177,9 +177,8 @@ def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtim
     suite : records.RecordSuite
         Its ``design_site`` gives the design intensity.
     settings : MarginsSettings
-        The intensity measure, the stripes (default
-        :func:`~audit.engine.design.fragility.stripe_levels` around the design intensity, else the
-        suite's median intensity), the grid and the named blocks, the impact model, gravity
+        The intensity measure, the stripes (default the fixed lattice,
+        :func:`~audit.engine.shared.lattice.stripe_lattice`), the grid and the named blocks, the impact model, gravity
         and the free motion.
     runtime : Runtime
         Solver threads (worker processes of ``scheduler="dask"``), where records are computed,
@@ -191,8 +190,8 @@ def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtim
     site_factors = np.array([site_factor(suite, e.id) for e in entries])
     stripes = stripe_rows(run, site_factors)
     fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, run.mce_im)
-    steps = step_levels(procedures, entries, run.settings, run.predicted, run.evaluated)
-    capacity = capacity_rows(procedures, run, fits, boots, steps)
+    lines = guideline_lines(procedures, entries, run.settings, run.predicted, run.evaluated)
+    capacity = capacity_rows(procedures, run, fits, boots, lines)
     named_blocks = settings.blocks
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
                "design_im": run.settings.design_im, "site_level": settings.site_level,

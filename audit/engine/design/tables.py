@@ -14,7 +14,7 @@ from audit.engine.shared.blocks import BlockList
 from audit.engine.design.fragility import overturning_pattern
 from audit.engine.design.bootstrap import bootstrap_lognormal
 from audit.engine.design.lognormal_fit import fit_lognormal, lognormal_estimate
-from audit.engine.design.stripes import StripeSettings, half_crossing, locate_steps
+from audit.engine.design.site_probability import MODEL, site_probability
 
 
 #: How a procedure meets the stripes, by whether it reads the records (the report says it).
@@ -204,41 +204,7 @@ def fragility_rows(levels, blocks, im, exact_over, mce):
     return pd.DataFrame(rows), fits, boots
 
 
-def step_levels(procedures, entries, settings: StripeSettings, predicted, evaluated) -> dict:
-    """Per (procedure name, block), the exact step of a procedure that reads only the site's
-    design spectrum, where it turns to predicting overturning between two stripes.
-
-    Parameters
-    ----------
-    procedures : sequence of procedures.base.Procedure
-        The procedures audited.
-    entries : sequence of records.RecordEntry
-        The records.
-    settings : StripeSettings
-        The blocks, stripes and solver settings.
-    predicted : dict
-        Procedure name → predictions shaped (record, stripe, block).
-    evaluated : dict
-        Procedure name → whether it evaluated each record.
-    """
-    levels = np.asarray(settings.levels)
-    steps = {}
-    for proc in procedures:
-        mine = [e for e, used in zip(entries, evaluated[proc.name]) if used]
-        if not mine or any(proc.reads_record(e) for e in mine):
-            continue
-        answer = predicted[proc.name][np.asarray(evaluated[proc.name])][0]  # (stripe, block)
-        brackets = {}
-        for b in range(answer.shape[1]):
-            switch = np.flatnonzero(answer[1:, b] & ~answer[:-1, b])
-            if switch.size:
-                brackets[b] = levels[int(switch[0])], levels[int(switch[0]) + 1]
-        steps.update(((proc.name, b), level) for b, level
-                     in locate_steps(proc, mine[0], settings, brackets).items())
-    return steps
-
-
-def capacity_rows(procedures, run, fits, boots, steps) -> pd.DataFrame:
+def capacity_rows(procedures, run, fits, boots, lines) -> pd.DataFrame:
     """One row per procedure × block: where the procedure draws its line against the exact
     fragility (``capacity.csv``).
 
@@ -246,39 +212,56 @@ def capacity_rows(procedures, run, fits, boots, steps) -> pd.DataFrame:
     ----------
     procedures : list of procedures.Procedure
     run : audit.engine.design.margins.MarginsStripes
-        The stripes and blocks (``run.settings``), the exact and predicted overturning and
-        which records each procedure could evaluate.
+        The stripes and blocks (``run.settings``) and the exact overturning.
     fits, boots : list
         Per block, the exact lognormal fit (None where none) and its bootstrap.
-    steps : dict
-        (procedure name, block index) → the intensity where the procedure's verdict steps
-        [unit of the measure], where :func:`step_levels` found one.
+    lines : dict
+        Procedure name → its line for each block [unit of the measure]
+        (:func:`~audit.engine.design.guideline_lines.guideline_lines`).
     """
     levels, blocks = np.asarray(run.settings.levels), run.settings.blocks
-    exact_over, predicted, evaluated = run.exact_overturned, run.predicted, run.evaluated
     rows = []
-    exact_fraction = exact_over.mean(axis=0)  # (stripe, block)
+    exact_fraction = run.exact_overturned.mean(axis=0)  # (stripe, block)
     for proc in procedures:
-        mine = evaluated[proc.name]
-        # over the records it could evaluate; NaN (no line) where it could evaluate none
-        fraction = (predicted[proc.name][mine].mean(axis=0) if mine.any()
-                    else np.full(exact_fraction.shape, np.nan))
         for b in range(len(blocks)):
-            line = steps.get((proc.name, b), half_crossing(levels, fraction[:, b]))
+            line = float(lines[proc.name][b])
             fit = fits[b]
             known = fit is not None and math.isfinite(line)
             nearest = int(np.argmin(np.abs(np.log(levels / line)))) if math.isfinite(line) \
                 else None
             band = boots[b].probability_band(line) if known else (math.nan, math.nan)
+            achieved = (_achieved(fit, boots[b], levels[nearest], line,
+                                  run.exact_overturned[:, nearest, b]) if nearest is not None
+                        else {name: math.nan for name in ACHIEVED_COLUMNS})
             rows.append({
                 "procedure": proc.name, **_block_columns(blocks, b), "guideline_im": line,
                 "ratio_to_exact_median": line / fit.median if known else math.nan,
                 "achieved_p_fit": float(fit.probability(line)) if known else math.nan,
                 "achieved_p_boot_low": float(band[0]), "achieved_p_boot_high": float(band[1]),
                 "achieved_p_stripe": float(exact_fraction[nearest, b])
-                if nearest is not None else math.nan})
+                if nearest is not None else math.nan, **achieved})
     return pd.DataFrame(rows)
 
 
-__all__ = ["stripe_rows", "fragility_rows", "exact_fit", "collapse_margin", "step_levels",
+#: The achieved P as the headline rule gives it (:func:`_achieved`).
+ACHIEVED_COLUMNS = ("achieved_p", "achieved_p_low", "achieved_p_high", "achieved_p_from")
+
+
+def _achieved(fit, boot, stripe: float, line: float, overturned) -> dict:
+    """The achieved P at a guideline's line by the rule of P at a site
+    (:mod:`audit.engine.design.site_probability`): the lognormal's at the line unless the count at
+    the nearest stripe rejects the lognormal's P there (it lies outside the count's exact band),
+    then that count with its exact
+    band (a one-sided 95 % bound where it is 0 or every record)."""
+    model = float(fit.probability(stripe)) if fit is not None else None
+    at = site_probability(model, boot.probability_band(stripe) if fit is not None else None,
+                          int(np.sum(overturned)), len(overturned))
+    if at.estimator == MODEL:
+        low, high = boot.probability_band(line)
+        return dict(zip(ACHIEVED_COLUMNS, (float(fit.probability(line)), float(low),
+                                           float(high), MODEL)))
+    return dict(zip(ACHIEVED_COLUMNS, (at.p, *at.band, at.words())))
+
+
+__all__ = ["stripe_rows", "fragility_rows", "exact_fit", "collapse_margin",
            "capacity_rows", "reading", "site_factor", "READINGS"]

@@ -11,8 +11,15 @@ damage-state model where its columns carry ``LS1``; ``Incomplete`` = 1 rows are 
 
 One limit state, overturning, lognormal with median Theta_0 and β Theta_1. The demand is peak
 floor velocity (``mps``) or peak floor acceleration (``mps2``, SI, so that no value of g is
-assumed) at the object's floor (Demand-Offset 0), non-directional as P-58's contents are.
-pelicun's damage loader reads no JSON beside the CSV, so none is written. A row keeps the
+assumed) at the object's floor (Demand-Offset 0, so pelicun's own ``DemandOffset`` option
+applies as to P-58's rows), and it is *directional* (``Demand-Directional`` 1): the exact
+fragility was computed for one horizontal component of each record, so it is a fragility of
+the peak of one direction. pelicun gives a non-directional component the larger of the two
+directions × its ``NonDirectionalMultipliers`` (1.2 by default, FEMA P-58's factor;
+``_assemble_required_demand_data`` in ``pelicun/model/demand_model.py``), which would apply
+the exact fragility to a demand it was not computed for; a directional one reads the demand
+of the component's own direction unchanged. pelicun's damage loader reads no JSON beside the
+CSV, so none is written. A row keeps the
 component's id: listed before the P-58 library in pelicun's ``data_paths``, it replaces P-58's
 fragility of the same component (earlier paths take precedence).
 """
@@ -56,7 +63,7 @@ def pelicun_fragility_table(components) -> pd.DataFrame:
         demand, unit = DEMAND_TYPES[component.intensity_measure]
         median, beta = component.fragility.median, component.fragility.beta
         complete = all(math.isfinite(value) and value > 0 for value in (median, beta))
-        rows.append((component.id, 0 if complete else 1, demand, unit, 0, 0, "lognormal",
+        rows.append((component.id, 0 if complete else 1, demand, unit, 0, 1, "lognormal",
                      median if complete else None, beta if complete else None))
     return pd.DataFrame(rows, columns=list(PELICUN_COLUMNS))
 

@@ -40,10 +40,10 @@ DEFAULT_RESTITUTION = "housner"
 DEFAULT_IM = "sa:1.0"
 #: Block sizes 2π/p of the design-level audit's grid: START, STOP (inclusive), STEP [s].
 DEFAULT_MARGINS_SIZES = (0.5, 8.0, 0.25)
-#: Stripes of the design-level audit when none are given: levels, geometric over SPAN × the
-#: design intensity (or the suite's median).
-DEFAULT_STRIPES = 24
-DEFAULT_STRIPE_SPAN = (0.2, 5.0)
+#: How many stripes the design-level audit solves when none are given: the fixed lattice's
+#: levels, 2^(k/4) for k = −16 … 10 (:func:`audit.engine.shared.lattice.stripe_lattice`; a
+#: number here, so this module stays free of numpy).
+DEFAULT_STRIPES = 27
 
 
 def alpha_text(alpha_deg=DEFAULT_ALPHA_DEG) -> str:
@@ -82,6 +82,6 @@ __all__ = ["DEFAULT_BUILDING_DAMPING", "DEFAULT_BUILDING_MODEL", "DEFAULT_ALPHA_
            "DEFAULT_JOBS", "DEFAULT_SCHEDULER", "DEFAULT_FREE_MOTION_S", "DEFAULT_RESTITUTION", "DEFAULT_ANCHOR_PERIOD_S", "DEFAULT_DAMPING_PCT", "DEFAULT_PERIODS",
            "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS", "DEFAULT_RESPONSE_FREE_MOTION_S",
            "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_FRAGILITY_RECORDS", "DEFAULT_CHECK_RECORDS",
-           "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "DEFAULT_STRIPE_SPAN", "alpha_text",
+           "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "alpha_text",
            "sizes_text", "SITE_LEVELS", "DEFAULT_SITE_LEVEL", "DEFAULT_RISK_TARGET"]
 

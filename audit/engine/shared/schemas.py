@@ -239,6 +239,16 @@ GUIDE["capacity.csv"] = {
     "achieved_p_boot_high": ("-", "upper 90 % bound of achieved_p_fit, same bootstrap"),
     "achieved_p_stripe": ("-", "exact share of records that overturn at the stripe nearest "
                                "guideline_im"),
+    "achieved_p": ("-", "exact P(overturn) at guideline_im as the check's P at a site is "
+                        "given: achieved_p_fit unless the fit's P at the nearest stripe lies "
+                        "outside the exact band of the share there, then that share "
+                        "(achieved_p_from says which)"),
+    "achieved_p_low": ("-", "lower end of achieved_p's band: the bootstrap's, or the share's "
+                            "exact 90 % Clopper–Pearson band"),
+    "achieved_p_high": ("-", "upper end of achieved_p's band (with no record overturning at the "
+                             "stripe: the one-sided 95 % bound 1 − 0.05^(1/n))"),
+    "achieved_p_from": ("text", "lognormal, or the count's headline at the nearest stripe "
+                                "(e.g. '12 % [5–22 %]', '< 6.6 %')"),
 }
 
 # one object, one site (``python -m audit check``): one row per object × procedure × limit
@@ -268,8 +278,11 @@ GUIDE["check.csv"] = {
     "share_of_records_overturning": ("-", "information only: share of the records it can "
                                           "evaluate for which it predicts overturning"),
     "exact_p_exceed": ("-", "exact P at site_im of the exact peak rotation reaching this limit "
-                            "(θ(d_LS) for a limit state on d, α for overturning), from a "
-                            "lognormal fitted to the stripes; ≥ p_overturn_at_site"),
+                            "(θ(d_LS) for a limit state on d, α for overturning), by the rule of "
+                            "p_overturn_at_site (the lognormal fitted to the lattice's stripes "
+                            "unless it lies outside the exact band of the count at the site's "
+                            "stripe); "
+                            "≥ p_overturn_at_site, and equal to it for overturning"),
     "required_width_m": ("m", "narrowest width at the object's height it passes (empty where "
                               "none up to 0.99 × the height)"),
     "guideline_im": ("g", "intensity from which it predicts overturning for half the records "
@@ -278,10 +291,18 @@ GUIDE["check.csv"] = {
     "im": ("text", "intensity measure: sa:T (5 %-damped pseudo-spectral acceleration "
                    "ω²·S_d [g]) or pga [g]"),
     "site_im": ("g", "the site's intensity at the hazard level of the S_XS, S_X1 given"),
-    "p_overturn_at_site": ("-", "exact P(overturn) at site_im, from the lognormal fitted to the "
-                                "stripes"),
-    "p_band_low": ("-", "lower end of the 90 % bootstrap band over records"),
-    "p_band_high": ("-", "upper end of the 90 % bootstrap band over records"),
+    "p_overturn_at_site": ("-", "exact P(overturn) at site_im as the headline gives it: the "
+                                "lognormal fitted to the lattice's stripes, unless it lies outside "
+                                "the exact 90 % band of the share of records overturning at the "
+                                "site's own stripe (the records there reject it), then that "
+                                "share (p_estimator says which)"),
+    "p_band_low": ("-", "lower end of its 90 % band: the bootstrap over records (lognormal), "
+                        "or the exact Clopper–Pearson band (count)"),
+    "p_band_high": ("-", "upper end of its 90 % band; with no record overturning at the site, "
+                         "the one-sided 95 % bound 1 − 0.05^(1/n)"),
+    "p_estimator": ("text", "lognormal, or count (the share at the site's own stripe, where the "
+                            "records there reject the lognormal, or no record, or every record, overturns "
+                            "the object there)"),
     "exact_median": ("g", "the exact fragility's median"),
     "exact_beta": ("-", "the exact fragility's β"),
     "exact_required_width_m_10pct": ("m", "narrowest width at the object's height above which "

@@ -14,6 +14,7 @@ from audit.physics.defaults import (DEFAULT_FREE_MOTION_S, DEFAULT_REST_TOLERANC
                                     DEFAULT_STEPS_PER_RADIAN)
 from audit.physics.kernel_threads import run_chunks
 from audit.physics.rocking.kernel import _motion_arguments, _spectrum
+from audit.physics.rocking.motion_equation import _SAMPLED
 
 
 class BlockPeaks(NamedTuple):
@@ -152,8 +153,14 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
     ratio = np.sqrt(np.array([b.r for b in blocks]))[inverse.ravel()]
     args = _motion_arguments(motion, free_motion_s, vertical)
     out = BlockPeaks.empty(p.size)
+    rest = _at_rest(args, alpha, factor, blocks[0].g) if not reactions else np.zeros(p.size, bool)
+    # the kernel's own answer for a block the motion never lifts (it stops at once there)
+    out.theta_peak[rest] = out.omega_peak[rest] = out.theta_after[rest] = 0.0
+    out.overturned[rest] = out.uplifted[rest] = False
+    out.required_friction[rest] = out.min_vertical_reaction[rest] = np.nan
     # longest runs (small blocks: many steps) first, spread round-robin over the threads
     order = np.argsort(p, kind="stable")[::-1]
+    order = order[~rest[order]]
     chunks = [order[i::max(1, jobs)] for i in range(max(1, jobs))]
 
     def run(chunk):
@@ -167,6 +174,24 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
     # instead of after the compiled kernel returns; on an interrupt nothing waits for the rest
     run_chunks(run, chunks)
     return out
+
+
+#: Relative margin below g tan α within which a block is left to the kernel, not taken as at
+#: rest by :func:`_at_rest` (so a last-ulp difference in tan α cannot change an answer).
+_REST_MARGIN = 1e-12
+
+
+def _at_rest(args, alpha, factor, g: float) -> np.ndarray:
+    """Which blocks a sampled horizontal motion (no vertical) cannot lift: the largest |üg| ×
+    the block's scale stays at or below g tan α (the uplift condition of
+    :func:`~audit.physics.rocking.motion_equation._lifts`), so the block stays at rest, θ = 0,
+    and the kernel would stop before its first step. Every block is left to the kernel for a
+    pulse or with a vertical component."""
+    acc, up, kind = args[0], args[1], args[4]
+    if kind != _SAMPLED or up.size or not acc.size:
+        return np.zeros(alpha.size, dtype=bool)
+    peak = float(np.max(np.abs(acc)))
+    return peak * np.abs(factor) <= g * np.tan(alpha) * (1.0 - _REST_MARGIN)
 
 
 def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.stats import norm
+from scipy.stats import binom, norm
 
 import audit
 from audit.cli import main
@@ -81,14 +81,30 @@ def test_a_block_by_dimensions_equals_the_block_by_alpha_and_size(result):
         assert a["verdict"] == b["verdict"] and a["demand"] == pytest.approx(b["demand"])
 
 
-def test_p_at_the_site_is_the_fitted_fragility_at_the_site(result):
+def test_p_at_the_site_is_the_lattice_fragility_or_the_count_it_contradicts(result):
     exact = result.document["objects"][0]["exact"]
     stripes = exact["stripes"]
-    fit = fit_lognormal(stripes["im"], np.full(len(stripes["im"]), stripes["records"]),
-                        stripes["overturned"])
+    fitted = np.asarray(stripes["fitted"])
+    levels = np.asarray(stripes["im"])
+    # the fragility is fitted on the lattice's stripes only: 2^(k/4), k even
+    assert np.allclose(levels[fitted], 2.0 ** (np.arange(-16, 11, 2) / 4))
+    site = int(np.argmin(np.abs(levels - 0.6)))  # the site's own stripe, 0.4 S_XS
+    assert levels[site] == exact["site_im_g"] == pytest.approx(0.6) and not fitted[site]
+    fit = fit_lognormal(levels[fitted], np.full(fitted.sum(), stripes["records"]),
+                        np.asarray(stripes["overturned"])[fitted])
     assert exact["median_g"] == pytest.approx(fit.median, rel=1e-9)
-    assert exact["p_overturn_at_site"] == pytest.approx(
-        norm.cdf(math.log(0.6 / exact["median_g"]) / exact["beta"]), rel=1e-9)
+    at = exact["p_at_site"]
+    model = norm.cdf(math.log(0.6 / exact["median_g"]) / exact["beta"])
+    assert at["model"]["p"] == pytest.approx(model, rel=1e-9)
+    k, n = stripes["overturned"][site], stripes["records"]
+    assert (at["count"]["overturned"], at["count"]["records"]) == (k, n)
+    # the records at the site reject the lognormal when its P lies outside the count's exact
+    # band: the central exact binomial test at 10 %, either tail below 5 %
+    rejected = min(binom.cdf(k, n, model), binom.sf(k - 1, n, model)) < 0.05
+    expected = "count" if k in (0, n) or rejected else "lognormal"
+    assert at["estimator"] == expected
+    assert exact["p_overturn_at_site"] == pytest.approx(k / n if expected == "count" else model,
+                                                        rel=1e-9)
     low, high = exact["p_band"]
     assert low <= exact["p_overturn_at_site"] <= high
 

@@ -55,8 +55,8 @@ def test_return_period_sets_the_exact_answers_intensity_from_the_curve(hazard_di
     document = result.document
     assert document["site_im"] == pytest.approx(expected, rel=0.01)
     assert document["objects"][0]["exact"]["site_im_g"] == document["site_im"]
-    # the stripes centre on the curve's intensity; the guidelines keep S_X1 = 0.9 g
-    assert document["levels"][len(document["levels"]) // 2] == pytest.approx(document["site_im"])
+    # a stripe at the curve's intensity, beside the fixed lattice; the guidelines keep S_X1 = 0.9 g
+    assert document["site_im"] in document["levels"]
     assert document["design_im"] == pytest.approx(0.9)
     site_hazard = document["site_hazard"]
     assert site_hazard["return_period_years"] == 2475
@@ -210,7 +210,18 @@ def test_a_stocky_block_on_mu_02_slides_before_it_rocks(stocky):
     stocky_on_02 = stocky[0.2]["objects"][0]
     sliding = stocky_on_02["sliding"]
     assert sliding["mode"] == "sliding" and len(sliding["records_sliding"]) == len(PERIODS_S)
-    assert "slides before it can rock" in stocky_on_02["sentence"]
+    # every record slides it: the sentence leads with that, the rocking answer follows
+    text = stocky_on_02["sentence"]
+    assert sliding["governs"] and text.startswith("0.8x1.2 (0.8 m wide × 1.2 m tall): On μ = 0.2 "
+                                                  "it slides before it can rock")
+    assert (text.index("slides before it can rock") < text.index("If it could not slide:")
+            < text.index("exact P(overturn)"))
+    assert "does not apply" not in text
+    # without friction, or on a base that holds, the rocking answer comes first
+    for mu in (None, 10.0):
+        head = stocky[mu]["objects"][0]
+        assert not head["sliding"]["governs"] and "If it could not slide" not in head["sentence"]
+        assert head["sentence"].index("exact P(overturn)") < head["sentence"].index(" μ ")
     # the slender one (tan α = 1/6 < 0.2) rocks; its records' rocking needs more than 0.2
     slender = stocky[0.2]["objects"][1]["sliding"]
     assert slender["tan_alpha"] < 0.2 and slender["mode"] != "rocking"
@@ -229,3 +240,18 @@ def test_a_bad_site_location_names_the_argument(hazard_dir, given):
         CheckSettings.parse(hazard=hazard_dir / "usgs-example.json", hazard_imt="PGA",
                             site_location=given)
     assert excinfo.value.fields == ("site_location",)
+
+
+def test_sliding_governs_when_most_records_slide_the_object():
+    from audit.engine.check.sliding import sliding_answer
+    ids = ["a", "b", "c", "d"]
+    # tan α = 1/3 > μ = 0.2: each record needing more than 0.2 slides it before it rocks
+    for needed, governs in (([0.5, 0.6, 0.7, 0.1], True), ([0.5, 0.6, 0.1, 0.1], False),
+                            ([0.1] * 4, False)):
+        answer = sliding_answer(needed, ids, math.degrees(math.atan(1 / 3)), 0.2)
+        assert answer["governs"] is governs
+        assert ("does not apply" in answer["text"]) is (not governs and answer["mode"] == "sliding")
+    # tan α = 0.1 ≤ μ: it rocks, and slides while rocking under the records needing more
+    answer = sliding_answer([0.5, 0.6, 0.7, 0.1], ids, math.degrees(math.atan(0.1)), 0.2)
+    assert answer["governs"] and answer["mode"] == "sliding"
+    assert answer["text"].startswith("On μ = 0.2 sliding governs")

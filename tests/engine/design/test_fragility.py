@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from audit.engine.design.fragility import overturning_pattern, stripe_levels, stripe_outcomes
+from audit.engine.design.fragility import overturning_pattern, stripe_outcomes
 from audit.engine.design.lognormal_fit import fit_lognormal
 from records import one_pulse
 
@@ -31,7 +31,7 @@ def test_fit_recovers_a_lognormal_from_its_expected_counts():
 def test_covariance_is_the_inverse_fisher_information():
     # at the truth with expected counts, the observed information equals the expected one:
     # I = Σ n φ(z)²/(Φ(1 − Φ)) g gᵀ, g = ∂z/∂(ln θ, ln β) = (−1/β, −z)
-    levels, median, beta = stripe_levels(1.0, 12), 1.1, 0.5
+    levels, median, beta = np.geomspace(0.2, 5.0, 12), 1.1, 0.5
     trials = np.full(12, 400.0)
     fit = fit_lognormal(levels, trials, _expected_counts(levels, trials, median, beta))
     z = np.log(levels / median) / beta
@@ -63,7 +63,7 @@ def test_counts_that_do_not_fix_beta_claim_no_band_and_warn_nothing():
 def test_fit_of_sampled_counts_brackets_the_truth():
     # 44 records a stripe, as the FEMA P695 far-field set: the truth lies in the 99 % bands
     rng = np.random.default_rng(20)
-    levels, trials = stripe_levels(1.0), np.full(24, 44)
+    levels, trials = np.geomspace(0.2, 5.0, 24), np.full(24, 44)
     counts = rng.binomial(trials, norm.cdf(np.log(levels / 1.3) / 0.5))
     fit = fit_lognormal(levels, trials, counts, confidence=0.99)
     assert fit.median_band[0] < 1.3 < fit.median_band[1]
@@ -72,12 +72,6 @@ def test_fit_of_sampled_counts_brackets_the_truth():
     assert np.all(lower <= fit.probability(levels)) and np.all(fit.probability(levels) <= upper)
     with pytest.raises(ValueError):
         fit_lognormal(levels, trials, np.zeros(24))
-
-
-def test_stripes_are_geometric_around_the_centre():
-    levels = stripe_levels(0.9)
-    assert levels.size >= 20 and levels[0] == pytest.approx(0.18) and levels[-1] == pytest.approx(4.5)
-    np.testing.assert_allclose(levels[1:] / levels[:-1], (4.5 / 0.18) ** (1 / 23))
 
 
 def test_overturning_pattern_names_first_stripe_and_islands():

@@ -41,6 +41,8 @@ def test_layout_is_the_p58_librarys():
                                           "Peak Floor Velocity"]
     assert list(table["Demand-Unit"]) == ["mps", "mps2", "mps"]
     assert list(table["Incomplete"]) == [0, 0, 1]
+    # one horizontal component of each record: the demand of one direction
+    assert list(table["Demand-Directional"]) == [1, 1, 1]
     # full precision: the median written is the median
     assert table["LS1-Theta_0"][0] == 0.3172843 and table["LS1-Theta_1"][1] == 0.5523
 
@@ -76,6 +78,72 @@ def test_pelicun_loads_the_export_and_reproduces_p(tmp_path):
         p_scipy = lognorm(s=component.fragility.beta, scale=component.fragility.median).cdf(demands)
         np.testing.assert_allclose(p_pelicun, p_scipy, rtol=0, atol=1e-6)
         assert not np.allclose(p_scipy, p_scipy[0])  # three distinct probabilities
+
+
+def _assessment_at(path, component, demands, sample_size):
+    """A pelicun assessment of one ``component`` (location 1, direction 1) loaded from the
+    export at ``path``, under demands fixed at ``demands`` (direction → value, SI) on the
+    floor pelicun reads for location 1 (its default DemandOffset −1 for PFA and PFV: floor 0)."""
+    from pelicun.assessment import Assessment
+    demand_type = "PFV" if component.intensity_measure == "PGV" else "PFA"
+    unit = "mps" if demand_type == "PFV" else "mps2"
+    assessment = Assessment({"PrintLog": False, "Seed": 7, "Verbose": False})
+    marginals = pd.DataFrame({"Theta_0": list(demands.values()), "Units": unit},
+                             index=pd.MultiIndex.from_tuples(
+                                 [(demand_type, "0", direction) for direction in demands]))
+    assessment.demand.load_model({"marginals": marginals})  # no Family: deterministic
+    assessment.demand.generate_sample({"SampleSize": sample_size})
+    assessment.stories = 1
+    assessment.asset.load_cmp_model({"marginals": pd.DataFrame(
+        {"Units": ["ea"], "Location": ["1"], "Direction": ["1"], "Theta_0": [1.0],
+         "Blocks": [1]}, index=[component.id])})
+    assessment.asset.generate_cmp_sample(sample_size)
+    assessment.damage.load_model_parameters([str(path)], cmp_set={component.id},
+                                            warn_missing=False)
+    return assessment
+
+
+def test_pelicun_reads_the_demand_of_the_components_direction_with_no_factor(tmp_path):
+    """pelicun's own demand assembly (what its damage calculation compares with the
+    capacities) gives the exported component the demand of its direction unchanged, not
+    max(dir 1, dir 2) × 1.2; P at that demand from pelicun's loaded parameters is the exact
+    fragility's to 1e-6, and pelicun's damage calculation reproduces it to its sampling."""
+    _needs_pelicun()
+    from pelicun import uq
+    from pelicun.model.demand_model import (_assemble_required_demand_data,
+                                            _get_required_demand_type)
+    path = tmp_path / "fragility.csv"
+    path.write_bytes(pelicun_fragility_csv([BOOKCASE, RACK]))
+    sample_size = 20000
+    for component, demands in ((BOOKCASE, {"1": 0.30, "2": 0.55}),
+                               (RACK, {"1": 5.0, "2": 9.0})):
+        assessment = _assessment_at(path, component, demands, sample_size)
+        damage = assessment.damage.ds_model
+        params = damage.damage_params
+        assert params.loc[component.id, ("Demand", "Directional")] == 1
+        assert assessment.options.nondir_multi_dict == {"ALL": 1.2}  # pelicun's default
+        blocks = pd.DataFrame({"Blocks": [1]}, index=pd.MultiIndex.from_tuples(
+            [(component.id, "1", "1", "0")], names=["cmp", "loc", "dir", "uid"]))
+        required = _get_required_demand_type(params, blocks, assessment.options.demand_offset,
+                                             assessment.options.edp_to_demand_type)
+        assembled = _assemble_required_demand_data(set(required), {"ALL": 1.2},
+                                                   assessment.demand.sample)
+        (demand,) = assembled.values()
+        np.testing.assert_array_equal(demand, np.full(sample_size, demands["1"]))
+        theta = np.array([params.loc[component.id, ("LS1", "Theta_0")],
+                          params.loc[component.id, ("LS1", "Theta_1")]])
+        p_pelicun = uq.LogNormalRandomVariable("ls1", theta=theta).cdf(np.array([demand[0]]))[0]
+        p_exact = lognorm(s=component.fragility.beta,
+                          scale=component.fragility.median).cdf(demands["1"])
+        assert abs(p_pelicun - p_exact) < 1e-6
+        # the whole damage calculation: capacities sampled by Latin hypercube, so the share
+        # in DS1 is P to within a few strata (and far from P at 1.2 × the larger direction)
+        assessment.damage.calculate()
+        in_ds1 = float((damage.ds_sample.to_numpy().ravel() == 1).mean())
+        assert abs(in_ds1 - p_exact) < 5.0 / sample_size
+        p_nondirectional = lognorm(s=component.fragility.beta, scale=component.fragility.median
+                                   ).cdf(1.2 * max(demands.values()))
+        assert p_nondirectional - p_exact > 0.2
 
 
 def test_export_takes_precedence_over_the_p58_library(tmp_path):
