@@ -7,6 +7,7 @@ without loading the scientific stack.
 
 from __future__ import annotations
 
+import fnmatch
 import os
 import shutil
 import tempfile
@@ -72,6 +73,80 @@ def check_output_file(path: str | Path, what: str) -> Path:
         raise InputError(f"{what}: {text} is a folder, expected a file name")
     _writable_ancestor(path, what)
     return path
+
+
+def _same(a: Path, b: Path) -> bool:
+    """Whether ``a`` and ``b`` name one file or folder (links and ``..`` resolved)."""
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # one of them does not exist yet
+        return a.resolve() == b.resolve()
+
+
+def check_outputs(*, files=None, folders=None, inputs=None) -> dict[str, Path | None]:
+    """Every output of a command, checked together before any work: one InputError naming the
+    option of the first output that would overwrite an input, another output, or a folder, or
+    that cannot be written.
+
+    Parameters
+    ----------
+    files : dict, optional
+        Option → path of each output file (None or "-": not given, or standard output).
+    folders : dict, optional
+        Option → ``(path, names)`` of each output folder and the file names (glob patterns)
+        the command writes in it.
+    inputs : dict, optional
+        Option → path, or list of paths, the command reads. A value that names no existing
+        file or folder (a built-in suite, a record id) is not a path and is skipped.
+
+    Returns
+    -------
+    dict
+        Option → checked path (None for an output not given or standard output).
+    """
+    files = {option: path for option, path in (files or {}).items()}
+    folders = {option: spec for option, spec in (folders or {}).items() if spec[0] is not None}
+    read = []
+    for option, value in (inputs or {}).items():
+        for item in value if isinstance(value, (list, tuple)) else (value,):
+            if item is not None and str(item) not in ("", "-") and os.path.exists(item):
+                read.append((option, Path(item)))
+    checked: dict[str, Path | None] = {}
+    for option, (path, names) in folders.items():
+        out_dir = check_output_dir(path, option)
+        for source, item in read:
+            if _same(item, out_dir):
+                raise InputError(f"{option}: {path} is the input of {source}; choose another "
+                                 "output folder")
+            if (_same(item.parent, out_dir)
+                    and any(fnmatch.fnmatch(item.name, name) for name in names)):
+                raise InputError(f"{option}: {path} would receive {item.name} over the input "
+                                 f"of {source} ({item}); choose another output folder")
+        checked[option] = out_dir
+    for option, path in files.items():
+        if path in (None, "-"):
+            checked[option] = None
+            continue
+        for folder_option, (folder, names) in folders.items():
+            folder = Path(folder)
+            if _same(Path(path), folder):
+                raise InputError(f"{option}: {path} is the {folder_option} folder; give a "
+                                 "file name")
+            if (_same(Path(path).parent, folder)
+                    and any(fnmatch.fnmatch(Path(path).name, name) for name in names)):
+                raise InputError(f"{option}: {path} is a file that {folder_option} writes; "
+                                 "choose another file name")
+        target = check_output_file(path, option)
+        for source, item in read:
+            if _same(item, target):
+                raise InputError(f"{option}: {path} is the input of {source}; choose another "
+                                 "file")
+        for other, done in checked.items():
+            if done is not None and other not in folders and _same(done, target):
+                raise InputError(f"{option}: {path} is also the {other} output; give each "
+                                 "output its own file")
+        checked[option] = target
+    return checked
 
 
 def clean_stale_staging(out_dir: Path) -> None:

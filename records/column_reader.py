@@ -3,6 +3,7 @@ with the step and units stated in the file or given."""
 
 from __future__ import annotations
 
+import numbers
 import re
 from pathlib import Path
 
@@ -60,7 +61,7 @@ def read_columns(path: str | Path, column: int | None = None, dt: float | None =
     """
     path = Path(path)
     lines = read_lines(path)
-    if column is not None and (not isinstance(column, int) or isinstance(column, bool)
+    if column is not None and (not isinstance(column, numbers.Integral) or isinstance(column, bool)
                                or column < 1):
         raise InputError(f"{path}: column: must be a whole number ≥ 1, got {column!r}")
     rows, header = _data_rows(lines, path)

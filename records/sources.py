@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import numbers
 import os
 from pathlib import Path
 
@@ -68,6 +69,7 @@ def load_path(path: str | Path, skip_bad: bool = False, dt: float | None = None,
     (:func:`records.peer_search.search_folder`: the listed horizontal components, scaled);
     otherwise the seed records of Table 5.1 among its files take their catalogue ids.
     """
+    dt = _checked_dt(dt)
     if not Path(path).exists():
         raise InputError(f"{path}: file not found")
     path = Path(os.path.abspath(path))
@@ -89,6 +91,18 @@ def load_path(path: str | Path, skip_bad: bool = False, dt: float | None = None,
     if path.suffix.lower() == ".toml":
         return load_manifest(path, skip_bad)
     return RecordSuite((_file_entry(path, dt, units),), f"the record file {path}")
+
+
+def _checked_dt(dt) -> float | None:
+    """``dt`` [s] as given to :func:`load_records` or :func:`load_path`: None or a positive
+    finite number (a numpy scalar too); InputError naming ``dt`` otherwise."""
+    if dt is None:
+        return None
+    if isinstance(dt, bool) or not isinstance(dt, numbers.Real) or not (math.isfinite(dt)
+                                                                        and dt > 0):
+        raise InputError(f"dt: expected a positive time step in seconds (a number), got "
+                         f"{dt!r}", "dt")
+    return float(dt)
 
 
 def _file_options_unused(source, dt: float | None, units: str | None) -> None:
@@ -146,6 +160,7 @@ def load_records(source: str | Path | None = None, skip_bad: bool = False,
     package (:func:`records.p695.shipped_seed_suite`). A name that is neither a file nor a
     suite, but close to a suite's name, is refused with that name suggested.
     """
+    dt = _checked_dt(dt)
     source = str(source or os.environ.get(ENV_VARIABLE) or "")
     suites = (PULSE_SUITE, *p695.SUITES)
     if source in ("", *suites):

@@ -43,6 +43,10 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
           # and its report, for the command line
           "available_procedures": "procedures.registry", "size_grid": "audit.engine.shared.grid",
+          "within_limits": "audit.engine.shared.blocks",
+          # the compiled kernels' threads, stopped before a command leaves after Ctrl-C
+          "stop_kernels": "audit.physics.kernel_threads",
+          "KERNEL_THREADS": "audit.physics.kernel_threads",
           "kept_parts": "audit.engine.shared.partial", "PARTIAL_DIR": "audit.engine.shared.partial",
           "REPORT_HTML": "audit.engine.run.results",
           # the one place records are read, the suites built in, and an analytic pulse
@@ -76,6 +80,7 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "MarginsResult", "fragility", "FragilityResult", "typed", "with_page", "PARTIAL_DIR",
            "REPORT_HTML", "FRAGILITY_HTML", "rocking_spectrum", "response_spectra",
            "design_spectrum", "load_result", "available_procedures", "size_grid", "kept_parts",
+           "within_limits", "stop_kernels", "KERNEL_THREADS",
            "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
            "read_objects", "parse_block_text", "object_by_slenderness",
            "floor_motion", "FloorMotion", "record_suite", "built_in_suites", "PULSE_SUITE",

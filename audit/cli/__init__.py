@@ -19,7 +19,7 @@ from audit import __version__
 from audit.cli import (check, design_spectrum, floor_motion, fragility, listing, margins, options,
                        pulse, report, rock, run, spectrum, validate)
 from audit.cli.flags import with_flags
-from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible
+from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible, stop_threads
 from audit.errors import InputError, InputWarning
 
 COMMANDS = (listing, check, rock, spectrum, design_spectrum, floor_motion, run, margins, fragility,
@@ -72,7 +72,10 @@ def main(argv=None) -> int:
         warnings.simplefilter("ignore", PendingDeprecationWarning)
         warnings.simplefilter("always", InputWarning)
         warnings.showwarning = _one_line_warning
-        return _run(args)
+        code = _run(args)
+        if code == EXIT_INTERRUPTED:
+            stop_threads()
+        return code
 
 
 def _one_line_warning(message, category, filename, lineno, file=None, line=None):

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import sys
 import time
-from pathlib import Path
 
 from audit.cli import options
 from audit.api import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
                        DEFAULT_JOBS)
 from audit.errors import InputError
 
+#: The files check writes in its --out folder.
+WRITES = ("check.json", "check.csv", "check.html")
 
 
 def add_parser(sub):
@@ -118,21 +119,24 @@ def objects_of(args) -> list:
     if not objects:
         raise InputError("check: give the objects: --block WIDTHxHEIGHT, --objects FILE.csv or "
                          "--alpha DEG --size S")
-    names = [o.name for o in objects]
-    repeated = sorted({n for n in names if names.count(n) > 1})
-    if repeated:
-        raise InputError(f"check: object '{repeated[0]}' is given twice")
+    seen = set()
+    for obj in objects:  # one pass: an inventory may hold tens of thousands of objects
+        if obj.name in seen:
+            raise InputError(f"check: object '{obj.name}' is given twice")
+        seen.add(obj.name)
     return objects
 
 
 def run(args) -> int:
     from audit.api import check
-    from audit.files import check_output_dir
+    from audit.cli.outputs import checked
     if not args.site:
         raise InputError("--site: required, S_XS,S_X1 [g] of the hazard level assessed "
                          "(e.g. --site 1.5,0.9)")
+    out_dir = checked(folders={"--out": (args.out, WRITES)},
+                      inputs={"--records": args.records, "--objects": args.objects,
+                              "--hazard": args.hazard}).get("--out")
     site = options.design_site(args)
-    out_dir = check_output_dir(Path(args.out)) if args.out else None
     objects = objects_of(args)
     if args.guideline_spectrum == "floor" and not args.floor:
         raise InputError("--guideline-spectrum floor: reads the floor's response spectrum; the "

@@ -35,7 +35,7 @@ def add_parser(sub):
 
 def run(args) -> int:
     from audit.api import design_spectrum
-    csv = outputs.output_file(args.csv, "--csv")
+    csv = outputs.checked(files={"--csv": args.csv})["--csv"]
     damping = options.damping_pct(args.damping)
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
     spectrum, columns = design_spectrum(

@@ -31,7 +31,8 @@ def run(args) -> int:
     import json
 
     import audit.api as api
-    csv = outputs.output_file(args.csv, "--csv")
+    csv = outputs.checked(files={"--csv": args.csv},
+                          inputs={"--record": args.record, "--records": args.records})["--csv"]
     result = api.floor_motion(args.record, args.records, **options.reading(args),
                               **options.floor_values(args))
     from audit.files import write_atomically

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import sys
-from pathlib import Path
 
 from audit.cli import options
 from audit.api import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
+
+#: The files fragility writes in its --out folder.
+WRITES = ("fragility-*.csv", "fragility.html")
 
 
 def add_parser(sub):
@@ -30,9 +32,11 @@ def add_parser(sub):
 
 def run(args) -> int:
     from audit.api import FRAGILITY_HTML, fragility
-    from audit.files import check_output_dir, check_output_file, write_file_atomically
-    out_dir = check_output_dir(Path(args.out))
-    pelicun = check_output_file(args.pelicun, "--pelicun") if args.pelicun else None
+    from audit.cli.outputs import checked
+    from audit.files import write_file_atomically
+    paths = checked(folders={"--out": (args.out, WRITES)}, files={"--pelicun": args.pelicun},
+                    inputs={"--records": args.records})
+    out_dir, pelicun = paths["--out"], paths["--pelicun"]
     result = fragility(args.procedure, args.records, **options.reading(args), progress=True,
                        **options.floor_values(args))
     pelicun_csv = result.pelicun_csv() if pelicun else None  # made before anything is written

@@ -22,6 +22,27 @@ from contextlib import contextmanager
 EXIT_INTERRUPTED = 130
 #: How soon a lost interruption is delivered again [s].
 REDELIVERY_S = 0.01
+#: Longest wait for the threads still computing after Ctrl-C [s]: a compiled kernel runs to
+#: its end (a chunk of blocks of one record), then its thread stops at its next call.
+STOP_TIMEOUT_S = 60.0
+
+
+def stop_threads(timeout_s: float = STOP_TIMEOUT_S) -> None:
+    """After Ctrl-C, before the process leaves: no compiled kernel starts any more, and the
+    threads still computing (kernels, records beside the main thread) are joined, so that the
+    process never exits, or frees what they read, under a kernel running on another thread
+    (that ended a run interrupted early in signal 11 instead of exit status 130). A second
+    Ctrl-C stops the wait."""
+    from audit.api import KERNEL_THREADS, stop_kernels
+    deadline = time.monotonic() + timeout_s
+    try:
+        stop_kernels(timeout_s)
+        for thread in threading.enumerate():
+            if (thread is not threading.main_thread() and not thread.daemon
+                    and not thread.name.startswith(KERNEL_THREADS)):
+                thread.join(max(0.0, deadline - time.monotonic()))
+    except KeyboardInterrupt:
+        pass
 
 
 @contextmanager

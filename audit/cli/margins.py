@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import shutil
 import sys
-from pathlib import Path
 
 from audit.cli import options
 from audit.api import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
@@ -13,6 +12,9 @@ from audit.api import (DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS,
 from audit.errors import InputError
 
 DEFAULT_OUT = "audit-out/margins"
+#: The files margins writes in its --out folder, and its parts' folder.
+WRITES = ("margins.html", "stripes.csv", "fragility.csv", "capacity.csv", "required_alpha.csv",
+          "scan.csv", "summary.json", "risk.csv", "risk_alpha.csv", "hazard.csv", ".partial")
 
 
 def add_parser(sub):
@@ -70,11 +72,13 @@ def add_parser(sub):
 
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, margins
-    from audit.files import check_output_dir
-    out_dir = check_output_dir(Path(args.out))
+    from audit.cli.outputs import checked
+    out_dir = checked(folders={"--out": (args.out, WRITES)},
+                      inputs={"--records": args.records, "--hazard": args.hazard})["--out"]
     out_dir_existed = out_dir.exists()
     values = {"alpha_deg": options.alphas_deg(args.alpha),
-              "size_s": options.sizes(args.size), "blocks": args.block or (),
+              "size_s": options.sizes(args.size, options.typed_flag(args, "size")),
+              "blocks": args.block or (),
               "restitution": args.restitution, "free_motion_s": args.free_motion,
               "site_level": args.level, "risk_target": args.risk_target}
     if args.im is not None:  # without it, the default or the hazard file's IMT

@@ -87,16 +87,33 @@ def time_grid(text: str, option: str, allow_zero: bool = False) -> np.ndarray:
     raise InputError(f"{option}: expected START:STOP:STEP or a comma list in seconds, got '{text}'")
 
 
-def sizes(text: str) -> np.ndarray:
-    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list."""
-    return time_grid(text, "--size")
+def sizes(text: str, option: str = "--size") -> np.ndarray:
+    """Block sizes 2π/p [s] of ``--size``: START:STOP:STEP or a comma list; ``option`` the
+    flag as typed (``--sizes``, its old name: :func:`typed_flag`)."""
+    return time_grid(text, option)
+
+
+class _Alias(argparse.Action):
+    """Stores the value as the flag does, and which alias was typed (:func:`typed_flag`)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        setattr(namespace, self.dest, values)
+        namespace.typed_flags = {**getattr(namespace, "typed_flags", {}),
+                                 self.dest: option_string}
 
 
 def add_alias(parser, alias: str, dest: str, type=None) -> None:
     """``alias``, the name a flag had before one quantity had one flag on every command: it
-    sets the same ``dest`` (parsed by the same ``type``), so old scripts run; not in ``--help``."""
+    sets the same ``dest`` (parsed by the same ``type``), so old scripts run; not in ``--help``.
+    A message about its value names it as typed (:func:`typed_flag`)."""
     parser.add_argument(alias, dest=dest, type=type, help=argparse.SUPPRESS,
-                        default=argparse.SUPPRESS)
+                        default=argparse.SUPPRESS, action=_Alias)
+
+
+def typed_flag(args, dest: str) -> str:
+    """The flag of ``dest`` as the user typed it: an alias (:func:`add_alias`), else the
+    flag of that name (``size`` → ``--size``)."""
+    return getattr(args, "typed_flags", {}).get(dest, "--" + dest.replace("_", "-"))
 
 
 def number(rule: str, low: float | None = None, high: float | None = None, *,
@@ -369,10 +386,11 @@ def add_floor_options(parser):
                              "Miranda & Taghavi's shear-flexure beam of lateral stiffness ratio "
                              "α0 (0-2 walls, 5-20 frames); default "
                              f"{DEFAULT_BUILDING_MODEL}")
-    parser.add_argument("--building-damping", type=number("must lie in (0, 1]", 0.0, 1.0,
-                                                          low_open=True),
+    parser.add_argument("--building-damping", type=number("must lie in (0, 1), a ratio", 0.0, 1.0,
+                                                          low_open=True, high_open=True),
                         default=DEFAULT_BUILDING_DAMPING, metavar="ZETA",
-                        help="the building's damping ratio in every mode [-]")
+                        help="the building's damping ratio in every mode, 0 < ζ < 1 [-] "
+                             "(0.05 for 5 %%)")
 
 
 def add_param_option(parser):

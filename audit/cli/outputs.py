@@ -7,12 +7,11 @@ import sys
 from pathlib import Path
 
 
-def output_file(path: str | None, option: str) -> Path | None:
-    """The file of an output option, checked before any work; None for standard output."""
-    if path in (None, "-"):
-        return None
-    from audit.files import check_output_file
-    return check_output_file(path, option)
+def checked(*, files=None, folders=None, inputs=None) -> dict[str, Path | None]:
+    """Every output of a command, checked before any work against its inputs and each other
+    (:func:`audit.files.check_outputs`): option → path, None for standard output."""
+    from audit.files import check_outputs
+    return check_outputs(files=files, folders=folders, inputs=inputs)
 
 
 def figure_png(draw, height: float = 6.0) -> bytes:
@@ -49,4 +48,4 @@ def write_csv(table, path: Path | None, extra: dict[Path, bytes] | None = None) 
         print(f"Wrote {rows} rows to {path}", file=sys.stderr)
 
 
-__all__ = ["output_file", "figure_png", "csv_text", "write_csv"]
+__all__ = ["checked", "figure_png", "csv_text", "write_csv"]

@@ -46,8 +46,9 @@ def add_parser(sub):
 
 def run(args) -> int:
     import audit.api as api
-    plot = outputs.output_file(args.plot, "--plot")
-    history = outputs.output_file(args.history, "--history")
+    paths = outputs.checked(files={"--plot": args.plot, "--history": args.history},
+                            inputs={"--record": args.record, "--records": args.records})
+    plot, history = paths["--plot"], paths["--history"]
     if args.r is not None and args.restitution != DEFAULT_RESTITUTION:
         raise InputError("give the impact model once: --r or --restitution, not both")
     restitution = args.r if args.r is not None else args.restitution
@@ -65,6 +66,9 @@ def run(args) -> int:
                              "WIDTHxHEIGHT)")
         block = api.Block(alpha_deg=args.alpha,
                           size_s=args.size if args.size is not None else 2 * math.pi / args.p)
+        # a size beyond the records is refused naming the flag typed (not --block)
+        block = api.within_limits(block, f"--size {args.size:g}" if args.size is not None
+                                  else f"--p {args.p:g}")
     response = api.rock(block, **options.motion(args), free_motion_s=args.free_motion,
                         restitution=restitution, vertical=args.vertical, friction=args.friction,
                         force=args.force, **options.floor_values(args))

@@ -12,6 +12,8 @@ from audit.api import (DEFAULT_AGREE_BAND, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                        DEFAULT_ROBUSTNESS, alpha_text, sizes_text)
 
 DEFAULT_OUT = "audit-out"
+#: The files a run writes in its --out folder (audit.engine.run.results), and its parts' folder.
+WRITES = ("report.html", "columns.json", "*.csv", "summary.json", ".partial")
 
 
 def add_parser(sub):
@@ -66,10 +68,12 @@ def add_parser(sub):
 def run(args) -> int:
     from audit.api import PARTIAL_DIR, REPORT_HTML
     from audit.api import run as run_api
-    from audit.files import check_output_dir
-    out_dir = check_output_dir(Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure)
+    from audit.cli.outputs import checked
+    out = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
+    out_dir = checked(folders={"--out": (out, WRITES)}, inputs={"--records": args.records})["--out"]
     out_dir_existed = out_dir.exists()
-    grid = {"alpha_deg": options.alphas_deg(args.alpha), "size_s": options.sizes(args.size)}
+    grid = {"alpha_deg": options.alphas_deg(args.alpha),
+            "size_s": options.sizes(args.size, options.typed_flag(args, "size"))}
     site = options.design_site(args)
     start = time.perf_counter()
     try:

@@ -39,8 +39,9 @@ def add_parser(sub):
 
 def run(args) -> int:
     import audit.api as api
-    csv = outputs.output_file(args.csv, "--csv")
-    plot = outputs.output_file(args.plot, "--plot")
+    paths = outputs.checked(files={"--csv": args.csv, "--plot": args.plot},
+                            inputs={"--record": args.record, "--records": args.records})
+    csv, plot = paths["--csv"], paths["--plot"]
     if args.free_motion is None:
         args.free_motion = (DEFAULT_FREE_MOTION_S if args.kind == "rocking"
                             else DEFAULT_RESPONSE_FREE_MOTION_S)
@@ -51,7 +52,8 @@ def run(args) -> int:
                                      damping_pct=100.0 * damping, free_motion_s=args.free_motion,
                                      force=args.force, **options.floor_values(args))
     else:
-        alphas, sizes = options.alphas_deg(args.alpha), options.sizes(args.size)
+        alphas = options.alphas_deg(args.alpha)
+        sizes = options.sizes(args.size, options.typed_flag(args, "size"))
         frame = api.rocking_spectrum(**options.motion(args), size_s=sizes, alpha_deg=alphas,
                                      restitution=args.restitution, free_motion_s=args.free_motion,
                                      vertical=args.vertical, jobs=args.jobs, force=args.force,

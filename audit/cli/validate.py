@@ -3,12 +3,13 @@ their outcomes and cross-validated by ground motion (a shell over :func:`audit.a
 
 from __future__ import annotations
 
-from pathlib import Path
 
 from audit.cli import options
 from audit.api import DEFAULT_FREE_MOTION_S, DEFAULT_JOBS
 
 DEFAULT_OUT = "audit-out/validation"
+#: The files validate writes in its --out folder.
+WRITES = ("predictions.csv", "validation-*.csv", "validation.html")
 
 
 def add_parser(sub):
@@ -40,10 +41,11 @@ def add_parser(sub):
 def run(args) -> int:
     from audit.api import validate
     from audit.errors import InputError
-    from audit.files import check_output_dir
+    from audit.cli.outputs import checked
     if args.folds < 2:
         raise InputError(f"--folds: must be at least 2, got {args.folds}")
-    out_dir = check_output_dir(Path(args.out))
+    out_dir = checked(folders={"--out": (args.out, WRITES)},
+                      inputs={"FOLDER": args.folder, "--geometry": args.geometry})["--out"]
     result = validate(args.folder, geometry=args.geometry, folds=args.folds, jobs=args.jobs,
                       free_motion_s=args.free_motion, progress=True)
     result.write(out_dir)

@@ -14,7 +14,8 @@ from records.hazard.plain_csv import read_plain_curve
 from records.hazard.usgs import read_usgs_curve
 
 
-def read_hazard(path, site=None, imt: str | None = None) -> HazardCurve:
+def read_hazard(path, site=None, imt: str | None = None,
+                imt_field: str = "hazard_imt") -> HazardCurve:
     """The hazard curve in ``path``: USGS JSON (``.json``), an OpenQuake export (a CSV opening
     with its ``#`` metadata line) or a plain CSV.
 
@@ -26,11 +27,14 @@ def read_hazard(path, site=None, imt: str | None = None) -> HazardCurve:
         checked against a USGS response's.
     imt : str, optional
         Chooses among the IMTs of a USGS response (``PGA``, ``SA(1.0)``).
+    imt_field : str
+        The argument ``imt`` came from (``hazard_imt``, or ``im`` whose IMT it is), for the
+        message.
     """
     from records.hazard.curve import read_text
     path = Path(path)
     if path.suffix.lower() == ".json":
-        return read_usgs_curve(path, imt, site)
+        return read_usgs_curve(path, imt, site, imt_field)
     if is_openquake_csv(read_text(path)):
         return read_openquake_curve(path, site)
     return read_plain_curve(path)

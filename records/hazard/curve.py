@@ -18,6 +18,12 @@ from audit.errors import InputError
 
 #: Sites are matched by longitude and latitude within this distance in each [degrees].
 SITE_TOLERANCE_DEG = 1e-3
+#: Highest level a curve may give at :data:`PLAUSIBLE_RATE` [g]: the largest mapped MCE_R
+#: accelerations are about 3 g (S_S near faults), as the bound on ``site`` says
+#: (audit.engine.shared.design_site.MAX_SITE_G); a curve above it there is in cm/s² or m/s².
+MAX_PLAUSIBLE_LEVEL_G = 5.0
+#: The annual rate of the MCE_R, 2 % in 50 years [1/yr].
+PLAUSIBLE_RATE = 1.0 / 2475.0
 
 # PGA; SA(1.0) as OpenQuake writes it; SA1P0 / SA0P2 as the USGS services write it
 _SA_OPENQUAKE = re.compile(r"^SA\(\s*([0-9.]+(?:[eE][-+]?\d+)?)\s*\)$")
@@ -74,30 +80,30 @@ class HazardCurve:
         """``PGA`` or ``SA(T)``, T in s."""
         return "PGA" if self.imt == "PGA" else f"SA({float(self.period_s)})"
 
-    def im_at_rate(self, annual_rate: float) -> float:
+    def im_at_rate(self, annual_rate: float, field: str = "return_period") -> float:
         """The level [g] exceeded at ``annual_rate`` [1/yr]: the curve interpolated log–log
         (a power law between its levels, as the risk integral reads it),
 
         .. math:: \\ln im = \\ln im_i + \\frac{\\ln \\lambda - \\ln \\lambda_i}
                   {\\ln \\lambda_{i+1} - \\ln \\lambda_i} \\ln\\frac{im_{i+1}}{im_i}
 
-        between the levels whose rates bracket λ. InputError naming ``return_period`` when
-        λ lies outside the curve's positive rates (the curve says nothing there); on a flat
-        stretch of the curve, its highest level of that rate."""
+        between the levels whose rates bracket λ. InputError naming ``field`` (the argument
+        that gave λ: ``return_period`` or ``poe``) when λ lies outside the curve's positive
+        rates (the curve says nothing there); on a flat stretch of the curve, its highest
+        level of that rate."""
         positive = self.annual_rate > 0
         levels, rates = self.im_g[positive], self.annual_rate[positive]
         if not rates[-1] <= annual_rate <= rates[0]:
             raise InputError(
-                f"return_period: the hazard curve ({self.source}) covers annual rates "
+                f"{field}: the hazard curve ({self.source}) covers annual rates "
                 f"{rates[-1]:.3g} to {rates[0]:.3g} /yr (return periods {1 / rates[0]:.3g} to "
-                f"{1 / rates[-1]:.3g} years), not {annual_rate:.3g} /yr", "return_period")
-        # rates fall with the level: search the reversed (ascending) rates
+                f"{1 / rates[-1]:.3g} years), not {annual_rate:.3g} /yr", field)
+        # rates fall with the level: search the reversed (ascending) rates, whose first one
+        # ≥ λ is, on a flat stretch at λ, the stretch's highest level
         x, y = np.log(rates[::-1]), np.log(levels[::-1])
-        j = int(np.searchsorted(x, math.log(annual_rate), side="right"))
-        if j == 0:
+        j = int(np.searchsorted(x, math.log(annual_rate), side="left"))
+        if j == 0:  # λ is the lowest rate: the highest level exceeded at all
             return float(levels[-1])
-        if j == x.size or x[j] == x[j - 1]:
-            return float(np.exp(y[j - 1]))
         t = (math.log(annual_rate) - x[j - 1]) / (x[j] - x[j - 1])
         return float(np.exp(y[j - 1] + t * (y[j] - y[j - 1])))
 
@@ -132,6 +138,13 @@ class HazardCurve:
         if np.count_nonzero(rates > 0) < 2:
             raise InputError(f"{where}: rates: fewer than two levels are ever exceeded; there is "
                              "no curve to integrate")
+        implausible = np.flatnonzero((levels > MAX_PLAUSIBLE_LEVEL_G) & (rates >= PLAUSIBLE_RATE))
+        if implausible.size:
+            j = implausible[-1]
+            raise InputError(f"{where}: levels: {levels[j]:.3g} g exceeded every "
+                             f"{1 / rates[j]:,.0f} years is beyond any site's hazard (limit "
+                             f"{MAX_PLAUSIBLE_LEVEL_G:g} g at 2,475 years): the levels must be "
+                             "in g, not cm/s² or m/s²")
         return cls(kind, period, levels, rates, source, site)
 
 

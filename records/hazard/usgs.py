@@ -20,7 +20,8 @@ from records.hazard.curve import HazardCurve, match_site, parse_imt, read_text
 TOTAL = "Total"
 
 
-def read_usgs_curve(path, imt: str | None = None, site=None) -> HazardCurve:
+def read_usgs_curve(path, imt: str | None = None, site=None,
+                    imt_field: str = "hazard_imt") -> HazardCurve:
     """The hazard curve of one IMT from a USGS hazard service response.
 
     Parameters
@@ -30,6 +31,9 @@ def read_usgs_curve(path, imt: str | None = None, site=None) -> HazardCurve:
         ``PGA``, ``SA(1.0)`` or ``SA1P0``; needed when the response holds several IMTs.
     site : (float, float), optional
         Longitude, latitude [degrees]; checked against the response's site when given.
+    imt_field : str
+        The argument that chose ``imt`` (``hazard_imt``, or ``im`` whose IMT it is), named
+        when the response has no curve of it.
 
     Returns
     -------
@@ -48,8 +52,11 @@ def read_usgs_curve(path, imt: str | None = None, site=None) -> HazardCurve:
         wanted = parse_imt(imt, str(path))
         chosen = [c for c in curves if (c[0], c[1]) == wanted]
         if not chosen:
-            raise InputError(f"{path}: imt: no curve of {imt}; the response has "
-                             f"{', '.join(sorted({c[2] for c in curves}))}", "hazard_imt")
+            chooser = ("hazard_imt" if imt_field == "hazard_imt"
+                       else f"{imt_field} or hazard_imt")
+            raise InputError(f"{path}: imt: no curve of {imt}, asked by {imt_field}; the "
+                             f"response has {', '.join(sorted({c[2] for c in curves}))}: "
+                             f"choose one of them with {chooser}", imt_field, "hazard_imt")
     elif len({(c[0], c[1]) for c in curves}) > 1:
         raise InputError(f"{path}: imt: the response holds curves of "
                          f"{', '.join(c[2] for c in curves)}; say which one with hazard_imt "

@@ -140,7 +140,7 @@ CASES = [
      ["--free-motion 1e+09 s", "--force"]),
     ("margins-stripes-runaway-cost", {}, ["margins", "all", "--records", "pulses", "--stripes",
                                           ",".join(f"{0.01 * i:g}" for i in range(1, 5000))],
-     ["--stripes, 4,999 values (24 by default)", "--force"]),
+     ["--stripes, 4,999 values (27 by default)", "--force"]),
     # ---------------------------------------------------------------- --alpha
     ("alpha-zero", {}, [*RUN, "--alpha", "0"], ["--alpha"]),
     ("alpha-45", {}, [*SPEC, "--alpha", "45"], ["--alpha"]),

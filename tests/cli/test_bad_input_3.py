@@ -255,16 +255,16 @@ def test_check_cost_counts_objects_stripes_and_widths():
     settings = SimpleNamespace(hazard=None, free_motion_s=0.0)
     runtime = SimpleNamespace(jobs=1)
     cost = check_cost(procedures, _entries(3, 1000), 2, settings, runtime)
-    # per object and record: 9 stripes × (the object + 12 scanned widths + 2 targets × 6
-    # halvings) = 225 blocks; 10 periods × (1 + 16 widths tried) for the 1 procedure reading
+    # per object and record: 15 stripes (the 14 of the lattice √2 apart, 0.0625–5.66 g, and
+    # the site's) × (the object + 12 scanned widths + 2 targets × 6 halvings) = 375 blocks; 10 periods × (1 + 16 widths tried) for the 1 procedure reading
     # the record = 170 oscillators
-    assert cost.work.startswith("450 blocks and 340 oscillators × 3 record(s)")
-    assert cost.seconds == pytest.approx(3000 * 450 / guards.ROCKING_SAMPLES_PER_S
+    assert cost.work.startswith("750 blocks and 340 oscillators × 3 record(s)")
+    assert cost.seconds == pytest.approx(3000 * 750 / guards.ROCKING_SAMPLES_PER_S
                                          + 3000 * 340 / guards.OSCILLATOR_SAMPLES_PER_S)
     with_hazard = check_cost(procedures, _entries(3, 1000), 2,
                              SimpleNamespace(hazard=object(), free_motion_s=0.0), runtime)
-    # a third target (the risk) and each procedure's width: 9 × (1 + 12 + 3 × 6 + 2) = 297
-    assert with_hazard.work.startswith("594 blocks")
+    # a third target (the risk) and each procedure's width: 15 × (1 + 12 + 3 × 6 + 2) = 495
+    assert with_hazard.work.startswith("990 blocks")
 
 
 def test_ten_thousand_objects_refused_with_the_estimate_and_force(workdir, capsys):
@@ -272,7 +272,7 @@ def test_ten_thousand_objects_refused_with_the_estimate_and_force(workdir, capsy
     (workdir / "inventory.csv").write_text("name,width_m,height_m\n" + rows + "\n")
     line = _refused(workdir, capsys, ["check", "--objects", "inventory.csv", "--site", "1.5,0.9",
                                       "--out", "out"],
-                    "work: 2,250,000 blocks", "record(s)", "would take about",
+                    "work: 3,750,000 blocks", "record(s)", "would take about",
                     "--objects, 10,000 of them", "--force")
     assert "force=True" not in line
 

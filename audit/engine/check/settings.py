@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 from audit import G
@@ -131,7 +132,7 @@ class CheckSettings:
         if im.kind == "pgv":
             raise InputError("im: a design spectrum gives no PGV; choose pga or sa:T", "im")
         seed = value["seed"]
-        if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int)
+        if seed is not None and (isinstance(seed, bool) or not isinstance(seed, numbers.Integral)
                                  or seed < 0):
             raise InputError(f"seed: expected a whole number ≥ 0, got {seed!r}", "seed")
         limit_state = value["limit_state"]
@@ -145,6 +146,10 @@ class CheckSettings:
         if spectrum not in GUIDELINE_SPECTRA:
             raise InputError(f"guideline_spectrum: expected {' or '.join(GUIDELINE_SPECTRA)}, "
                              f"got {spectrum!r}", "guideline_spectrum")
+        return_period_years = site_return_period(value["return_period"], value["poe"])
+        if return_period_years is not None:  # on the curve, or refused naming what was given
+            hazard.im_at_rate(1.0 / return_period_years,
+                              "return_period" if value["poe"] is None else "poe")
         return cls(
             im=im,
             restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
@@ -153,7 +158,7 @@ class CheckSettings:
                                        "a duration ≥ 0 s", 0),
             g=check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True),
             seed=seed, hazard=hazard, risk_target=risk_target,
-            site_return_period_years=site_return_period(value["return_period"], value["poe"]),
+            site_return_period_years=return_period_years,
             friction=friction, limit_state=limit_state, guideline_spectrum=spectrum)
 
 

@@ -209,6 +209,12 @@ def hazard_im(curve):
         IntensityMeasure("sa", float(curve.period_s))
 
 
+def _same_im(one, other) -> bool:
+    """Whether two intensity measures are one (SA periods equal to 1e-6)."""
+    return one.kind == other.kind and (
+        one.kind != "sa" or math.isclose(one.period_s, other.period_s, rel_tol=1e-6))
+
+
 def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
     """InputError when the fragility's intensity measure ``im`` (``pga``, ``sa:1``) is not
     the hazard curve's; None passes (the caller vouches for it).
@@ -226,9 +232,7 @@ def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
         return
     from audit.engine.shared.intensity import IntensityMeasure
     mine, theirs = IntensityMeasure.parse(im), hazard_im(curve)
-    same = mine.kind == theirs.kind and (
-        mine.kind != "sa" or math.isclose(mine.period_s, theirs.period_s, rel_tol=1e-6))
-    if not same:
+    if not _same_im(mine, theirs):
         raise InputError(f"hazard: imt: the curve is of {curve.im_name} ({curve.source}) but "
                          f"the {what} is of {mine.name}; use the intensity measure "
                          f"{theirs.name} for both", "hazard", what)
@@ -259,6 +263,7 @@ def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=N
     """
     from audit.engine.shared import fields
     from audit.engine.shared.hazard_imt import im_of_imt, imt_of
+    from audit.engine.shared.intensity import IntensityMeasure
     from records.hazard import HazardCurve, read_hazard
     if site_location is not None:
         site_location = fields.lon_lat("site_location", site_location)
@@ -268,9 +273,13 @@ def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=N
                          f"{hazard_imt!r}", "hazard_imt")
     if not isinstance(hazard, HazardCurve):
         hazard = read_hazard(fields.path("hazard", hazard, "a hazard curve or its file"),
-                             site_location, hazard_imt or (imt_of(im_text) if im_text else None))
-    elif hazard_imt is not None:
-        check_same_im(hazard, im_of_imt(hazard_imt), "hazard_imt")
+                             site_location, hazard_imt or (imt_of(im_text) if im_text else None),
+                             imt_field="hazard_imt" if hazard_imt else "im")
+    if hazard_imt is not None:  # a file of one IMT has no choice: it must be the one asked
+        asked = IntensityMeasure.parse(im_of_imt(hazard_imt))
+        if not _same_im(asked, hazard_im(hazard)):
+            raise InputError(f"hazard_imt: {hazard_imt}: the curve is of {hazard.im_name} "
+                             f"({hazard.source}), not {hazard_imt}", "hazard_imt")
     if im_text is not None:
         check_same_im(hazard, im_text, "im")
     annual_rate_for(risk_target)

@@ -8,6 +8,7 @@ once by :meth:`Floor.parse`.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 
 from audit.errors import InputError
@@ -77,26 +78,32 @@ class Floor:
               building_damping=DEFAULT_BUILDING_DAMPING) -> Floor:
         """The floor of the given keywords (``floor`` is z/H, ``building`` is T1 [s]), each
         checked once; InputError naming the keyword."""
-        def real(name, value, low, high, low_open=False):
-            if isinstance(value, bool) or not isinstance(value, (int, float)) \
-                    or not math.isfinite(value) or value > high \
+        def real(name, value, low, high, low_open=False, high_open=False):
+            if isinstance(value, bool) or not isinstance(value, numbers.Real) \
+                    or not math.isfinite(value) \
+                    or (value >= high if high_open else value > high) \
                     or (value <= low if low_open else value < low):
                 raise InputError(f"{name}: expected a number in {'(' if low_open else '['}{low:g}, "
-                                 f"{high:g}], got {value!r}", name)
+                                 f"{high:g}{')' if high_open else ']'}, got {value!r}", name)
             return float(value)
 
         z_over_h = real("floor", floor, 0.0, 1.0)
-        damping = real("building_damping", building_damping, 0.0, 1.0, low_open=True)
+        # a ratio, under critical: the modes' exact recurrence is that of an underdamped
+        # oscillator (no building is damped near critically)
+        damping = real("building_damping", building_damping, 0.0, 1.0, low_open=True,
+                       high_open=True)
+        # checked on the ground too: a malformed value is refused wherever it is given
+        model = None if building_model is None else BuildingModel.parse(building_model)
+        if building is not None:
+            building = real("building", building, 0.0, 20.0, low_open=True)
         if z_over_h == 0.0:
             # On the ground the building does not matter, whatever was said of it.
             return cls()
         if building is None:
             raise InputError("building: a floor above the ground needs T1, the first-mode period "
                              "[s] of the structure it is in", "building")
-        period_s = real("building", building, 0.0, 20.0, low_open=True)
-        model = BuildingModel.parse(DEFAULT_BUILDING_MODEL if building_model is None
-                                    else building_model)
-        return cls(z_over_h, period_s, model, damping)
+        model = BuildingModel.parse(DEFAULT_BUILDING_MODEL) if model is None else model
+        return cls(z_over_h, building, model, damping)
 
     def describe(self) -> str:
         """In words, for pages and printed summaries."""
