@@ -1,8 +1,10 @@
 """The page of a campaign's validation, drawn from its saved files only (plotly.js inlined).
 
 Per specimen: the outcome map in the dimensionless plane (PGA/(g tan α̂), p̂·PGV/PGA) with the
-fitted model's 50 % line, and the calibration of the cross-validated probabilities; then the
-fitted blocks beside the geometry, the scores of model, baselines and peer columns, and where
+fitted model's 50 % line, the calibration of the cross-validated probabilities and the α–p
+ridge of the profile likelihood; then the fitted blocks beside the geometry (the ridge's 95 %
+region where α̂ or p is not identified), the predictions and their bands, the scores of model,
+baselines and peer columns, and where
 the model fails.
 """
 
@@ -17,7 +19,8 @@ import pandas as pd
 
 from audit.engine.validation.baselines import VectorLogistic
 from audit.engine.validation.cross_validation import MODEL, PGA, PGV, VECTOR
-from audit.engine.validation.pipeline import FITS_CSV, SCORES_CSV, TESTS_CSV, methods_statement
+from audit.engine.validation.pipeline import (FITS_CSV, PREDICTIONS_CSV, RIDGE_CSV, SCORES_CSV,
+                                              TESTS_CSV, methods_statement)
 from reports.html_parts import PAGE_STYLE, html_table
 from reports.plots import to_json
 
@@ -139,20 +142,21 @@ def _failures(tests: pd.DataFrame) -> str:
 
 
 def _fits_table(fits: pd.DataFrame) -> str:
-    """Fitted values with their 95 % intervals, beside what the geometry gives."""
-    def span(row, name, digits, bounds=None):
+    """Fitted values with their 95 % profile-likelihood intervals, beside the geometry."""
+    def span(row, name, digits, bounds=None, identified=True):
         low, high = (getattr(row, (bounds or name) + end) for end in ("_low", "_high"))
         value = getattr(row, name)
         if pd.isna(value):
             return "—"
-        if pd.isna(low) or pd.isna(high):
-            return f"{value:.{digits}f}"
-        return f"{value:.{digits}f} ({low:.{digits}f}–{high:.{digits}f})"
+        text = f"{value:.{digits}f} ({low:.{digits}f}–{high:.{digits}f})"
+        return text if identified else f"not identified: {text}, the ridge below"
     rows = [{"specimen": row.specimen, "tests fitted": row.n_tests,
-             "α̂ [°] (95 %)": span(row, "alpha_deg", 2),
+             "α̂ [°] (95 %)": span(row, "alpha_deg", 2, identified=row.alpha_identified),
              "σ of ln α (95 %)": span(row, "sigma_ln_alpha", 3, "sigma"),
-             "p [rad/s] (95 % grid set)": span(row, "p_rad_s", 2),
-             "restitution factor (95 % grid set)": span(row, "restitution_factor", 2),
+             "p [rad/s] (95 %)": span(row, "p_rad_s", 2, identified=row.p_identified),
+             "restitution factor (95 %)": span(row, "restitution_factor", 2),
+             "resolution: α̂, p, f": f"{row.alpha_step_pct:.1f} %, {row.p_step_pct:.1f} %, "
+             f"{row.restitution_step:.3g}",
              "over the folds: α̂ [°], p, f": f"{row.alpha_deg_folds_min:.2f}–"
              f"{row.alpha_deg_folds_max:.2f}, {row.p_rad_s_folds_min:.2f}–"
              f"{row.p_rad_s_folds_max:.2f}, {row.restitution_factor_folds_min:g}–"
@@ -167,6 +171,62 @@ def _fits_table(fits: pd.DataFrame) -> str:
     return html_table(pd.DataFrame(rows))
 
 
+def _ridge_figure(ridge: pd.DataFrame, name: str) -> dict:
+    """The best α̂ at each p and the 95 % region's α̂ range: the ridge along which the
+    outcomes trade p for α."""
+    inside = ridge[ridge["inside_95"]]
+    return {"data": [
+        {"type": "scatter", "mode": "lines", "name": "best α̂ at p", "x": ridge["p_rad_s"],
+         "y": ridge["alpha_deg"], "line": {"color": "#999999"}},
+        {"type": "scatter", "mode": "markers", "name": "95 % region",
+         "x": inside["p_rad_s"], "y": 0.5 * (inside["alpha_deg_low"] + inside["alpha_deg_high"]),
+         "error_y": {"type": "data", "symmetric": False,
+                     "array": 0.5 * (inside["alpha_deg_high"] - inside["alpha_deg_low"]),
+                     "arrayminus": 0.5 * (inside["alpha_deg_high"] - inside["alpha_deg_low"])},
+         "marker": {"color": "#d62728", "size": 5}}],
+        "layout": {"title": {"text": f"{name}: α̂ along p (the profile's ridge)"},
+                   "xaxis": {"title": {"text": "p [rad/s]"}},
+                   "yaxis": {"title": {"text": "α̂ [°]"}}, "height": 460, "width": 520}}
+
+
+def _ridge_text(fits: pd.DataFrame, ridge: pd.DataFrame) -> str:
+    """Where α̂ or p is not identified, the ridge's 95 % region as a table."""
+    parts = []
+    for row in fits.itertuples():
+        if row.alpha_identified and row.p_identified:
+            continue
+        inside = ridge[(ridge["specimen"] == row.specimen) & ridge["inside_95"]]
+        which = " and ".join(n for n, ok in (("α̂", row.alpha_identified),
+                                              ("p", row.p_identified)) if not ok)
+        table = inside[["p_rad_s", "alpha_deg", "alpha_deg_low", "alpha_deg_high",
+                        "log_likelihood"]].rename(columns={
+                            "p_rad_s": "p [rad/s]", "alpha_deg": "best α̂ [°]",
+                            "alpha_deg_low": "95 % α̂ from [°]", "alpha_deg_high": "to [°]"})
+        parts.append(f"<p>{html.escape(row.specimen)}: the outcomes do not identify {which}: "
+                     f"its 95 % set reaches the end of the searched range. They pin down the "
+                     f"ridge below (every (p, α̂) in it explains the outcomes alike); a point "
+                     f"on it is not a measurement of either.</p>{html_table(table.round(3))}")
+    return "".join(parts)
+
+
+def _predictions(predictions: pd.DataFrame) -> str:
+    """How many tests without an outcome are predicted to overturn, and those whose band
+    straddles 50 %."""
+    if predictions.empty:
+        return "<p>Every test has an outcome: nothing to predict.</p>"
+    predictions = predictions.assign(
+        uncertain=(predictions["p_overturn_low"] < 0.5) & (predictions["p_overturn_high"] >= 0.5))
+    counts = predictions.groupby("specimen").agg(
+        tests=("test", "size"), predicted_overturned=("predicted_overturned", "sum"),
+        band_straddles_50_pct=("uncertain", "sum")).reset_index()
+    shown = predictions[predictions["uncertain"]].drop(columns="uncertain")
+    return (f"<p>P(overturn) of each test without an outcome is averaged over the parameters "
+            f"the outcomes allow (weighted by the likelihood), with the 95 % band of that "
+            f"average's spread (predictions.csv). Tests whose band straddles 50 % are those the "
+            f"fit cannot call:</p>{html_table(counts)}"
+            f"{html_table(shown.round(3)) if len(shown) else ''}")
+
+
 def render_validation_page(folder, title: str, solves: int) -> str:
     """The HTML page of the validation saved in ``folder`` (its CSV files)."""
     from plotly.offline import get_plotlyjs
@@ -174,10 +234,13 @@ def render_validation_page(folder, title: str, solves: int) -> str:
     fits = pd.read_csv(folder / FITS_CSV, keep_default_na=False, na_values=[""])
     scores = pd.read_csv(folder / SCORES_CSV)
     tests = pd.read_csv(folder / TESTS_CSV, dtype={"test": str})
+    ridge = pd.read_csv(folder / RIDGE_CSV)
+    predictions = pd.read_csv(folder / PREDICTIONS_CSV, dtype={"test": str})
     figures, verdicts = [], []
     for row in fits.itertuples():
         chosen = tests[tests["specimen"] == row.specimen]
-        for spec in (_outcome_map(chosen, row), _calibration(chosen, row.specimen)):
+        for spec in (_outcome_map(chosen, row), _calibration(chosen, row.specimen),
+                     _ridge_figure(ridge[ridge["specimen"] == row.specimen], row.specimen)):
             figures.append(f'<div id="f{len(figures)}" style="display:inline-block"></div>'
                            f'<script>(s => Plotly.newPlot("f{len(figures)}", s.data, '
                            f's.layout))({to_json(spec)});</script>')
@@ -196,10 +259,12 @@ def render_validation_page(folder, title: str, solves: int) -> str:
             f"the model's on the same tests (positive: the model is better), with its standard "
             f"error.</p>{''.join(verdicts)}"
             f"<h2>Fitted blocks and geometry</h2>"
-            f"{_fits_table(fits)}<p>The 95 % sets of p and f are grid values within 1.92 of "
-            f"the best profile log-likelihood; the folds' fits (each on ~80 % of the ground "
-            f"motions) show how far α̂, p and f move between subsets: where that range is "
-            f"wider, p and f trade off and the range is the more honest uncertainty.</p>"
+            f"{_fits_table(fits)}<p>Every interval is a profile-likelihood interval: the set "
+            f"where the log-likelihood, maximised over the other parameters, is within 1.92 "
+            f"of the best, widened by one step of the fine grid (its resolution, given beside). "
+            f"The folds' fits (each on ~80 % of the ground motions) show how far α̂, p and f "
+            f"move between subsets.</p>{_ridge_text(fits, ridge)}"
+            f"<h2>Predictions of the tests without an outcome</h2>{_predictions(predictions)}"
             f"<h2>Cross-validated scores</h2>"
             f"{html_table(scores.rename(columns=_SCORE_HEADINGS))}"
             f"<h2>Figures</h2>{''.join(figures)}"

@@ -59,8 +59,8 @@ class ValidationResult(Files):
 
 
 def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
-             free_motion_s: float = DEFAULT_FREE_MOTION_S, progress=False,
-             settings=None) -> ValidationResult:
+             free_motion_s: float = DEFAULT_FREE_MOTION_S, band_pass: bool = False,
+             progress=False, settings=None) -> ValidationResult:
     """Fit each specimen's equivalent rigid block to a shake-table campaign and score it by
     cross-validation by ground motion against intensity baselines (docs/validation.md).
 
@@ -80,10 +80,13 @@ def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
         Solver threads, ≥ 1.
     free_motion_s : float
         Free rocking simulated after each test motion [s], ≥ 0.
+    band_pass : bool
+        Solve the blocks under the band-passed motions (0.1–25 Hz) rather than as recorded.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, test_id)``.
-    settings : audit.engine.validation.grid.ValidationSettings, optional
-        Every setting (grid, band-pass, lapse); overrides ``folds``, ``jobs``, ``free_motion_s``.
+    settings : audit.engine.validation.settings.ValidationSettings, optional
+        Every setting (grid, band-pass, lapse); overrides ``folds``, ``jobs``,
+        ``free_motion_s`` and ``band_pass``.
 
     Returns
     -------
@@ -100,7 +103,8 @@ def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
         geometry = check.path("geometry", geometry, "a CSV file of geometric estimates")
     progress = check.callback("progress", progress, "progress(done, total, test_id)")
     if settings is None:
-        settings = ValidationSettings(folds=folds, jobs=jobs, free_motion_s=free_motion_s)
+        settings = ValidationSettings(folds=folds, jobs=jobs, free_motion_s=free_motion_s,
+                                      band_pass=band_pass)
     elif not isinstance(settings, ValidationSettings):
         raise InputError(f"settings: expected a ValidationSettings, got {settings!r}",
                          "settings")

@@ -26,8 +26,9 @@ def add_parser(sub):
 
 def run(args) -> int:
     import audit.api as api
-    csv = outputs.output_file(args.csv, "--csv")
-    plot = outputs.output_file(args.plot, "--plot")
+    paths = outputs.checked(files={"--csv": args.csv, "--plot": args.plot},
+                            inputs={"--records": args.records})
+    csv, plot = paths["--csv"], paths["--plot"]
     frame, figure = api.record_pulses(args.records, plot=plot is not None,
                                       **options.reading(args))
     files = {}

@@ -132,7 +132,7 @@ CASES = {
                   {"procedure": CHOICE, "records": PATH, **READING, "progress": FLAG}),
     "validate": (audit.validate, {"folder": "campaign"},
                  {"folder": PATH | st.none(), "geometry": PATH, "folds": WHOLE, "jobs": WHOLE,
-                  "free_motion_s": NUMBER, "progress": CALLBACK,
+                  "free_motion_s": NUMBER, "band_pass": FLAG, "progress": CALLBACK,
                   "settings": JUNK | TEXTS | NUMBERS}),
     "rocking_spectrum": (audit.rocking_spectrum, {"motion": _pulse(), "size_s": [1.0],
                                                   "alpha_deg": [15.0]},

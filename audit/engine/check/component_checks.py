@@ -20,9 +20,14 @@ from procedures.registry import available_component_provisions
 
 
 def component_provisions(params: dict | None = None) -> list[ComponentProvision]:
-    """Every registered component provision, each with its parameters of ``params``
-    (``{name: {attribute: value}}``, as :func:`procedures.parameters.parse_params` gives them)
-    and its defaults otherwise."""
+    """Every registered component provision, each with its parameters of ``params`` and its
+    defaults otherwise.
+
+    Parameters
+    ----------
+    params : dict, optional
+        ``{name: {attribute: value}}``, as :func:`procedures.parameters.parse_params` gives them.
+    """
     params = params or {}
     return [cls(**params.get(name, {}))
             for name, cls in available_component_provisions().items()]

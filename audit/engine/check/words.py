@@ -192,7 +192,14 @@ def _compared(proc: dict, half_width_m: float) -> str:
 
 def anchorage_words(anchorage: dict) -> str:
     """The anchorage forces of a failing component provision: shear V and the far edge's
-    tension T per unit weight (and in kN with the mass), and times Ω0p where the code asks."""
+    tension T per unit weight (and in kN with the mass), and times Ω0p where the code asks.
+
+    Parameters
+    ----------
+    anchorage : dict
+        A provision entry's ``anchorage`` in check.json: ``shear``, ``tension`` [W], their
+        ``_kN`` with the mass, ``omega_0p`` and the ``_omega`` forces where the code asks.
+    """
     def forces(suffix: str) -> str:
         words = [f"{name} {anchorage[key + suffix]:.3g} W"
                  + (f" = {anchorage[key + suffix + '_kN']:.3g} kN"

@@ -52,7 +52,7 @@ class OutOfFold:
     fits: tuple
 
 
-def out_of_fold(overturned, outcomes, fold, intensities, settings) -> OutOfFold:
+def out_of_fold(overturned, outcomes, fold, intensities, settings, blocks) -> OutOfFold:
     """Each method's probability for every test, fitted on the other folds.
 
     Parameters
@@ -66,6 +66,9 @@ def out_of_fold(overturned, outcomes, fold, intensities, settings) -> OutOfFold:
     intensities : Intensities
         PGA and PGV of these tests.
     settings : ValidationSettings
+        The folds and the lapse.
+    blocks : BlockGrid
+        The grid ``overturned`` was solved on.
 
     Returns
     -------
@@ -79,9 +82,9 @@ def out_of_fold(overturned, outcomes, fold, intensities, settings) -> OutOfFold:
         if not test.any():
             continue
         y = outcomes[train]
-        fit = fit_block(overturned[train], y, settings)
+        fit = fit_block(overturned[train], y, blocks, settings.lapse)
         fits.append(fit)
-        out[MODEL][test] = fit.probability(overturned[test], settings)
+        out[MODEL][test] = fit.predict(overturned[test]).p_overturn
         out[PGA][test] = ThresholdFragility.fit(pga_g[train], y, settings.lapse).probability(
             pga_g[test])
         out[PGV][test] = ThresholdFragility.fit(pgv[train], y, settings.lapse).probability(

@@ -1,9 +1,10 @@
 """The exact solver over a grid of equivalent blocks for every test of a campaign, solved once.
 
 Every fit of the validation (each specimen, each cross-validation fold) reads this one table of
-exact outcomes, so the solve count is that of the grid: tests × α × p × restitution factors.
-The table motions are band-passed first (the campaign's records are unfiltered feedback signals
-with a DC drift and content above 25 Hz; docs/validation.md).
+exact outcomes, so the solve count is that of the grids: tests × blocks (the coarse grid, then
+the fine grids of :mod:`~audit.engine.validation.refine`). The blocks rock under the motions as
+recorded unless ``band_pass`` is set; PGA and PGV are read from the band-passed motions (the
+campaign's records are unfiltered feedback signals with a DC drift; docs/validation.md).
 """
 
 from __future__ import annotations
@@ -92,47 +93,96 @@ def intensities(motions) -> Intensities:
 
 
 @dataclass(frozen=True)
+class BlockGrid:
+    """The blocks solved under every test: each (restitution factor, p) has its own α nodes.
+
+    Attributes
+    ----------
+    restitution_factors : numpy.ndarray
+        Multiples of Eq. 4.8's r [-], shape (F,).
+    p_rad_s : numpy.ndarray
+        Frequency parameters [rad/s], shape (P,).
+    alpha_deg : numpy.ndarray
+        Slenderness nodes [degrees], shape (F, P, N), increasing along the last axis.
+    search_alpha_deg, search_p_rad_s : tuple
+        The range searched (the coarse grid's, which a fine grid inherits): a 95 % set that
+        reaches its end does not identify the parameter; one that reaches only a fine grid's
+        end is bounded there by the coarser grid's likelihood.
+    """
+
+    restitution_factors: np.ndarray
+    p_rad_s: np.ndarray
+    alpha_deg: np.ndarray
+    search_alpha_deg: tuple
+    search_p_rad_s: tuple
+
+    @classmethod
+    def from_settings(cls, settings: ValidationSettings) -> BlockGrid:
+        """The settings' grid: the same α nodes at every (f, p).
+
+        Parameters
+        ----------
+        settings : ValidationSettings
+            ``restitution_factors`` [-], ``p_rad_s`` [rad/s] and ``alpha_deg`` [degrees].
+        """
+        f = np.asarray(settings.restitution_factors, dtype=float)
+        p = np.asarray(settings.p_rad_s, dtype=float)
+        alpha = np.broadcast_to(np.asarray(settings.alpha_deg, dtype=float),
+                                (f.size, p.size, len(settings.alpha_deg))).copy()
+        return cls(f, p, alpha, (float(alpha.min()), float(alpha.max())),
+                   (float(p.min()), float(p.max())))
+
+    @property
+    def solves_per_test(self) -> int:
+        return int(self.alpha_deg.size)
+
+
+@dataclass(frozen=True)
 class OverturningGrid:
     """Exact overturning of every grid block under every test.
 
     Attributes
     ----------
     overturned : numpy.ndarray of bool
-        Shaped (test, restitution factor, p, α) of the settings' grid.
+        Shaped (test, restitution factor, p, α node) of ``blocks``.
+    blocks : BlockGrid
     solves : int
         Exact simulations run.
     """
 
     overturned: np.ndarray
+    blocks: BlockGrid
     solves: int
 
 
-def overturning_grid(motions, settings: ValidationSettings, progress=None) -> OverturningGrid:
+def overturning_grid(motions, settings: ValidationSettings, progress=None,
+                     blocks: BlockGrid | None = None) -> OverturningGrid:
     """Solve every grid block (α, p, restitution factor) under every motion exactly.
 
     Parameters
     ----------
     motions : sequence of GroundMotion
-        Band-passed table motions [m/s²].
+        Table motions [m/s²].
     settings : ValidationSettings
     progress : callable, optional
         Called as ``progress(done, total, what)`` after each test.
+    blocks : BlockGrid, optional
+        The blocks; the settings' grid when not given.
     """
-    alpha = np.radians(np.asarray(settings.alpha_deg, dtype=float))
-    p = np.asarray(settings.p_rad_s, dtype=float)
-    grid_p, grid_alpha = np.meshgrid(p, alpha, indexing="ij")
-    size = 2.0 * np.pi / grid_p.ravel()
-    shape = (len(settings.restitution_factors), p.size, alpha.size)
+    blocks = BlockGrid.from_settings(settings) if blocks is None else blocks
+    shape = blocks.alpha_deg.shape
+    size = np.broadcast_to(2.0 * np.pi / blocks.p_rad_s[:, None], shape[1:]).ravel()
     out = np.empty((len(motions),) + shape, dtype=bool)
     for i, motion in enumerate(motions):
-        for j, factor in enumerate(settings.restitution_factors):
-            peaks = rocking_blocks(motion, size, grid_alpha.ravel(), Restitution(factor=factor),
+        for j, factor in enumerate(blocks.restitution_factors):
+            peaks = rocking_blocks(motion, size, np.radians(blocks.alpha_deg[j]).ravel(),
+                                   Restitution(factor=float(factor)),
                                    free_motion_s=settings.free_motion_s, jobs=settings.jobs)
             out[i, j] = peaks.overturned.reshape(shape[1:])
         if progress is not None:
             progress(i + 1, len(motions), motion.id)
-    return OverturningGrid(out, len(motions) * settings.solves_per_test)
+    return OverturningGrid(out, blocks, len(motions) * blocks.solves_per_test)
 
 
-__all__ = ["ValidationSettings", "Intensities", "OverturningGrid", "band_passed", "intensities",
-           "overturning_grid"]
+__all__ = ["ValidationSettings", "Intensities", "BlockGrid", "OverturningGrid", "band_passed",
+           "intensities", "overturning_grid"]

@@ -18,7 +18,9 @@ from audit.cli import main
 from conftest import REQUIRE_RECORDS, unavailable
 from audit.engine.validation.baselines import ThresholdFragility, VectorLogistic, scores
 from audit.engine.validation.cross_validation import folds_by_record
-from audit.engine.validation.fit import fit_block, slenderness_weights
+from audit.engine.validation.fit import fit_block
+from audit.engine.validation.link import overturning_probability, slenderness_weights
+from audit.engine.validation.profile import profile_interval
 from audit.engine.validation.grid import band_passed, overturning_grid
 from audit.engine.validation.settings import ValidationSettings
 from audit.engine.validation.pipeline import fitted_restitution, methods_statement
@@ -106,6 +108,45 @@ def test_weights_collapse_to_interpolation_as_sigma_vanishes():
     assert weights == pytest.approx([1 - share, share, 0.0], abs=1e-6)
 
 
+def test_vectorised_weights_are_the_scalar_ones_column_by_column():
+    nodes = np.log(np.radians(np.geomspace(2.0, 30.0, 9)))
+    mu = np.log(np.radians([3.0, 7.5, 29.0]))
+    sigma = np.array([0.01, 0.3, 1.1])
+    columns = slenderness_weights(nodes, mu, sigma)
+    for c in range(3):
+        assert columns[:, c] == pytest.approx(slenderness_weights(nodes, mu[c], sigma[c]),
+                                              abs=1e-15)
+
+
+def test_profile_interval_is_the_set_within_1_92_widened_by_a_step():
+    values = np.arange(1.0, 11.0)
+    profile = -0.5 * (values - 5.0) ** 2  # within 1.92 of 0 for |v − 5| ≤ 1.96: 4, 5, 6
+    interval = profile_interval(values, profile, 0.0)
+    assert (interval.low, interval.high, interval.identified) == (3.0, 7.0, True)
+    flat = profile_interval(values, np.zeros(10) - 1.0, 0.0)  # a ridge: the whole range
+    assert (flat.low, flat.high, flat.identified) == (1.0, 10.0, False)
+
+
+def test_profile_is_the_maximum_over_the_other_parameters_not_a_slice(synthetic):
+    """On the synthetic campaign, the α profile at a median is the lattice's best over
+    (f, p, σ), and that value is the likelihood recomputed from the link at its point."""
+    folder, _ = synthetic
+    campaign = read_campaign(folder)
+    observed = campaign.outcomes["spec"]
+    known = ~np.isnan(observed)
+    grid = overturning_grid([m for m, k in zip(campaign.motions, known) if k], SMALL)
+    fit = fit_block(grid.overturned, observed[known], grid.blocks, SMALL.lapse)
+    values = fit.surface.log_likelihood
+    m = values.shape[2] // 3
+    j, k, s = np.unravel_index(np.argmax(values[:, :, m, :]), values[:, :, m, :].shape)
+    p = overturning_probability(grid.overturned[:, j, k, :].astype(float),
+                                fit.surface.log_nodes(j, k), fit.surface.log_medians[m],
+                                fit.surface.sigma[s], SMALL.lapse)
+    y = observed[known]
+    direct = np.sum(y * np.log(p) + (1 - y) * np.log1p(-p))
+    assert values.max(axis=(0, 1, 3))[m] == pytest.approx(direct, abs=1e-9)
+
+
 def test_band_pass_removes_the_offset_and_keeps_the_rocking_band():
     """A 0.05 g offset goes; a 1 Hz sine keeps its amplitude; 40 Hz noise goes (0.1–25 Hz)."""
     t = np.arange(0.0, 120.0, DT)
@@ -184,11 +225,11 @@ def test_fit_recovers_the_block_that_made_the_outcomes(synthetic):
     known = ~np.isnan(observed)
     grid = overturning_grid([m for m, k in zip(campaign.motions, known) if k], SMALL)
     assert grid.solves == known.sum() * 15 * 3 * 3
-    fit = fit_block(grid.overturned, observed[known], SMALL)
+    fit = fit_block(grid.overturned, observed[known], grid.blocks, SMALL.lapse)
     assert fit.p_rad_s == TRUE_P
     assert fit.alpha_deg == pytest.approx(TRUE_ALPHA_DEG, rel=0.1)
-    assert fit.alpha_deg_95[0] < TRUE_ALPHA_DEG < fit.alpha_deg_95[1]
-    assert fit.restitution_factor_95[0] <= TRUE_FACTOR <= fit.restitution_factor_95[1]
+    assert fit.alpha.low < TRUE_ALPHA_DEG < fit.alpha.high and fit.alpha.identified
+    assert fit.restitution.low <= TRUE_FACTOR <= fit.restitution.high
     assert fit.sigma < 0.3
 
 
@@ -223,11 +264,17 @@ def test_command_writes_every_file(tmp_path):
                  "--geometry", str(geometry), "--free-motion", "5"]) == 0
     names = {p.name for p in out.iterdir()}
     assert {"predictions.csv", "validation-fits.csv", "validation-scores.csv",
-            "validation-tests.csv", "validation.html"} <= names
+            "validation-tests.csv", "validation-ridge.csv", "validation.html"} <= names
+    predicted = pd.read_csv(out / "predictions.csv")
+    assert (predicted["p_overturn_low"] <= predicted["p_overturn"]).all()
+    assert (predicted["p_overturn"] <= predicted["p_overturn_high"]).all()
+    ridge = pd.read_csv(out / "validation-ridge.csv")
+    assert ridge["inside_95"].any() and set(ridge["specimen"]) == {"spec"}
     fits = pd.read_csv(out / "validation-fits.csv")
     assert fits["geometry_alpha_deg"].iloc[0] == 8
     page = (out / "validation.html").read_text()
     assert "<script>" in page and "PGV threshold" in page and "one laboratory" in page
+    assert "Predictions of the tests without an outcome" in page and "ridge" in page
 
 
 @pytest.mark.parametrize("edit, field", [
@@ -293,3 +340,11 @@ def test_methods_statement_gives_the_fit_the_score_and_the_limits():
     for part in ("α = 3.5° (95 % 3.3–3.7°)", "p = 4.90 rad/s", "0.6 × Eq. 4.8", "accuracy 92%",
                  "Brier 0.062 over 327 tests", "one laboratory", "3-D"):
         assert part in text
+
+
+@pytest.mark.parametrize("field, value", [("band_pass", "yes"), ("band_pass", 1),
+                                          ("refined_solves", -1), ("refined_solves", 2.5)])
+def test_settings_refuse_a_bad_processing_or_budget(field, value):
+    with pytest.raises(InputError, match=field):
+        ValidationSettings(**{field: value})
+
