@@ -138,6 +138,21 @@ def test_every_workflow_has_its_settings_and_one_pipeline_entry_named_alike(room
     assert entries == [PIPELINES[room]]
 
 
+def test_one_road_for_a_floor():
+    """Every command's floor goes through :meth:`DesignSite.parse` (the one call of
+    ``Floor.parse``) and :meth:`DesignSite.apply` (the one call of ``on_floor``, the filter):
+    no command parses a floor or filters records on its own."""
+    calls = {"Floor.parse": [], "on_floor": []}
+    for name, path in MODULES.items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call):
+                called = ast.unparse(node.func)
+                if called in calls:
+                    calls[called].append(name)
+    assert calls == {"Floor.parse": ["audit.engine.shared.design_site"],
+                     "on_floor": ["audit.engine.shared.design_site"]}
+
+
 #: What the command line may import besides the base modules: the API (the defaults its
 #: ``--help`` shows too) and itself; never the engine, the records, the
 #: reports, the physics or the procedures (a command is argparse → one API call → print).
