@@ -40,7 +40,6 @@ from audit.physics.overturning_criteria import (HALF_SINE, ONE_COSINE, ONE_SINE,
                                                 impulse_minimum_amplitude,
                                                 linear_minimum_amplitude,
                                                 one_sine_no_impact_amplitude)
-from audit.physics.pulses.record_pulse import record_pulse
 from procedures.base import EXACT_OVERTURNING, Check, Procedure
 
 PUBLISHED, EXACT_LINEAR, HOUSNER = "published", "exact-linear", "housner"
@@ -60,6 +59,9 @@ def pulse_of(entry):
     if facts is not None and facts.pulse_period_s:
         return (ONE_COSINE, motion.pga, facts.pulse_period_s,
                 "Table 5.1's T_p with the record's PGA, one-cosine assumed")
+    # imported here: the identification's wavelets and fit (scipy.signal, scipy.optimize) cost
+    # every command that loads the registry 1.5 s, and only a real record's pulse needs them
+    from audit.physics.pulses.record_pulse import record_pulse
     found = record_pulse(entry)
     if math.isnan(found.pulse_indicator):
         return f"no pulse identified: {found.classified}"
