@@ -8,6 +8,7 @@ import gzip
 import io
 import math
 from contextlib import redirect_stdout
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -44,6 +45,24 @@ def test_rinaldi_is_judged_with_the_fitted_pulse_along_its_component(near_field_
                                found.fit.peak_acceleration_m_s2 * abs(found.component_factor))
     assert f"T_p = {found.tp_s:.3g} s" in check.detail and "Shahi & Baker" in check.detail
     assert f"T_p = {found.fit.period_s:g} s" in check.detail
+
+
+def test_a_scaled_record_keeps_its_pulse_and_a_floor_motion_is_not_judged(near_field_pulse):
+    """The station's pulse is the pulse of the station's component scaled (its amplitude × the
+    factor); a motion that is not that component scaled, as a floor's, is not judged by it
+    (before, its "scale" was the floor motion over the record at one sample: a negative
+    demand on a roof)."""
+    entry = near_field_pulse["rsn1063_rrs_032"]
+    as_read = record_pulse(entry)
+    scaled = record_pulse(replace(entry, motion=entry.motion.scaled(2.5)))
+    assert scaled.pulse_like and scaled.fit == as_read.fit
+    np.testing.assert_allclose(scaled.amplitude_m_s2, 2.5 * as_read.amplitude_m_s2, rtol=1e-9)
+    shaken = entry.motion.acceleration.copy()
+    shaken[1:] = 0.5 * (shaken[1:] + shaken[:-1])  # a filtered motion: no longer proportional
+    floor = replace(entry, motion=replace(entry.motion, acceleration=shaken))
+    assert not record_pulse(floor).pulse_like
+    reason = MakrisRoussos2000().unmet_requirements(floor)
+    assert reason.startswith("no pulse identified: not classified: the motion audited is not")
 
 
 def test_izmit_is_not_pulse_like_and_not_judged(near_field_pulse):

@@ -178,6 +178,12 @@ def _components(entry):
     own = accelerations[index]
     peak = int(np.argmax(np.abs(own)))
     scale = float(motion.acceleration[peak] / own[peak]) if own[peak] else 1.0
+    if (motion.acceleration.shape != own.shape or scale <= 0.0
+            or not np.allclose(motion.acceleration, scale * own, rtol=1e-9,
+                               atol=1e-9 * abs(scale * own[peak]))):
+        # the motion audited is not the station's component scaled (a floor's motion): the
+        # station's pulse is not its pulse
+        return accelerations, index, None, scale
     return accelerations, index, words, scale
 
 
@@ -202,6 +208,11 @@ def record_pulse(entry, cached_only: bool = False) -> RecordPulse | None:
         return None
     accelerations, index, words, scale = _components(entry)
     nan = math.nan
+    if words is None:
+        return RecordPulse(entry.id, "not classified: the motion audited is not the station's "
+                                     "record scaled (a floor's motion), and the pulse of a floor "
+                                     "motion is not identified", False, nan, nan, 0, (), nan,
+                           nan, nan, nan, None, 1.0)
     lengths = {a.size for a in accelerations}
     if max(lengths) - min(lengths) > MAX_LENGTH_DIFFERENCE:
         return RecordPulse(entry.id, f"not classified: its components {words} differ by "
