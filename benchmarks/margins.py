@@ -25,7 +25,7 @@ import numpy as np
 sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from audit.api import MarginsResult, design_suite  # noqa: E402
-from audit.engine.design.margins import run_margins  # noqa: E402
+from audit.engine.design.margins import margins_tables  # noqa: E402
 from audit.engine.design.scans import amplitude_scans  # noqa: E402
 from audit.engine.design.settings import MarginsSettings  # noqa: E402
 from audit.engine.design.p695_acceptance import p695_acceptance  # noqa: E402
@@ -59,9 +59,9 @@ def main() -> None:
         timed[name] = time.perf_counter() - begin
         return value
 
-    exact_only = timing("exact stripes alone", lambda: run_margins(
+    exact_only = timing("exact stripes alone", lambda: margins_tables(
         [], suite, settings, runtime))
-    full = timing("stripes", lambda: run_margins(procedures, suite, settings, runtime))
+    full = timing("stripes", lambda: margins_tables(procedures, suite, settings, runtime))
     full.required_alpha = timing("required α", lambda: required_alpha(
         procedures, suite, settings, runtime))
     full.acceptance, full.summary["acceptance"] = timing(

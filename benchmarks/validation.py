@@ -8,7 +8,8 @@ import sys
 import time
 
 from audit.api import validate
-from audit.engine.validation.grid import ValidationSettings, band_passed, overturning_grid
+from audit.engine.validation.grid import band_passed, overturning_grid
+from audit.engine.validation.settings import ValidationSettings
 from records.campaign import read_campaign
 
 

@@ -124,8 +124,8 @@ class ComponentCheck:
         How the verdict follows, in one sentence.
     restoring : float
         k, the share of the weight that resists overturning [-].
-    half_width_m, half_height_m : float
-        b and h of the block [m].
+    width_m, height_m : float
+        Full base width 2b and full height 2h of the block [m].
     overstrength : float or None
         Ω0p where the code amplifies the anchorage force of non-ductile anchors, else None.
     """
@@ -135,8 +135,8 @@ class ComponentCheck:
     factors: dict
     basis: str
     restoring: float = 1.0
-    half_width_m: float = 1.0
-    half_height_m: float = 1.0
+    width_m: float = 2.0
+    height_m: float = 2.0
     overstrength: float | None = None
 
     @property
@@ -156,7 +156,7 @@ class ComponentCheck:
         it; else None."""
         if self.passes:
             return None
-        b, h, force = self.half_width_m, self.half_height_m, self.force_over_weight
+        b, h, force = self.width_m / 2.0, self.height_m / 2.0, self.force_over_weight
         forces = {"shear": force, "tension": (force * h - self.restoring * b) / (2.0 * b)}
         if self.overstrength is not None:
             forces.update(shear_omega=self.overstrength * forces["shear"],
@@ -202,17 +202,18 @@ class ComponentProvision:
         """Why the code cannot be applied on ``floor`` (in words), or None."""
         return None
 
-    def check(self, half_width_m: float, half_height_m: float, site: ComponentSite,
+    def check(self, width_m: float, height_m: float, site: ComponentSite,
               floor: Floor) -> ComponentCheck:
-        """The static overturning check of the unanchored block (b, h its half width and half
-        height [m]) at ``site`` on ``floor``: F/W ≤ k·b/h."""
+        """The static overturning check of the unanchored block of full base width and full
+        height ``width_m``, ``height_m`` [m] (b, h their halves) at ``site`` on ``floor``:
+        F/W ≤ k·b/h."""
         force, factors = self.force_over_weight(site, floor)
         restoring = self.restoring_factor(site)
-        capacity = restoring * half_width_m / half_height_m
+        capacity = restoring * (width_m / 2.0) / (height_m / 2.0)
         return ComponentCheck(force, capacity, factors,
                               f"F/W ≤ {restoring:.3g}·b/h: the overturning moment of the code's "
                               f"force about a base edge against the weight's restoring moment "
-                              f"({self.reference})", restoring, half_width_m, half_height_m,
+                              f"({self.reference})", restoring, width_m, height_m,
                               self.anchorage_overstrength())
 
 

@@ -62,11 +62,20 @@ def draw_time_histories(fig, blocks):
         ax_theta = fig.add_subplot(grid[3 * i + 1, 0])
         ax_omega = fig.add_subplot(grid[3 * i + 2, 0], sharex=ax_theta)
         ax_theta.tick_params(labelbottom=False)
-        _draw_history(ax_theta, ax_omega, **block)
+        _draw_history(ax_theta, ax_omega, block)
 
 
-def _draw_history(ax_theta, ax_omega, time, theta_ratio, omega, title, rocking_span=None,
-                  cycle_starts=(), cycle_durations=(), procedures=None, excitation_end=None):
+def _draw_history(ax_theta, ax_omega, block: dict):
+    """One item of :func:`draw_time_histories`' ``blocks`` on its two axes."""
+    time, theta_ratio, omega = block["time"], block["theta_ratio"], block["omega"]
+    title, rocking_span = block["title"], block.get("rocking_span")
+    procedures, excitation_end = block.get("procedures"), block.get("excitation_end")
+    cycle_starts = block.get("cycle_starts", ())
+    cycle_durations = block.get("cycle_durations", ())
+    unknown = set(block) - {"time", "theta_ratio", "omega", "title", "rocking_span",
+                            "cycle_starts", "cycle_durations", "procedures", "excitation_end"}
+    if unknown:  # as the keywords it was called with named them
+        raise TypeError(f"draw_time_histories: unknown block key(s) {sorted(unknown)}")
     ax_theta.plot(time, theta_ratio, color="#333333", lw=0.9)
     limit = min(1.1, max(0.25, 1.3 * np.nanmax(np.abs(theta_ratio))))
     if limit >= 1.0:

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 from scipy.special import ndtr
 
-from audit.engine.run.probabilistic_audit import COMPONENTS_CSV, STRIPES_CSV
+from audit.engine.fragility.pipeline import COMPONENTS_CSV, STRIPES_CSV
 from reports.plots import to_json
 
 #: The caveat every page states: what a ground-level audit of a floor-motion fragility tests.

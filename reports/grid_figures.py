@@ -3,6 +3,8 @@ suite statistics and limit-state checks, and the suite's approx/exact band per �
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 import pandas as pd
 
@@ -110,15 +112,27 @@ def _pivot(rows: pd.DataFrame, value: str):
     return alphas, sizes, z
 
 
+class MapColours(NamedTuple):
+    """How :func:`grid_map_figure` colours its cells: the plotly colour scale from ``low`` to
+    ``high``, the colour bar's title (no bar when None), and the words of the integer codes of
+    the value (``labels[z]``), if it holds codes."""
+
+    scale: list
+    low: float
+    high: float
+    bar: str | None = None
+    labels: list | None = None
+
+
 def grid_map_figure(frame: pd.DataFrame, value: str, panels: list, title_of, hover: str,
-                    colourscale, zmin, zmax, colourbar: str | None = None,
-                    labels: list | None = None) -> dict:
+                    colours: MapColours) -> dict:
     """A map of ``value`` over (2π/p across, α up), one panel per key of ``panels``
     (``frame`` rows selected by ``panels[i][1]``, a boolean mask); for suite statistics and
     limit-state checks. ``hover`` is the hover template, where ``{title}`` stands for the
     panel's title, ``{block}`` for the block the cell is, in metres
     (:func:`~reports.block_metres.block_hover`), and ``%{text}`` for ``labels[z]`` when
-    ``labels`` name the integer codes of ``value``."""
+    ``colours.labels`` name the integer codes of ``value``."""
+    colourscale, zmin, zmax, colourbar, labels = colours
     height, gap = _stacked(len(panels))
     domains = _domains(len(panels), gap)
     data, annotations, drawn = [], [], []

@@ -218,7 +218,7 @@ def render_report(run, generated: datetime | None = None) -> str:
     Parameters
     ----------
     run : audit.engine.run.audit_run.AuditRun
-        Results of ``run_audit`` or of ``audit.engine.run.results.load_run``.
+        Results of ``audit_in_memory`` or of ``audit.engine.run.results.load_run``.
     generated : datetime, optional
         Time stamp printed in the report (default: now, UTC).
     """

@@ -10,7 +10,7 @@ from collections import Counter, defaultdict
 import numpy as np
 
 from audit.engine.shared.verdicts import CHECK_VERDICTS, CLAIM_STATUSES, meanings, names
-from reports.grid_figures import grid_map_figure, ratio_band_figure
+from reports.grid_figures import MapColours, grid_map_figure, ratio_band_figure
 from reports.history_figures import lines_figure, sensitivity_figure
 from reports.palette import CHECK_COLOURS
 
@@ -71,7 +71,8 @@ def suite_section(run, procedures, pending) -> dict | None:
         figure = pending.add("suite-unsafe", grid_map_figure(
             suite, "frac_unsafe", [(p["title"], suite["procedure"] == p["name"]) for p in present],
             lambda title: title, "{title}<br>α = %{y:~g}°, 2π/p = %{x:.2f} s: {block}<br>"
-            "unsafe for %{z:.1%} of the records<extra></extra>", reds, 0, 1, "unsafe"))
+            "unsafe for %{z:.1%} of the records<extra></extra>",
+            MapColours(reds, 0, 1, "unsafe")))
         figure["caption"] = ("Share of the records for which each guideline is unsafe "
                              "(missed overturning or underestimate beyond the band), per block.")
         maps.append(figure)
@@ -122,8 +123,8 @@ def checks_section(run, names, pending, detail_ids) -> dict | None:
             rows, "code", [(r, rows["record"] == r) for r in records],
             lambda r: names.get(r, r),
             "{title}<br>α = %{y:~g}°, 2π/p = %{x:.2f} s: {block}<br>"
-            f"{state}: " + "%{text}<extra></extra>", scale, -0.5, len(classes) - 0.5,
-            labels=classes))
+            f"{state}: " + "%{text}<extra></extra>",
+            MapColours(scale, -0.5, len(classes) - 0.5, labels=classes)))
         figure["caption"] = (f"Limit-state check {state} of {titles.get(procedure, procedure)} "
                              "against the exact response, one panel per record.")
         figures.append(figure)

@@ -101,8 +101,56 @@ def test_imports_go_one_way_down_the_layers():
 def test_the_graph_sees_imports():
     # the checks above would pass on an empty graph: these edges are known to exist
     assert "procedures.base" in GRAPH["audit.engine.shared.verdicts"]
-    assert "audit.engine.run.record_audit" in GRAPH["audit.engine.shared.scheduler"]
+    assert "audit.engine.shared.runtime" in GRAPH["audit.engine.shared.scheduler"]
     assert _layer("audit.cli.run") > _layer("audit.api") > _layer("reports.render")
+
+
+#: The engine's workflows: each a room of its own, with its settings and its pipeline (``design``
+#: is ``audit margins``'), and the claims the run checks.
+WORKFLOWS = ("check", "design", "run", "validation", "fragility")
+#: Each workflow's pipeline entry: ``run_<name>`` in its ``pipeline.py``.
+PIPELINES = {"check": "run_check", "design": "run_margins", "run": "run_audit",
+             "validation": "run_validation", "fragility": "run_fragility"}
+
+
+def test_the_engine_shared_room_imports_no_workflow():
+    """``audit.engine.shared`` holds what every workflow uses; a workflow's own things (its
+    costs, its unit of work, its result files) live in its room."""
+    into = [f"{name} → {target}" for name, targets in GRAPH.items()
+            if name.startswith("audit.engine.shared") for target in targets
+            if any(target.startswith(f"audit.engine.{room}") for room in (*WORKFLOWS, "claims"))]
+    assert not into, "engine/shared into a workflow: " + "; ".join(sorted(into))
+    # the check sees shared's imports
+    assert "audit.engine.shared.runtime" in GRAPH["audit.engine.shared.scheduler"]
+
+
+@pytest.mark.parametrize("room", WORKFLOWS)
+def test_every_workflow_has_its_settings_and_one_pipeline_entry_named_alike(room):
+    """``settings.py`` holds its Settings (a class whose name ends so), ``pipeline.py`` its one
+    entry, named ``run_<workflow>`` in every room."""
+    folder = REPO / "audit" / "engine" / room
+    settings = ast.parse((folder / "settings.py").read_text(encoding="utf-8"))
+    assert any(isinstance(node, ast.ClassDef) and node.name.endswith("Settings")
+               for node in settings.body)
+    pipeline = ast.parse((folder / "pipeline.py").read_text(encoding="utf-8"))
+    entries = [node.name for node in pipeline.body if isinstance(node, ast.FunctionDef)
+               and node.name.startswith("run_")]
+    assert entries == [PIPELINES[room]]
+
+
+def test_one_road_for_a_floor():
+    """Every command's floor goes through :meth:`DesignSite.parse` (the one call of
+    ``Floor.parse``) and :meth:`DesignSite.apply` (the one call of ``on_floor``, the filter):
+    no command parses a floor or filters records on its own."""
+    calls = {"Floor.parse": [], "on_floor": []}
+    for name, path in MODULES.items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Call):
+                called = ast.unparse(node.func)
+                if called in calls:
+                    calls[called].append(name)
+    assert calls == {"Floor.parse": ["audit.engine.shared.design_site"],
+                     "on_floor": ["audit.engine.shared.design_site"]}
 
 
 #: What the command line may import besides the base modules: the API (the defaults its

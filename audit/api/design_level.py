@@ -161,8 +161,8 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
     from audit.engine.shared import fields as check
     from audit.engine.shared import guards
-    from audit.engine.shared.costs import margins_cost
-    from audit.engine.design.pipeline import design_level_audit
+    from audit.engine.design.costs import margins_cost
+    from audit.engine.design.pipeline import run_margins
     from audit.engine.shared.progress import Progress
     given = locals()
     settings = MarginsSettings.parse(**settings_fields(given, MARGINS_FIELDS))
@@ -183,7 +183,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
     start = time.perf_counter()
     try:
-        run = design_level_audit(chosen, suite, settings, runtime)
+        run = run_margins(chosen, suite, settings, runtime)
     finally:
         if bar:
             runtime.progress.done()

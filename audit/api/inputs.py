@@ -236,13 +236,17 @@ def on_floor_of(motion, floor: dict, records=None, reading: dict | None = None):
     """(the motion of :func:`motion_of` filtered to the object's floor, the floor's JSON
     document): ``floor`` holds the keywords ``floor``, ``building``, ``building_model``,
     ``building_damping`` (:class:`audit.physics.building.floor.Floor`), checked first;
-    ``reading`` the keywords of :data:`READING_FIELDS` (how a record is read)."""
-    from audit.engine.shared.floors import floor_document
-    from audit.physics.building.floor import Floor
-    from audit.physics.building.floor_motion import floor_motion
-    where = Floor.parse(**floor)
-    return (floor_motion(motion_of(motion, records, **(reading or {})), where),
-            floor_document(where))
+    ``reading`` the keywords of :data:`READING_FIELDS` (how a record is read). The road of
+    every command's floor: :meth:`DesignSite.parse` and :meth:`DesignSite.apply`, here on a
+    suite of the one record."""
+    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.floors import suite_floor
+    from records import RecordEntry, RecordSuite
+    where = DesignSite.parse(**floor)
+    ground = motion_of(motion, records, **(reading or {}))
+    suite = where.apply(RecordSuite((RecordEntry(ground.id, ground),), ground.id))
+    return suite.entries[0].motion, {name: value for name, value in suite_floor(suite).items()
+                                     if name != "records"}
 
 
 #: The keywords of how records are read, which every function that reads them takes.

@@ -235,7 +235,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     """
     from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
     from audit.engine.shared import guards
-    from audit.engine.shared.costs import check_cost
+    from audit.engine.check.costs import check_cost
     from audit.engine.check.pipeline import run_check
     from audit.engine.check.settings import CHECK_FIELDS, CheckSettings
     from audit.engine.shared.design_site import DesignSite

@@ -30,7 +30,7 @@ class FragilityResult(Files):
     def table(self):
         """One row per component of the procedure: its fragility against the exact one
         (``fragility-components.csv``)."""
-        from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
+        from audit.engine.fragility.pipeline import COMPONENTS_CSV
         return self.tables[COMPONENTS_CSV]
 
     @property
@@ -56,7 +56,7 @@ class FragilityResult(Files):
         """The audited components with their *exact* lognormal fragility (the maximum-likelihood
         fit to the exact stripes), in PGV [m/s]: NaN where no fit exists."""
         from procedures.probabilistic import FragilityComponent, LognormalFragility
-        from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
+        from audit.engine.fragility.pipeline import COMPONENTS_CSV
         return [FragilityComponent(row.component, row.description, "PGV",
                                    LognormalFragility(row.exact_median_m_s, row.exact_beta),
                                    row.width_m, row.height_m)
@@ -64,8 +64,8 @@ class FragilityResult(Files):
 
     def pelicun_csv(self) -> bytes:
         """The exact fragilities in pelicun's FEMA P-58 library layout
-        (:mod:`audit.engine.run.pelicun_export`): peak floor velocity, median [m/s] and β."""
-        from audit.engine.run.pelicun_export import pelicun_fragility_csv
+        (:mod:`audit.engine.fragility.pelicun_export`): peak floor velocity, median [m/s] and β."""
+        from audit.engine.fragility.pelicun_export import pelicun_fragility_csv
         return pelicun_fragility_csv(self.exact_components())
 
     def _repr_html_(self) -> str:
@@ -82,7 +82,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
               building: float | None = None, building_model: str | None = None,
               building_damping: float = DEFAULT_BUILDING_DAMPING) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
-    multiple PGV stripes (:mod:`audit.engine.run.probabilistic_audit`).
+    multiple PGV stripes (:mod:`audit.engine.fragility.pipeline`).
 
     Parameters
     ----------
@@ -110,7 +110,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     FragilityResult
     """
     from audit.api.inputs import record_suite
-    from audit.engine.run.probabilistic_audit import audit_procedure
+    from audit.engine.fragility.pipeline import run_fragility
     from audit.engine.shared.progress import Progress
     from audit.errors import InputError
     from procedures.registry import available_procedures
@@ -120,12 +120,11 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     if not isinstance(procedure, str) or procedure not in found:
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
-    from audit.engine.shared.floors import on_floor
-    from audit.physics.building.floor import Floor
-    where = Floor.parse(floor=floor, building=building, building_model=building_model,
-                        building_damping=building_damping)
-    suite = on_floor(record_suite(records, dt_s=dt_s, units=units,
-                                  skip_bad_records=skip_bad_records), where)
+    from audit.engine.shared.design_site import DesignSite
+    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
+                            building_damping=building_damping)
+    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
+                                    skip_bad_records=skip_bad_records))
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")
@@ -133,8 +132,8 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     if progress:
         Progress(0, "step").stage(f"{chosen.title}: exact overturning of its components under "
                                   f"{len(entries)} records scaled to each PGV stripe")
-    tables = audit_procedure(chosen, [e.id for e in entries], [e.motion for e in entries])
-    return FragilityResult(chosen, tables, records if isinstance(records, str) and where.on_ground
+    tables = run_fragility(chosen, [e.id for e in entries], [e.motion for e in entries])
+    return FragilityResult(chosen, tables, records if isinstance(records, str) and site.floor.on_ground
                            else suite.description)
 
 

@@ -252,10 +252,10 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     """
     from audit.api.inputs import parameters_of, procedures_of, record_suite
     from audit.engine.shared import guards
-    from audit.engine.shared.costs import audit_cost
+    from audit.engine.run.costs import audit_cost
     from audit.engine.shared.progress import Progress
     from audit.engine.run.results import REPORT_HTML
-    from audit.engine.run.suite_run import audit_suite, compiles_first
+    from audit.engine.run.pipeline import run_audit, compiles_first
     from audit.files import staged_folder
     given = locals()
     settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))
@@ -283,11 +283,11 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     stage = stage if hasattr(stage, "stage") else None
     if out_dir is None:
         scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
-        audit_suite(chosen, suite, settings, runtime, scratch.name, detail, progress=stage)
+        run_audit(chosen, suite, settings, runtime, scratch.name, detail, progress=stage)
         return AuditResult(scratch.name, scratch)
     # the summary is read back when asked: the report is drawn without a second copy in memory
     with staged_folder(out_dir) as staging:  # files appear only when all are written
-        audit_suite(chosen, suite, settings, runtime, staging, detail, progress=stage)
+        run_audit(chosen, suite, settings, runtime, staging, detail, progress=stage)
         del suite  # the motions go too, unless the caller holds them
         if stage is not None:
             stage.stage(f"writing the report to {out_dir}")

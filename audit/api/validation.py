@@ -84,7 +84,7 @@ def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
         Solve the blocks under the band-passed motions (0.1–25 Hz) rather than as recorded.
     progress : bool or callable
         A progress bar on standard error, or ``progress(done, total, test_id)``.
-    settings : audit.engine.validation.grid.ValidationSettings, optional
+    settings : audit.engine.validation.settings.ValidationSettings, optional
         Every setting (grid, band-pass, lapse); overrides ``folds``, ``jobs``,
         ``free_motion_s`` and ``band_pass``.
 
@@ -94,7 +94,7 @@ def validate(folder, geometry=None, *, folds: int = 5, jobs: int = DEFAULT_JOBS,
     """
     from audit.engine.shared import fields as check
     from audit.engine.shared.progress import Progress
-    from audit.engine.validation.grid import ValidationSettings
+    from audit.engine.validation.settings import ValidationSettings
     from audit.engine.validation.pipeline import run_validation
     from audit.errors import InputError
     from records.campaign import campaign_geometry, read_campaign

@@ -95,7 +95,7 @@ def run(args) -> int:
     del site["site_override"]  # one design site: the audit is of that site
     try:
         result = margins(args.procedure, args.records, **options.reading(args), params=args.param,
-                         force=args.force, **values, **site,
+                         force=args.force, **values, **site, **options.floor_values(args),
                          jobs=args.jobs, scheduler=args.scheduler,
                          partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True)
     except KeyboardInterrupt:

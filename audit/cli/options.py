@@ -356,9 +356,8 @@ def add_hazard_options(parser):
 def design_site(args) -> dict:
     """The design-site arguments of the API from ``--site``, ``--site-override``,
     ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``, those the command has (the
-    one place the command line reads them), and the floor's flags."""
-    site = {**(floor_values(args) if hasattr(args, "floor") else {}),
-            "site_override": getattr(args, "site_override", False),
+    one place the command line reads them); the floor's flags are :func:`floor_values`'."""
+    site = {"site_override": getattr(args, "site_override", False),
             "scale_to_site": getattr(args, "scale_to_site", False),
             "anchor_period_s": getattr(args, "anchor_period", None)}
     if args.ntc_site:
@@ -404,6 +403,6 @@ def add_param_option(parser):
 
 
 def floor_values(args) -> dict:
-    """The API keywords of the floor flags."""
+    """The API keywords of the floor flags (the one place the command line reads them)."""
     return {"floor": args.floor, "building": args.building,
             "building_model": args.building_model, "building_damping": args.building_damping}

@@ -83,6 +83,7 @@ def run(args) -> int:
                          robustness=args.robustness, restitution=args.restitution,
                          vertical=args.vertical, friction=args.friction,
                          sensitivity=args.sensitivity or (), **site,
+                         **options.floor_values(args),
                          jobs=args.jobs, scheduler=args.scheduler,
                          partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True,
                          detail=[item.strip() for item in (args.detail or "").split(",")

@@ -55,18 +55,18 @@ def _no_work(monkeypatch):
     """The work of every function raises :class:`Started` instead."""
     import audit.api.rocking
     import audit.engine.check.pipeline
-    import audit.engine.run.probabilistic_audit
+    import audit.engine.fragility.pipeline
     import audit.engine.design.pipeline
-    import audit.engine.run.suite_run
+    import audit.engine.run.pipeline
     import audit.engine.validation.pipeline
     import audit.physics.response_spectra
     import audit.physics.rocking
     import records.campaign
     for module, name in ((audit.engine.check.pipeline, "run_check"),
-                         (audit.engine.run.suite_run, "audit_suite"),
-                         (audit.engine.design.pipeline, "design_level_audit"),
+                         (audit.engine.run.pipeline, "run_audit"),
+                         (audit.engine.design.pipeline, "run_margins"),
                          (audit.engine.validation.pipeline, "run_validation"),
-                         (audit.engine.run.probabilistic_audit, "audit_procedure"),
+                         (audit.engine.fragility.pipeline, "run_fragility"),
                          (audit.api.rocking, "simulate"),
                          (audit.physics.rocking, "rocking_spectrum"),
                          (audit.physics.response_spectra, "response_spectra"),

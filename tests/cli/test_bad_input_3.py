@@ -169,7 +169,8 @@ def test_campaign_motion_too_short_for_the_band_pass(workdir, capsys):
 def test_band_pass_refuses_exactly_what_scipy_cannot_filter():
     # the oracle is scipy's own zero-phase filter on the same design: it raises ValueError
     # for a signal no longer than its padding; the guard must refuse exactly those lengths
-    from audit.engine.validation.grid import ValidationSettings, band_passed
+    from audit.engine.validation.grid import band_passed
+    from audit.engine.validation.settings import ValidationSettings
     settings = ValidationSettings()
     sos = butter(4, [settings.highpass_hz, settings.lowpass_hz], "bandpass", fs=100.0,
                  output="sos")
@@ -188,7 +189,8 @@ def test_band_pass_refuses_exactly_what_scipy_cannot_filter():
 
 
 def test_band_pass_above_the_nyquist_frequency_is_refused():
-    from audit.engine.validation.grid import ValidationSettings, band_passed
+    from audit.engine.validation.grid import band_passed
+    from audit.engine.validation.settings import ValidationSettings
     motion = GroundMotion("m", np.sin(np.arange(500) * 0.3), 0.04, source="m.csv")
     # Nyquist 1/(2 × 0.04 s) = 12.5 Hz, below a 20 Hz high-pass
     with pytest.raises(InputError, match=r"^m\.csv: .*Nyquist frequency 12\.5 Hz"):
@@ -235,7 +237,7 @@ def test_site_bound_in_the_api():
 # --- check's cost guard --------------------------------------------------------------------------
 
 def test_width_search_halvings_by_hand():
-    from audit.engine.shared.costs import width_halvings
+    from audit.engine.check.costs import width_halvings
     # scan 0.03 h to 0.95 h in 12 widths: neighbours (0.95/0.03)^(1/11) = 1.3690 apart;
     # halving ln 1.3690 = 0.31412 down to ln 1.005 = 0.0049875 takes ⌈log2 62.98⌉ = 6
     assert width_halvings() == 6
@@ -248,7 +250,7 @@ def _entries(n_records, samples, dt=0.01):
 
 def test_check_cost_counts_objects_stripes_and_widths():
     from audit.engine.shared import guards
-    from audit.engine.shared.costs import check_cost
+    from audit.engine.check.costs import check_cost
     procedures = [SimpleNamespace(requires_motion=True), SimpleNamespace(requires_motion=False)]
     settings = SimpleNamespace(hazard=None, free_motion_s=0.0)
     runtime = SimpleNamespace(jobs=1)

@@ -227,7 +227,7 @@ def test_third_party_plugin_runs_through_the_cli(tmp_path):
 def test_first_run_compile_is_announced_only_without_cached_machine_code(tmp_path):
     """An empty numba cache (a fresh install) means the first record waits for the compiler,
     and run says so; with the machine code cached it says nothing."""
-    from audit.engine.run.suite_run import compiles_first
+    from audit.engine.run.pipeline import compiles_first
     from audit.physics.response_spectra import response_spectra
     from audit.physics.rocking import rocking_spectrum
     from records import one_pulse
@@ -236,7 +236,7 @@ def test_first_run_compile_is_announced_only_without_cached_machine_code(tmp_pat
     response_spectra(pulse, [1.0], [0.05])
     assert not compiles_first()
     fresh = subprocess.run(
-        [sys.executable, "-c", "from audit.engine.run.suite_run import compiles_first as c; print(c())"],
+        [sys.executable, "-c", "from audit.engine.run.pipeline import compiles_first as c; print(c())"],
         env=dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path)), capture_output=True, text=True)
     assert fresh.stdout.strip() == "True", fresh.stderr
 
@@ -245,7 +245,7 @@ def test_first_run_compile_is_not_announced_for_a_kernel_the_command_never_compi
     """`run fema356` never compiles the fixed-point scan: with the solver and the oscillator
     cached, its missing cache must not announce a first run at every run."""
     import audit.physics.tiers
-    from audit.engine.run.suite_run import compiles_first
+    from audit.engine.run.pipeline import compiles_first
     from procedures.fixed_point_scan import tabulated_excess
     monkeypatch.setattr(audit.physics.tiers, "machine_code_cached",
                         lambda kernel: kernel is not tabulated_excess)

@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-HEAVY = ("matplotlib", "pandas", "audit.engine.run.suite_run")
+HEAVY = ("matplotlib", "pandas", "audit.engine.run.pipeline")
 PROBE = """
 import contextlib, json, sys
 from audit.cli import main

@@ -20,7 +20,7 @@ ROOF_1S = Floor.parse(floor=1.0, building=1.0, building_model="shear:10")
 GROUND = Floor()
 SITE = ComponentSite.from_design_site((1.0, 0.6))  # S_XS = 1.0 g, S_X1 = 0.6 g
 # The cabinet of check's example: 0.8 m wide, 2.0 m tall: b = 0.4 m, h = 1.0 m, b/h = 0.4.
-B, H = 0.4, 1.0
+WIDTH, HEIGHT = 0.8, 2.0
 
 
 def test_site_mapping():
@@ -39,7 +39,7 @@ def test_site_mapping():
 
 def test_asce_7_22_roof_of_a_1s_building():
     code = ASCE722()
-    result = code.check(B, H, SITE, ROOF_1S)
+    result = code.check(WIDTH, HEIGHT, SITE, ROOF_1S)
     # H_f: a1 = min(1/1, 2.5) = 1, a2 = max(1 − (0.4/1)², 0) = 0.84; H_f = 1 + 1 + 0.84 = 2.84
     assert result.factors["H_f"] == pytest.approx(2.84, abs=1e-12)
     # R_μ = √(1.1·8/(1·3)) = √2.933333 = 1.712698 (> 1.3)
@@ -59,28 +59,28 @@ def test_asce_7_22_branches_and_bounds():
     assert code.height_factor(0.5, 0.3) == pytest.approx(2.25)
     # T_a unknown (Eq. 13.3-5) on the roof: 1 + 2.5 = 3.5
     assert ASCE722().height_factor(1.0, None) == pytest.approx(3.5)
-    unknown = ASCE722(approximate_period="unknown").check(B, H, SITE, ROOF_1S)
+    unknown = ASCE722(approximate_period="unknown").check(WIDTH, HEIGHT, SITE, ROOF_1S)
     # F_p/W_p = 0.4·1·(3.5/1.712698)/1.5 = 0.4·2.043560/1.5 = 0.544949
     assert unknown.factors["H_f"] == pytest.approx(3.5)
     assert unknown.force_over_weight == pytest.approx(0.544949, abs=2e-6)
     # T_a = 0.5 s given (not the modal 1 s): a1 = 2, a2 = 1 − 0.64 = 0.36, H_f = 3.36 on the roof
-    assert ASCE722(approximate_period=0.5).check(B, H, SITE, ROOF_1S).factors["H_f"] \
+    assert ASCE722(approximate_period=0.5).check(WIDTH, HEIGHT, SITE, ROOF_1S).factors["H_f"] \
         == pytest.approx(3.36)
     # the supporting structure not known: R_μ = 1.3
     assert ASCE722(building_omega0=None).ductility_reduction() == 1.3
     # on the ground 0.4·1·(1/1.712698)/1.5 = 0.1557 < 0.3: the lower bound 0.3·S_DS·I_p binds
-    assert code.check(B, H, SITE, GROUND).force_over_weight == pytest.approx(0.3)
+    assert code.check(WIDTH, HEIGHT, SITE, GROUND).force_over_weight == pytest.approx(0.3)
     # C_AR = 2.8, R_po = 1: 0.4·2.84/1.712698·2.8 = 1.8572 > 1.6: the upper bound 1.6 binds
-    assert ASCE722(resonance=2.8, strength=1.0).check(B, H, SITE, ROOF_1S).force_over_weight \
+    assert ASCE722(resonance=2.8, strength=1.0).check(WIDTH, HEIGHT, SITE, ROOF_1S).force_over_weight \
         == pytest.approx(1.6)
     # R = 1.5, Ω0 = 1.5: √1.1 = 1.0488 < 1.3, so R_μ = 1.3; E_v left out: capacity 0.9·0.4
     loose = ASCE722(building_r=1.5, building_omega0=1.5, vertical_coefficient=0.0)
     assert loose.ductility_reduction() == 1.3
-    assert loose.check(B, H, SITE, ROOF_1S).capacity_over_weight == pytest.approx(0.36)
+    assert loose.check(WIDTH, HEIGHT, SITE, ROOF_1S).capacity_over_weight == pytest.approx(0.36)
 
 
 def test_en_1998_1_rigid_object_on_the_roof():
-    result = EN19981().check(B, H, SITE, ROOF_1S)
+    result = EN19981().check(WIDTH, HEIGHT, SITE, ROOF_1S)
     # T_a = 0: S_a/(αS) = 3(1 + 1)/(1 + (1 − 0)²) − 0.5 = 6/2 − 0.5 = 2.5
     assert result.factors["S_a_over_alpha_S"] == pytest.approx(2.5, abs=1e-12)
     # F_a/W_a = a_g·S·2.5·γ_a/q_a = 0.4·2.5·1/2 = 0.5 > 1.0·b/h = 0.4: fails
@@ -91,7 +91,7 @@ def test_en_1998_1_rigid_object_on_the_roof():
 def test_en_1998_1_flexible_object_and_lower_bound():
     mid = Floor.parse(floor=0.5, building=1.0)
     # T_a = 0.5 s, T1 = 1 s, z/H = 0.5: 3·1.5/(1 + 0.25) − 0.5 = 3.6 − 0.5 = 3.1
-    assert EN19981(object_period_s=0.5).check(B, H, SITE, mid).factors["S_a_over_alpha_S"] \
+    assert EN19981(object_period_s=0.5).check(WIDTH, HEIGHT, SITE, mid).factors["S_a_over_alpha_S"] \
         == pytest.approx(3.1)
     # T_a = 3 s on the ground of a 1 s building: 3/(1 + 4) − 0.5 = 0.1 < 1: the bound α·S
     ground_of = Floor.parse(floor=0.0, building=1.0)
@@ -104,14 +104,14 @@ def test_nzs_1170_5():
     code = NZS11705()
     # roof of a T1 = 1 s building: h_n = 35 m, h_i = 35 m ≥ 12 m and ≥ 0.2·35 = 7 m: C_Hi = 3.0;
     # C_i(0) = 2.0; C_p = 0.4·3.0·2.0·1·1 = 2.4 ≤ 3.6
-    result = code.check(B, H, SITE, ROOF_1S)
+    result = code.check(WIDTH, HEIGHT, SITE, ROOF_1S)
     assert (result.factors["C_Hi"], result.factors["C_i"]) == (3.0, 2.0)
     assert result.force_over_weight == pytest.approx(2.4) and not result.passes
     # stability (AS/NZS 1170.0 §4.2.1): 0.9G resists, capacity 0.9·0.4 = 0.36
     assert result.capacity_over_weight == pytest.approx(0.36)
     # h_n = 10 m given: h_i = 10 m < 12 m, ≥ 0.2·10 = 2 m: the lesser of 1 + 10/6 = 2.666667 and
     # 3.0: C_p = 0.4·2.666667·2 = 2.133333
-    assert NZS11705(building_height_m=10.0).check(B, H, SITE, ROOF_1S).force_over_weight \
+    assert NZS11705(building_height_m=10.0).check(WIDTH, HEIGHT, SITE, ROOF_1S).force_over_weight \
         == pytest.approx(2.133333, abs=1e-6)
     # a low building, h_n = 7 m: at h_i = 0.7 m (< 1.4 m = 0.2·h_n, < 12 m) the lesser of
     # 1 + 0.7/6 = 1.116667 and 1 + 10·0.7/7 = 2.0; on its roof the lesser of 1 + 7/6 = 2.166667
@@ -125,9 +125,9 @@ def test_nzs_1170_5():
     assert NZS11705(object_period_s=2.0).spectral_shape() == 0.5
     # S_XS = 2.0 g: C(0) = 0.8; 0.8·3·2 = 4.8 > 3.6: capped
     strong = ComponentSite.from_design_site((2.0, 1.0))
-    assert code.check(B, H, strong, ROOF_1S).force_over_weight == pytest.approx(3.6)
+    assert code.check(WIDTH, HEIGHT, strong, ROOF_1S).force_over_weight == pytest.approx(3.6)
     # on the ground C_Hi = 1: 0.4·1·2 = 0.8
-    assert code.check(B, H, SITE, GROUND).force_over_weight == pytest.approx(0.8)
+    assert code.check(WIDTH, HEIGHT, SITE, GROUND).force_over_weight == pytest.approx(0.8)
 
 
 def test_registered_as_plug_ins():

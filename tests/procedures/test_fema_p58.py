@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from audit.api import Block
-from audit.engine.run.calibration import brier_score, calibration, log_likelihood
+from audit.engine.fragility.calibration import brier_score, calibration, log_likelihood
 from procedures.fema_p58 import FEMAP58
 from procedures.registry import available_procedures
 
@@ -82,13 +82,14 @@ def test_fragility_command_unknown_procedure(tmp_path, capsys):
 
 
 def test_fragility_files_match_the_column_guide():
-    from audit.engine.run.calibration import PGV_LEVELS_M_S
-    from audit.engine.run.probabilistic_audit import audit_procedure
+    from audit.engine.fragility.calibration import PGV_LEVELS_M_S
+    from audit.engine.fragility.pipeline import run_fragility
+    from audit.engine.fragility.settings import FragilitySettings
     from audit.engine.shared.schemas import GUIDE
     from procedures.fema_p58 import FEMAP58
     from records import pulse_suite
     entries = list(pulse_suite())[:2]
-    tables = audit_procedure(FEMAP58(), [e.id for e in entries], [e.motion for e in entries],
-                             PGV_LEVELS_M_S[::4])
+    tables = run_fragility(FEMAP58(), [e.id for e in entries], [e.motion for e in entries],
+                           FragilitySettings(levels_m_s=PGV_LEVELS_M_S[::4]))
     for name, table in tables.items():
         assert list(table.columns) == list(GUIDE[name]), name

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from audit import G
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import audit_in_memory
 from audit.engine.shared.verdicts import check_verdicts, exact_exceeded
 from procedures.context import RecordContext
 from audit.errors import InputError
@@ -306,7 +306,7 @@ def test_record_demand_is_the_largest_sd_up_to_t_slv(seed_suite):
 def test_runner_audits_the_rotation_on_a_pulse():
     """The existing runner takes the plug-in as it is: one row per block, θ compared."""
     suite = RecordSuite((RecordEntry("pulse", one_pulse("sine", 0.5, 1.0)),), "one pulse")
-    run = run_audit([NTC2018()], suite, alpha_deg=[10.0, 30.0], size_s=np.array([1.0, 3.0]))
+    run = audit_in_memory([NTC2018()], suite, alpha_deg=[10.0, 30.0], size_s=np.array([1.0, 3.0]))
     rows = run.results
     assert len(rows) == 4 and set(rows["procedure"]) == {"ntc2018"}
     # α = 30°: g tan α = 0.577 g > 0.5 g: neither rocks
@@ -338,7 +338,7 @@ def test_runner_audits_every_check_against_its_exact_event(seed_suite):
     from procedures import get_procedures
     from records import RecordSuite
     suite = RecordSuite((seed_suite.get("sylmar_1994"),), "one record")
-    run = run_audit(get_procedures("ntc2018"), suite, alpha_deg=[10.0, 20.0],
+    run = audit_in_memory(get_procedures("ntc2018"), suite, alpha_deg=[10.0, 20.0],
                     size_s=np.arange(0.5, 8.01, 0.5))
     checks, results = run.checks, run.results.set_index(["alpha_deg", "size_s"])
     assert set(checks["limit_state"]) == {"SLD", "SLV-linear", "SLV", "SLC"}

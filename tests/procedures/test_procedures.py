@@ -11,7 +11,7 @@ from audit.physics.block import coefficient_of_restitution, radius_from_p
 from audit.physics.damping import housner_period
 from audit.errors import InputError
 from audit.engine.shared.grid import size_grid
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import audit_in_memory
 from procedures.context import RecordContext
 from procedures import available_procedures, get_procedures, iterate_rotation
 from procedures.fema_356 import FEMA356
@@ -141,7 +141,7 @@ def test_registry():
 
 @pytest.fixture(scope="module")
 def seed_audit(seed_suite):
-    return run_audit(get_procedures("all"), seed_suite, jobs=2)
+    return audit_in_memory(get_procedures("all"), seed_suite, jobs=2)
 
 
 def test_fema_predicts_overturning_of_every_slender_block(seed_audit):
@@ -195,5 +195,5 @@ def test_verdicts_agree_with_their_definitions(seed_audit):
 
 
 def test_an_audit_of_an_empty_suite_is_empty():
-    run = run_audit(get_procedures("all"), RecordSuite((), "nothing"))
+    run = audit_in_memory(get_procedures("all"), RecordSuite((), "nothing"))
     assert run.results.empty and run.summary["unauditable"] == []

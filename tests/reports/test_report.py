@@ -23,7 +23,7 @@ import audit.api
 from audit.engine.run.results import load_run
 from audit.engine.run.suite import suite_summary
 from audit.engine.shared.schemas import CHECK_COLUMNS, CLAIM_COLUMNS, SUITE_COLUMNS
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import audit_in_memory
 from audit.engine.shared.verdicts import VERDICTS
 from procedures import get_procedures
 from records import pulse_suite
@@ -248,7 +248,7 @@ def test_report_renders_offline_in_headless_chromium(seed_report, parsed, tmp_pa
 def _small_run():
     """A quick audit of the pulse suite on a small grid, with synthetic frames standing in for
     the limit-state checks, suite statistics and claims that other parts of the audit write."""
-    run = run_audit(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(10.0, 15.0),
+    run = audit_in_memory(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(10.0, 15.0),
                     size_s=np.array([1.0, 2.0, 3.0]), robustness=0.0)
     records = ["pacoima_dam_1971", "rinaldi_1994"]
     checks = []
@@ -478,7 +478,7 @@ def test_record_drawn_but_audited_by_no_procedure():
     from records import RecordSuite
     no_site = RecordSuite(tuple(e for e in pulse_suite() if not e.site.get("sxs_g")), "no site")
     assert [e.id for e in no_site] == ["erzincan_1992", "takatori_1995"]
-    run = run_audit(get_procedures("fema356"), no_site, alpha_deg=[15.0],
+    run = audit_in_memory(get_procedures("fema356"), no_site, alpha_deg=[15.0],
                     size_s=np.arange(1.0, 8.01, 1.0))
     assert run.results.empty and len(run.histories)
     html = render_report(run)
@@ -490,7 +490,7 @@ def test_record_drawn_but_audited_by_no_procedure():
 def test_mechanics_figures_are_drawn_from_the_saved_files():
     # Figures 7.1 and 4.1/7.2 come from mechanics.csv: 16 free-rocking curves (θ₀/α 0.1…0.7 ×
     # n 2…8) and the two laws; three pulse amplitudes for the block and for the oscillator
-    run = run_audit(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(15.0,),
+    run = audit_in_memory(get_procedures("priestley1978"), pulse_suite(), alpha_deg=(15.0,),
                     size_s=np.array([2.0]), robustness=0.0, claims=False)  # read from its files
     specs = _parse(render_report(run)).specs
     names = [trace["name"] for trace in specs["fig-7-1"]["data"]]

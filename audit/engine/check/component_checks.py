@@ -91,7 +91,7 @@ def component_entries(width_m: float, height_m: float, *, site=None, ntc_site=No
                             "basis": unmet, "factors": {}, "anchorage_force_over_weight": None,
                             "anchorage": None, "required_width_m": None})
             continue
-        result = provision.check(half_width, half_height, codes_site, floor)
+        result = provision.check(width_m, height_m, codes_site, floor)
         # the width at which the restoring moment just balances the code's force
         restoring = result.capacity_over_weight * half_height / half_width
         anchorage = result.anchorage

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -20,6 +21,35 @@ RULE_WIDTH_TOLERANCE = 0.01
 
 def _number(value) -> float | None:
     return float(value) if value is not None and math.isfinite(value) else None
+
+
+class GuidelineJudgement(NamedTuple):
+    """One guideline's judgement of one object, what its entries are made of
+    (:meth:`~audit.engine.check.guideline_widths.GuidelineWidths.of`).
+
+    Attributes
+    ----------
+    proc : procedures.base.Procedure
+        The guideline.
+    judgements : list of audit.engine.check.judgement.Judgement
+        One per record it judged (one for a procedure reading only the site).
+    line : float
+        Where on the stripes it turns to predicting overturning for half the records.
+    width : float
+        The narrowest width at which at most half the records predict overturning [m]: the
+        required width of a median-rule entry.
+    rule_widths : dict
+        Required width [m] by limit state, of an entry whose suite rule is not the median.
+    site_only : bool
+        It reads only the site's design spectrum.
+    """
+
+    proc: object
+    judgements: list
+    line: float
+    width: float
+    rule_widths: dict
+    site_only: bool
 
 
 @dataclass(frozen=True)
@@ -62,37 +92,27 @@ def _blank(proc, limit_state: str) -> dict:
             "guideline_im": None, "reason": None, "risk_p50": None, "spectrum_read": None}
 
 
-def procedure_entries(proc, judgements, line: float, width: float, rule_widths: dict, b: int,
-                      exact: ExactRotations, chosen: str, site_only: bool, first_entry,
-                      risk_p50: float | None) -> list[dict]:
+def procedure_entries(guideline: GuidelineJudgement, b: int, exact: ExactRotations, chosen: str,
+                      first_entry, risk_p50: float | None) -> list[dict]:
     """The entries of one procedure for object ``b`` (see the module).
 
     Parameters
     ----------
-    proc : procedures.base.Procedure
-        The guideline.
-    judgements : list of audit.engine.check.judgement.Judgement
-        One per record it judged (one for a procedure reading only the site).
-    line : float
-        Where on the stripes it turns to predicting overturning for half the records.
-    width : float
-        The narrowest width at which at most half the records predict overturning [m]: the
-        required width of a median-rule entry.
-    rule_widths : dict
-        Required width [m] by limit state, of an entry whose suite rule is not the median.
+    guideline : GuidelineJudgement
+        The guideline's judgement of the object: its judgements, its line on the stripes, its
+        required widths, whether it reads only the site.
     b : int
         The object's index in the judgements.
     exact : ExactRotations
         The object's exact response at the stripes.
     chosen : str
         The limit state asked for (SLV, SLC or both).
-    site_only : bool
-        It reads only the site's design spectrum.
     first_entry : records.RecordEntry
         The suite's first record, asked why the guideline cannot evaluate it when it judged none.
     risk_p50 : float or None
         P of overturning in 50 years at the required width [-], reported on a median-rule entry.
     """
+    proc, judgements, line, width, rule_widths, site_only = guideline
     if not judgements:
         entry = _blank(proc, "overturning")
         entry["reason"] = (proc.unmet_requirements(first_entry)
@@ -176,4 +196,5 @@ def rule_width(demand_capacity, obj, rule: str,
     return high
 
 
-__all__ = ["procedure_entries", "rule_width", "ExactRotations", "RULE_WIDTH_TOLERANCE"]
+__all__ = ["procedure_entries", "rule_width", "ExactRotations", "GuidelineJudgement",
+           "RULE_WIDTH_TOLERANCE"]

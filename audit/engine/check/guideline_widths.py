@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from audit.engine.check.entries import rule_width
+from audit.engine.check.entries import GuidelineJudgement, rule_width
 from audit.engine.check.limits import MEDIAN, limit_readings, suite_rule
 from audit.engine.check.settings import CheckSettings
 from audit.engine.check.guideline_search import accepted_width, overturns_at
@@ -35,11 +35,11 @@ class GuidelineWidths:
     rule_widths: dict = field(default_factory=dict)
     readings: dict = field(default_factory=dict)
 
-    def of(self, proc, b: int, obj) -> tuple:
-        """(procedure, its judgements of object ``b``, its line on the stripes, its required
-        width [m] by the median of the records, by limit state the width of an entry whose
-        suite rule is another (:func:`~audit.engine.check.entries.rule_width`), whether it
-        reads only the site).
+    def of(self, proc, b: int, obj) -> GuidelineJudgement:
+        """The guideline's judgement of object ``b``: its judgements, its line on the stripes,
+        its required width [m] by the median of the records, by limit state the width of an
+        entry whose suite rule is another (:func:`~audit.engine.check.entries.rule_width`),
+        whether it reads only the site.
 
         Parameters
         ----------
@@ -76,7 +76,7 @@ class GuidelineWidths:
                         lambda w, state=state: self._state_readings(proc, state, obj, w,
                                                                     records), obj, rule)
                 rule_widths[state] = self.rule_widths[key]
-        return proc, mine, line, width, rule_widths, site_only
+        return GuidelineJudgement(proc, mine, line, width, rule_widths, site_only)
 
     def _state_readings(self, proc, state, obj, width_m, records):
         """The records' demands at limit state ``state`` of the object made ``width_m`` wide,

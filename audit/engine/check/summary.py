@@ -97,10 +97,9 @@ class ObjectFindings:
     widths : numpy.ndarray
         Exact widths for P(overturn) ≤ 10 % and ≤ 50 % at the site [m], then for the risk target
         with a hazard curve.
-    judged : list
-        Per procedure, (procedure, its judgements, its line on the stripes, its required width
-        by the median rule, its widths by limit state for another rule, whether it reads only
-        the site).
+    judged : list of audit.engine.check.entries.GuidelineJudgement
+        Per procedure, its judgement of the object (its judgements, its line on the stripes,
+        its required widths, whether it reads only the site).
     risk : dict or None
         :func:`~audit.engine.check.risk.object_risk`, with a hazard curve.
     guideline_p50 : dict
@@ -179,10 +178,10 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                               "fitted": fitted.tolist()},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
                                  "high": curve_high.tolist()}},
-        "procedures": [entry for proc, mine, line, width, rule_widths, site_only in found.judged
+        "procedures": [entry for guideline in found.judged
                        for entry in procedure_entries(
-                           proc, mine, line, width, rule_widths, b, exact, frame.limit_state,
-                           site_only, frame.first_entry, found.guideline_p50.get(proc.name))],
+                           guideline, b, exact, frame.limit_state, frame.first_entry,
+                           found.guideline_p50.get(guideline.proc.name))],
         "risk": found.risk}
     answer["sentence"] = sentence(answer, im)
     return answer

@@ -34,6 +34,7 @@ import pandas as pd
 
 from audit.engine.shared.blocks import BlockList
 from audit.engine.shared.csv_text import csv_bytes
+from audit.engine.shared.json_text import json_ready
 from audit.engine.shared.floors import suite_floor
 from audit.engine.shared.defaults import SITE_LEVELS
 from audit.engine.shared.lattice import stripe_lattice
@@ -112,7 +113,7 @@ class MarginsStripes:
 def margins_stripes(procedures, suite, settings: MarginsSettings,
                     runtime: Runtime) -> MarginsStripes:
     """Every record of ``suite`` scaled to the stripes, with the exact response of every block
-    and each procedure's prediction there (the arguments of :func:`run_margins`).
+    and each procedure's prediction there (the arguments of :func:`margins_tables`).
 
     Parameters
     ----------
@@ -167,7 +168,7 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
         resumed, where)
 
 
-def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
+def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
     """Multiple-stripe exact fragility of every block and each procedure's line against it.
 
     Parameters
@@ -225,7 +226,6 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
     dict of str to bytes
         File name → contents.
     """
-    from audit.engine.run.results import json_ready
     from audit.engine.shared.schemas import column_guide
     files = {"stripes.csv": csv_bytes(run.stripes, "%.8g"),
              "fragility.csv": csv_bytes(run.fragility, "%.6g"),
@@ -252,4 +252,4 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
             "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
 
 
-__all__ = ["run_margins", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]
+__all__ = ["margins_tables", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]

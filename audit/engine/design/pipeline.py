@@ -9,7 +9,7 @@ from contextlib import nullcontext
 from dataclasses import replace
 
 from audit.engine.shared.defaults import DEFAULT_STRIPES
-from audit.engine.design.margins import MarginsRun, run_margins
+from audit.engine.design.margins import MarginsRun, margins_tables
 from audit.engine.design.scans import amplitude_scans
 from audit.engine.design.margins_risk import hazard_summary, hazard_table, margins_risk
 from audit.engine.design.settings import MarginsSettings
@@ -19,7 +19,7 @@ from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import open_scheduler
 
 
-def design_level_audit(procedures, suite, settings: MarginsSettings,
+def run_margins(procedures, suite, settings: MarginsSettings,
                        runtime: Runtime) -> MarginsRun:
     """Everything of the design-level audit, its tables in a :class:`MarginsRun`.
 
@@ -46,7 +46,7 @@ def design_level_audit(procedures, suite, settings: MarginsSettings,
     with (open_scheduler(runtime.scheduler, runtime.jobs) if isinstance(runtime.scheduler, str)
           else nullcontext(runtime.scheduler)) as executor:
         on = replace(runtime, scheduler=executor)
-        run = run_margins(procedures, suite, settings, on)
+        run = margins_tables(procedures, suite, settings, on)
         if settings.required:
             stage("required slenderness of each size: α from 2° to 40°, 2° apart, the exact "
                   "curves bisected")
@@ -66,4 +66,4 @@ def design_level_audit(procedures, suite, settings: MarginsSettings,
     return run
 
 
-__all__ = ["design_level_audit"]
+__all__ = ["run_margins"]

@@ -162,7 +162,7 @@ def required_alpha(procedures, suite, settings: MarginsSettings, runtime: Runtim
     settings : audit.engine.design.settings.MarginsSettings
         Its block sizes 2π/p [s], impact model, gravity and free motion.
     runtime : audit.engine.shared.runtime.Runtime
-        As for :func:`audit.engine.design.margins.run_margins`.
+        As for :func:`audit.engine.design.margins.margins_tables`.
     grid_deg : array
         Slendernesses of the search grid [degrees], ascending.
     targets : sequence of float

@@ -11,7 +11,6 @@ partial output.
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 
 import numpy as np
@@ -39,32 +38,11 @@ COLUMNS_JSON = "columns.json"
 REPORT_HTML = "report.html"
 
 
-def json_ready(value):
-    """Plain JSON: NaN and inf become null, numpy scalars become Python numbers.
-
-    Parameters
-    ----------
-    value : object
-        A dict, list, tuple or scalar, nested.
-    """
-    if isinstance(value, dict):
-        return {str(k): json_ready(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [json_ready(v) for v in value]
-    if isinstance(value, (np.bool_, bool)):
-        return bool(value)
-    if isinstance(value, (np.integer,)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        return float(value) if math.isfinite(value) else None
-    return value
-
-
 def summary_bytes(summary: dict) -> bytes:
     """``summary.json``: UTF-8, indented, NaN and inf as null, numpy scalars as numbers (as
-    :func:`json_ready`), encoded by orjson in one pass without a copy of the summary: the
-    summary of a suite of thousands of records holds every record's provenance, statistics and
-    drawn histories.
+    :func:`audit.engine.shared.json_text.json_ready`), encoded by orjson in one pass without a
+    copy of the summary: the summary of a suite of thousands of records holds every record's
+    provenance, statistics and drawn histories.
 
     Parameters
     ----------

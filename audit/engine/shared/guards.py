@@ -94,6 +94,16 @@ class Estimate:
     fields: tuple = ()
 
 
+def suite_motions(suite) -> list:
+    """The motions of ``suite``'s entries that have one (a missing record costs nothing).
+
+    Parameters
+    ----------
+    suite : records.RecordSuite
+    """
+    return [entry.motion for entry in suite if entry.motion is not None]
+
+
 def samples_with_tail(motion, free_motion_s: float) -> int:
     """Samples the solvers visit for ``motion``: the record and its free-motion tail.
 

@@ -32,7 +32,7 @@ class Progress:
 
     def __call__(self, done: int, total: int, what: str, how: str = "") -> None:
         """``done`` of ``total`` steps are finished, the last being ``what`` (``how`` in words);
-        the signature of :func:`audit.engine.run.suite_run.run_audit`'s ``progress``."""
+        the signature of :func:`audit.engine.run.pipeline.audit_in_memory`'s ``progress``."""
         self.count, self.total = done, total
         if self.bar is not None:
             if done < self.bar.n:  # a new pass over the same records

@@ -1,8 +1,8 @@
 """Where the records of an audit are computed: this process, or a Dask cluster.
 
-The unit of work is one record: :func:`~audit.engine.run.record_audit.audit_record` for an audit
-(every procedure, the whole grid), a record's stripes for the design-level audit
-(:mod:`audit.engine.design.margins`); records are independent, so a suite spreads over workers with no other
+The unit of work is one record, a task the workflow hands in (an audit's record: every
+procedure, the whole grid; a design-level audit's: a record's stripes; a check's: a record's
+part); records are independent, so a suite spreads over workers with no other
 communication. ``local`` runs them in this process, two at a time, handed back in order (the
 exact solver uses ``jobs`` threads); ``dask`` starts a ``dask.distributed`` LocalCluster of ``jobs``
 single-threaded worker processes; ``tcp://HOST:PORT`` uses an existing Dask cluster. The
@@ -21,7 +21,6 @@ from concurrent.futures import CancelledError, ThreadPoolExecutor
 from contextlib import contextmanager, nullcontext
 from dataclasses import replace
 
-from audit.engine.run.record_audit import audit_record
 from audit.engine.shared.record_references import by_reference, resolve
 from audit.engine.shared.runtime import DASK, LOCAL, check_scheduler
 from audit.errors import InputError
@@ -91,20 +90,6 @@ class LocalScheduler:
                 yield (index, *done)
         finally:  # on an interrupt or an error nothing waits for the records still queued
             pool.shutdown(wait=False, cancel_futures=True)
-
-    def audit(self, entries, procedures, settings):
-        """Yield ``(index, RecordAudit, seconds)`` for each entry, in order.
-
-        Parameters
-        ----------
-        entries : sequence of records.RecordEntry or RecordReference
-            The records.
-        procedures : sequence of procedures.base.Procedure
-            The procedures audited.
-        settings : AuditSettings
-            The audit's settings.
-        """
-        return self.map(audit_record, entries, procedures, settings)
 
 
 #: Times a record whose task the Dask scheduler cancelled (a lost worker took an argument it
@@ -212,21 +197,6 @@ class DaskScheduler:
             else:
                 yield (index, *outcome)
             fill()
-
-    def audit(self, entries, procedures, settings):
-        """Yield ``(index, RecordAudit, seconds)`` in order of completion.
-
-        Parameters
-        ----------
-        entries : sequence of records.RecordEntry or RecordReference
-            The records.
-        procedures : sequence of procedures.base.Procedure
-            The procedures audited.
-        settings : AuditSettings
-            The audit's settings.
-        """
-        return self.map(audit_record, entries, list(procedures),
-                        replace(settings, jobs=self.solver_threads))
 
 
 @contextmanager

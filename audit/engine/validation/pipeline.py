@@ -14,9 +14,9 @@ from audit.errors import InputError
 from audit.engine.validation.baselines import scores
 from audit.engine.validation.cross_validation import MODEL, folds_by_record, out_of_fold
 from audit.engine.validation.fit import fit_block
-from audit.engine.validation.grid import (Intensities, ValidationSettings, band_passed,
-                                          intensities, overturning_grid)
+from audit.engine.validation.grid import Intensities, band_passed, intensities, overturning_grid
 from audit.engine.validation.refine import REFINEMENTS, refined_blocks
+from audit.engine.validation.settings import ValidationSettings
 
 PREDICTIONS_CSV = "predictions.csv"
 FITS_CSV = "validation-fits.csv"

@@ -14,7 +14,7 @@ from audit.cli import main
 from audit.engine.shared.blocks import Block, BlockList
 from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.engine.shared.intensity import IntensityMeasure
-from audit.engine.design.margins import run_margins
+from audit.engine.design.margins import margins_tables
 from audit.engine.design.tables import fragility_rows
 from audit.engine.design.settings import MarginsSettings
 from audit.engine.shared.runtime import Runtime
@@ -48,7 +48,7 @@ def _suite():
 def test_margins_of_three_pulses_by_hand():
     suite = _suite()
     priestley = get_procedures("priestley1978")[0]
-    run = run_margins([priestley], suite, _settings(), Runtime())
+    run = margins_tables([priestley], suite, _settings(), Runtime())
     block = RigidBlock.from_size(SIZE_S, math.radians(ALPHA_DEG))
     alpha = math.radians(ALPHA_DEG)
     exact = np.zeros((3, LEVELS_G.size), dtype=bool)
@@ -86,7 +86,7 @@ def test_margins_of_three_pulses_by_hand():
 
 def test_site_based_procedure_reads_the_design_spectrum_scaled_to_each_level():
     # FEMA 356 reads only the site: at a stripe, every record gives the same answer (a step)
-    run = run_margins(get_procedures("fema356"), _suite(), _settings(), Runtime())
+    run = margins_tables(get_procedures("fema356"), _suite(), _settings(), Runtime())
     over = run.stripes["fema356_overturns"].to_numpy().reshape(3, LEVELS_G.size)
     assert np.all(over == over[0]) and over[0].any() and not over[0].all()
     assert np.all(np.diff(over[0].astype(int)) >= 0)  # one step up
@@ -97,7 +97,7 @@ def test_a_site_based_step_is_placed_at_its_level_not_between_stripes():
     scaled by level / S_X1, has 0.4·S_XS·level/S_X1 ≥ tan α: with S_XS = 1.5 g, S_X1 = 0.9 g,
     at Sa(1 s) = 0.4 × 0.9 / 0.6 = 0.600 g, whatever the stripes around it."""
     levels = np.geomspace(0.2, 1.6, 8)  # 0.566 and 0.749 g around the step
-    run = run_margins(get_procedures("fema356"), _suite(),
+    run = margins_tables(get_procedures("fema356"), _suite(),
                       _settings(im="sa:1.0", stripes=levels, alpha_deg=(), size_s=(),
                                 blocks=[Block.of_dimensions(0.8, 2.0)]), Runtime())
     step = 0.4 * 0.9 / (0.4 * 1.5)
@@ -112,8 +112,8 @@ def test_the_cmr_is_over_the_mce_and_a_bound_beyond_the_stripes():
     """P695's CMR is over the MCE intensity: the --site values as given (mce), or 1.5 × them
     (design). Stripes that stop below the median leave the CMR only bounded below."""
     suite = _suite()
-    mce = run_margins([], suite, _settings(), Runtime())
-    design = run_margins([], suite, _settings(site_level="design"), Runtime())
+    mce = margins_tables([], suite, _settings(), Runtime())
+    design = margins_tables([], suite, _settings(site_level="design"), Runtime())
     median = mce.fragility["median"].iloc[0]
     assert mce.fragility["cmr"].iloc[0] == pytest.approx(median / 0.6, rel=1e-12)
     assert design.fragility["cmr"].iloc[0] == pytest.approx(median / (1.5 * 0.6), rel=1e-12)
@@ -154,7 +154,7 @@ def test_stripe_scale_factors_are_on_the_record_as_read():
     """With the suite scaled to the site, a stripe's factor on the record as read is the site
     factor × the factor from the site-scaled record to the level."""
     suite = scale_to_site(_suite(), 1.5, 0.9)
-    run = run_margins([], suite, _settings(), Runtime())
+    run = margins_tables([], suite, _settings(), Runtime())
     site = {k: v["scale_factor"] for k, v in suite.scaling["records"].items()}
     stripes = run.stripes
     # the pulses as read have a PGA of 0.5 g: level / 0.5 takes each to its stripe
@@ -201,8 +201,8 @@ def test_block_by_its_dimensions():
 def test_a_named_block_is_audited_beside_the_grid_as_its_grid_twin():
     block = Block.of_dimensions(0.8, 4.0)
     procedures = get_procedures("priestley1978")
-    named = run_margins(procedures, _suite(), _settings(blocks=[block]), Runtime())
-    twin = run_margins(procedures, _suite(),
+    named = margins_tables(procedures, _suite(), _settings(blocks=[block]), Runtime())
+    twin = margins_tables(procedures, _suite(),
                        _settings(alpha_deg=(block.alpha_deg,), size_s=[block.size_s]), Runtime())
     rows = named.stripes[(named.stripes["width_m"] == 0.8) & (named.stripes["height_m"] == 4.0)].reset_index(drop=True)
     assert len(rows) == 3 * LEVELS_G.size
@@ -291,7 +291,7 @@ def test_p695_acceptance_of_the_blocks_a_guideline_sizes():
     table, verdicts = p695_acceptance(suite, _settings(), Runtime(), required)
     assert list(table["procedure"]) == ["priestley1978"]  # the exact curves are no guideline
     row = table.iloc[0]
-    medians = {v: run_margins([], suite, _settings(restitution=v), Runtime()).fragility.iloc[0]
+    medians = {v: margins_tables([], suite, _settings(restitution=v), Runtime()).fragility.iloc[0]
                for v in ("housner", "x0.9", "x0.8")}
     twin = medians["housner"]
     assert row["median"] == pytest.approx(twin["median"], rel=1e-6)

@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from audit.engine.design.margins import run_margins
+from audit.engine.design.margins import margins_tables
 from audit.engine.design.settings import MarginsSettings
 from audit.engine.design.tables import exact_fit
 from audit.engine.design.p695_acceptance import counted_fit, p695_acceptance, sized_blocks
@@ -47,10 +47,11 @@ def test_blocks_sized_alike_share_their_fit_and_every_value_is_the_full_audits()
     sized = sized_blocks(required, 9.81)
     blocks = tuple(Block.of_dimensions(float(w), float(h), g=9.81)
                    for w, h in zip(sized["width_m"], sized["height_m"]))
-    # the slow path: run_margins of the sized blocks (duplicates and all, bootstrap and all)
-    full = {v: run_margins([], suite, replace(_settings(), alpha_deg=(), size_s=(), blocks=blocks,
-                                              restitution=Restitution.parse(v), required=False),
-                           Runtime()).fragility for v in ("housner", "x0.9", "x0.8")}
+    # the slow path: margins_tables of the sized blocks (duplicates and all, bootstrap and all)
+    full = {v: margins_tables([], suite,
+                              replace(_settings(), alpha_deg=(), size_s=(), blocks=blocks,
+                                      restitution=Restitution.parse(v), required=False),
+                              Runtime()).fragility for v in ("housner", "x0.9", "x0.8")}
     base = full["housner"]
     assert base["median"].notna().all()  # every sized block has a fit to compare
     for column in ("median", "cmr", "cmr_bound"):

@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import audit_in_memory
 from procedures import get_procedures
 from records import RecordSuite
 
@@ -30,7 +30,7 @@ def test_golden_blocks(seed_suite, record):
     expected = GOLDEN[GOLDEN["record"] == record]
     suite = RecordSuite((seed_suite.get(record),), "one record")
     for (procedure, alpha), rows in expected.groupby(["procedure", "alpha_deg"]):
-        run = run_audit(get_procedures(procedure), suite, alpha_deg=[alpha],
+        run = audit_in_memory(get_procedures(procedure), suite, alpha_deg=[alpha],
                             size_s=rows["size_s"].to_numpy())
         got = run.results.set_index("size_s").loc[rows["size_s"]]
         for (_, want), (_, have) in zip(rows.iterrows(), got.iterrows()):

@@ -12,7 +12,7 @@ import pytest
 from audit.engine.run.record_audit import audit_record
 from audit.engine.shared.schemas import SUITE_COLUMNS
 from audit.engine.run.settings import AuditSettings
-from audit.engine.run.suite_run import run_audit
+from audit.engine.run.pipeline import audit_in_memory
 from audit.engine.shared.record_references import RecordReference, by_reference, resolve
 from audit.engine.shared.scheduler import check_scheduler, open_scheduler
 from audit.cli import main
@@ -33,7 +33,8 @@ def three_records(seed_suite):
 
 @pytest.fixture(scope="module")
 def local_run(three_records):
-    return run_audit(get_procedures("all"), three_records, jobs=2, detail=["sylmar_1994"], **GRID)
+    return audit_in_memory(get_procedures("all"), three_records, jobs=2, detail=["sylmar_1994"],
+                           **GRID)
 
 
 def _assert_same_run(run, reference):
@@ -58,7 +59,7 @@ def test_local_run_fills_suite_statistics(local_run):
 
 @pytest.mark.slow  # end to end: a local dask cluster
 def test_dask_local_cluster_gives_identical_values(three_records, local_run):
-    run = run_audit(get_procedures("all"), three_records, jobs=2, scheduler="dask",
+    run = audit_in_memory(get_procedures("all"), three_records, jobs=2, scheduler="dask",
                     detail=["sylmar_1994"], **GRID)
     assert "LocalCluster of 2" in run.summary["scheduler"]
     _assert_same_run(run, local_run)
@@ -70,7 +71,7 @@ def test_existing_cluster_by_address_gives_identical_values(three_records, local
                       dashboard_address=None) as cluster:
         address = cluster.scheduler_address
         assert address.startswith("tcp://")
-        run = run_audit(get_procedures("all"), three_records, scheduler=address, **GRID)
+        run = audit_in_memory(get_procedures("all"), three_records, scheduler=address, **GRID)
         # a record scaled after reading cannot be read back by reference: sent again by value
         pacoima = three_records.get("pacoima_dam_1971")
         scaled = replace(pacoima, motion=replace(pacoima.motion,
@@ -78,7 +79,8 @@ def test_existing_cluster_by_address_gives_identical_values(three_records, local
         settings = AuditSettings(alpha_deg=(20.0,), size_s=(6.0,))
         with open_scheduler(address, 1) as scheduler:
             [(_, remote, _), (_, unscaled, _)] = sorted(
-                scheduler.audit([scaled, pacoima], get_procedures("all"), settings),
+                scheduler.map(audit_record, [scaled, pacoima], get_procedures("all"),
+                              replace(settings, jobs=scheduler.solver_threads)),
                 key=lambda done: done[0])
         assert scheduler.by_value == ["pacoima_dam_1971"]       # the scaled one, once
     assert address in run.summary["scheduler"]
@@ -242,7 +244,7 @@ def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_re
     """A Dask cluster hands records back as they complete, and a resumed run's reused parts
     come first: the files are the local run's byte for byte, and each part ahead of its turn
     waits on disk, not in memory (in a scratch folder, or among the parts kept to resume)."""
-    from audit.engine.run import suite_run
+    from audit.engine.run import pipeline as suite_run
     from audit.engine.shared.runtime import Runtime
     from audit.engine.shared.scheduler import LocalScheduler
 
@@ -274,7 +276,7 @@ def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_re
         saved.clear()
         folders[name] = tmp_path / name
         folders[name].mkdir()
-        summaries[name] = suite_run.audit_suite(procedures, three_records, settings,
+        summaries[name] = suite_run.run_audit(procedures, three_records, settings,
                                                 Runtime.parse(jobs=2, **how), folders[name])
         if name == "scratch":  # all but the first waited in a scratch folder, last first
             assert [record for _, record in saved] == ids[:0:-1]

@@ -120,14 +120,14 @@ def test_an_exact_rotation_of_1e_14_rad_gives_no_ratio_of_1e12():
     ~5e-14 rad (θ grows with the excess), Priestley's iteration to ~0.04 rad: the ratio was
     ~8e11."""
     import math
-    from audit.engine.run.suite_run import run_audit
+    from audit.engine.run.pipeline import audit_in_memory
     from audit.engine.shared.verdicts import ROCKING_FLOOR
     from procedures import get_procedures
     from records import RecordEntry, RecordSuite, one_pulse
     from reports.outcome_words import describe_exact
     alpha = math.radians(10.0)
     edge = one_pulse("cosine", math.tan(alpha) * (1 + 1e-6), 1.0, record_id="edge")
-    run = run_audit(get_procedures("priestley1978"),
+    run = audit_in_memory(get_procedures("priestley1978"),
                     RecordSuite((RecordEntry("edge", edge, None, "edge"),), "edge"),
                     alpha_deg=(10.0,), size_s=np.array([4.0]), robustness=0.0)
     row = run.results.iloc[0]

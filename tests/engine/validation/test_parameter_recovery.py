@@ -19,7 +19,8 @@ import pandas as pd
 import pytest
 
 from audit.engine.validation.fit import fit_block
-from audit.engine.validation.grid import ValidationSettings, overturning_grid
+from audit.engine.validation.grid import overturning_grid
+from audit.engine.validation.settings import ValidationSettings
 from audit.engine.validation.pipeline import _fine_grid
 from records.campaign import read_campaign
 from synthetic_campaign import FREE_MOTION_S, write_campaign

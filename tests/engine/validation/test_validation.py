@@ -21,7 +21,8 @@ from audit.engine.validation.cross_validation import folds_by_record
 from audit.engine.validation.fit import fit_block
 from audit.engine.validation.link import overturning_probability, slenderness_weights
 from audit.engine.validation.profile import profile_interval
-from audit.engine.validation.grid import ValidationSettings, band_passed, overturning_grid
+from audit.engine.validation.grid import band_passed, overturning_grid
+from audit.engine.validation.settings import ValidationSettings
 from audit.engine.validation.pipeline import fitted_restitution, methods_statement
 from audit.errors import InputError
 from audit.physics.block import Restitution

@@ -14,8 +14,8 @@ from scipy.stats import lognorm
 from conftest import REQUIRE_PELICUN, unavailable
 
 from audit.api.probabilistic import FragilityResult
-from audit.engine.run.probabilistic_audit import COMPONENTS_CSV
-from audit.engine.run.pelicun_export import PELICUN_COLUMNS, pelicun_fragility_csv
+from audit.engine.fragility.pipeline import COMPONENTS_CSV
+from audit.engine.fragility.pelicun_export import PELICUN_COLUMNS, pelicun_fragility_csv
 from procedures.fema_p58 import FEMAP58
 from procedures.probabilistic import FragilityComponent, LognormalFragility
 

@@ -14,11 +14,11 @@ import numpy as np
 import pandas as pd
 
 from audit import G
-from audit.engine.run.calibration import PGV_LEVELS_M_S, brier_score, calibration, log_likelihood
+from audit.engine.fragility.calibration import brier_score, calibration, log_likelihood
+from audit.engine.fragility.settings import FragilitySettings
 from audit.engine.design.fragility import stripe_outcomes
 from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.errors import InputError
-from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.block import RigidBlock
 from procedures.probabilistic import LognormalFragility
 
@@ -29,7 +29,8 @@ OUTCOMES_CSV = "fragility-outcomes.csv"
 CALIBRATION_CSV = "fragility-calibration.csv"
 
 
-def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -> dict:
+def run_fragility(procedure, record_ids, motions,
+                  settings: FragilitySettings = FragilitySettings()) -> dict:
     """The tables of the audit of ``procedure`` (a :class:`procedures.probabilistic.ProbabilisticProcedure`)
     on the records: file name → :class:`pandas.DataFrame`.
 
@@ -41,10 +42,10 @@ def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -
         The records' ids.
     motions : sequence of records.GroundMotion
         Their motions, in the same order.
-    levels_m_s : array_like of float
-        The PGV stripes [m/s].
+    settings : FragilitySettings
+        The PGV stripes and the free motion.
     """
-    levels = np.asarray(levels_m_s, dtype=float)
+    levels = np.asarray(settings.levels_m_s, dtype=float)
     zero = [record_id for record_id, motion in zip(record_ids, motions) if not motion.pgv > 0]
     if zero:
         raise InputError(f"records: {zero[0]} has zero intensity (PGV = 0: an all-zero record), "
@@ -57,7 +58,7 @@ def audit_procedure(procedure, record_ids, motions, levels_m_s=PGV_LEVELS_M_S) -
             continue
         block = RigidBlock.from_dimensions(component.depth_m / 2, component.height_m / 2)
         overturned = np.array([stripe_outcomes(motion, levels / motion.pgv, [block.size_s],
-                                               [block.alpha], G, DEFAULT_FREE_MOTION_S)[0][:, 0, 0]
+                                               [block.alpha], G, settings.free_motion_s)[0][:, 0, 0]
                                for motion in motions])
         counts = overturned.sum(axis=0)
         try:

@@ -1,10 +1,10 @@
 """An audit over a suite of records: every record's part, the suite statistics, the bottom line,
 the reproduction checklist and the figure data — everything the report is drawn from.
 
-:func:`audit_suite` is the pipeline the command line and the Python API (:mod:`audit.api`) both
+:func:`run_audit` is the pipeline the command line and the Python API (:mod:`audit.api`) both
 run: each record's rows are written to the run's data files (:mod:`audit.engine.run.writer`) as
 soon as its part is computed, while the next records are, in memory that does not grow with the
-suite beyond a small term per record. :func:`run_audit` writes them into a scratch folder and
+suite beyond a small term per record. :func:`audit_in_memory` writes them into a scratch folder and
 reads the whole run back as an :class:`AuditRun`.
 """
 
@@ -70,7 +70,7 @@ class _InOrder:
             self.scratch.remove()
 
 
-def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, folder, detail=(),
+def run_audit(procedures, suite, settings: AuditSettings, runtime: Runtime, folder, detail=(),
                 claims: bool = True, progress=None) -> dict:
     """Audit ``procedures`` on every record of ``suite`` over the (α, 2π/p) grid and write the
     run's data files into ``folder``, each record's rows as soon as its part is computed (while
@@ -134,8 +134,8 @@ def audit_suite(procedures, suite, settings: AuditSettings, runtime: Runtime, fo
     return summary
 
 
-def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> AuditRun:
-    """The whole run of :func:`audit_suite`, its settings and runtime given by their fields
+def audit_in_memory(procedures, suite, detail=(), claims: bool = True, **values) -> AuditRun:
+    """The whole run of :func:`run_audit`, its settings and runtime given by their fields
     (``alpha_deg=…, size_s=…, jobs=…``), written and read back from its files into memory:
     for a test or a script, not for a suite of thousands of records.
 
@@ -156,7 +156,7 @@ def run_audit(procedures, suite, detail=(), claims: bool = True, **values) -> Au
     settings = AuditSettings.parse(**{k: v for k, v in values.items() if k in AUDIT_FIELDS})
     runtime = Runtime.parse(**{k: v for k, v in values.items() if k not in AUDIT_FIELDS})
     with tempfile.TemporaryDirectory(prefix="rocking-audit-") as folder:
-        audit_suite(procedures, suite, settings, runtime, folder, detail, claims)
+        run_audit(procedures, suite, settings, runtime, folder, detail, claims)
         return load_run(folder)
 
 
@@ -173,5 +173,5 @@ def compiles_first() -> bool:
     return not all(map(machine_code_cached, (kernel._spectrum, spectrum_peaks)))
 
 
-__all__ = ["audit_suite", "run_audit", "AuditRun",
+__all__ = ["run_audit", "audit_in_memory", "AuditRun",
            "compiles_first"]
