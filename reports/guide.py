@@ -11,6 +11,7 @@ import sys
 from pathlib import Path
 
 from audit.engine.shared.schemas import GUIDE
+from reports.generated_page import between, main, rewrite_between
 
 #: The lines between which a page holds the generated guide.
 START, END = "<!-- column guide: start -->", "<!-- column guide: end -->"
@@ -29,19 +30,13 @@ def markdown() -> str:
 
 def generated_part(page: str) -> str:
     """The text of ``page`` between the markers, without them."""
-    start, end = page.index(START), page.index(END)
-    return page[start + len(START):end].strip() + "\n"
+    return between(page, (START, END))
 
 
 def rewrite(path: Path) -> None:
     """Replace the generated part of the page at ``path`` by the guide as the schema has it."""
-    page = path.read_text(encoding="utf-8")
-    start, end = page.index(START), page.index(END)
-    path.write_text(f"{page[:start]}{START}\n{markdown()}\n{page[end:]}", encoding="utf-8")
+    rewrite_between(path, (START, END), markdown())
 
 
 if __name__ == "__main__":
-    if len(sys.argv) > 1:
-        rewrite(Path(sys.argv[1]))
-    else:
-        print(markdown(), end="")
+    main(sys.argv[1:], (START, END), markdown)

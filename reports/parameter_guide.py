@@ -13,6 +13,7 @@ from pathlib import Path
 
 from procedures.parameters import parameter_defaults
 from procedures.registry import available_component_provisions, available_procedures
+from reports.generated_page import between, main, rewrite_between
 
 #: The lines between which a page holds the generated tables.
 START, END = "<!-- parameters: start -->", "<!-- parameters: end -->"
@@ -39,19 +40,13 @@ def markdown() -> str:
 
 def generated_part(page: str) -> str:
     """The text of ``page`` between the markers, without them."""
-    start, end = page.index(START), page.index(END)
-    return page[start + len(START):end].strip() + "\n"
+    return between(page, (START, END))
 
 
 def rewrite(path: Path) -> None:
     """Replace the generated part of the page at ``path`` by the tables as declared."""
-    page = path.read_text(encoding="utf-8")
-    start, end = page.index(START), page.index(END)
-    path.write_text(f"{page[:start]}{START}\n{markdown()}\n{page[end:]}", encoding="utf-8")
+    rewrite_between(path, (START, END), markdown())
 
 
 if __name__ == "__main__":
-    if len(sys.argv) > 1:
-        rewrite(Path(sys.argv[1]))
-    else:
-        print(markdown(), end="")
+    main(sys.argv[1:], (START, END), markdown)
