@@ -59,10 +59,21 @@ def render_fragility_page(folder, title: str) -> str:
                "procedure_median_m_s", "procedure_beta", "median_ratio",
                "conservative_at_median", "brier", "log_likelihood", "exact_fit_brier",
                "exact_fit_log_likelihood", "outcomes"]
+    source = ""
+    if "exact_source" in components and (components["exact_source"] == "atlas").any():
+        errors = components["atlas_error"]
+        columns.append("atlas_error")
+        source = (f"<p>The exact fragilities are from the atlas "
+                  f"{html.escape(str(components['atlas_key'].iloc[0])[:12])} (its "
+                  f"{stripes['pgv_m_s'].nunique()} PGV stripes, {stripes['pgv_m_s'].min():.4g}–"
+                  f"{stripes['pgv_m_s'].max():.4g} m/s), ±{100 * errors.max():.1f} % in P at "
+                  f"most over the components (median ±{100 * errors.median():.1f} %); each "
+                  f"record's outcome between the atlas's nodes is a probability, and the scores "
+                  f"are their expectations.</p>")
     table = components[columns].to_html(index=False, float_format=lambda v: f"{v:.3g}")
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{html.escape(title)}"
             f"</title><script>{get_plotlyjs()}</script></head><body>"
-            f"<h1>{html.escape(title)}</h1><p>{html.escape(FLOOR_MOTION_CAVEAT)}</p>"
+            f"<h1>{html.escape(title)}</h1>{source}<p>{html.escape(FLOOR_MOTION_CAVEAT)}</p>"
             f"<p>Exact fragility: records scaled to each PGV stripe, lognormal of greatest "
             f"binomial likelihood. median_ratio is the procedure's median over the exact one "
             f"(below 1: the procedure expects overturning at a lower PGV). Brier score and "

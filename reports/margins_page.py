@@ -127,6 +127,13 @@ def render_margins_page(folder) -> str:
              f"stripes from {min(summary['levels']):.3g} to {max(summary['levels']):.3g}; "
              f"impact model r = {html.escape(summary.get('restitution', 'housner'))} "
              f"(housner: Eq. 4.8).</p>"]
+    source = summary.get("exact_source", {})
+    atlas = source.get("method") == "atlas"
+    if atlas:  # one sentence: from the atlas, ±x; and what is not
+        parts.append(f'<p class="quote">{html.escape(source["text"])} From it: '
+                     f'{html.escape("; ".join(source["from_atlas"]))}. Direct: '
+                     f'{html.escape("; ".join(source["direct"]))}. Not answered: '
+                     f'{html.escape("; ".join(source["not_answered"]))}.</p>')
     if required is not None:
         parts.append("<h2>The numbers to quote</h2>")
         parts += [f'<p class="quote">{html.escape(s)}</p>'
@@ -202,11 +209,12 @@ def render_margins_page(folder) -> str:
     worst.insert(3, "object", [describe_block(a, s)[2:] for a, s
                                in zip(worst["alpha_deg"], worst["size_s"])])
     parts.append(_table(worst))
-    parts.append(f"<h2>Islands</h2><p>{(fragility['records_with_islands'] > 0).mean():.0%} of "
-                 f"the blocks have at least one record under which the block survives a stripe "
-                 f"above its first overturning one; on average "
-                 f"{fragility['island_share'].mean():.0%} of the records per block do (at this "
-                 f"stripe spacing).</p>")
+    if not atlas:
+        parts.append(f"<h2>Islands</h2><p>{(fragility['records_with_islands'] > 0).mean():.0%}"
+                     f" of the blocks have at least one record under which the block survives a "
+                     f"stripe above its first overturning one; on average "
+                     f"{fragility['island_share'].mean():.0%} of the records per block do (at "
+                     f"this stripe spacing).</p>")
     title = "Design-level audit: fragility and collapse margins"
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title>"
             f"<style>{_CSS}</style><script>{get_plotlyjs()}</script></head><body>"

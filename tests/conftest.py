@@ -103,3 +103,13 @@ def hazard_dir() -> Path:
     if not (path / "usgs-example.json").is_file():
         pytest.fail(f"{HAZARD_VARIABLE}={value}: no usgs-example.json there")
     return path
+
+
+@pytest.fixture(autouse=True)
+def _no_user_atlas(monkeypatch, tmp_path_factory):
+    """``margins`` and ``fragility`` read an atlas where one is built (``method=None``): an
+    atlas in the user's cache must not change what a test computes. A test that builds its
+    own sets ``ROCKING_AUDIT_ATLAS_DIR`` itself."""
+    from audit.engine.atlas.store import ATLAS_DIR_ENV
+    if ATLAS_DIR_ENV not in os.environ:
+        monkeypatch.setenv(ATLAS_DIR_ENV, str(tmp_path_factory.getbasetemp() / "no-atlas"))

@@ -10,6 +10,8 @@ for answers in seconds.
 
 from __future__ import annotations
 
+import os
+
 from audit import G
 from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S,
                                           DEFAULT_IM, DEFAULT_JOBS, DEFAULT_RESTITUTION,
@@ -29,7 +31,7 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
     ----------
     records : str, path or records.RecordSuite
     im : str
-        ``sa:T`` or ``pga``.
+        ``sa:T``, ``pga`` or ``pgv`` (the IM of ``fragility``'s stripes).
     restitution : str
     free_motion_s, g : float
     floor, building, building_model, building_damping :
@@ -45,9 +47,12 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
         records_digest
     from audit.engine.check.settings import CheckSettings
     from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.intensity import IntensityMeasure
     from audit.engine.shared.runtime import Runtime
-    checked = CheckSettings.parse(im=im, restitution=restitution, free_motion_s=free_motion_s,
-                                  g=g)
+    # the IM on its own: check's settings refuse PGV (a design spectrum has none), fragility's
+    # stripes are PGV
+    checked = CheckSettings.parse(restitution=restitution, free_motion_s=free_motion_s, g=g)
+    im = im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im)
     runtime = Runtime.parse(jobs=jobs)
     site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
                             building_damping=building_damping)
@@ -55,7 +60,7 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
     entries = [entry for entry in suite if entry.motion is not None]
     alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
     name = records if isinstance(records, str) else str(getattr(records, "description", records))
-    return entries, AtlasSettings(name, records_digest(entries), checked.im,
+    return entries, AtlasSettings(name, records_digest(entries), im,
                                   floor_words(site.floor), checked.restitution, checked.g,
                                   checked.free_motion_s,
                                   tuple(float(a) for a in alpha_deg),
@@ -88,6 +93,55 @@ def find_atlas(records=DEFAULT_CHECK_RECORDS, **keywords):
     _, settings = atlas_settings(records, **keywords)
     directory = atlas_dir(settings.key())
     return Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
+
+
+def atlas_reading(method, records, blocks, *, im, restitution=DEFAULT_RESTITUTION,
+                  free_motion_s=DEFAULT_FREE_MOTION_S, g=G, floor=0.0, building=None,
+                  building_model=None, building_damping=DEFAULT_BUILDING_DAMPING,
+                  stripes=None, named=None):
+    """The atlas a fragility reads by ``method`` (:func:`~audit.engine.atlas.fragility_read.atlas_for`):
+    an :class:`~audit.engine.atlas.fragility_read.AtlasReading`, or None for the direct solve.
+    ``direct`` reads no record for it.
+
+    Parameters
+    ----------
+    method : {None, "atlas", "direct"}
+    records : str, path or records.RecordSuite
+        The records as read (before a floor or a site scaled them: a fragility on the lattice
+        does not depend on the scaling, and the atlas applies the floor itself).
+    blocks : (sequence, sequence)
+        The blocks' (α [degrees], 2π/p [s]).
+    im, restitution, free_motion_s, g, floor, building, building_model, building_damping :
+        What names the atlas, as for :func:`atlas_settings`.
+    stripes : sequence of float, optional
+        Stripes asked for explicitly (refused where not all the atlas's).
+    named : str or path, optional
+        The records as the user named them (the build command the message gives); default
+        the suite's description.
+    """
+    from audit.engine.atlas.fragility_read import atlas_for, checked_method
+    from audit.engine.atlas.answers import Atlas
+    from audit.engine.atlas.store import ATLAS_NPZ, atlas_dir
+    if checked_method(method) == "direct":
+        return None
+    im = getattr(im, "name", im)
+    _, settings = atlas_settings(records, im=im, restitution=restitution,
+                                 free_motion_s=free_motion_s, g=g, floor=floor,
+                                 building=building, building_model=building_model,
+                                 building_damping=building_damping)
+    key = settings.key()
+    directory = atlas_dir(key)
+    atlas = Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
+    name = named if isinstance(named, (str, os.PathLike)) else getattr(records, "description",
+                                                                        records)
+    command = (f"python -m audit atlas build --records {name} --im {im}"
+               + (f" --restitution {restitution}" if str(restitution) != DEFAULT_RESTITUTION
+                  else "")
+               + (f" --floor {floor:g} --building {building:g}" if floor else "")
+               + (f" --building-model {building_model}" if floor and building_model else "")
+               + (f" --building-damping {building_damping:g}"
+                  if floor and building_damping != DEFAULT_BUILDING_DAMPING else ""))
+    return atlas_for(method, atlas, key, *blocks, command, stripes=stripes)
 
 
 def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **keywords) -> list:

@@ -87,7 +87,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
             units: str | None = None, force: bool = False,
             jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
             resume: bool = False, progress=False,
-            params: dict | None = None) -> MarginsResult:
+            params: dict | None = None, method: str | None = None) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
     procedure draws its line against it (see :mod:`audit.engine.design.margins`).
 
@@ -153,6 +153,14 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         How, as for :func:`audit.run`.
     params : dict, optional
         The procedures' parameters, as for :func:`audit.run`.
+    method : {None, "atlas", "direct"}
+        Where the blocks' exact fragilities come from: ``atlas``, the atlas of these records,
+        IM, floor, restitution, g and free motion (``python -m audit atlas build``), at its 14
+        stripes (the lattice's levels √2 apart), each block's error stated (InputError naming
+        ``method`` where none answers: none built, a block outside its grid, other
+        ``stripes`` asked); ``direct``, solved at the stripes; None, the atlas where one
+        answers, else direct. The guidelines, the required slenderness and the acceptance stay
+        direct (:mod:`audit.engine.atlas.fragility_read`).
 
     Returns
     -------
@@ -176,14 +184,24 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
                             resume=resume, progress=progress if callable(progress) else None)
     force = check.flag("force", force)
     chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
-    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
-                                    skip_bad_records=skip_bad_records))
+    from audit.api.atlas import atlas_reading
+    from audit.engine.atlas.fragility_read import checked_method
+    from audit.engine.shared.blocks import BlockList
+    checked_method(method)
+    read = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
+    suite = site.apply(read)
     guards.check(margins_cost(chosen, suite, settings, runtime), force)
+    grid = BlockList.of(settings.alpha_deg, settings.size_s, settings.blocks)
+    atlas = atlas_reading(method, read, (grid.alpha_deg, grid.size_s), im=settings.im,
+                          restitution=restitution, free_motion_s=settings.free_motion_s,
+                          g=settings.g, floor=floor, building=building,
+                          building_model=building_model, building_damping=building_damping,
+                          stripes=settings.stripes, named=records) if len(grid) else None
     if bar:
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
     start = time.perf_counter()
     try:
-        run = run_margins(chosen, suite, settings, runtime)
+        run = run_margins(chosen, suite, settings, runtime, atlas)
     finally:
         if bar:
             runtime.progress.done()

@@ -14,7 +14,7 @@ def _atlas_options(p):
     """What names an atlas: records, IM, floor, restitution, g, free motion."""
     p.add_argument("--records", metavar="NAME_OR_PATH", default=DEFAULT_CHECK_RECORDS,
                    help="record suite (see 'list'), manifest, file or folder")
-    p.add_argument("--im", default=DEFAULT_IM, metavar="pga|sa:T",
+    p.add_argument("--im", default=DEFAULT_IM, metavar="pga|pgv|sa:T",
                    help="intensity measure of the stripes")
     options.add_floor_options(p)
     options.add_restitution_option(p)

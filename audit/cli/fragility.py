@@ -21,6 +21,7 @@ def add_parser(sub):
     options.add_records_option(p)
     options.add_skip_bad_records_option(p)
     options.add_floor_options(p)
+    options.add_method_option(p, "pgv")
     p.add_argument("--out", required=True, metavar="DIR",
                    help="output folder: fragility-*.csv and fragility.html")
     p.add_argument("--pelicun", metavar="FILE",
@@ -38,7 +39,7 @@ def run(args) -> int:
                     inputs={"--records": args.records})
     out_dir, pelicun = paths["--out"], paths["--pelicun"]
     result = fragility(args.procedure, args.records, **options.reading(args), progress=True,
-                       **options.floor_values(args))
+                       **options.floor_values(args), method=args.method)
     pelicun_csv = result.pelicun_csv() if pelicun else None  # made before anything is written
     result.write(out_dir)
     if pelicun:

@@ -57,6 +57,7 @@ def add_parser(sub):
                    help="NTC 2018 site for every record (see 'run --help')")
     options.add_block_option(p)
     options.add_restitution_option(p)
+    options.add_method_option(p, "sa:1.0")
     options.add_hazard_options(p)
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
@@ -97,13 +98,15 @@ def run(args) -> int:
         result = margins(args.procedure, args.records, **options.reading(args), params=args.param,
                          force=args.force, **values, **site, **options.floor_values(args),
                          jobs=args.jobs, scheduler=args.scheduler,
-                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True)
+                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True,
+                         method=args.method)
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)
     result.write(out_dir)
     shutil.rmtree(out_dir / PARTIAL_DIR, ignore_errors=True)
     sys.stdout.write(result.summary_text())
     print(f"Wrote {out_dir / result.PAGE} and stripes.csv, fragility.csv, capacity.csv, "
-          "required_alpha.csv, scan.csv, summary.json"
+          "required_alpha.csv, " + ("scan.csv, " if result.scan is not None else "")
+          + "summary.json"
           + (", risk.csv, risk_alpha.csv, hazard.csv" if args.hazard else ""))
     return 0

@@ -204,6 +204,15 @@ def add_restitution_option(parser):
                              "restitution r, or a multiple of Eq. 4.8 (e.g. x0.9)")
 
 
+def add_method_option(parser, im: str):
+    """``--method atlas|direct``: the exact fragility read from the atlas or solved (#58)."""
+    parser.add_argument("--method", choices=("atlas", "direct"), default=None,
+                        help="the exact fragility from the atlas of the records on this floor "
+                             f"(python -m audit atlas build --im {im}), at its 14 stripes, or "
+                             "solved directly; default: the atlas where one is built, else "
+                             "direct")
+
+
 def add_vertical_option(parser):
     parser.add_argument("--vertical", action="store_true",
                         help="include the records' vertical components (gravity g + üv in the "

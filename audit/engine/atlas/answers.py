@@ -218,7 +218,9 @@ class Atlas:
                     across = _lognormal_p(self.levels, self.records, mid, site_im)
                     worst = np.maximum(worst, np.abs(here - across))
         outcomes = self.outcomes(alpha_deg, size_s)
-        spread = np.sqrt(self.site_outcomes(outcomes * (1.0 - outcomes), site_im).sum(axis=1))
+        # w(1 − w) ≥ 0; the interpolation's rounding can put w a hair above 1
+        spread = np.sqrt(np.maximum(
+            self.site_outcomes(outcomes * (1.0 - outcomes), site_im).sum(axis=1), 0.0))
         return worst / DOUBLE_SPACING_ERROR_RATIO + RECORD_SPREAD * spread / self.records
 
     def at(self, alpha_deg, size_s, site_im: float, seed: int | None = None) -> list:

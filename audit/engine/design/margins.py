@@ -36,7 +36,7 @@ from audit.engine.shared.blocks import BlockList
 from audit.engine.shared.csv_text import csv_bytes
 from audit.engine.shared.json_text import json_ready
 from audit.engine.shared.floors import suite_floor
-from audit.engine.shared.defaults import SITE_LEVELS
+from audit.engine.shared.defaults import DEFAULT_STRIPES, SITE_LEVELS
 from audit.engine.shared.lattice import stripe_lattice
 from audit.engine.design.settings import MarginsSettings
 from audit.engine.design.guideline_lines import guideline_lines
@@ -48,6 +48,22 @@ from audit.engine.shared.scheduler import computed_parts
 from audit.engine.design.stripes import StripeSettings, record_stripes
 from audit.errors import InputError
 from procedures.parameters import parameters_used
+
+
+#: With ``--method atlas``: what the atlas answers, what stays direct, and what neither gives
+#: (summary.json's ``exact_source``; :mod:`audit.engine.atlas.fragility_read`).
+MARGINS_FROM_ATLAS = ("fragility.csv: each block's exact fit, CMR and bootstrap bands, on the "
+                      "atlas's stripes", "capacity.csv: the achieved P", "stripes.csv: "
+                      "exact_overturned, a per-record probability between the atlas's nodes",
+                      "risk.csv, risk_alpha.csv: the risk at the site")
+MARGINS_DIRECT = ("the guidelines' predictions at every stripe (stripes.csv's *_overturns, "
+                  "capacity.csv's guideline_im)", "required_alpha.csv: the records at their "
+                  "own site-scaled intensity, which lies between the atlas's stripes",
+                  "acceptance.csv: its impact model × 0.9 and × 0.8 is another atlas")
+MARGINS_NOT_ANSWERED = ("stripes.csv's exact_theta_rad (empty: the atlas keeps no rotation "
+                        "between its nodes)", "fragility.csv's records_with_islands and "
+                        "island_share (empty: islands are read from whole outcomes)",
+                        "scan.csv (not written: it picks a record by its whole outcomes)")
 
 
 @dataclass
@@ -110,8 +126,8 @@ class MarginsStripes:
     where: str
 
 
-def margins_stripes(procedures, suite, settings: MarginsSettings,
-                    runtime: Runtime) -> MarginsStripes:
+def margins_stripes(procedures, suite, settings: MarginsSettings, runtime: Runtime,
+                    atlas=None) -> MarginsStripes:
     """Every record of ``suite`` scaled to the stripes, with the exact response of every block
     and each procedure's prediction there (the arguments of :func:`margins_tables`).
 
@@ -125,6 +141,10 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
         The design-level settings.
     runtime : Runtime
         How it runs.
+    atlas : audit.engine.atlas.fragility_read.AtlasReading, optional
+        The atlas the exact outcomes are read from, at its stripes (or those of them asked):
+        per-record probabilities between its nodes, no peak rotation (NaN); the records then
+        carry the procedures' predictions alone.
     """
     im, levels, alpha_deg = settings.im, settings.stripes, settings.alpha_deg
     size_s, named_blocks, g = settings.size_s, settings.blocks, settings.g
@@ -142,25 +162,30 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
                          "records")
     design = im.of_design_site(suite.design_site)
     if levels is None:  # the fixed lattice: the fragility is the block's, not the site's
-        levels = stripe_lattice()
+        levels = stripe_lattice() if atlas is None else atlas.levels
     blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
     if not len(blocks):
         raise InputError("size_s, alpha_deg, blocks: no block to audit", "size_s",
                          "alpha_deg", "blocks")
     settings_of_stripes = StripeSettings(
         im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()), design, blocks,
-        restitution, float(g), float(free_motion_s), int(jobs))
+        restitution, float(g), float(free_motion_s), int(jobs), exact=atlas is None)
     store = (PartialStore(partial_dir, procedures, settings_of_stripes, resume) if partial_dir
              else None)
     parts, resumed, where = computed_parts(record_stripes, entries, procedures,
                                            settings_of_stripes, runtime.scheduler, store,
                                            runtime.progress)
+    if atlas is None:
+        exact_over = np.stack([part.exact_overturned for part in parts])
+        exact_theta = np.stack([part.exact_theta_rad for part in parts])
+    else:  # the atlas's records are these, in this order (its key hashes them)
+        exact_over = atlas.outcomes(blocks.alpha_deg, blocks.size_s,
+                                    settings_of_stripes.levels)
+        exact_theta = np.full(exact_over.shape, np.nan)
     return MarginsStripes(
         entries, settings_of_stripes,
         design * SITE_LEVELS[settings.site_level] if design else None,
-        np.array([part.intensity for part in parts]),
-        np.stack([part.exact_overturned for part in parts]),
-        np.stack([part.exact_theta_rad for part in parts]),
+        np.array([part.intensity for part in parts]), exact_over, exact_theta,
         {proc.name: np.stack([part.predicted[proc.name] for part in parts])
          for proc in procedures},
         {proc.name: np.array([part.evaluated[proc.name] for part in parts])
@@ -168,7 +193,8 @@ def margins_stripes(procedures, suite, settings: MarginsSettings,
         resumed, where)
 
 
-def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtime) -> MarginsRun:
+def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtime,
+                   atlas=None) -> MarginsRun:
     """Multiple-stripe exact fragility of every block and each procedure's line against it.
 
     Parameters
@@ -183,13 +209,30 @@ def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtim
     runtime : Runtime
         Solver threads (worker processes of ``scheduler="dask"``), where records are computed,
         the folder of parts kept as they complete and whether to reuse them, progress.
+    atlas : audit.engine.atlas.fragility_read.AtlasReading, optional
+        The atlas the exact fragilities are read from (:func:`margins_stripes`).
     """
-    run = margins_stripes(procedures, suite, settings, runtime)
+    run = margins_stripes(procedures, suite, settings, runtime, atlas)
     entries, im, blocks = run.entries, settings.im, run.settings.blocks
     levels, exact_over = np.asarray(run.settings.levels), run.exact_overturned
     site_factors = np.array([site_factor(suite, e.id) for e in entries])
     stripes = stripe_rows(run, site_factors)
     fragility, fits, boots = fragility_rows(levels, blocks, im, exact_over, run.mce_im)
+    if atlas is None:
+        source = {"method": "direct"}
+        fragility = fragility.assign(exact_source="direct", atlas_key="", atlas_error=np.nan)
+    else:
+        errors = atlas.errors(blocks.alpha_deg, blocks.size_s)
+        source = {"method": "atlas", "atlas_key": atlas.key,
+                  "atlas_error_max": float(np.max(errors)),
+                  "atlas_error_median": float(np.median(errors)),
+                  "text": atlas.words(errors), "stripes": (
+                      f"the atlas's {levels.size} stripes (the lattice's levels with k even, "
+                      f"√2 apart), not the {DEFAULT_STRIPES} of the direct audit"),
+                  "from_atlas": list(MARGINS_FROM_ATLAS), "direct": list(MARGINS_DIRECT),
+                  "not_answered": list(MARGINS_NOT_ANSWERED)}
+        fragility = fragility.assign(exact_source="atlas", atlas_key=atlas.key,
+                                     atlas_error=errors)
     lines = guideline_lines(procedures, entries, run.settings, run.predicted, run.evaluated)
     capacity = capacity_rows(procedures, run, fits, boots, lines)
     named_blocks = settings.blocks
@@ -199,7 +242,7 @@ def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtim
                "records_source": suite.description, "design_site": suite.design_site,
                "scaling": suite.scaling, "floor": suite_floor(suite),
                "restitution": str(run.settings.restitution),
-               "scheduler": run.where, "resumed": run.resumed,
+               "scheduler": run.where, "resumed": run.resumed, "exact_source": source,
                "procedures": [{"name": proc.name, "title": proc.title,
                                "reads": reading(proc, entries),
                                **({"parameters": parameters_used(proc)}
@@ -252,4 +295,4 @@ def margins_files(run: MarginsRun) -> dict[str, bytes]:
             "columns.json": json.dumps(guide, indent=1, ensure_ascii=False).encode()}
 
 
-__all__ = ["margins_tables", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]
+__all__ = ["MARGINS_FROM_ATLAS", "MARGINS_DIRECT", "MARGINS_NOT_ANSWERED", "margins_tables", "margins_stripes", "MarginsRun", "MarginsStripes", "margins_files"]

@@ -19,8 +19,8 @@ from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import open_scheduler
 
 
-def run_margins(procedures, suite, settings: MarginsSettings,
-                       runtime: Runtime) -> MarginsRun:
+def run_margins(procedures, suite, settings: MarginsSettings, runtime: Runtime,
+                atlas=None) -> MarginsRun:
     """Everything of the design-level audit, its tables in a :class:`MarginsRun`.
 
     A ``runtime.progress`` with a ``stage(text)`` method (:class:`audit.engine.shared.progress.Progress`)
@@ -36,17 +36,25 @@ def run_margins(procedures, suite, settings: MarginsSettings,
         The design-level settings.
     runtime : Runtime
         How it runs.
+    atlas : audit.engine.atlas.fragility_read.AtlasReading, optional
+        The atlas the blocks' exact fragilities are read from (at its stripes); the required
+        slenderness, the acceptance and the guidelines stay direct, and no amplitude scan is
+        made (:data:`~audit.engine.design.margins.MARGINS_NOT_ANSWERED`).
     """
     stage = getattr(runtime.progress, "stage", lambda text: None)
     blocks = len(settings.size_s) * len(settings.alpha_deg) + len(settings.blocks)
-    stripes = DEFAULT_STRIPES if settings.stripes is None else len(settings.stripes)
-    stage(f"exact fragility of {blocks} blocks on {len(suite)} records × {stripes} stripes of "
-          f"{settings.im.name}; {', '.join(p.name for p in procedures)} at the same stripes"
+    stripes = (len(settings.stripes) if settings.stripes is not None
+               else DEFAULT_STRIPES if atlas is None else atlas.levels.size)
+    stage((f"exact fragility of {blocks} blocks on {len(suite)} records × {stripes} stripes of "
+           f"{settings.im.name}" if atlas is None else
+           f"exact fragility of {blocks} blocks read from the atlas {atlas.key[:12]} "
+           f"({stripes} stripes of {settings.im.name})")
+          + f"; {', '.join(p.name for p in procedures)} at the same stripes"
           + ("; then the required slenderness of each size" if settings.required else ""))
     with (open_scheduler(runtime.scheduler, runtime.jobs) if isinstance(runtime.scheduler, str)
           else nullcontext(runtime.scheduler)) as executor:
         on = replace(runtime, scheduler=executor)
-        run = margins_tables(procedures, suite, settings, on)
+        run = margins_tables(procedures, suite, settings, on, atlas)
         if settings.required:
             stage("required slenderness of each size: α from 2° to 40°, 2° apart, the exact "
                   "curves bisected")
@@ -58,7 +66,8 @@ def run_margins(procedures, suite, settings: MarginsSettings,
                       "uncertainty")
                 run.acceptance, run.summary["acceptance"] = p695_acceptance(
                     suite, settings, on, run.required_alpha)
-    run.scan = amplitude_scans(run, suite, settings, runtime)
+    if atlas is None:  # it picks a record by its whole outcomes at the stripes
+        run.scan = amplitude_scans(run, suite, settings, runtime)
     if settings.hazard is not None:
         run.risk, run.risk_alpha = margins_risk(run, settings.hazard, settings.risk_target)
         run.hazard = hazard_table(settings.hazard)

@@ -59,6 +59,9 @@ class StripeSettings:
         Gravity [m/s²], free motion after each record [s].
     jobs : int
         Solver threads of a task.
+    exact : bool
+        Solve the blocks exactly; False where their outcomes are read from an atlas instead
+        (the procedures' predictions alone are computed, the exact arrays left empty).
     """
 
     im: IntensityMeasure
@@ -69,14 +72,16 @@ class StripeSettings:
     g: float
     free_motion_s: float
     jobs: int
+    exact: bool = True
 
     def as_dict(self) -> dict:
+        # ``exact`` only where False: the key of a direct part is what it always was
         return {"kind": "margins stripes", "im": self.im.name, "levels": list(self.levels),
                 "design_im": self.design_im, "alpha_deg": self.blocks.alpha_deg.tolist(),
                 "size_s": self.blocks.size_s.tolist(), "width_m": self.blocks.width_m.tolist(),
                 "height_m": self.blocks.height_m.tolist(),
                 "restitution": str(self.restitution), "g": self.g,
-                "free_motion_s": self.free_motion_s}
+                "free_motion_s": self.free_motion_s, **({} if self.exact else {"exact": False})}
 
 
 @dataclass
@@ -228,12 +233,13 @@ def record_stripes(entry, procedures, settings: StripeSettings,
         alpha_rad[index] = alpha
     # every block at every stripe in one solver call, whatever its α: the threads share all
     # the record's solves, not a stripe's at a time
-    peaks = rocking_blocks(entry.motion, np.tile(blocks.size_s, levels.size),
-                           np.tile(alpha_rad, levels.size), r=settings.restitution,
-                           g=settings.g, free_motion_s=settings.free_motion_s,
-                           jobs=settings.jobs, scale=np.repeat(factors, len(blocks)))
-    exact_over[:], exact_theta[:] = (peaks.overturned.reshape(shape),
-                                     peaks.theta_peak.reshape(shape))
+    if settings.exact:
+        peaks = rocking_blocks(entry.motion, np.tile(blocks.size_s, levels.size),
+                               np.tile(alpha_rad, levels.size), r=settings.restitution,
+                               g=settings.g, free_motion_s=settings.free_motion_s,
+                               jobs=settings.jobs, scale=np.repeat(factors, len(blocks)))
+        exact_over[:], exact_theta[:] = (peaks.overturned.reshape(shape),
+                                         peaks.theta_peak.reshape(shape))
     p = 2.0 * np.pi / blocks.size_s
     base = context or RecordContext(entry, settings.free_motion_s, settings.jobs)
     cases = [_at_level(entry, base, float(level), intensity, settings) for level in levels]

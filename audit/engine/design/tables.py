@@ -158,8 +158,9 @@ def fragility_rows(levels, blocks, im, exact_over, mce):
         The blocks.
     im : IntensityMeasure
         The intensity measure.
-    exact_over : numpy.ndarray of bool
-        Exact outcomes, shaped (record, stripe, block).
+    exact_over : numpy.ndarray of bool or float
+        Exact outcomes, shaped (record, stripe, block) (or an atlas's per-record
+        probabilities: no islands are counted then).
     mce : float or None
         The MCE intensity, in the unit of the stripes.
 
@@ -175,8 +176,10 @@ def fragility_rows(levels, blocks, im, exact_over, mce):
     rows, fits, boots = [], [], []
     n_records = exact_over.shape[0]
     nan = math.nan
+    # islands are read from whole outcomes; an atlas's between its nodes are probabilities
+    whole = exact_over.dtype == bool
     for b in range(len(blocks)):
-        pattern = overturning_pattern(exact_over[:, :, b])
+        pattern = overturning_pattern(exact_over[:, :, b]) if whole else None
         fit = exact_fit(levels, exact_over[:, :, b])
         boot = bootstrap_lognormal(levels, exact_over[:, :, b]) if fit else None
         fits.append(fit)
@@ -199,8 +202,8 @@ def fragility_rows(levels, blocks, im, exact_over, mce):
             "cmr": cmr, "cmr_bound": bound,
             "cmr_boot_low": median_band[0] / mce if mce else nan,
             "cmr_boot_high": median_band[1] / mce if mce else nan,
-            "records_with_islands": int(pattern.islands.sum()),
-            "island_share": float(pattern.islands.mean())})
+            "records_with_islands": int(pattern.islands.sum()) if whole else nan,
+            "island_share": float(pattern.islands.mean()) if whole else nan})
     return pd.DataFrame(rows), fits, boots
 
 
@@ -255,7 +258,7 @@ def _achieved(fit, boot, stripe: float, line: float, overturned) -> dict:
     band (a one-sided 95 % bound where it is 0 or every record)."""
     model = float(fit.probability(stripe)) if fit is not None else None
     at = site_probability(model, boot.probability_band(stripe) if fit is not None else None,
-                          int(np.sum(overturned)), len(overturned))
+                          int(np.rint(np.sum(overturned))), len(overturned))
     if at.estimator == MODEL:
         low, high = boot.probability_band(line)
         return dict(zip(ACHIEVED_COLUMNS, (float(fit.probability(line)), float(low),

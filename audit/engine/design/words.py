@@ -29,8 +29,13 @@ def margins_summary_text(run, seconds: float) -> str:
                      f"{summary['im']} = {summary['mce_im']:.3g} {summary['im_unit']}; "
                      f"{fragility['median_extrapolated'].sum()} medians beyond the stripes give "
                      "bounds)")
-    lines.append(f"  blocks with islands of survival above overturning: "
-                 f"{(fragility['records_with_islands'] > 0).mean():.0%}")
+    source = summary.get("exact_source", {})
+    if source.get("method") == "atlas":
+        lines.append(f"  {source['text']} Direct: the guidelines, the required slenderness, "
+                     "the acceptance; no islands or scan (whole outcomes)")
+    else:
+        lines.append(f"  blocks with islands of survival above overturning: "
+                     f"{(fragility['records_with_islands'] > 0).mean():.0%}")
     for name, rows in run.capacity.groupby("procedure", sort=False):
         if rows["achieved_p_fit"].isna().all():
             lines.append(f"  {name}: draws no line (it can evaluate none of these records)")

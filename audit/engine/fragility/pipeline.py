@@ -4,6 +4,13 @@ For every component with a block (b = depth/2, h = height/2), the exact outcomes
 scaled to each PGV stripe (:func:`audit.engine.design.fragility.stripe_outcomes`), the lognormal fitted
 to them, and the procedure's probability at each scaled intensity scored against the outcomes.
 Components without dimensions (FEMA P-58's PGA rows) have no block and are not audited.
+
+Read from an atlas of the records in PGV (``atlas``, :mod:`audit.engine.atlas.fragility_read`),
+the exact side is at the atlas's 14 stripes instead (0.0625–5.66 m/s, √2 apart), each record's
+outcome interpolated between the grid's nodes: a per-record probability, 0 or 1 at a node. The
+scores are then their expectations over those outcomes (the log-likelihood and the calibration
+are linear in an outcome; the Brier score gains Σ w(1 − w)/n, zero for whole outcomes), and
+each component says its source and the atlas's error along its curve.
 """
 
 from __future__ import annotations
@@ -30,7 +37,7 @@ CALIBRATION_CSV = "fragility-calibration.csv"
 
 
 def run_fragility(procedure, record_ids, motions,
-                  settings: FragilitySettings = FragilitySettings()) -> dict:
+                  settings: FragilitySettings = FragilitySettings(), atlas=None) -> dict:
     """The tables of the audit of ``procedure`` (a :class:`procedures.probabilistic.ProbabilisticProcedure`)
     on the records: file name → :class:`pandas.DataFrame`.
 
@@ -44,8 +51,11 @@ def run_fragility(procedure, record_ids, motions,
         Their motions, in the same order.
     settings : FragilitySettings
         The PGV stripes and the free motion.
+    atlas : audit.engine.atlas.fragility_read.AtlasReading, optional
+        The atlas of these records in PGV on their floor: the exact outcomes are read from it,
+        at its stripes (see the module); None, the direct solve at ``settings``' stripes.
     """
-    levels = np.asarray(settings.levels_m_s, dtype=float)
+    levels = np.asarray(settings.levels_m_s if atlas is None else atlas.levels, dtype=float)
     zero = [record_id for record_id, motion in zip(record_ids, motions) if not motion.pgv > 0]
     if zero:
         raise InputError(f"records: {zero[0]} has zero intensity (PGV = 0: an all-zero record), "
@@ -57,9 +67,17 @@ def run_fragility(procedure, record_ids, motions,
         if not (component.has_block and component.intensity_measure == "PGV"):
             continue
         block = RigidBlock.from_dimensions(component.depth_m / 2, component.height_m / 2)
-        overturned = np.array([stripe_outcomes(motion, levels / motion.pgv, [block.size_s],
-                                               [block.alpha], G, settings.free_motion_s)[0][:, 0, 0]
-                               for motion in motions])
+        alpha_deg = math.degrees(block.alpha)
+        if atlas is None:
+            overturned = np.array([stripe_outcomes(motion, levels / motion.pgv, [block.size_s],
+                                                   [block.alpha], G,
+                                                   settings.free_motion_s)[0][:, 0, 0]
+                                   for motion in motions])
+            source = {"exact_source": "direct", "atlas_key": "", "atlas_error": math.nan}
+        else:  # (record, stripe) per-record probabilities
+            overturned = atlas.outcomes([alpha_deg], [block.size_s])[:, :, 0]
+            source = {"exact_source": "atlas", "atlas_key": atlas.key,
+                      "atlas_error": float(atlas.errors([alpha_deg], [block.size_s])[0])}
         counts = overturned.sum(axis=0)
         try:
             fit = fit_lognormal(levels, np.full(levels.size, len(motions)), counts)
@@ -73,25 +91,27 @@ def run_fragility(procedure, record_ids, motions,
         components.append({
             "component": component.id, "description": component.description,
             "width_m": 2.0 * block.half_width, "height_m": 2.0 * block.half_height,
-            "alpha_deg": math.degrees(block.alpha), "p_rad_s": block.p,
+            "alpha_deg": alpha_deg, "p_rad_s": block.p,
             "procedure_median_m_s": component.fragility.median,
             "procedure_beta": component.fragility.beta,
             "exact_median_m_s": median, "exact_beta": beta,
             "median_ratio": component.fragility.median / median,
             "conservative_at_median": component.fragility.median <= median,
-            "brier": brier_score(predicted, overturned),
+            "brier": _brier(predicted, overturned),
             "log_likelihood": log_likelihood(predicted, overturned),
-            "exact_fit_brier": brier_score(exact_predicted, overturned),
+            "exact_fit_brier": _brier(exact_predicted, overturned),
             "exact_fit_log_likelihood": log_likelihood(exact_predicted, overturned),
-            "outcomes": overturned.size})
+            "outcomes": overturned.size, **source})
         for level, count, probability in zip(levels, counts, predicted[0]):
             stripes.append({"component": component.id, "pgv_m_s": level,
-                            "records": len(motions), "overturned": int(count),
+                            "records": len(motions),
+                            "overturned": int(count) if atlas is None else float(count),
                             "procedure_probability": probability})
         for record, row in zip(record_ids, overturned):
             for level, outcome, probability in zip(levels, row, predicted[0]):
                 outcomes.append({"component": component.id, "record": record, "pgv_m_s": level,
-                                 "exact_overturned": bool(outcome),
+                                 "exact_overturned": bool(outcome) if atlas is None
+                                 else float(outcome),
                                  "procedure_probability": probability})
         table = calibration(predicted, overturned)
         for values in zip(table.lower, table.upper, table.count, table.mean_predicted,
@@ -101,3 +121,12 @@ def run_fragility(procedure, record_ids, motions,
                                  (component.id, *values))))
     return {COMPONENTS_CSV: pd.DataFrame(components), STRIPES_CSV: pd.DataFrame(stripes),
             OUTCOMES_CSV: pd.DataFrame(outcomes), CALIBRATION_CSV: pd.DataFrame(bins)}
+
+
+def _brier(predicted, overturned) -> float:
+    """The Brier score against outcomes that may be per-record probabilities w (an atlas's,
+    between its nodes): its expectation, mean (p − w)² + mean w(1 − w); the plain score for
+    whole outcomes (the second term is not added, so the direct score is unchanged)."""
+    if overturned.dtype == bool:
+        return brier_score(predicted, overturned)
+    return brier_score(predicted, overturned) + float(np.mean(overturned * (1.0 - overturned)))

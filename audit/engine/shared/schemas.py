@@ -224,6 +224,12 @@ GUIDE["fragility.csv"] = {
     "records_with_islands": ("-", "records under which the block survives a stripe above its "
                                   "first overturning one (depends on the stripe spacing)"),
     "island_share": ("-", "records_with_islands / records"),
+    "exact_source": ("text", "where the exact outcomes come from: 'direct' (the records solved) "
+                             "or 'atlas' (read from the atlas at its stripes, --method; "
+                             "docs/atlas.md)"),
+    "atlas_key": ("text", "the atlas's key (atlas list), empty when direct"),
+    "atlas_error": ("-", "the atlas's stated error of P along the block's curve: the largest "
+                         "at its stripes (empty when direct)"),
 }
 GUIDE["capacity.csv"] = {
     "procedure": ("text", "guideline procedure"),
@@ -386,6 +392,12 @@ GUIDE["fragility-components.csv"] = {
     "exact_fit_brier": ("-", "Brier score of the exact fit (in-sample, for comparison)"),
     "exact_fit_log_likelihood": ("-", "log-likelihood of the exact fit (in-sample)"),
     "outcomes": ("-", "records × stripes scored"),
+    "exact_source": ("text", "where the exact outcomes come from: 'direct' (the records solved) "
+                             "or 'atlas' (read from the atlas at its stripes, --method; "
+                             "docs/atlas.md)"),
+    "atlas_key": ("text", "the atlas's key (atlas list), empty when direct"),
+    "atlas_error": ("-", "the atlas's stated error of P along the block's curve: the largest "
+                         "at its stripes (empty when direct)"),
 }
 GUIDE["fragility-stripes.csv"] = {
     "component": _COMPONENT,
