@@ -129,11 +129,11 @@ def render_margins_page(folder) -> str:
              f"(housner: Eq. 4.8).</p>"]
     source = summary.get("exact_source", {})
     atlas = source.get("method") == "atlas"
-    if atlas:  # one sentence: from the atlas, ±x; and what is not
-        parts.append(f'<p class="quote">{html.escape(source["text"])} From it: '
-                     f'{html.escape("; ".join(source["from_atlas"]))}. Direct: '
-                     f'{html.escape("; ".join(source["direct"]))}. Not answered: '
-                     f'{html.escape("; ".join(source["not_answered"]))}.</p>')
+    if atlas:  # from the atlas, ±x; and what is not (summary.json's exact_source lists it)
+        parts.append(f'<p class="quote">{html.escape(source["text"])} The guidelines, the '
+                     f'required slenderness and the FEMA P695 acceptance are solved directly; '
+                     f'no islands, peak rotations or amplitude scan (they need whole '
+                     f'outcomes).</p>')
     if required is not None:
         parts.append("<h2>The numbers to quote</h2>")
         parts += [f'<p class="quote">{html.escape(s)}</p>'
