@@ -80,6 +80,8 @@ def test_margins_at_nodes_is_the_direct_fit_on_the_same_stripes(atlases, suite):
     assert source["method"] == "atlas" and "from the atlas" in source["text"]
     assert atlas.scan is None and a["records_with_islands"].isna().all()  # not answered
     assert direct.summary["exact_source"] == {"method": "direct"}
+    page = atlas.files()["margins.html"].decode()
+    assert f"from the atlas {a['atlas_key'][0][:12]}" in page and "in P at most" in page
 
 
 def test_margins_off_nodes_within_the_stated_error(atlases, suite):
