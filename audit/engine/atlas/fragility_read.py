@@ -141,8 +141,9 @@ def atlas_for(method, atlas: Atlas | None, key: str, alpha_deg, size_s, build_co
     if reason is None:
         return AtlasReading(atlas, key)
     if method == "atlas":
-        raise InputError(f"method: atlas asked, but {reason}; build it with "
-                         f"'{build_command}', or use method direct", "method")
+        build = f"build it with '{build_command}', or " if atlas is None else ""
+        raise InputError(f"method: atlas asked, but {reason}; {build}use method direct",
+                         "method")
     return None
 
 
