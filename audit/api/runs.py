@@ -4,29 +4,34 @@
 from __future__ import annotations
 
 import functools
-import tempfile
 import warnings
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from audit.engine.shared import fields as check
-from audit.engine.run.audit_run import AuditRun
 from audit import G
 from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_JOBS, DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS,
                                    DEFAULT_SCHEDULER)
 from audit.api.inputs import settings_fields
-from audit.engine.shared.design_site import SITE_FIELDS, DesignSite
-from audit.engine.shared.runtime import Runtime
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
-from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
 from audit.errors import InputWarning
+
+if TYPE_CHECKING:  # pandas and the engine are loaded by what uses them, not by the front door
+    import pandas as pd
+
+    from audit.engine.run.audit_run import AuditRun
+    from audit.engine.run.settings import AuditSettings
+
+#: The run's self-contained HTML report, beside its files.
+REPORT_HTML = "report.html"
 
 
 def typed(table: pd.DataFrame, file_name: str) -> pd.DataFrame:
     """``table`` of ``file_name`` with its columns typed by the schema (the column guide):
     numbers as floats (NaN where empty), flags as booleans (NA where empty), text as text."""
+    import pandas as pd
+
     from audit.engine.shared.schemas import GUIDE
     table = table.copy()
     for column, (unit, _) in GUIDE[file_name].items():
@@ -88,6 +93,7 @@ class AuditResult:
     def bottom_line(self) -> pd.DataFrame:
         """Per procedure: blocks compared, the % unsafe and uneconomic, the median approx/exact,
         and the worst block."""
+        import pandas as pd
         titles = {p["name"]: p["title"] for p in self.summary["procedures"]}
         rows = []
         for line in self.summary["bottom_line"]:
@@ -115,7 +121,7 @@ class AuditResult:
         """Write the result files and ``report.html`` into ``out_dir`` (atomically, together)."""
         import shutil
 
-        from audit.engine.run.results import COLUMNS_JSON, DATA_FILES, REPORT_HTML
+        from audit.engine.run.results import COLUMNS_JSON, DATA_FILES
         from audit.files import staged_folder
         out_dir = check.path("out_dir", out_dir, "a folder")
         with staged_folder(out_dir) as staging:
@@ -254,8 +260,10 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     from audit.engine.shared import guards
     from audit.engine.run.costs import audit_cost
     from audit.engine.shared.progress import Progress
-    from audit.engine.run.results import REPORT_HTML
     from audit.engine.run.pipeline import run_audit, compiles_first
+    from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
+    from audit.engine.shared.design_site import SITE_FIELDS, DesignSite
+    from audit.engine.shared.runtime import Runtime
     from audit.files import staged_folder
     given = locals()
     settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))
@@ -282,6 +290,7 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
                         "machine (only the first run after installing or updating: about 40 s)")
     stage = stage if hasattr(stage, "stage") else None
     if out_dir is None:
+        import tempfile
         scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
         run_audit(chosen, suite, settings, runtime, scratch.name, detail, progress=stage)
         return AuditResult(scratch.name, scratch)
@@ -333,6 +342,7 @@ def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site
         ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
         motion, the blocks rock on the floor's (:mod:`audit.engine.shared.floors`).
     """
+    from audit.engine.shared.design_site import SITE_FIELDS, DesignSite
     return DesignSite.parse(**settings_fields(locals(), SITE_FIELDS)).apply(suite)
 
 
@@ -344,4 +354,4 @@ def _warn_without_vertical(suite, settings: AuditSettings) -> None:
                           stacklevel=3)
 
 
-__all__ = ["run", "AuditResult", "typed", "design_suite", "load_result"]
+__all__ = ["run", "AuditResult", "typed", "design_suite", "load_result", "REPORT_HTML"]

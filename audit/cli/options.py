@@ -277,12 +277,11 @@ def motion(args) -> dict:
         if args.pulse == "mp":
             if args.gamma is None or args.nu is None:
                 raise InputError("--pulse mp needs --gamma and --nu DEG")
-            from audit.api import mp_pulse
-            return {"motion": mp_pulse(args.amplitude, args.pulse_period, args.gamma, args.nu)}
-        if args.gamma is not None or args.nu is not None:
+        elif args.gamma is not None or args.nu is not None:
             raise InputError("--gamma and --nu: only for --pulse mp")
-        from audit.api import one_pulse
-        return {"motion": one_pulse(args.pulse, args.amplitude, args.pulse_period)}
+        from audit.api import pulse_motion
+        return {"motion": pulse_motion(args.pulse, args.amplitude, args.pulse_period,
+                                       gamma=args.gamma, nu_deg=args.nu)}
     if not args.record:
         raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine|mp")
     return {"motion": args.record, "records": args.records, **reading(args)}

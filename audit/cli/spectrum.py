@@ -63,9 +63,7 @@ def run(args) -> int:
               file=sys.stderr)
     figure = {}
     if plot:  # matplotlib is loaded only for a figure
-        draw = (api.draw_response_spectra if args.kind == "response"
-                else api.draw_rocking_spectra)
-        record_id = frame.attrs.get("record", "")
-        figure = {plot: outputs.figure_png(lambda fig: draw(fig, frame, record_id))}
+        figure = {plot: api.png_bytes(api.spectra_figure(frame, args.kind,
+                                                         frame.attrs.get("record", "")))}
     outputs.write_csv(frame, csv, figure)
     return 0

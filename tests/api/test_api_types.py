@@ -53,7 +53,6 @@ def _start(*args, **kwargs):
 @pytest.fixture(autouse=True)
 def _no_work(monkeypatch):
     """The work of every function raises :class:`Started` instead."""
-    import audit.api.rocking
     import audit.engine.check.pipeline
     import audit.engine.fragility.pipeline
     import audit.engine.design.pipeline
@@ -67,7 +66,7 @@ def _no_work(monkeypatch):
                          (audit.engine.design.pipeline, "run_margins"),
                          (audit.engine.validation.pipeline, "run_validation"),
                          (audit.engine.fragility.pipeline, "run_fragility"),
-                         (audit.api.rocking, "simulate"),
+                         (audit.physics.rocking, "simulate"),
                          (audit.physics.rocking, "rocking_spectrum"),
                          (audit.physics.response_spectra, "response_spectra"),
                          (records.campaign, "read_campaign")):
@@ -189,7 +188,7 @@ def test_a_wrong_type_is_refused_naming_the_argument(case, argument, data):
 
 def test_every_public_function_is_covered():
     """A public function added to ``audit`` without a case here fails this test."""
-    functions = {name for name in dir(audit)
+    functions = {name for name in audit.__all__
                  if callable(getattr(audit, name)) and not name[0].isupper()}
     covered = {case.split()[0] for case in CASES}
     assert functions <= covered | {"Block"}, functions - covered
