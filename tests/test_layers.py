@@ -291,3 +291,20 @@ def test_the_front_door_is_light():
     done = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True,
                           text=True, check=True)
     assert done.stdout.strip() == "[]"
+
+
+def test_the_solver_block_is_made_only_through_block():
+    """One class per concept: above the physics, a rocking block is a
+    :class:`~audit.engine.shared.blocks.Block` and the solver's ``RigidBlock`` comes from its
+    one conversion (``Block.rigid``); only the physics (below Block's layer) and Block itself
+    build one."""
+    builders = ("RigidBlock", "RigidBlock.from_size", "RigidBlock.from_dimensions")
+    built = sorted(name for name, path in MODULES.items()
+                   if not name.startswith("audit.physics") and name != "audit.engine.shared.blocks"
+                   for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+                   if isinstance(node, ast.Call) and ast.unparse(node.func) in builders)
+    assert built == []
+    # the walk sees the calls: Block's own conversion is one
+    assert any(isinstance(node, ast.Call) and ast.unparse(node.func) == "RigidBlock.from_size"
+               for node in ast.walk(ast.parse(MODULES["audit.engine.shared.blocks"].read_text(
+                   encoding="utf-8"))))

@@ -4,6 +4,7 @@ is the audit's one :class:`~audit.engine.shared.blocks.Block`."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from audit import G
@@ -12,7 +13,7 @@ from audit.engine.shared import fields as check
 from audit.engine.shared.blocks import Block, within_limits
 from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError
-from audit.physics.block import Restitution, RigidBlock
+from audit.physics.block import Restitution
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 if TYPE_CHECKING:  # the solver (numba) is loaded by rock, not by the front door
@@ -234,14 +235,16 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         raise InputError(f"vertical: {motion.id} has no vertical component (give it in the "
                          "manifest as vertical_file, or a PEER UP/DWN file beside the record)",
                          "vertical")
-    rigid = block.rigid
-    label = str(Restitution()) if block.r is None else f"{block.r:g}"
+    solved, label = block, str(Restitution()) if block.r is None else f"{block.r:g}"
     if restitution is not None:
         model = restitution if isinstance(restitution, Restitution) else Restitution.parse(
             restitution, "restitution")
-        rigid, label = RigidBlock(rigid.p, rigid.alpha, model, rigid.g), str(model)
+        # the block with the model's r, at α = radians(alpha_deg) as its solver's block has it
+        solved = replace(block, r=float(model.r(math.radians(block.alpha_deg))))
+        label = str(model)
     guards.check(guards.estimate([motion], free_motion_s, blocks=1), force)
-    return RockingResponse(block, motion, simulate(rigid, motion, free_motion_s, vertical=vertical),
+    return RockingResponse(block, motion, simulate(solved.rigid, motion, free_motion_s,
+                                                   vertical=vertical),
                            friction, label, floor_document)
 
 

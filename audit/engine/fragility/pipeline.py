@@ -19,7 +19,7 @@ from audit.engine.fragility.settings import FragilitySettings
 from audit.engine.design.fragility import stripe_outcomes
 from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.errors import InputError
-from audit.physics.block import RigidBlock
+from audit.engine.shared.blocks import Block
 from procedures.probabilistic import LognormalFragility
 
 #: The files of the audit, written together into the output folder.
@@ -56,9 +56,10 @@ def run_fragility(procedure, record_ids, motions,
     for component in procedure.components:
         if not (component.has_block and component.intensity_measure == "PGV"):
             continue
-        block = RigidBlock.from_dimensions(component.depth_m / 2, component.height_m / 2)
+        block = Block.of_dimensions(component.depth_m, component.height_m)
         overturned = np.array([stripe_outcomes(motion, levels / motion.pgv, [block.size_s],
-                                               [block.alpha], G, settings.free_motion_s)[0][:, 0, 0]
+                                               [block.rigid.alpha], G,
+                                               settings.free_motion_s)[0][:, 0, 0]
                                for motion in motions])
         counts = overturned.sum(axis=0)
         try:
@@ -72,8 +73,8 @@ def run_fragility(procedure, record_ids, motions,
                            if math.isfinite(median) else np.full(overturned.shape, np.nan))
         components.append({
             "component": component.id, "description": component.description,
-            "width_m": 2.0 * block.half_width, "height_m": 2.0 * block.half_height,
-            "alpha_deg": math.degrees(block.alpha), "p_rad_s": block.p,
+            "width_m": block.width_m, "height_m": block.height_m,
+            "alpha_deg": block.alpha_deg, "p_rad_s": block.p_rad_s,
             "procedure_median_m_s": component.fragility.median,
             "procedure_beta": component.fragility.beta,
             "exact_median_m_s": median, "exact_beta": beta,
