@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import re
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -308,3 +309,39 @@ def test_the_solver_block_is_made_only_through_block():
     assert any(isinstance(node, ast.Call) and ast.unparse(node.func) == "RigidBlock.from_size"
                for node in ast.walk(ast.parse(MODULES["audit.engine.shared.blocks"].read_text(
                    encoding="utf-8"))))
+
+
+#: A command-line flag in a text: ``--friction``, ``--records FOLDER`` (pip's own aside).
+FLAG = re.compile(r"(?<![\w-])(?<!pip install )--[a-z][\w-]*")
+
+
+def _texts(path: Path):
+    """``(line, text)`` of the string literals of a module, docstrings aside (they document
+    the code for its developers, and name the flag a parameter comes from), or of the lines of
+    a template."""
+    if path.suffix != ".py":
+        yield from enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+        return
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    docs = {id(node.body[0].value) for node in ast.walk(tree)
+            if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+            and node.body and isinstance(node.body[0], ast.Expr)
+            and isinstance(node.body[0].value, ast.Constant)}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docs:
+            yield node.lineno, node.value
+
+
+def test_no_text_below_the_command_line_names_a_flag():
+    """Messages, column descriptions, hints and pages written below the command line name the
+    argument (``friction``, ``scale_to_site``), never a flag (``--friction``): the API's user
+    has no flags, and the command line maps arguments to its flags in one table
+    (:data:`audit.cli.flags.FLAGS`)."""
+    below = [path for name, path in MODULES.items() if _layer(name) < _layer("audit.cli")]
+    below += sorted((REPO / "reports" / "templates").glob("*"))
+    found = [f"{path.relative_to(REPO)}:{line}: {FLAG.findall(text)}" for path in below
+             for line, text in _texts(path) if FLAG.search(text)]
+    assert not found, "\n".join(found)
+    # the scan sees flags: the command line's own texts name them
+    assert any(FLAG.search(text) for _, text in _texts(MODULES["audit.cli.rock"]))
+    assert not FLAG.search("pip install --force-reinstall")
