@@ -24,7 +24,8 @@ G = 9.81
 _API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
         "run", "margins", "fragility", "design_suite", "risk", "read_hazard", "check",
         "CheckResult", "validate", "ValidationResult", "rocking_spectrum", "response_spectra",
-        "design_spectrum", "load_result", "floor_motion", "FloorMotion", "record_pulses")
+        "design_spectrum", "load_result", "floor_motion", "FloorMotion", "record_pulses",
+        "Building", "Floor", "Site", "Hazard", "Solver", "Runtime", "Records")
 
 
 def __getattr__(name):

@@ -43,6 +43,11 @@ _WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
           "remove_atlas": "audit.api.atlas", "atlas_folder": "audit.api.atlas",
           "floor_motion": "audit.api.floors", "FloorMotion": "audit.api.floors",
           "validate": "audit.api.validation", "ValidationResult": "audit.api.validation",
+          # what travels together, each checked by its own parse (docs/api.md)
+          "Building": "audit.physics.building.floor", "Floor": "audit.physics.building.floor",
+          "Site": "audit.engine.shared.design_site", "Hazard": "audit.engine.shared.hazard",
+          "Solver": "audit.engine.shared.solver", "Runtime": "audit.engine.shared.runtime",
+          "Records": "records.request",
           # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
           # and its report, for the command line
           "available_procedures": "procedures.registry", "size_grid": "audit.engine.shared.grid",
@@ -90,4 +95,5 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "one_pulse", "mp_pulse", "record_pulses", "pulse_words",
            "new_figure", "png_bytes", "draw_rocking_spectra",
            "draw_response_spectra", "build_atlas", "find_atlas", "atlas_check", "list_atlases",
-           "remove_atlas", "atlas_folder"]
+           "remove_atlas", "atlas_folder", "Building", "Floor", "Site", "Hazard", "Solver",
+           "Runtime", "Records"]

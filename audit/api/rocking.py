@@ -210,8 +210,8 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         (default 0.05); the object rocks on the floor's motion
         (:mod:`audit.physics.building.floor_motion`).
     """
-    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
-    from audit.engine.shared.floors import FLOOR_FIELDS
+    from audit.api.inputs import floor_of, on_floor_of
+    from records.request import Records
     from audit.engine.shared import guards
     if isinstance(block, str):
         block = Block.parse(block)
@@ -220,8 +220,9 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
                          f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")
     block = within_limits(block, "block", "block")
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records,
-                                         settings_fields(locals(), READING_FIELDS))
+    motion, floor_document = on_floor_of(
+        motion, floor_of(floor, building, building_model, building_damping),
+        Records(records, dt_s, units, skip_bad_records))
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
     if friction is not None:
         friction = check.number("friction", friction, "a positive friction coefficient μ", 0,
