@@ -22,14 +22,16 @@ _check_siblings()
 G = 9.81
 
 # the Python API, imported after G and the version it reads
-from audit.api import (AuditResult, Block, CheckResult, FloorMotion, FragilityResult,  # noqa: E402
-                       MarginsResult, RockingResponse, ValidationResult, check, design_spectrum,
-                       design_suite, floor_motion, fragility, load_result, margins, read_hazard,
-                       record_pulses, response_spectra, risk, rock, rocking_spectrum, run,
-                       validate)
+from audit.api import (AuditResult, Block, Building, CheckResult, Floor,  # noqa: E402
+                       FloorMotion, FragilityResult, Hazard, MarginsResult, Records,
+                       RockingResponse, Runtime, Site, Solver, ValidationResult, check,
+                       design_spectrum, design_suite, floor_motion, fragility, load_result,
+                       margins, read_hazard, record_pulses, response_spectra, risk, rock,
+                       rocking_spectrum, run, validate)
 
 __all__ = ["G", "__version__", "Block", "RockingResponse", "AuditResult", "MarginsResult",
            "FragilityResult", "rock", "run", "margins", "fragility", "design_suite", "risk",
            "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
            "rocking_spectrum", "response_spectra", "design_spectrum", "load_result",
-           "floor_motion", "FloorMotion", "record_pulses"]
+           "floor_motion", "FloorMotion", "record_pulses", "Building", "Floor", "Site", "Hazard",
+           "Solver", "Runtime", "Records"]

@@ -53,7 +53,7 @@ def main() -> None:
     suite = design_suite(load_records(args.records), site=(1.5, 0.9), site_override=True,
                          scale_to_site=True)
     settings = CheckSettings.parse(im="sa:1.0")
-    runtime = Runtime.parse(jobs=args.jobs)
+    runtime = Runtime.parse(Runtime(jobs=args.jobs))
     every = get_procedures("all")
     cases = {"one object, every procedure": (every, [Block.of_dimensions(0.6, 1.8, name="0.6x1.8")]),
              "one object, exact only": ([], [Block.of_dimensions(0.6, 1.8, name="0.6x1.8")]),

@@ -49,7 +49,7 @@ def main() -> None:
     suite = design_suite(records, site=(1.5, 0.9), site_override=True, scale_to_site=True)
     settings = MarginsSettings.parse(im="sa:1.0", alpha_deg=(10.0, 15.0, 20.0),
                                      size_s=np.arange(0.5, 8.001, 0.25))
-    runtime = Runtime.parse(jobs=args.jobs)
+    runtime = Runtime.parse(Runtime(jobs=args.jobs))
     procedures = get_procedures("all")
     timed = {}
 

@@ -95,7 +95,7 @@ def main() -> None:
     settings = MarginsSettings.parse()
     print(f"load average {os.getloadavg()[0]:.1f}", flush=True)
     grid = (dict(np.load(args.earlier)) if args.earlier
-            else solved_grid(suite, settings, Runtime.parse(jobs=args.jobs)))
+            else solved_grid(suite, settings, Runtime.parse(Runtime(jobs=args.jobs))))
     entries = {entry.id: entry for entry in suite}
     blocks = BlockList.of(settings.alpha_deg, settings.size_s, settings.blocks)
     alpha_rad = np.radians(blocks.alpha_deg)

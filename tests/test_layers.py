@@ -143,8 +143,9 @@ def test_every_workflow_has_its_settings_and_one_pipeline_entry_named_alike(room
 
 def test_one_road_for_a_floor():
     """Every command's floor goes through :meth:`DesignSite.parse` (the one call of
-    ``Floor.parse``) and :meth:`DesignSite.apply` (the one call of ``on_floor``, the filter):
-    no command parses a floor or filters records on its own."""
+    ``Floor.parse``; a floor given one value at a time too, :func:`audit.api.inputs.floor_of`)
+    and :meth:`DesignSite.apply` (the one call of ``on_floor``, the filter): no command parses a
+    floor or filters records on its own."""
     calls = {"Floor.parse": [], "on_floor": []}
     for name, path in MODULES.items():
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):

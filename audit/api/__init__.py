@@ -38,6 +38,13 @@ from audit.api.runs import REPORT_HTML, AuditResult, design_suite, load_result, 
 from audit.api.site_risk import read_hazard, risk
 from audit.api.spectra import design_spectrum, response_spectra, rocking_spectrum
 from audit.api.validation import ValidationResult, validate
+# what travels together, each checked by its own parse (docs/api.md)
+from audit.engine.shared.design_site import Site
+from audit.engine.shared.hazard import Hazard
+from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.solver import Solver
+from audit.physics.building.floor import Building, Floor
+from audit.engine.shared.record_request import Records
 # the grid of START:STOP:STEP, the limits of a block a user names, the folder of a run's parts
 # and the compiled kernels' threads (stopped before a command leaves after Ctrl-C), for the
 # command line
@@ -50,7 +57,7 @@ from audit.engine.shared.defaults import (
     DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_ANCHOR_PERIOD_S, DEFAULT_BUILDING_DAMPING,
     DEFAULT_BUILDING_MODEL, DEFAULT_CHECK_RECORDS, DEFAULT_DAMPING_PCT,
     DEFAULT_DESIGN_DAMPING_PCT, DEFAULT_DESIGN_PERIODS, DEFAULT_FRAGILITY_RECORDS,
-    DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS, DEFAULT_LIMIT_STATE, DEFAULT_MARGINS_SIZES,
+    DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS, DEFAULT_MARGINS_SIZES,
     DEFAULT_PERIODS, DEFAULT_PROBABILISTIC_PROCEDURE, DEFAULT_RESPONSE_FREE_MOTION_S,
     DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER,
     DEFAULT_SITE_LEVEL, DEFAULT_SIZES, DEFAULT_STRIPES, SITE_LEVELS, alpha_text, sizes_text)
@@ -65,12 +72,12 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "floor_motion", "FloorMotion", "record_suite", "built_in_suites", "pulse_motion",
            "record_pulses", "pulse_words", "png_bytes", "spectra_figure",
            "build_atlas", "find_atlas", "atlas_check", "list_atlases", "remove_atlas",
-           "atlas_folder",
+           "atlas_folder", "Building", "Floor", "Site", "Hazard", "Solver", "Runtime", "Records",
            "DEFAULT_AGREE_BAND", "DEFAULT_ALPHA_DEG", "DEFAULT_ANCHOR_PERIOD_S",
            "DEFAULT_BUILDING_DAMPING", "DEFAULT_BUILDING_MODEL", "DEFAULT_CHECK_RECORDS",
            "DEFAULT_DAMPING_PCT", "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS",
            "DEFAULT_FRAGILITY_RECORDS", "DEFAULT_FREE_MOTION_S", "DEFAULT_IM", "DEFAULT_JOBS",
-           "DEFAULT_LIMIT_STATE", "DEFAULT_MARGINS_SIZES", "DEFAULT_PERIODS",
+           "DEFAULT_MARGINS_SIZES", "DEFAULT_PERIODS",
            "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_RESPONSE_FREE_MOTION_S",
            "DEFAULT_RESTITUTION", "DEFAULT_RISK_TARGET", "DEFAULT_ROBUSTNESS", "DEFAULT_SCHEDULER",
            "DEFAULT_SITE_LEVEL", "DEFAULT_SIZES", "DEFAULT_STRIPES", "SITE_LEVELS", "alpha_text",

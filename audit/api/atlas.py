@@ -40,17 +40,17 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
         The (α [degrees], 2π/p [s]) grid; default the atlas's
         (:data:`~audit.engine.atlas.settings.ALPHA_DEG`, :data:`~audit.engine.atlas.settings.SIZE_S`).
     """
-    from audit.api.inputs import record_suite
+    from audit.api.inputs import floor_of, record_suite
     from audit.engine.atlas.settings import ALPHA_DEG, SIZE_S, AtlasSettings, floor_words, \
         records_digest
     from audit.engine.check.settings import CheckSettings
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.runtime import Runtime
-    checked = CheckSettings.parse(im=im, restitution=restitution, free_motion_s=free_motion_s,
-                                  g=g)
-    runtime = Runtime.parse(jobs=jobs)
-    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
-                            building_damping=building_damping)
+    from audit.engine.shared.solver import Solver
+    checked = CheckSettings.parse(im=im, solver=Solver.parse(
+        Solver(restitution, free_motion_s, g), "check", None))
+    runtime = Runtime.parse(Runtime(jobs=jobs), None)
+    site = DesignSite(None, floor_of(floor, building, building_model, building_damping))
     suite = site.apply(record_suite(records))
     entries = [entry for entry in suite if entry.motion is not None]
     alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
@@ -128,9 +128,9 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
         raise InputError(f"records: no atlas of {records} on this floor; build it with "
                          "'python -m audit atlas build'", "records")
     chosen = _objects(objects, atlas.provenance["g"])
-    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.design_site import Site
     from audit.engine.shared.intensity import IntensityMeasure
-    sxs_g, sx1_g = DesignSite.parse(site=site).site
+    sxs_g, sx1_g = Site.parse(site).values_g
     site_im = IntensityMeasure.parse(atlas.provenance["im"]).of_design_site(
         {"sxs_g": sxs_g, "sx1_g": sx1_g})
     g = atlas.provenance["g"]

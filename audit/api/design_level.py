@@ -155,7 +155,9 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     -------
     MarginsResult
     """
-    from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
+    from audit.api.inputs import (floor_of, parameters_of, procedures_of, record_suite,
+                                   settings_fields)
+    from audit.engine.shared.record_request import Records
     from audit.engine.shared import fields as check
     from audit.engine.shared import guards
     from audit.engine.design.costs import margins_cost
@@ -167,17 +169,16 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     given = locals()
     settings = MarginsSettings.parse(**settings_fields(given, MARGINS_FIELDS))
     # one design site: the audit is of that site
-    site = DesignSite.parse(site=site, site_override=site is not None,
-                            scale_to_site=scale_to_site, anchor_period_s=anchor_period_s,
-                            ntc_site=ntc_site, floor=floor, building=building,
-                            building_model=building_model, building_damping=building_damping)
+    from audit.api.runs import _design_site
+    site = _design_site(site, site is not None, scale_to_site, anchor_period_s, ntc_site,
+                        floor_of(floor, building, building_model, building_damping))
     bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
-    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
-                            resume=resume, progress=progress if callable(progress) else None)
-    force = check.flag("force", force)
+    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
+                                    resume=resume, force=force,
+                                    progress=progress if callable(progress) else None), None)
+    force = runtime.force
     chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
-    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
-                                    skip_bad_records=skip_bad_records))
+    suite = site.apply(record_suite(Records(records, dt_s, units, skip_bad_records), None))
     guards.check(margins_cost(chosen, suite, settings, runtime), force)
     if bar:
         runtime = replace(runtime, progress=Progress(len(suite), "record"))

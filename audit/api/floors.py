@@ -78,10 +78,11 @@ def floor_motion(motion, records=None, *, building: float, floor: float = 1.0,
     ``continuum:α0`` (default ``continuum:10``), damping ``building_damping`` in every mode
     (:mod:`audit.physics.building.floor_motion`); ``dt_s`` [s], ``units`` and
     ``skip_bad_records``: how the record is read, as for :func:`audit.rock`."""
-    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
-    from audit.engine.shared.floors import FLOOR_FIELDS
-    motion, document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records,
-                                   settings_fields(locals(), READING_FIELDS))
+    from audit.api.inputs import floor_of, on_floor_of
+    from audit.engine.shared.record_request import Records
+    motion, document = on_floor_of(
+        motion, floor_of(floor, building, building_model, building_damping),
+        Records(records, dt_s, units, skip_bad_records))
     return FloorMotion(motion, document)
 
 

@@ -109,7 +109,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     -------
     FragilityResult
     """
-    from audit.api.inputs import record_suite
+    from audit.api.inputs import floor_of, record_suite
     from audit.engine.fragility.pipeline import run_fragility
     from audit.engine.shared.progress import Progress
     from audit.errors import InputError
@@ -121,10 +121,9 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
     from audit.engine.shared.design_site import DesignSite
-    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
-                            building_damping=building_damping)
-    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
-                                    skip_bad_records=skip_bad_records))
+    from audit.engine.shared.record_request import Records
+    site = DesignSite(None, floor_of(floor, building, building_model, building_damping))
+    suite = site.apply(record_suite(Records(records, dt_s, units, skip_bad_records), None))
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")

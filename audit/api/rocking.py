@@ -214,8 +214,8 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
         (default 0.05); the object rocks on the floor's motion
         (:mod:`audit.physics.building.floor_motion`).
     """
-    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
-    from audit.engine.shared.floors import FLOOR_FIELDS
+    from audit.api.inputs import floor_of, on_floor_of
+    from audit.engine.shared.record_request import Records
     from audit.engine.shared import guards
     from audit.physics.rocking import simulate
     if isinstance(block, str):
@@ -225,8 +225,9 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
                          f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")
     block = within_limits(block, "block", "block")
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records,
-                                         settings_fields(locals(), READING_FIELDS))
+    motion, floor_document = on_floor_of(
+        motion, floor_of(floor, building, building_model, building_damping),
+        Records(records, dt_s, units, skip_bad_records))
     free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
     if friction is not None:
         friction = check.number("friction", friction, "a positive friction coefficient μ", 0,

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import functools
+from dataclasses import replace
 import warnings
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -14,6 +15,8 @@ from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG,
                                    DEFAULT_JOBS, DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS,
                                    DEFAULT_SCHEDULER)
 from audit.api.inputs import settings_fields
+from audit.engine.shared.design_site import DesignSite, Site
+from audit.engine.shared.runtime import Runtime
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 from audit.errors import InputWarning
 
@@ -256,34 +259,33 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     -------
     AuditResult
     """
-    from audit.api.inputs import parameters_of, procedures_of, record_suite
+    from audit.api.inputs import floor_of, parameters_of, procedures_of, record_suite
     from audit.engine.shared import guards
     from audit.engine.run.costs import audit_cost
     from audit.engine.shared.progress import Progress
     from audit.engine.run.pipeline import run_audit, compiles_first
     from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
-    from audit.engine.shared.design_site import SITE_FIELDS, DesignSite
-    from audit.engine.shared.runtime import Runtime
     from audit.files import staged_folder
+    from audit.engine.shared.record_request import Records
     given = locals()
     settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))
-    site = DesignSite.parse(**settings_fields(given, SITE_FIELDS))
+    site = _design_site(site, site_override, scale_to_site, anchor_period_s, ntc_site,
+                        floor_of(floor, building, building_model, building_damping))
     detail = check.words("detail", detail)
     bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
-    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
-                            resume=resume, progress=progress if callable(progress) else None)
-    force = check.flag("force", force)
+    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
+                                    resume=resume, force=force,
+                                    progress=progress if callable(progress) else None), None)
+    force = runtime.force
     if out_dir is not None:
         out_dir = check.path("out_dir", out_dir, "a folder")
     chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
-    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
-                                    skip_bad_records=skip_bad_records))
+    suite = site.apply(record_suite(Records(records, dt_s, units, skip_bad_records), None))
     _warn_without_vertical(suite, settings)
     guards.check(audit_cost(chosen, suite, settings, runtime), force)
     stage = Progress(len(suite), "record") if bar else runtime.progress
     if bar:
-        runtime = Runtime(runtime.jobs, runtime.scheduler, runtime.partial_dir, runtime.resume,
-                          stage)
+        runtime = replace(runtime, progress=stage)
         stage.stage(f"auditing {', '.join(p.name for p in chosen)} on {len(suite)} records")
         if compiles_first():
             stage.stage("compiling the rocking solver and the oscillator kernels for this "
@@ -342,8 +344,28 @@ def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site
         ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
         motion, the blocks rock on the floor's (:mod:`audit.engine.shared.floors`).
     """
-    from audit.engine.shared.design_site import SITE_FIELDS, DesignSite
-    return DesignSite.parse(**settings_fields(locals(), SITE_FIELDS)).apply(suite)
+    from audit.api.inputs import floor_of
+    return _design_site(site, site_override, scale_to_site, anchor_period_s, ntc_site,
+                        floor_of(floor, building, building_model, building_damping)).apply(suite)
+
+
+def _design_site(site, override, scale, anchor_period_s, ntc, floor) -> DesignSite:
+    from audit.api.inputs import keywords_named
+    with keywords_named({"site.ntc": "ntc_site", "site.override": "site_override",
+                         "site.scale_records": "scale_to_site",
+                         "site.anchor_period_s": "anchor_period_s"}):
+        return _site_of(site, override, scale, anchor_period_s, ntc, floor)
+
+
+def _site_of(site, override, scale, anchor_period_s, ntc, floor) -> DesignSite:
+    if site is None:
+        site = None if ntc is None and override is False and scale is False else Site(None, None)
+    elif not isinstance(site, Site):
+        site = Site.parse(site)
+    if site is not None:
+        site = Site(site.sxs_g, site.sx1_g, ntc=ntc, override=override, scale_records=scale,
+                    anchor_period_s=anchor_period_s)
+    return DesignSite.parse(site, floor)
 
 
 def _warn_without_vertical(suite, settings: AuditSettings) -> None:

@@ -56,16 +56,17 @@ def rocking_spectrum(motion, *, size_s, alpha_deg, restitution=DEFAULT_RESTITUTI
     """
     import numpy as np
 
-    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
-    from audit.engine.shared.floors import FLOOR_FIELDS
+    from audit.api.inputs import floor_of, on_floor_of
+    from audit.engine.shared.record_request import Records
     from audit.engine.shared import guards
     from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
     from audit.engine.shared.grid import size_grid
     from audit.physics.block import Restitution
     from audit.physics.rocking import rocking_spectrum as spectrum
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS),
-                                         records, settings_fields(locals(), READING_FIELDS))
+    motion, floor_document = on_floor_of(
+        motion, floor_of(floor, building, building_model, building_damping),
+        Records(records, dt_s, units, skip_bad_records))
     sizes = check.numbers("size_s", size_s, "positive block sizes 2π/p in s", 0, low_open=True)
     alphas = check.numbers("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees", 0,
                            45, low_open=True, high_open=True)
@@ -122,14 +123,15 @@ def response_spectra(motion, *, periods_s, damping_pct=DEFAULT_DAMPING_PCT,
     """
     import numpy as np
 
-    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
-    from audit.engine.shared.floors import FLOOR_FIELDS
+    from audit.api.inputs import floor_of, on_floor_of
+    from audit.engine.shared.record_request import Records
     from audit.engine.shared import guards
     from audit.engine.shared.grid import size_grid
     from audit.physics.response_spectra import response_spectra as spectra
     force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS),
-                                         records, settings_fields(locals(), READING_FIELDS))
+    motion, floor_document = on_floor_of(
+        motion, floor_of(floor, building, building_model, building_damping),
+        Records(records, dt_s, units, skip_bad_records))
     periods = check.numbers("periods_s", periods_s, "periods ≥ 0 s", 0)
     damping = check.numbers("damping_pct", damping_pct, "damping ratios in [0, 100) %", 0, 100,
                             high_open=True)

@@ -28,7 +28,7 @@ def run(args) -> int:
     print("\nBuilt-in suites (--records NAME):")
     for name, holds in built_in_suites().items():
         print(f"  {name:<26} {holds}")
-    suite = record_suite(args.records, **options.reading(args))
+    suite = record_suite(options.records(args))
     print(f"\nRecords ({suite.description}):")
     unknown = 0
     for entry in suite:

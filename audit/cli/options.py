@@ -313,6 +313,14 @@ def add_skip_bad_records_option(parser):
                              "ones (default: stop at the first)")
 
 
+def records(args):
+    """The :class:`records.Records` of ``--records``, ``--dt``, ``--units`` and
+    ``--skip-bad-records`` (the one place a command's record flags are read)."""
+    from audit.api import Records
+    return Records(args.records, dt_s=args.dt, units=args.units,
+                   skip_bad_records=args.skip_bad_records)
+
+
 def reading(args) -> dict:
     """The API keywords of how records are read: ``--dt``, ``--units``,
     ``--skip-bad-records``."""

@@ -124,7 +124,6 @@ def test_every_entry_point_shows_its_keywords_each_documented(name):
 @pytest.mark.parametrize(("function", "defaults"), [
     ("check", "audit.engine.check.settings:CHECK_DEFAULTS"),
     ("run", "audit.engine.run.settings:AUDIT_DEFAULTS"),
-    ("run", "audit.engine.shared.design_site:SITE_DEFAULTS"),
     ("margins", "audit.engine.design.settings:MARGINS_DEFAULTS")])
 def test_the_keywords_are_the_settings_fields_with_their_defaults(function, defaults):
     """Adding a setting is one field, one keyword, one flag: the keyword is the field, named
