@@ -10,18 +10,18 @@ for answers in seconds.
 
 from __future__ import annotations
 
-from audit import G
-from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S,
-                                          DEFAULT_IM, DEFAULT_JOBS, DEFAULT_RESTITUTION,
-                                          DEFAULT_SCHEDULER)
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from typing import TYPE_CHECKING
+
+from audit.engine.shared.defaults import DEFAULT_CHECK_RECORDS, DEFAULT_IM, DEFAULT_SCHEDULER
+
+if TYPE_CHECKING:
+    from audit.engine.shared.runtime import Runtime
+    from audit.engine.shared.solver import Solver
+    from audit.physics.building.floor import Floor
 
 
-def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
-                   restitution=DEFAULT_RESTITUTION, free_motion_s=DEFAULT_FREE_MOTION_S,
-                   g=G, floor: float = 0.0, building=None, building_model=None,
-                   building_damping=DEFAULT_BUILDING_DAMPING, jobs: int = DEFAULT_JOBS,
-                   grid=None):
+def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solver | None = None,
+                   floor: Floor | None = None, runtime: Runtime | None = None, grid=None):
     """(the records on their floor, :class:`~audit.engine.atlas.settings.AtlasSettings`): what
     an atlas of ``records`` on the floor is, each argument checked (InputError naming it).
 
@@ -30,27 +30,26 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
     records : str, path or records.RecordSuite
     im : str
         ``sa:T`` or ``pga``.
-    restitution : str
-    free_motion_s, g : float
-    floor, building, building_model, building_damping :
-        The floor, as for :func:`audit.check`.
-    jobs : int
-        Solver threads of a record (worker processes of ``scheduler="dask"``).
+    solver : Solver, optional
+        The solver's ``restitution``, ``free_motion_s`` [s] and ``g`` [m/s²].
+    floor : Floor, optional
+        The floor, as for :func:`audit.rock`.
+    runtime : Runtime, optional
+        ``jobs``: solver threads of a record (worker processes of ``scheduler="dask"``).
     grid : (sequence, sequence), optional
         The (α [degrees], 2π/p [s]) grid; default the atlas's
         (:data:`~audit.engine.atlas.settings.ALPHA_DEG`, :data:`~audit.engine.atlas.settings.SIZE_S`).
     """
-    from audit.api.inputs import floor_of, record_suite
+    from audit.api.inputs import floor_group, record_suite, runtime_of, solver_of
     from audit.engine.atlas.settings import ALPHA_DEG, SIZE_S, AtlasSettings, floor_words, \
         records_digest
     from audit.engine.check.settings import CheckSettings
     from audit.engine.shared.design_site import DesignSite
-    from audit.engine.shared.runtime import Runtime
-    from audit.engine.shared.solver import Solver
-    checked = CheckSettings.parse(im=im, solver=Solver.parse(
-        Solver(restitution, free_motion_s, g), "check", None))
-    runtime = Runtime.parse(Runtime(jobs=jobs), None)
-    site = DesignSite(None, floor_of(floor, building, building_model, building_damping))
+    solver = solver_of(solver, "atlas", ("restitution", "free_motion_s", "g"))
+    checked = CheckSettings.parse(im=im, restitution=solver.restitution,
+                                  free_motion_s=solver.free_motion_s, g=solver.g)
+    runtime = runtime_of(runtime, "atlas", ("jobs",))
+    site = DesignSite(None, floor_group(floor))
     suite = site.apply(record_suite(records))
     entries = [entry for entry in suite if entry.motion is not None]
     alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from audit import G
 from audit.engine.shared.defaults import DEFAULT_PERIODS
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from audit.physics.building.floor import Floor
 
 #: Damping of the floor spectrum whose peak is reported [-].
 SPECTRUM_DAMPING = 0.05
@@ -67,22 +67,15 @@ class FloorMotion:
                 f"{self.pfa_g:.3g} g, PFV = {self.pfv_m_s:.3g} m/s)")
 
 
-def floor_motion(motion, records=None, *, building: float, floor: float = 1.0,
-                 dt_s: float | None = None, units: str | None = None,
-                 skip_bad_records: bool = False,
-                 building_model: str | None = None,
-                 building_damping: float = DEFAULT_BUILDING_DAMPING) -> FloorMotion:
-    """The absolute acceleration of the floor at z/H = ``floor`` of a building of first-mode
-    period ``building`` [s] under ``motion`` (as for :func:`audit.rock`: an id of ``records``,
-    a file, a GroundMotion or (acceleration [m/s²], dt [s])); the model ``shear:N`` or
-    ``continuum:α0`` (default ``continuum:10``), damping ``building_damping`` in every mode
-    (:mod:`audit.physics.building.floor_motion`); ``dt_s`` [s], ``units`` and
-    ``skip_bad_records``: how the record is read, as for :func:`audit.rock`."""
-    from audit.api.inputs import floor_of, on_floor_of
-    from audit.engine.shared.record_request import Records
-    motion, document = on_floor_of(
-        motion, floor_of(floor, building, building_model, building_damping),
-        Records(records, dt_s, units, skip_bad_records))
+def floor_motion(motion, floor: Floor, records=None) -> FloorMotion:
+    """The absolute acceleration of ``floor`` (``Floor(z_over_h, Building(period_s, model,
+    damping))``: z/H in a building of first-mode period T1 [s], ``shear:N`` or
+    ``continuum:α0``, damping in every mode) under ``motion`` (as for :func:`audit.rock`: an id
+    of ``records``, a file, a GroundMotion or (acceleration [m/s²], dt [s]))
+    (:mod:`audit.physics.building.floor_motion`); ``records``: where an id is looked up and how
+    the record is read, as for :func:`audit.rock`."""
+    from audit.api.inputs import floor_group, on_floor_of
+    motion, document = on_floor_of(motion, floor_group(floor), records)
     return FloorMotion(motion, document)
 
 

@@ -10,7 +10,7 @@ import re
 from numbers import Real
 from typing import TYPE_CHECKING
 
-from audit.errors import InputError
+from audit.errors import InputError, field_name
 
 if TYPE_CHECKING:  # loaded where procedures are asked for: a spectrum needs no scipy.optimize
     from procedures.base import Procedure
@@ -201,8 +201,9 @@ def pulse_motion(shape: str, amplitude_g: float, period_s: float, *, gamma: floa
 def motion_of(motion, records=None):
     """A :class:`records.GroundMotion` from a GroundMotion, a suite's RecordEntry, a record id
     (of ``records``, default the default suite), a path to a record file, or a pair
-    ``(acceleration [m/s²], dt [s])``; ``records`` a :class:`records.Records` whose reading
-    options (checked whatever the motion, naming the option alone) read the file, or the suite
+    ``(acceleration [m/s²], dt [s])``; ``records`` a
+    :class:`~audit.engine.shared.record_request.Records` (or its source alone) whose reading
+    options (checked whatever the motion, named ``records.dt_s`` …) read the file, or the suite
     an id is looked up in."""
     from pathlib import Path
 
@@ -210,7 +211,7 @@ def motion_of(motion, records=None):
 
     from records import GroundMotion, RecordEntry, resolve_motion
     from audit.engine.shared.record_request import Records
-    request = Records.parse(records, None)
+    request = Records.parse(records)
     if isinstance(motion, GroundMotion):
         return motion
     if isinstance(motion, RecordEntry):
@@ -264,6 +265,45 @@ def floor_of(floor=0.0, building=None, building_model=None, building_damping=Non
                                   if building_damping is None else building_damping))
     with keywords_named(FLOOR_KEYWORDS):
         return DesignSite.parse(None, given).floor
+
+
+def floor_group(floor=None):
+    """The :class:`~audit.physics.building.floor.Floor` of a function that takes it whole
+    (a Floor, 0 or None: the ground), checked once by :meth:`DesignSite.parse`."""
+    from audit.engine.shared.design_site import DesignSite
+    return DesignSite.parse(None, floor).floor
+
+
+def read_fields(group, argument: str, read: tuple, command: str):
+    """``group`` (a Solver, a Runtime) if ``command`` reads every field of it set away from
+    its default; otherwise InputError naming the first other (``runtime.jobs``)."""
+    import dataclasses
+    default = type(group)()
+    for field in dataclasses.fields(group):
+        if field.name not in read and getattr(group, field.name) != getattr(default, field.name):
+            name = field_name(argument, field.name)
+            raise InputError(f"{name}: {command} does not read it (it reads "
+                             f"{', '.join(read) or 'none of them'})", name)
+    return group
+
+
+def runtime_of(runtime, command: str, read: tuple):
+    """The checked :class:`~audit.engine.shared.runtime.Runtime` of a command that reads the
+    fields ``read`` of it (the others refused when set)."""
+    from audit.engine.shared.runtime import Runtime
+    if runtime is not None and not isinstance(runtime, Runtime):
+        raise InputError(f"runtime: expected a Runtime(jobs, scheduler, progress, force, "
+                         f"partial_dir, resume), got {runtime!r}", "runtime")
+    return read_fields(Runtime.parse(runtime), "runtime", read, command)
+
+
+def solver_of(solver, command: str, read: tuple):
+    """The checked :class:`~audit.engine.shared.solver.Solver` of a command that reads the
+    fields ``read`` of it (the others refused when set)."""
+    from audit.engine.shared.solver import Solver
+    parsed = Solver.parse(solver)  # a wrong type refused first
+    read_fields(solver or Solver(), "solver", read, command)
+    return parsed
 
 
 @contextlib.contextmanager

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from audit.api.result_shape import Files, table_html, with_page
 from audit.engine.shared.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from audit.physics.building.floor import Floor
 
 #: The page of the audit, drawn from its saved CSV files.
 FRAGILITY_HTML = "fragility.html"
@@ -77,10 +77,7 @@ class FragilityResult(Files):
 
 
 def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_FRAGILITY_RECORDS,
-              *, skip_bad_records: bool = False, dt_s: float | None = None,
-              units: str | None = None, progress: bool = False, floor: float = 0.0,
-              building: float | None = None, building_model: str | None = None,
-              building_damping: float = DEFAULT_BUILDING_DAMPING) -> FragilityResult:
+              *, progress: bool = False, floor: Floor | None = None) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
     multiple PGV stripes (:mod:`audit.engine.fragility.pipeline`).
 
@@ -88,19 +85,12 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     ----------
     procedure : str
         A registered probabilistic procedure (``femap58``).
-    records : str, path or records.RecordSuite
-        The suite (default the FEMA P695 far-field set).
-    skip_bad_records : bool
-        Use the readable records of the suite; the unreadable ones are warned about and left
-        out.
-    dt_s : float, optional
-        Time step [s] of a text record file that states none (no time column, no ``dt =``
-        comment).
-    units : {"g", "m/s2", "cm/s2"}, optional
-        Units of the accelerations of a text record file that states none.
+    records : Records, str, path or records.RecordSuite
+        The suite (default the FEMA P695 far-field set), and how its files are read
+        (:class:`~audit.engine.shared.record_request.Records`).
     progress : bool
         Say on standard error what is being computed.
-    floor, building, building_model, building_damping :
+    floor : Floor, optional
         Where the components stand (as for :func:`audit.rock`): the records are filtered to
         that floor, and the PGV stripes are then the floor's PFV, the demand P-58's
         unanchored-content fragilities are defined in.
@@ -109,7 +99,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     -------
     FragilityResult
     """
-    from audit.api.inputs import floor_of, record_suite
+    from audit.api.inputs import floor_group, record_suite
     from audit.engine.fragility.pipeline import run_fragility
     from audit.engine.shared.progress import Progress
     from audit.errors import InputError
@@ -122,8 +112,9 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
                          "procedure")
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.record_request import Records
-    site = DesignSite(None, floor_of(floor, building, building_model, building_damping))
-    suite = site.apply(record_suite(Records(records, dt_s, units, skip_bad_records), None))
+    site = DesignSite(None, floor_group(floor))
+    request = Records.parse(records)
+    suite = site.apply(record_suite(request))
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")
@@ -132,8 +123,8 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         Progress(0, "step").stage(f"{chosen.title}: exact overturning of its components under "
                                   f"{len(entries)} records scaled to each PGV stripe")
     tables = run_fragility(chosen, [e.id for e in entries], [e.motion for e in entries])
-    return FragilityResult(chosen, tables, records if isinstance(records, str) and site.floor.on_ground
-                           else suite.description)
+    return FragilityResult(chosen, tables, request.source if isinstance(request.source, str)
+                           and site.floor.on_ground else suite.description)
 
 
 __all__ = ["fragility", "FragilityResult", "FRAGILITY_HTML"]

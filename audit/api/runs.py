@@ -25,6 +25,7 @@ if TYPE_CHECKING:  # pandas and the engine are loaded by what uses them, not by 
 
     from audit.engine.run.audit_run import AuditRun
     from audit.engine.run.settings import AuditSettings
+    from audit.physics.building.floor import Floor
 
 #: The run's self-contained HTML report, beside its files.
 REPORT_HTML = "report.html"
@@ -325,28 +326,24 @@ def load_result(folder) -> AuditResult:
     return result
 
 
-def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site: bool = False,
-                 anchor_period_s: float | None = None, ntc_site=None, floor: float = 0.0,
-                 building: float | None = None, building_model: str | None = None,
-                 building_damping: float = DEFAULT_BUILDING_DAMPING):
-    """``suite`` with the design site and scaling of the fields of
-    :class:`~audit.engine.shared.design_site.DesignSite`.
+def design_suite(suite, *, site: Site | None = None, floor: Floor | None = None):
+    """``suite`` at the design site, on the floor (:meth:`DesignSite.apply
+    <audit.engine.shared.design_site.DesignSite.apply>`).
 
     Parameters
     ----------
     suite : records.RecordSuite
-    site, site_override, scale_to_site, anchor_period_s, ntc_site :
-        As for :func:`run` (S_XS, S_X1 [g]; anchor period [s]; NTC 2018 a_g [g], F0, T_C* [s],
-        soil, topography).
-    floor, building, building_model, building_damping :
-        Where the blocks stand: z/H in the building (0 the ground, the default), its
-        first-mode period T1 [s], its model (``shear:N`` or ``continuum:α0``, default
-        ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
-        motion, the blocks rock on the floor's (:mod:`audit.engine.shared.floors`).
+    site : Site, (float, float) or str, optional
+        As for :func:`run`: S_XS, S_X1 [g], and ``Site(…, ntc=…, override=…,
+        scale_records=…, anchor_period_s=…)``: NTC 2018 a_g [g], F0, T_C* [s], soil,
+        topography; the site over the records' own; the records scaled to it (FEMA P695) at
+        the anchor period [s].
+    floor : Floor, optional
+        Where the blocks stand (``Floor(z_over_h, Building(period_s, model, damping))``,
+        default the ground); the site scales the ground motion, the blocks rock on the
+        floor's (:mod:`audit.engine.shared.floors`).
     """
-    from audit.api.inputs import floor_of
-    return _design_site(site, site_override, scale_to_site, anchor_period_s, ntc_site,
-                        floor_of(floor, building, building_model, building_damping)).apply(suite)
+    return DesignSite.parse(site, floor, "run").apply(suite)
 
 
 def _design_site(site, override, scale, anchor_period_s, ntc, floor) -> DesignSite:

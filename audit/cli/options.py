@@ -284,7 +284,7 @@ def motion(args) -> dict:
                                        gamma=args.gamma, nu_deg=args.nu)}
     if not args.record:
         raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine|mp")
-    return {"motion": args.record, "records": args.records, **reading(args)}
+    return {"motion": args.record, "records": records(args)}
 
 
 def add_records_option(parser):
@@ -407,6 +407,13 @@ def add_param_option(parser):
                         help="a procedure's or component provision's parameter, e.g. "
                              "asce7_22.I_p=1.5 or nzs1170_5.h_n=28; repeat it for several "
                              "(docs/procedures.md lists each one's keys, ranges and defaults)")
+
+
+def floor(args):
+    """The :class:`~audit.physics.building.floor.Floor` of ``--floor``, ``--building``,
+    ``--building-model`` and ``--building-damping``, checked by the API."""
+    from audit.api import Building, Floor
+    return Floor(args.floor, Building(args.building, args.building_model, args.building_damping))
 
 
 def floor_values(args) -> dict:

@@ -55,8 +55,10 @@ def test_rock_reproduces_figure_4_1():
     # the block p = 2 rad/s, α = 15° of Figure 4.1 survives a one-cosine pulse of 0.3148 g and
     # T_p = 2 s and overturns at 0.3152 g
     block = audit.Block(alpha_deg=15.0, size_s=math.pi)
-    survives = audit.rock(block, records.one_pulse("cosine", 0.3148, 2.0), free_motion_s=8.0)
-    overturns = audit.rock(block, records.one_pulse("cosine", 0.3152, 2.0), free_motion_s=8.0)
+    survives = audit.rock(block, records.one_pulse("cosine", 0.3148, 2.0),
+                          solver=audit.Solver(free_motion_s=8.0))
+    overturns = audit.rock(block, records.one_pulse("cosine", 0.3152, 2.0),
+                           solver=audit.Solver(free_motion_s=8.0))
     assert not survives.overturned and overturns.overturned
     history = survives.history
     assert list(history.columns) == ["time_s", "theta_rad", "theta_dot_rad_s", "ground_acc_g"]

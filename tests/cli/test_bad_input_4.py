@@ -158,9 +158,9 @@ def test_building_damping_help_and_check_agree(workdir, capsys):
                        ).building.period_s == 1.0
     with pytest.raises(InputError, match=r"^floor.building.damping: expected a number in \(0, 1\)"):
         Floor.parse(Floor(1.0, Building(1.0, damping=1.0)))
-    # a function that takes the floor one value at a time names its keyword
-    with pytest.raises(InputError, match=r"^building_damping: expected a number in \(0, 1\)"):
-        audit.floor_motion((np.zeros(8), 0.01), floor=1.0, building=1.0, building_damping=1.0)
+    # a function that takes the floor whole names the argument and the field
+    with pytest.raises(InputError, match=r"^floor.building.damping: expected a number in \(0, 1\)"):
+        audit.floor_motion((np.zeros(8), 0.01), Floor(1.0, Building(1.0, damping=1.0)))
 
 
 def test_malformed_building_values_refused_on_the_ground(workdir, capsys):

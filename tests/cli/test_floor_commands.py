@@ -55,13 +55,14 @@ def test_bad_floor_flags_stop_with_one_line_and_no_file(tmp_path, capsys):
         assert not out.exists()
 
 
-def test_api_refuses_a_bad_floor_naming_the_keyword(far_field):
+def test_api_refuses_a_bad_floor_naming_the_field(far_field):
     block = audit.Block.from_dimensions(width_m=0.8, height_m=2.0)
     with pytest.raises(InputError) as info:
-        audit.rock(block, "rsn1111_nis000", records=far_field, floor=0.5)
-    assert info.value.fields == ("building",) or "building" in str(info.value)
+        audit.rock(block, "rsn1111_nis000", records=far_field, floor=audit.Floor(0.5))
+    assert info.value.fields == ("floor.building",) or "floor.building" in str(info.value)
     with pytest.raises(InputError, match="floor"):
-        audit.rock(block, "rsn1111_nis000", records=far_field, floor=-0.1, building=1.0)
+        audit.rock(block, "rsn1111_nis000", records=far_field,
+                   floor=audit.Floor(-0.1, audit.Building(1.0)))
 
 
 def test_floor_motion_is_linear_and_keeps_the_ground_intensity(far_field):
@@ -82,8 +83,8 @@ def test_floor_motion_is_linear_and_keeps_the_ground_intensity(far_field):
 
 def test_rock_on_the_roof_rocks_on_the_floor_motion(far_field):
     block = audit.Block.from_dimensions(width_m=0.8, height_m=2.0)
-    on_roof = audit.rock(block, "rsn1111_nis000", records=far_field, floor=1.0, building=1.0,
-                         building_model="shear:10")
+    on_roof = audit.rock(block, "rsn1111_nis000", records=far_field,
+                         floor=audit.Floor(1.0, audit.Building(1.0, "shear:10")))
     from audit.physics.building.floor import Building, Floor
     from audit.physics.building.floor_motion import floor_motion
     motion = floor_motion(far_field.get("rsn1111_nis000").motion,
