@@ -40,7 +40,7 @@ from audit.engine.shared.blocks import BlockList  # noqa: E402
 from audit.engine.design.margins import margins_stripes  # noqa: E402
 from audit.engine.design.settings import MarginsSettings  # noqa: E402
 from audit.engine.shared.runtime import Runtime  # noqa: E402
-from audit.physics.rocking import motion_equation, rocking_blocks  # noqa: E402
+from audit.physics.rocking import RockingOptions, motion_equation, rocking_blocks  # noqa: E402
 from records import load_records  # noqa: E402
 
 #: Relative changes of the scale factor tried, smallest first, each way.
@@ -54,8 +54,8 @@ def flip_width(entry, factor: float, size_s: float, alpha_rad: float, outcome: b
     for width in WIDTHS:
         for sign in (-1.0, 1.0):
             peaks = rocking_blocks(entry.motion.scaled(factor * (1.0 + sign * width)),
-                                   [size_s], [alpha_rad], r=settings.restitution, g=settings.g,
-                                   free_motion_s=settings.free_motion_s)
+                                   [size_s], [alpha_rad], r=settings.restitution,
+                                   options=RockingOptions(settings.g, settings.free_motion_s))
             if bool(peaks.overturned[0]) != outcome:
                 return sign * float(width)
     return math.nan

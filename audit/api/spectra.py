@@ -53,7 +53,7 @@ def rocking_spectrum(motion, *, size_s, alpha_deg, records=None, solver: Solver 
     from audit.engine.shared import guards
     from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SIZES
     from audit.engine.shared.grid import size_grid
-    from audit.physics.rocking import rocking_spectrum as spectrum
+    from audit.physics.rocking import RockingOptions, rocking_spectrum as spectrum
     solver = solver_of(solver, "rocking_spectrum",
                        ("restitution", "free_motion_s", "g", "vertical"))
     runtime = runtime_of(runtime, "rocking_spectrum", ("jobs", "force"))
@@ -71,8 +71,8 @@ def rocking_spectrum(motion, *, size_s, alpha_deg, records=None, solver: Solver 
                   guards.Setting("alpha_deg", len(alphas), len(DEFAULT_ALPHA_DEG)))),
         runtime.force)
     frame = spectrum(motion, np.asarray(sizes), np.radians(alphas), solver.restitution,
-                     g=solver.g, free_motion_s=solver.free_motion_s, jobs=runtime.jobs,
-                     vertical=solver.vertical).to_frame()
+                     RockingOptions(solver.g, solver.free_motion_s, vertical=solver.vertical),
+                     jobs=runtime.jobs).to_frame()
     frame.attrs["record"] = motion.id
     frame.attrs["floor"] = floor_document
     return frame
