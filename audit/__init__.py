@@ -6,7 +6,8 @@ Shortcomings of Design Guidelines*, PEER 2001/07.
 The Python API (:mod:`audit.api`) is here too: ``audit.Block``, ``audit.rock``, ``audit.run``,
 ``audit.margins``, ``audit.check``, ``audit.risk``, ``audit.fragility``, ``audit.validate``,
 ``audit.rocking_spectrum``, ``audit.design_spectrum``, ``audit.load_result``,
-``audit.floor_motion``, ``audit.record_pulses`` (loaded on first use, so that the command line starts light).
+``audit.floor_motion``, ``audit.record_pulses``, imported plainly from it (a light import:
+the API loads numpy, pandas and the solver inside the functions that use them).
 """
 
 __version__ = "0.1.0"
@@ -20,20 +21,17 @@ _check_siblings()
 #: Acceleration of gravity [m/s²] used throughout unless configured otherwise.
 G = 9.81
 
-#: The Python API (:mod:`audit.api`), loaded on first use so that the command line starts light.
-_API = ("Block", "RockingResponse", "AuditResult", "MarginsResult", "FragilityResult", "rock",
-        "run", "margins", "fragility", "design_suite", "risk", "read_hazard", "check",
-        "CheckResult", "validate", "ValidationResult", "rocking_spectrum", "response_spectra",
-        "design_spectrum", "load_result", "floor_motion", "FloorMotion", "record_pulses")
+# the Python API, imported after G and the version it reads
+from audit.api import (AuditResult, Block, Building, CheckResult, Floor,  # noqa: E402
+                       FloorMotion, FragilityResult, Hazard, MarginsResult, Records,
+                       RockingResponse, Runtime, Site, Solver, ValidationResult, check,
+                       design_spectrum, design_suite, floor_motion, fragility, load_result,
+                       margins, read_hazard, record_pulses, response_spectra, risk, rock,
+                       rocking_spectrum, run, validate)
 
-
-def __getattr__(name):
-    if name in _API:
-        from audit import api
-        return getattr(api, name)
-    raise AttributeError(f"module 'audit' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted({*(name for name in globals() if not name.startswith("_")), "__version__",
-                   *_API})
+__all__ = ["G", "__version__", "Block", "RockingResponse", "AuditResult", "MarginsResult",
+           "FragilityResult", "rock", "run", "margins", "fragility", "design_suite", "risk",
+           "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
+           "rocking_spectrum", "response_spectra", "design_spectrum", "load_result",
+           "floor_motion", "FloorMotion", "record_pulses", "Building", "Floor", "Site", "Hazard",
+           "Solver", "Runtime", "Records"]

@@ -22,6 +22,13 @@ class InputError(ValueError):
         self.fields = fields
 
 
+def field_name(argument: str | None, field: str) -> str:
+    """The name a message gives ``field`` of a group of settings passed as ``argument``
+    (``floor.z_over_h``, ``runtime.jobs``), or ``field`` alone where the group's fields are a
+    function's own keywords (``argument`` None)."""
+    return f"{argument}.{field}" if argument else field
+
+
 class InputWarning(UserWarning):
     """Input that is accepted but probably wrong (e.g. a PGA implausibly small for the declared
     units); the command-line interface prints it on one line and carries on."""

@@ -50,7 +50,7 @@ def _writable_ancestor(path: Path, what: str) -> None:
     _writable(ancestor, what, path)
 
 
-def check_output_dir(out_dir: str | Path, what: str = "--out") -> Path:
+def check_output_dir(out_dir: str | Path, what: str = "out_dir") -> Path:
     """``out_dir`` if it can receive a run's files: a writable folder, or one that can be made.
 
     Called before any computation, so a bad output path costs nothing; ``what`` names the

@@ -35,7 +35,7 @@ from audit.engine.check.settings import CheckSettings  # noqa: E402
 from audit.engine.check.widths import Family, probability_at_site, required_width  # noqa: E402
 from audit.engine.design.site_probability import lattice_fragility, site_probability  # noqa: E402
 from audit.engine.shared.scheduler import open_scheduler  # noqa: E402
-from audit.physics.rocking import rocking_blocks  # noqa: E402
+from audit.physics.rocking import RockingOptions, rocking_blocks  # noqa: E402
 
 #: Site intensities each object is asked at [g], and the check's site for the widths.
 SITE_IMS = (0.45, 0.9, 1.8)
@@ -65,7 +65,7 @@ def direct_outcomes(entries, settings, alpha_deg, size_s, levels, jobs):
         intensity = settings.im.of_record(entry.motion, settings.free_motion_s)
         peaks = rocking_blocks(entry.motion, np.tile(size_s, levels.size),
                                np.tile(alpha, levels.size), r=settings.restitution,
-                               g=settings.g, free_motion_s=settings.free_motion_s, jobs=jobs,
+                               options=RockingOptions(settings.g, settings.free_motion_s), jobs=jobs,
                                scale=np.repeat(levels / intensity, alpha.size))
         out.append(peaks.overturned.reshape(levels.size, alpha.size))
     return np.stack(out)

@@ -35,12 +35,12 @@ sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from four_libm_step import StepSwapped, rk4_four_libm  # noqa: E402
 
-from audit.api import design_suite  # noqa: E402
+from audit.api import Site, design_suite  # noqa: E402
 from audit.engine.shared.blocks import BlockList  # noqa: E402
 from audit.engine.design.margins import margins_stripes  # noqa: E402
 from audit.engine.design.settings import MarginsSettings  # noqa: E402
 from audit.engine.shared.runtime import Runtime  # noqa: E402
-from audit.physics.rocking import motion_equation, rocking_blocks  # noqa: E402
+from audit.physics.rocking import RockingOptions, motion_equation, rocking_blocks  # noqa: E402
 from records import load_records  # noqa: E402
 
 #: Relative changes of the scale factor tried, smallest first, each way.
@@ -54,8 +54,8 @@ def flip_width(entry, factor: float, size_s: float, alpha_rad: float, outcome: b
     for width in WIDTHS:
         for sign in (-1.0, 1.0):
             peaks = rocking_blocks(entry.motion.scaled(factor * (1.0 + sign * width)),
-                                   [size_s], [alpha_rad], r=settings.restitution, g=settings.g,
-                                   free_motion_s=settings.free_motion_s)
+                                   [size_s], [alpha_rad], r=settings.restitution,
+                                   options=RockingOptions(settings.g, settings.free_motion_s))
             if bool(peaks.overturned[0]) != outcome:
                 return sign * float(width)
     return math.nan
@@ -91,11 +91,11 @@ def main() -> None:
     records = load_records(args.records)
     if args.first:
         records = replace(records, entries=records.entries[:args.first])
-    suite = design_suite(records, site=(1.5, 0.9), site_override=True, scale_to_site=True)
+    suite = design_suite(records, site=Site(1.5, 0.9, override=True, scale_records=True))
     settings = MarginsSettings.parse()
     print(f"load average {os.getloadavg()[0]:.1f}", flush=True)
     grid = (dict(np.load(args.earlier)) if args.earlier
-            else solved_grid(suite, settings, Runtime.parse(jobs=args.jobs)))
+            else solved_grid(suite, settings, Runtime.parse(Runtime(jobs=args.jobs))))
     entries = {entry.id: entry for entry in suite}
     blocks = BlockList.of(settings.alpha_deg, settings.size_s, settings.blocks)
     alpha_rad = np.radians(blocks.alpha_deg)

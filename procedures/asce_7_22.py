@@ -143,7 +143,8 @@ class ASCE722(ComponentProvision):
 
     def force_over_weight(self, site: ComponentSite, floor: Floor):
         """F_p/W_p [g] (Eqs. 13.3-1 to 13.3-3) and its factors."""
-        period_s = self.period_in_height_factor(floor.building_period_s)
+        period_s = self.period_in_height_factor(None if floor.on_ground
+                                                else floor.building.period_s)
         h_f = self.height_factor(floor.z_over_h, period_s)
         r_mu = self.ductility_reduction()
         base = site.s_ds_g * self.importance

@@ -74,7 +74,7 @@ class EN19981(ComponentProvision):
         return building_period_s if self.object_period_s == RESONANT else self.object_period_s
 
     def unmet_requirements(self, floor: Floor) -> str | None:
-        if floor.building_period_s is None and (self.object_period_s == RESONANT
+        if floor.on_ground and (self.object_period_s == RESONANT
                                                 or self.object_period_s > 0.0):
             return "an element with a period T_a > 0 needs the building's T1"
         return None
@@ -87,7 +87,8 @@ class EN19981(ComponentProvision):
 
     def force_over_weight(self, site: ComponentSite, floor: Floor):
         """F_a/W_a [g] (Eq. 4.24) and S_a/(α·S)."""
-        amplification = self.amplification(floor.z_over_h, floor.building_period_s)
+        amplification = self.amplification(floor.z_over_h, None if floor.on_ground
+                                           else floor.building.period_s)
         return (site.ag_s_g * amplification * self.importance / self.behaviour,
                 {"S_a_over_alpha_S": amplification, "gamma_a": self.importance,
                  "q_a": self.behaviour})

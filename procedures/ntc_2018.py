@@ -215,7 +215,7 @@ class NTC2018(Procedure):
         ground = NTC2018Spectrum.from_site(entry.site)
         if self.floor.on_ground:
             return ground
-        return NTC2018FloorSpectrum(ground, self.floor.z_over_h, self.floor.building_period_s)
+        return NTC2018FloorSpectrum(ground, self.floor.z_over_h, self.floor.building.period_s)
 
     def peak_ground_acceleration(self, entry, context):
         """S_e(T₀ = 0) [m/s²]: a_g·S of the site (α·S·(1 + z/H) on a floor), or the record's

@@ -104,7 +104,7 @@ class NZS11705(ComponentProvision):
             c_hi = 1.0
         else:
             building_m = (self.building_height_m if self.building_height_m is not None
-                          else HEIGHT_PER_PERIOD_M_S * floor.building_period_s)
+                          else HEIGHT_PER_PERIOD_M_S * floor.building.period_s)
             c_hi = self.height_coefficient(floor.z_over_h * building_m, building_m)
         c_i = self.spectral_shape()
         return (min(site.c0_g * c_hi * c_i * self.part_response * self.risk, CAP),

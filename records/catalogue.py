@@ -102,7 +102,7 @@ def download_hint(facts: RecordFacts) -> str:
     """Where a user gets this record: its PEER NGA-West2 sequence number and file, and the option
     that reads it."""
     return (f"download RSN {facts.rsn} from the PEER NGA-West2 database and save "
-            f"{facts.peer_file} ({facts.peer_note}) in a folder given as --records FOLDER")
+            f"{facts.peer_file} ({facts.peer_note}) in a folder, then read the records from it")
 
 
 def record_facts(record_id: str) -> RecordFacts:

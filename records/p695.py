@@ -55,8 +55,8 @@ SUITES = {
 SHIPPED_SEED_RECORDS = {"rinaldi_1994": "rsn1063_rrs_032", "sylmar_1994": "rsn1086_syl_032",
                         "erzincan_1992": "rsn821_erz_032"}
 #: How a user adds the seed records no package ships.
-ADD_SEED_RECORDS = ("each names the PEER NGA-West2 file to save in a folder given as "
-                    "--records FOLDER")
+ADD_SEED_RECORDS = ("each names the PEER NGA-West2 file to save in a folder the records are "
+                    "then read from")
 
 
 def cache_dir() -> Path:

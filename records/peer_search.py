@@ -290,4 +290,4 @@ def search_folder(search_results: Path, files: list[Path], read_other,
     return collect(readers, "; ".join([
         f"the PEER NGA-West2 search results {search_results}: {len(readers) - len(others)} "
         f"horizontal component(s) of {len(records)} record(s), each scaled by its listed scale "
-        f"factor, vertical components carried for --vertical", *filter(None, notes)]), skip_bad)
+        f"factor, vertical components carried (for vertical)", *filter(None, notes)]), skip_bad)

@@ -13,14 +13,14 @@ import math
 import numpy as np
 
 from audit import G
-from audit.physics.block import RigidBlock
+from audit.engine.shared.blocks import Block
 
 
 def describe_block(alpha_deg: float, size_s: float) -> str:
     """The object a grid cell is, in metres: ``a 0.38 m × 1.15 m block`` (full width × full
     height, 2R sin α × 2R cos α with R = 3g/(4p²), p = 2π/size)."""
-    block = RigidBlock.from_size(float(size_s), math.radians(float(alpha_deg)))
-    return f"a {2 * block.half_width:.2f} m × {2 * block.half_height:.2f} m block"
+    block = Block(alpha_deg=float(alpha_deg), size_s=float(size_s))
+    return f"a {block.width_m:.2f} m × {block.height_m:.2f} m block"
 
 
 def block_size_m(alpha_deg: float, size_s: float) -> tuple[float, float]:
@@ -33,8 +33,8 @@ def block_size_m(alpha_deg: float, size_s: float) -> tuple[float, float]:
 @functools.lru_cache(maxsize=4096)
 def _block_size_m(alpha_deg: float, size_s: float) -> tuple[float, float]:
     # the page's maps ask for the same few hundred cells of the grid tens of thousands of times
-    block = RigidBlock.from_size(size_s, math.radians(alpha_deg))
-    return round(2 * block.half_width, 2), round(2 * block.half_height, 2)
+    block = Block(alpha_deg=alpha_deg, size_s=size_s)
+    return round(block.width_m, 2), round(block.height_m, 2)
 
 
 def block_sizes_m(alphas_deg, sizes_s) -> np.ndarray:

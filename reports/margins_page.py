@@ -175,7 +175,7 @@ def render_margins_page(folder) -> str:
                      f"{summary['im_unit']}; FEMA P695 takes the MCE, S_MT: the site's values "
                      + ("are design-level, so the MCE is 1.5 × them" if summary.get("site_level")
                         == "design" else "are taken as MCE-level; were they design-level, "
-                        "every CMR here would be 1.5 × too high (--level design)")
+                        "every CMR here would be 1.5 × too high (site_level design)")
                      + "). Red: below 1, the block is more likely than not to overturn at the "
                      f"MCE. {extrapolated} of {len(fragility)} medians lie beyond the stripes: "
                      "the fit extrapolates there, and the CMR shown is only a bound (the "

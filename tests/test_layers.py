@@ -10,6 +10,8 @@ a function still ties the two modules together.
 from __future__ import annotations
 
 import ast
+import importlib
+import re
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -39,7 +41,8 @@ MODULES = _modules()
 
 def _imports(name: str, path: Path) -> set[str]:
     """Project modules ``name`` imports anywhere in its body (function-level included), except
-    the lazy re-export of the API by ``audit.__getattr__`` (loaded after ``audit`` is whole)."""
+    the re-export of the API by ``audit/__init__.py`` (its last import, after G and the
+    version every module reads from it)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     out = set()
     for node in ast.walk(tree):
@@ -140,8 +143,9 @@ def test_every_workflow_has_its_settings_and_one_pipeline_entry_named_alike(room
 
 def test_one_road_for_a_floor():
     """Every command's floor goes through :meth:`DesignSite.parse` (the one call of
-    ``Floor.parse``) and :meth:`DesignSite.apply` (the one call of ``on_floor``, the filter):
-    no command parses a floor or filters records on its own."""
+    ``Floor.parse``; a floor given one value at a time too, :func:`audit.api.inputs.floor_of`)
+    and :meth:`DesignSite.apply` (the one call of ``on_floor``, the filter): no command parses a
+    floor or filters records on its own."""
     calls = {"Floor.parse": [], "on_floor": []}
     for name, path in MODULES.items():
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
@@ -257,3 +261,88 @@ def test_no_engine_folder_holds_three_modules_of_one_name_prefix():
                         if path.stem != "__init__")
         crowded.update({f"{folder.name}/{word}_*": n for word, n in words.items() if n >= 3})
     assert not crowded
+
+
+#: What the front door must not load: the scientific stack and the layers that import it.
+HEAVY_AT_THE_DOOR = ("numpy", "pandas", "scipy", "numba", "matplotlib", "plotly", "records",
+                     "procedures", "reports")
+
+
+@pytest.mark.parametrize("package", ["audit", "audit.api"])
+def test_the_front_door_imports_its_names_plainly(package):
+    """Every public name of ``audit`` and ``audit.api`` is bound by a plain ``from … import``
+    at module level (no ``__getattr__`` table), so an IDE or a static tool follows
+    ``from audit.api import check`` to its module."""
+    path = MODULES[package]
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    assert not [node.name for node in tree.body if isinstance(node, ast.FunctionDef)]
+    bound = {alias.asname or alias.name for node in tree.body
+             if isinstance(node, ast.ImportFrom) for alias in node.names}
+    bound |= {target.id for node in tree.body if isinstance(node, ast.Assign)
+              for target in node.targets if isinstance(target, ast.Name)}
+    public = importlib.import_module(package).__all__
+    assert set(public) <= bound, set(public) - bound
+    assert "check" in public and "Block" in public
+
+
+def test_the_front_door_is_light():
+    """``import audit`` (and with it ``audit.api``) loads neither the scientific stack nor the
+    records, procedures or reports: each API module imports them inside its functions."""
+    probe = ("import sys, audit, audit.api; print(sorted({m.split('.')[0] for m in sys.modules} "
+             f"& set({HEAVY_AT_THE_DOOR!r})))")
+    done = subprocess.run([sys.executable, "-c", probe], cwd=REPO, capture_output=True,
+                          text=True, check=True)
+    assert done.stdout.strip() == "[]"
+
+
+def test_the_solver_block_is_made_only_through_block():
+    """One class per concept: above the physics, a rocking block is a
+    :class:`~audit.engine.shared.blocks.Block` and the solver's ``RigidBlock`` comes from its
+    one conversion (``Block.rigid``); only the physics (below Block's layer) and Block itself
+    build one."""
+    builders = ("RigidBlock", "RigidBlock.from_size", "RigidBlock.from_dimensions")
+    built = sorted(name for name, path in MODULES.items()
+                   if not name.startswith("audit.physics") and name != "audit.engine.shared.blocks"
+                   for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+                   if isinstance(node, ast.Call) and ast.unparse(node.func) in builders)
+    assert built == []
+    # the walk sees the calls: Block's own conversion is one
+    assert any(isinstance(node, ast.Call) and ast.unparse(node.func) == "RigidBlock.from_size"
+               for node in ast.walk(ast.parse(MODULES["audit.engine.shared.blocks"].read_text(
+                   encoding="utf-8"))))
+
+
+#: A command-line flag in a text: ``--friction``, ``--records FOLDER`` (pip's own aside).
+FLAG = re.compile(r"(?<![\w-])(?<!pip install )--[a-z][\w-]*")
+
+
+def _texts(path: Path):
+    """``(line, text)`` of the string literals of a module, docstrings aside (they document
+    the code for its developers, and name the flag a parameter comes from), or of the lines of
+    a template."""
+    if path.suffix != ".py":
+        yield from enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+        return
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    docs = {id(node.body[0].value) for node in ast.walk(tree)
+            if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+            and node.body and isinstance(node.body[0], ast.Expr)
+            and isinstance(node.body[0].value, ast.Constant)}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docs:
+            yield node.lineno, node.value
+
+
+def test_no_text_below_the_command_line_names_a_flag():
+    """Messages, column descriptions, hints and pages written below the command line name the
+    argument (``friction``, ``scale_to_site``), never a flag (``--friction``): the API's user
+    has no flags, and the command line maps arguments to its flags in one table
+    (:data:`audit.cli.flags.FLAGS`)."""
+    below = [path for name, path in MODULES.items() if _layer(name) < _layer("audit.cli")]
+    below += sorted((REPO / "reports" / "templates").glob("*"))
+    found = [f"{path.relative_to(REPO)}:{line}: {FLAG.findall(text)}" for path in below
+             for line, text in _texts(path) if FLAG.search(text)]
+    assert not found, "\n".join(found)
+    # the scan sees flags: the command line's own texts name them
+    assert any(FLAG.search(text) for _, text in _texts(MODULES["audit.cli.rock"]))
+    assert not FLAG.search("pip install --force-reinstall")

@@ -15,69 +15,52 @@ flag in the argument's place). A run's settings are fields of settings objects
 :class:`~audit.engine.shared.design_site.DesignSite`, :class:`~audit.engine.shared.runtime.Runtime`), given
 as keyword arguments.
 
-Each name is loaded from its module on first use, so that a command that needs one of them
-(``rock``: no pandas) stays light.
+Every name is imported plainly from its module. Importing them is light (no numpy, pandas,
+numba or matplotlib): each module loads its scientific imports inside the functions that use
+them, so a command that needs little (``rock``: no pandas; ``--help``: no numpy) stays quick.
 """
 
 from __future__ import annotations
 
-import importlib
-
-#: Name → the module that holds it.
-_WHERE = {"Block": "audit.api.rocking", "RockingResponse": "audit.api.rocking",
-          "rock": "audit.api.rocking", "run": "audit.api.runs", "AuditResult": "audit.api.runs",
-          "typed": "audit.api.runs", "design_suite": "audit.api.runs",
-          "margins": "audit.api.design_level", "MarginsResult": "audit.api.design_level",
-          "with_page": "audit.api.result_shape", "fragility": "audit.api.probabilistic",
-          "FragilityResult": "audit.api.probabilistic",
-          "FRAGILITY_HTML": "audit.api.probabilistic",
-          "rocking_spectrum": "audit.api.spectra", "response_spectra": "audit.api.spectra",
-          "design_spectrum": "audit.api.spectra", "load_result": "audit.api.runs",
-          "risk": "audit.api.site_risk", "read_hazard": "audit.api.site_risk",
-          "check": "audit.api.object_check", "CheckResult": "audit.api.object_check",
-          # an inventory, --block and --alpha/--size as objects of a check, checked
-          "read_objects": "audit.api.object_check", "parse_block_text": "audit.api.object_check",
-          "object_by_slenderness": "audit.api.object_check",
-          "build_atlas": "audit.api.atlas", "find_atlas": "audit.api.atlas",
-          "atlas_check": "audit.api.atlas", "list_atlases": "audit.api.atlas",
-          "remove_atlas": "audit.api.atlas", "atlas_folder": "audit.api.atlas",
-          "floor_motion": "audit.api.floors", "FloorMotion": "audit.api.floors",
-          "validate": "audit.api.validation", "ValidationResult": "audit.api.validation",
-          # the registered procedures, the grid of START:STOP:STEP, the folder of a run's parts
-          # and its report, for the command line
-          "available_procedures": "procedures.registry", "size_grid": "audit.engine.shared.grid",
-          "within_limits": "audit.engine.shared.blocks",
-          # the compiled kernels' threads, stopped before a command leaves after Ctrl-C
-          "stop_kernels": "audit.physics.kernel_threads",
-          "KERNEL_THREADS": "audit.physics.kernel_threads",
-          "kept_parts": "audit.engine.shared.partial", "PARTIAL_DIR": "audit.engine.shared.partial",
-          "REPORT_HTML": "audit.engine.run.results",
-          # the one place records are read, the suites built in, and an analytic pulse
-          "record_suite": "audit.api.inputs", "built_in_suites": "audit.api.inputs",
-          "PULSE_SUITE": "records", "one_pulse": "records", "mp_pulse": "records",
-          "record_pulses": "audit.api.pulses", "pulse_words": "audit.api.pulses",
-          # the figures the command line saves as PNG
-          "new_figure": "reports.figures", "png_bytes": "reports.figures",
-          "draw_rocking_spectra": "reports.figures", "draw_response_spectra": "reports.figures"}
-
-
-#: The defaults of the API's keywords, as the command line's ``--help`` shows them (light: no
-#: numpy, so that parsing the flags stays quick).
-_DEFAULTS = "audit.engine.shared.defaults"
-
-
-def __getattr__(name):
-    if name in _WHERE:
-        return getattr(importlib.import_module(_WHERE[name]), name)
-    defaults = importlib.import_module(_DEFAULTS)
-    if name in defaults.__all__:
-        return getattr(defaults, name)
-    raise AttributeError(f"module 'audit.api' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(__all__)
-
+from audit.api.atlas import (atlas_check, atlas_folder, build_atlas, find_atlas, list_atlases,
+                             remove_atlas)
+from audit.api.design_level import MarginsResult, margins
+from audit.api.figures import png_bytes, spectra_figure
+from audit.api.floors import FloorMotion, floor_motion
+from audit.api.inputs import available_procedures, built_in_suites, pulse_motion, record_suite
+from audit.api.object_check import (CheckResult, check, object_by_slenderness, parse_block_text,
+                                    read_objects)
+from audit.api.probabilistic import FRAGILITY_HTML, FragilityResult, fragility
+from audit.api.pulses import pulse_words, record_pulses
+from audit.api.result_shape import with_page
+from audit.api.rocking import Block, RockingResponse, rock
+from audit.api.runs import REPORT_HTML, AuditResult, design_suite, load_result, run, typed
+from audit.api.site_risk import read_hazard, risk
+from audit.api.spectra import design_spectrum, response_spectra, rocking_spectrum
+from audit.api.validation import ValidationResult, validate
+# what travels together, each checked by its own parse (docs/api.md)
+from audit.engine.shared.design_site import Site
+from audit.engine.shared.hazard import Hazard
+from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.solver import Solver
+from audit.physics.building.floor import Building, Floor
+from audit.engine.shared.record_request import Records
+# the grid of START:STOP:STEP, the limits of a block a user names, the folder of a run's parts
+# and the compiled kernels' threads (stopped before a command leaves after Ctrl-C), for the
+# command line
+from audit.engine.shared.blocks import within_limits
+from audit.engine.shared.grid import size_grid
+from audit.engine.shared.partial import PARTIAL_DIR, kept_parts
+from audit.physics.kernel_threads import KERNEL_THREADS, stop_kernels
+# the defaults of the API's keywords, as the command line's --help shows them
+from audit.engine.shared.defaults import (
+    DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_ANCHOR_PERIOD_S, DEFAULT_BUILDING_DAMPING,
+    DEFAULT_BUILDING_MODEL, DEFAULT_CHECK_RECORDS, DEFAULT_DAMPING_PCT,
+    DEFAULT_DESIGN_DAMPING_PCT, DEFAULT_DESIGN_PERIODS, DEFAULT_FRAGILITY_RECORDS,
+    DEFAULT_FREE_MOTION_S, DEFAULT_IM, DEFAULT_JOBS, DEFAULT_MARGINS_SIZES,
+    DEFAULT_PERIODS, DEFAULT_PROBABILISTIC_PROCEDURE, DEFAULT_RESPONSE_FREE_MOTION_S,
+    DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_ROBUSTNESS, DEFAULT_SCHEDULER,
+    DEFAULT_SITE_LEVEL, DEFAULT_SIZES, DEFAULT_STRIPES, SITE_LEVELS, alpha_text, sizes_text)
 
 __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_suite", "margins",
            "MarginsResult", "fragility", "FragilityResult", "typed", "with_page", "PARTIAL_DIR",
@@ -86,8 +69,16 @@ __all__ = ["Block", "RockingResponse", "rock", "run", "AuditResult", "design_sui
            "within_limits", "stop_kernels", "KERNEL_THREADS",
            "risk", "read_hazard", "check", "CheckResult", "validate", "ValidationResult",
            "read_objects", "parse_block_text", "object_by_slenderness",
-           "floor_motion", "FloorMotion", "record_suite", "built_in_suites", "PULSE_SUITE",
-           "one_pulse", "mp_pulse", "record_pulses", "pulse_words",
-           "new_figure", "png_bytes", "draw_rocking_spectra",
-           "draw_response_spectra", "build_atlas", "find_atlas", "atlas_check", "list_atlases",
-           "remove_atlas", "atlas_folder"]
+           "floor_motion", "FloorMotion", "record_suite", "built_in_suites", "pulse_motion",
+           "record_pulses", "pulse_words", "png_bytes", "spectra_figure",
+           "build_atlas", "find_atlas", "atlas_check", "list_atlases", "remove_atlas",
+           "atlas_folder", "Building", "Floor", "Site", "Hazard", "Solver", "Runtime", "Records",
+           "DEFAULT_AGREE_BAND", "DEFAULT_ALPHA_DEG", "DEFAULT_ANCHOR_PERIOD_S",
+           "DEFAULT_BUILDING_DAMPING", "DEFAULT_BUILDING_MODEL", "DEFAULT_CHECK_RECORDS",
+           "DEFAULT_DAMPING_PCT", "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS",
+           "DEFAULT_FRAGILITY_RECORDS", "DEFAULT_FREE_MOTION_S", "DEFAULT_IM", "DEFAULT_JOBS",
+           "DEFAULT_MARGINS_SIZES", "DEFAULT_PERIODS",
+           "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_RESPONSE_FREE_MOTION_S",
+           "DEFAULT_RESTITUTION", "DEFAULT_RISK_TARGET", "DEFAULT_ROBUSTNESS", "DEFAULT_SCHEDULER",
+           "DEFAULT_SITE_LEVEL", "DEFAULT_SIZES", "DEFAULT_STRIPES", "SITE_LEVELS", "alpha_text",
+           "sizes_text"]

@@ -10,20 +10,18 @@ for answers in seconds.
 
 from __future__ import annotations
 
-import os
+from typing import TYPE_CHECKING
 
-from audit import G
-from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S,
-                                          DEFAULT_IM, DEFAULT_JOBS, DEFAULT_RESTITUTION,
-                                          DEFAULT_SCHEDULER)
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from audit.engine.shared.defaults import DEFAULT_CHECK_RECORDS, DEFAULT_IM, DEFAULT_SCHEDULER
+
+if TYPE_CHECKING:
+    from audit.engine.shared.runtime import Runtime
+    from audit.engine.shared.solver import Solver
+    from audit.physics.building.floor import Floor
 
 
-def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
-                   restitution=DEFAULT_RESTITUTION, free_motion_s=DEFAULT_FREE_MOTION_S,
-                   g=G, floor: float = 0.0, building=None, building_model=None,
-                   building_damping=DEFAULT_BUILDING_DAMPING, jobs: int = DEFAULT_JOBS,
-                   grid=None):
+def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solver | None = None,
+                   floor: Floor | None = None, runtime: Runtime | None = None, grid=None):
     """(the records on their floor, :class:`~audit.engine.atlas.settings.AtlasSettings`): what
     an atlas of ``records`` on the floor is, each argument checked (InputError naming it).
 
@@ -32,30 +30,30 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
     records : str, path or records.RecordSuite
     im : str
         ``sa:T``, ``pga`` or ``pgv`` (the IM of ``fragility``'s stripes).
-    restitution : str
-    free_motion_s, g : float
-    floor, building, building_model, building_damping :
-        The floor, as for :func:`audit.check`.
-    jobs : int
-        Solver threads of a record (worker processes of ``scheduler="dask"``).
+    solver : Solver, optional
+        The solver's ``restitution``, ``free_motion_s`` [s] and ``g`` [m/s²].
+    floor : Floor, optional
+        The floor, as for :func:`audit.rock`.
+    runtime : Runtime, optional
+        ``jobs``: solver threads of a record (worker processes of ``scheduler="dask"``).
     grid : (sequence, sequence), optional
         The (α [degrees], 2π/p [s]) grid; default the atlas's
         (:data:`~audit.engine.atlas.settings.ALPHA_DEG`, :data:`~audit.engine.atlas.settings.SIZE_S`).
     """
-    from audit.api.inputs import record_suite
+    from audit.api.inputs import floor_group, record_suite, runtime_of, solver_of
     from audit.engine.atlas.settings import ALPHA_DEG, SIZE_S, AtlasSettings, floor_words, \
         records_digest
     from audit.engine.check.settings import CheckSettings
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.intensity import IntensityMeasure
-    from audit.engine.shared.runtime import Runtime
+    solver = solver_of(solver, "atlas", ("restitution", "free_motion_s", "g"))
     # the IM on its own: check's settings refuse PGV (a design spectrum has none), fragility's
     # stripes are PGV
-    checked = CheckSettings.parse(restitution=restitution, free_motion_s=free_motion_s, g=g)
+    checked = CheckSettings.parse(restitution=solver.restitution,
+                                  free_motion_s=solver.free_motion_s, g=solver.g)
     im = im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im)
-    runtime = Runtime.parse(jobs=jobs)
-    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
-                            building_damping=building_damping)
+    runtime = runtime_of(runtime, "atlas", ("jobs",))
+    site = DesignSite(None, floor_group(floor))
     suite = site.apply(record_suite(records))
     entries = [entry for entry in suite if entry.motion is not None]
     alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
@@ -65,6 +63,62 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
                                   checked.free_motion_s,
                                   tuple(float(a) for a in alpha_deg),
                                   tuple(float(s) for s in size_s), runtime.jobs)
+
+
+def atlas_reading(method, records, blocks, *, im, solver: Solver | None = None,
+                  floor: Floor | None = None, stripes=None, named=None):
+    """The atlas a fragility reads by ``method`` (:func:`~audit.engine.atlas.fragility_read.atlas_for`):
+    an :class:`~audit.engine.atlas.fragility_read.AtlasReading`, or None for the direct solve.
+    ``direct`` reads no record for it.
+
+    Parameters
+    ----------
+    method : {None, "atlas", "direct"}
+    records : str, path or records.RecordSuite
+        The records as read (before a floor or a site scaled them: a fragility on the lattice
+        does not depend on the scaling, and the atlas applies the floor itself).
+    blocks : (sequence, sequence)
+        The blocks' (α [degrees], 2π/p [s]).
+    im, solver, floor :
+        What names the atlas, as for :func:`atlas_settings`.
+    stripes : sequence of float, optional
+        Stripes asked for explicitly (refused where not all the atlas's).
+    named : str or path, optional
+        The records as the user named them (the build command the message gives); default
+        the suite's description.
+    """
+    import os
+
+    from audit.engine.atlas.answers import Atlas
+    from audit.engine.atlas.fragility_read import atlas_for, checked_method
+    from audit.engine.atlas.store import ATLAS_NPZ, atlas_dir
+    if checked_method(method) == "direct":
+        return None
+    im = getattr(im, "name", im)
+    _, settings = atlas_settings(records, im=im, solver=solver, floor=floor)
+    key = settings.key()
+    directory = atlas_dir(key)
+    atlas = Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
+    name = named if isinstance(named, (str, os.PathLike)) else getattr(records, "description",
+                                                                        records)
+    return atlas_for(method, atlas, key, *blocks, atlas_command(name, im, solver, floor),
+                     stripes=stripes)
+
+
+def atlas_command(records, im, solver: Solver | None, floor: Floor | None) -> str:
+    """The command line that builds the atlas of ``records`` (as named) on ``floor``."""
+    from audit.engine.shared.defaults import DEFAULT_RESTITUTION
+    from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+    command = f"python -m audit atlas build --records {records} --im {im}"
+    if solver is not None and str(solver.restitution) != DEFAULT_RESTITUTION:
+        command += f" --restitution {solver.restitution}"
+    building = getattr(floor, "building", None)
+    if building is not None and floor.z_over_h:
+        command += f" --floor {floor.z_over_h:g} --building {building.period_s:g}"
+        command += f" --building-model {building.model}"
+        if building.damping != DEFAULT_BUILDING_DAMPING:
+            command += f" --building-damping {building.damping:g}"
+    return command
 
 
 def build_atlas(records=DEFAULT_CHECK_RECORDS, *, scheduler=DEFAULT_SCHEDULER,
@@ -93,55 +147,6 @@ def find_atlas(records=DEFAULT_CHECK_RECORDS, **keywords):
     _, settings = atlas_settings(records, **keywords)
     directory = atlas_dir(settings.key())
     return Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
-
-
-def atlas_reading(method, records, blocks, *, im, restitution=DEFAULT_RESTITUTION,
-                  free_motion_s=DEFAULT_FREE_MOTION_S, g=G, floor=0.0, building=None,
-                  building_model=None, building_damping=DEFAULT_BUILDING_DAMPING,
-                  stripes=None, named=None):
-    """The atlas a fragility reads by ``method`` (:func:`~audit.engine.atlas.fragility_read.atlas_for`):
-    an :class:`~audit.engine.atlas.fragility_read.AtlasReading`, or None for the direct solve.
-    ``direct`` reads no record for it.
-
-    Parameters
-    ----------
-    method : {None, "atlas", "direct"}
-    records : str, path or records.RecordSuite
-        The records as read (before a floor or a site scaled them: a fragility on the lattice
-        does not depend on the scaling, and the atlas applies the floor itself).
-    blocks : (sequence, sequence)
-        The blocks' (α [degrees], 2π/p [s]).
-    im, restitution, free_motion_s, g, floor, building, building_model, building_damping :
-        What names the atlas, as for :func:`atlas_settings`.
-    stripes : sequence of float, optional
-        Stripes asked for explicitly (refused where not all the atlas's).
-    named : str or path, optional
-        The records as the user named them (the build command the message gives); default
-        the suite's description.
-    """
-    from audit.engine.atlas.fragility_read import atlas_for, checked_method
-    from audit.engine.atlas.answers import Atlas
-    from audit.engine.atlas.store import ATLAS_NPZ, atlas_dir
-    if checked_method(method) == "direct":
-        return None
-    im = getattr(im, "name", im)
-    _, settings = atlas_settings(records, im=im, restitution=restitution,
-                                 free_motion_s=free_motion_s, g=g, floor=floor,
-                                 building=building, building_model=building_model,
-                                 building_damping=building_damping)
-    key = settings.key()
-    directory = atlas_dir(key)
-    atlas = Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
-    name = named if isinstance(named, (str, os.PathLike)) else getattr(records, "description",
-                                                                        records)
-    command = (f"python -m audit atlas build --records {name} --im {im}"
-               + (f" --restitution {restitution}" if str(restitution) != DEFAULT_RESTITUTION
-                  else "")
-               + (f" --floor {floor:g} --building {building:g}" if floor else "")
-               + (f" --building-model {building_model}" if floor and building_model else "")
-               + (f" --building-damping {building_damping:g}"
-                  if floor and building_damping != DEFAULT_BUILDING_DAMPING else ""))
-    return atlas_for(method, atlas, key, *blocks, command, stripes=stripes)
 
 
 def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **keywords) -> list:
@@ -182,9 +187,9 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
         raise InputError(f"records: no atlas of {records} on this floor; build it with "
                          "'python -m audit atlas build'", "records")
     chosen = _objects(objects, atlas.provenance["g"])
-    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.design_site import Site
     from audit.engine.shared.intensity import IntensityMeasure
-    sxs_g, sx1_g = DesignSite.parse(site=site).site
+    sxs_g, sx1_g = Site.parse(site).values_g
     site_im = IntensityMeasure.parse(atlas.provenance["im"]).of_design_site(
         {"sxs_g": sxs_g, "sx1_g": sx1_g})
     g = atlas.provenance["g"]

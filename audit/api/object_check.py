@@ -13,20 +13,21 @@ argument.
 
 from __future__ import annotations
 
-import html
 from dataclasses import replace
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from audit import G
 from audit.api.result_shape import Files, with_page
 from audit.engine.shared import fields as check_field
 from audit.engine.check.objects import object_by_slenderness, parse_block_text, read_objects
 from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER)
-from audit.engine.check.limits import BOTH
+                                   BOTH, DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET,
+                                   DEFAULT_SCHEDULER)
 from audit.errors import InputError
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+
+if TYPE_CHECKING:  # pandas is loaded by the check, not by the front door
+    import pandas as pd
 
 
 
@@ -72,6 +73,7 @@ class CheckResult(Files):
         return with_page(check_data_files(self.run), CHECK_HTML, render_check_page)
 
     def _repr_html_(self) -> str:
+        import html
         table = self.table[["object", "procedure", "verdict", "demand", "capacity", "unit",
                             "required_width_m", "p_overturn_at_site", "p_estimator",
                             "exact_required_width_m_10pct"]]
@@ -233,26 +235,28 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     -------
     CheckResult
     """
-    from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
+    from audit.api.inputs import (floor_of, parameters_of, procedures_of, record_suite,
+                                   settings_fields)
     from audit.engine.shared import guards
     from audit.engine.check.costs import check_cost
     from audit.engine.check.pipeline import run_check
     from audit.engine.check.settings import CHECK_FIELDS, CheckSettings
-    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.design_site import DesignSite, Site
     from audit.engine.shared.progress import Progress
     from audit.engine.shared.runtime import Runtime
+    from audit.engine.shared.record_request import Records
     settings = CheckSettings.parse(**settings_fields(locals(), CHECK_FIELDS))
     chosen_objects = _objects(objects, settings.g)
     progress = check_field.callback("progress", progress, "progress(done, total, record_id, how)")
-    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler,
-                            progress=progress if callable(progress) else None)
+    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler,
+                                    progress=progress if callable(progress) else None), None)
     if site is None:
         raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
     # each record is scaled on its own to the site and the stripes (audit.engine.check.pipeline), so no
     # suite scaling first: the records as given
-    site = DesignSite.parse(site=site, site_override=True, scale_to_site=False,
-                            ntc_site=ntc_site, floor=floor, building=building,
-                            building_model=building_model, building_damping=building_damping)
+    from audit.api.runs import _design_site
+    site = _design_site(site, True, False, None, ntc_site,
+                        floor_of(floor, building, building_model, building_damping))
     if settings.guideline_spectrum == "floor" and site.floor.on_ground:
         raise InputError("guideline_spectrum: 'floor' reads the floor's response spectrum; the "
                          "objects stand on the ground (give floor and building)",
@@ -261,7 +265,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     if mass_kg is not None:
         mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,
                                      low_open=True)
-    given = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
+    given = record_suite(Records(records, dt_s, units, skip_bad_records), None)
     # the work, before the records are scaled to the site (scaling keeps their samples)
     guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
                  check_field.flag("force", force))

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from audit.api.result_shape import Files, table_html, with_page
 from audit.engine.shared.defaults import DEFAULT_FRAGILITY_RECORDS, DEFAULT_PROBABILISTIC_PROCEDURE
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from audit.physics.building.floor import Floor
 
 #: The page of the audit, drawn from its saved CSV files.
 FRAGILITY_HTML = "fragility.html"
@@ -77,10 +77,7 @@ class FragilityResult(Files):
 
 
 def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_FRAGILITY_RECORDS,
-              *, skip_bad_records: bool = False, dt_s: float | None = None,
-              units: str | None = None, progress: bool = False, floor: float = 0.0,
-              building: float | None = None, building_model: str | None = None,
-              building_damping: float = DEFAULT_BUILDING_DAMPING,
+              *, progress: bool = False, floor: Floor | None = None,
               method: str | None = None) -> FragilityResult:
     """A probabilistic procedure's fragilities against the exact overturning fragility, by
     multiple PGV stripes (:mod:`audit.engine.fragility.pipeline`).
@@ -89,19 +86,12 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     ----------
     procedure : str
         A registered probabilistic procedure (``femap58``).
-    records : str, path or records.RecordSuite
-        The suite (default the FEMA P695 far-field set).
-    skip_bad_records : bool
-        Use the readable records of the suite; the unreadable ones are warned about and left
-        out.
-    dt_s : float, optional
-        Time step [s] of a text record file that states none (no time column, no ``dt =``
-        comment).
-    units : {"g", "m/s2", "cm/s2"}, optional
-        Units of the accelerations of a text record file that states none.
+    records : Records, str, path or records.RecordSuite
+        The suite (default the FEMA P695 far-field set), and how its files are read
+        (:class:`~audit.engine.shared.record_request.Records`).
     progress : bool
         Say on standard error what is being computed.
-    floor, building, building_model, building_damping :
+    floor : Floor, optional
         Where the components stand (as for :func:`audit.rock`): the records are filtered to
         that floor, and the PGV stripes are then the floor's PFV, the demand P-58's
         unanchored-content fragilities are defined in.
@@ -116,11 +106,9 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
     -------
     FragilityResult
     """
-    import math
-
-    from audit.api.inputs import record_suite
+    from audit.api.inputs import floor_group, record_suite
     from audit.engine.fragility.pipeline import run_fragility
-    from audit.physics.block import RigidBlock
+    from audit.engine.shared.blocks import Block
     from audit.engine.shared.progress import Progress
     from audit.errors import InputError
     from procedures.registry import available_procedures
@@ -131,23 +119,23 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
     from audit.engine.shared.design_site import DesignSite
-    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
-                            building_damping=building_damping)
     from audit.api.atlas import atlas_reading
     from audit.engine.atlas.fragility_read import checked_method
+    from audit.engine.shared.record_request import Records
     checked_method(method)
-    read = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
+    site = DesignSite(None, floor_group(floor))
+    request = Records.parse(records)
+    read = record_suite(request)
     suite = site.apply(read)
     entries = [entry for entry in suite.entries if entry.motion is not None]
     if not entries:
         raise InputError(f"records: {suite.description} has no record with a motion", "records")
     chosen = found[procedure]()
     blocks = [c for c in chosen.components if c.has_block and c.intensity_measure == "PGV"]
-    shapes = [RigidBlock.from_dimensions(c.depth_m / 2, c.height_m / 2) for c in blocks]
-    atlas = atlas_reading(method, read, ([math.degrees(b.alpha) for b in shapes],
-                                         [b.size_s for b in shapes]), im="pgv", floor=floor,
-                          building=building, building_model=building_model,
-                          building_damping=building_damping, named=records)
+    shapes = [Block.of_dimensions(c.depth_m, c.height_m) for c in blocks]
+    atlas = atlas_reading(method, read, ([b.alpha_deg for b in shapes],
+                                         [b.size_s for b in shapes]), im="pgv",
+                          floor=site.floor, named=request.source)
     if progress:
         Progress(0, "step").stage(
             f"{chosen.title}: exact overturning of its components under {len(entries)} records "
@@ -155,8 +143,8 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
                else f"read from the atlas {atlas.key[:12]} at its {atlas.levels.size} PGV stripes"))
     tables = run_fragility(chosen, [e.id for e in entries], [e.motion for e in entries],
                            atlas=atlas)
-    return FragilityResult(chosen, tables, records if isinstance(records, str) and site.floor.on_ground
-                           else suite.description)
+    return FragilityResult(chosen, tables, request.source if isinstance(request.source, str)
+                           and site.floor.on_ground else suite.description)
 
 
 __all__ = ["fragility", "FragilityResult", "FRAGILITY_HTML"]

@@ -35,12 +35,13 @@ def record_pulses(records=None, *, plot: bool = False, dt_s: float | None = None
 
     from audit import G
     from audit.api.inputs import record_suite
+    from audit.engine.shared.record_request import Records
     from audit.engine.shared.fields import flag
     from audit.physics.pulses.record_pulse import classify_entry, record_pulse
     from audit.physics.pulses.shahi_baker_2014 import velocity_cm_s
 
     plot = flag("plot", plot)
-    suite = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
+    suite = record_suite(Records(records, dt_s, units, skip_bad_records), None)
     rows, panels = [], []
     for entry in suite:
         found = record_pulse(entry)

@@ -4,17 +4,22 @@ is the audit's one :class:`~audit.engine.shared.blocks.Block`."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+from typing import TYPE_CHECKING
 
 from audit import G
 from audit.api.result_shape import Files
 from audit.engine.shared import fields as check
 from audit.engine.shared.blocks import Block, within_limits
-from audit.engine.shared.defaults import DEFAULT_FREE_MOTION_S
 from audit.errors import InputError
-from audit.physics.block import Restitution, RigidBlock
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
-from audit.physics.rocking import RockingHistory
-from audit.physics.rocking import simulate
+from audit.physics.block import Restitution
+
+if TYPE_CHECKING:  # the solver (numba) is loaded by rock, not by the front door
+    from audit.engine.shared.runtime import Runtime
+    from audit.engine.shared.solver import Solver
+    from audit.physics.building.floor import Floor
+    from audit.physics.rocking import RockingHistory
+
 
 class RockingResponse(Files):
     """The exact response of one block to one ground motion (:func:`rock`).
@@ -170,13 +175,9 @@ class RockingResponse(Files):
                 f"{what}, {self.impacts} impact{'' if self.impacts == 1 else 's'})")
 
 
-def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
-         restitution=None, vertical: bool = False, friction: float | None = None,
-         records=None, dt_s: float | None = None, units: str | None = None,
-         skip_bad_records: bool = False,
-         force: bool = False, floor: float = 0.0, building: float | None = None,
-         building_model: str | None = None,
-         building_damping: float = DEFAULT_BUILDING_DAMPING) -> RockingResponse:
+def rock(block: Block, motion, *, records=None, solver: Solver | None = None,
+         friction: float | None = None, floor: Floor | None = None,
+         runtime: Runtime | None = None) -> RockingResponse:
     """Exact rocking response of ``block`` to ``motion`` (Eq. 4.3, impacts by Eq. 4.8).
 
     Parameters
@@ -187,57 +188,53 @@ def rock(block: Block, motion, *, free_motion_s: float = DEFAULT_FREE_MOTION_S,
     motion : str, path, records.GroundMotion, records.RecordEntry or (array, float)
         A record id (of ``records``), a record file, a motion, or ``(acceleration [m/s²],
         dt [s])``.
-    free_motion_s : float
-        Free motion simulated after the excitation ends [s].
-    restitution : str or float, optional
-        The impact model, instead of the block's r: ``housner`` (Eq. 4.8), a fixed r, or
-        ``xFACTOR`` times Eq. 4.8.
-    vertical : bool
-        Include the motion's vertical component (gravity g + üv).
+    records : Records, str, path or records.RecordSuite, optional
+        Where a record id is looked up (default: the default suite) and how a record is read
+        (:class:`~audit.engine.shared.record_request.Records`: the time step [s] and units of
+        a text record file that states none, the unreadable records left out).
+    solver : Solver, optional
+        The solver's model: ``free_motion_s`` simulated after the excitation ends [s];
+        ``restitution``, the impact model instead of the block's r (``housner``, Eq. 4.8, the
+        default, keeps the block's; a fixed r; ``xFACTOR`` times Eq. 4.8); ``vertical``, the
+        motion's vertical component in the equation (gravity g + üv). The block's ``g`` is the
+        one used (``solver.g`` is refused).
     friction : float, optional
         Friction coefficient μ of the base [-]: whether the block slides (``.slides``).
-    records : str, path or records.RecordSuite, optional
-        Where a record id is looked up (default: the default suite).
-    dt_s, units, skip_bad_records :
-        How a record is read: the time step [s] and the units (``g``, ``m/s2``, ``cm/s2``) of
-        a text record file that states none; the unreadable records of the suite an id is
-        looked up in left out (:func:`audit.api.inputs.record_suite`).
-    force : bool
-        Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
-    floor, building, building_model, building_damping :
-        Where the object stands: z/H (0, the default, is the ground), the building's T1 [s],
-        ``shear:N`` or ``continuum:α0`` (default ``continuum:10``) and its damping ratio
-        (default 0.05); the object rocks on the floor's motion
-        (:mod:`audit.physics.building.floor_motion`).
+    floor : Floor, optional
+        Where the object stands (default the ground): on a floor of a building
+        (``Floor(z_over_h, Building(period_s, model, damping))``) it rocks on the floor's
+        motion (:mod:`audit.physics.building.floor_motion`).
+    runtime : Runtime, optional
+        ``force``: start even when the estimated work is beyond the limits
+        (:mod:`audit.engine.shared.guards`).
     """
-    from audit.api.inputs import READING_FIELDS, on_floor_of, settings_fields
-    from audit.engine.shared.floors import FLOOR_FIELDS
+    from audit.api.inputs import floor_group, on_floor_of, runtime_of, solver_of
     from audit.engine.shared import guards
+    from audit.physics.rocking import simulate
     if isinstance(block, str):
         block = Block.parse(block)
     if not isinstance(block, Block):
         raise InputError(f"block: expected a Block (audit.Block(alpha_deg=…, size_s=…) or "
                          f"Block.from_dimensions) or 'WIDTHxHEIGHT', got {block!r}", "block")
     block = within_limits(block, "block", "block")
-    force = check.flag("force", force)
-    motion, floor_document = on_floor_of(motion, settings_fields(locals(), FLOOR_FIELDS), records,
-                                         settings_fields(locals(), READING_FIELDS))
-    free_motion_s = check.number("free_motion_s", free_motion_s, "a duration ≥ 0 s", 0)
+    solver = solver_of(solver, "rock", ("restitution", "free_motion_s", "vertical"))
+    force = runtime_of(runtime, "rock", ("force",)).force
+    motion, floor_document = on_floor_of(motion, floor_group(floor), records)
     if friction is not None:
         friction = check.number("friction", friction, "a positive friction coefficient μ", 0,
                                 low_open=True)
-    if check.flag("vertical", vertical) and motion.vertical is None:
-        raise InputError(f"vertical: {motion.id} has no vertical component (give it in the "
-                         "manifest as vertical_file, or a PEER UP/DWN file beside the record)",
-                         "vertical")
-    rigid = block.rigid
-    label = str(Restitution()) if block.r is None else f"{block.r:g}"
-    if restitution is not None:
-        model = restitution if isinstance(restitution, Restitution) else Restitution.parse(
-            restitution, "restitution")
-        rigid, label = RigidBlock(rigid.p, rigid.alpha, model, rigid.g), str(model)
-    guards.check(guards.estimate([motion], free_motion_s, blocks=1), force)
-    return RockingResponse(block, motion, simulate(rigid, motion, free_motion_s, vertical=vertical),
+    if solver.vertical and motion.vertical is None:
+        raise InputError(f"solver.vertical: {motion.id} has no vertical component (give it in "
+                         "the manifest as vertical_file, or a PEER UP/DWN file beside the "
+                         "record)", "solver.vertical")
+    solved, label = block, str(Restitution()) if block.r is None else f"{block.r:g}"
+    if solver.restitution != Restitution():
+        # the block with the model's r, at α = radians(alpha_deg) as its solver's block has it
+        solved = replace(block, r=float(solver.restitution.r(math.radians(block.alpha_deg))))
+        label = str(solver.restitution)
+    guards.check(guards.estimate([motion], solver.free_motion_s, blocks=1), force)
+    return RockingResponse(block, motion, simulate(solved.rigid, motion, solver.free_motion_s,
+                                                   vertical=solver.vertical),
                            friction, label, floor_document)
 
 

@@ -4,29 +4,38 @@
 from __future__ import annotations
 
 import functools
-import tempfile
+from dataclasses import replace
 import warnings
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from audit.engine.shared import fields as check
-from audit.engine.run.audit_run import AuditRun
 from audit import G
 from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
                                    DEFAULT_JOBS, DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS,
                                    DEFAULT_SCHEDULER)
 from audit.api.inputs import settings_fields
-from audit.engine.shared.design_site import SITE_FIELDS, DesignSite
+from audit.engine.shared.design_site import DesignSite, Site
 from audit.engine.shared.runtime import Runtime
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
-from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
 from audit.errors import InputWarning
+
+if TYPE_CHECKING:  # pandas and the engine are loaded by what uses them, not by the front door
+    import pandas as pd
+
+    from audit.engine.run.audit_run import AuditRun
+    from audit.engine.run.settings import AuditSettings
+    from audit.physics.building.floor import Floor
+
+#: The run's self-contained HTML report, beside its files.
+REPORT_HTML = "report.html"
 
 
 def typed(table: pd.DataFrame, file_name: str) -> pd.DataFrame:
     """``table`` of ``file_name`` with its columns typed by the schema (the column guide):
     numbers as floats (NaN where empty), flags as booleans (NA where empty), text as text."""
+    import pandas as pd
+
     from audit.engine.shared.schemas import GUIDE
     table = table.copy()
     for column, (unit, _) in GUIDE[file_name].items():
@@ -88,6 +97,7 @@ class AuditResult:
     def bottom_line(self) -> pd.DataFrame:
         """Per procedure: blocks compared, the % unsafe and uneconomic, the median approx/exact,
         and the worst block."""
+        import pandas as pd
         titles = {p["name"]: p["title"] for p in self.summary["procedures"]}
         rows = []
         for line in self.summary["bottom_line"]:
@@ -115,7 +125,7 @@ class AuditResult:
         """Write the result files and ``report.html`` into ``out_dir`` (atomically, together)."""
         import shutil
 
-        from audit.engine.run.results import COLUMNS_JSON, DATA_FILES, REPORT_HTML
+        from audit.engine.run.results import COLUMNS_JSON, DATA_FILES
         from audit.files import staged_folder
         out_dir = check.path("out_dir", out_dir, "a folder")
         with staged_folder(out_dir) as staging:
@@ -250,38 +260,40 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     -------
     AuditResult
     """
-    from audit.api.inputs import parameters_of, procedures_of, record_suite
+    from audit.api.inputs import floor_of, parameters_of, procedures_of, record_suite
     from audit.engine.shared import guards
     from audit.engine.run.costs import audit_cost
     from audit.engine.shared.progress import Progress
-    from audit.engine.run.results import REPORT_HTML
     from audit.engine.run.pipeline import run_audit, compiles_first
+    from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
     from audit.files import staged_folder
+    from audit.engine.shared.record_request import Records
     given = locals()
     settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))
-    site = DesignSite.parse(**settings_fields(given, SITE_FIELDS))
+    site = _design_site(site, site_override, scale_to_site, anchor_period_s, ntc_site,
+                        floor_of(floor, building, building_model, building_damping))
     detail = check.words("detail", detail)
     bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
-    runtime = Runtime.parse(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
-                            resume=resume, progress=progress if callable(progress) else None)
-    force = check.flag("force", force)
+    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
+                                    resume=resume, force=force,
+                                    progress=progress if callable(progress) else None), None)
+    force = runtime.force
     if out_dir is not None:
         out_dir = check.path("out_dir", out_dir, "a folder")
     chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
-    suite = site.apply(record_suite(records, dt_s=dt_s, units=units,
-                                    skip_bad_records=skip_bad_records))
+    suite = site.apply(record_suite(Records(records, dt_s, units, skip_bad_records), None))
     _warn_without_vertical(suite, settings)
     guards.check(audit_cost(chosen, suite, settings, runtime), force)
     stage = Progress(len(suite), "record") if bar else runtime.progress
     if bar:
-        runtime = Runtime(runtime.jobs, runtime.scheduler, runtime.partial_dir, runtime.resume,
-                          stage)
+        runtime = replace(runtime, progress=stage)
         stage.stage(f"auditing {', '.join(p.name for p in chosen)} on {len(suite)} records")
         if compiles_first():
             stage.stage("compiling the rocking solver and the oscillator kernels for this "
                         "machine (only the first run after installing or updating: about 40 s)")
     stage = stage if hasattr(stage, "stage") else None
     if out_dir is None:
+        import tempfile
         scratch = tempfile.TemporaryDirectory(prefix="rocking-audit-")
         run_audit(chosen, suite, settings, runtime, scratch.name, detail, progress=stage)
         return AuditResult(scratch.name, scratch)
@@ -314,26 +326,43 @@ def load_result(folder) -> AuditResult:
     return result
 
 
-def design_suite(suite, *, site=None, site_override: bool = False, scale_to_site: bool = False,
-                 anchor_period_s: float | None = None, ntc_site=None, floor: float = 0.0,
-                 building: float | None = None, building_model: str | None = None,
-                 building_damping: float = DEFAULT_BUILDING_DAMPING):
-    """``suite`` with the design site and scaling of the fields of
-    :class:`~audit.engine.shared.design_site.DesignSite`.
+def design_suite(suite, *, site: Site | None = None, floor: Floor | None = None):
+    """``suite`` at the design site, on the floor (:meth:`DesignSite.apply
+    <audit.engine.shared.design_site.DesignSite.apply>`).
 
     Parameters
     ----------
     suite : records.RecordSuite
-    site, site_override, scale_to_site, anchor_period_s, ntc_site :
-        As for :func:`run` (S_XS, S_X1 [g]; anchor period [s]; NTC 2018 a_g [g], F0, T_C* [s],
-        soil, topography).
-    floor, building, building_model, building_damping :
-        Where the blocks stand: z/H in the building (0 the ground, the default), its
-        first-mode period T1 [s], its model (``shear:N`` or ``continuum:α0``, default
-        ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
-        motion, the blocks rock on the floor's (:mod:`audit.engine.shared.floors`).
+    site : Site, (float, float) or str, optional
+        As for :func:`run`: S_XS, S_X1 [g], and ``Site(…, ntc=…, override=…,
+        scale_records=…, anchor_period_s=…)``: NTC 2018 a_g [g], F0, T_C* [s], soil,
+        topography; the site over the records' own; the records scaled to it (FEMA P695) at
+        the anchor period [s].
+    floor : Floor, optional
+        Where the blocks stand (``Floor(z_over_h, Building(period_s, model, damping))``,
+        default the ground); the site scales the ground motion, the blocks rock on the
+        floor's (:mod:`audit.engine.shared.floors`).
     """
-    return DesignSite.parse(**settings_fields(locals(), SITE_FIELDS)).apply(suite)
+    return DesignSite.parse(site, floor, "run").apply(suite)
+
+
+def _design_site(site, override, scale, anchor_period_s, ntc, floor) -> DesignSite:
+    from audit.api.inputs import keywords_named
+    with keywords_named({"site.ntc": "ntc_site", "site.override": "site_override",
+                         "site.scale_records": "scale_to_site",
+                         "site.anchor_period_s": "anchor_period_s"}):
+        return _site_of(site, override, scale, anchor_period_s, ntc, floor)
+
+
+def _site_of(site, override, scale, anchor_period_s, ntc, floor) -> DesignSite:
+    if site is None:
+        site = None if ntc is None and override is False and scale is False else Site(None, None)
+    elif not isinstance(site, Site):
+        site = Site.parse(site)
+    if site is not None:
+        site = Site(site.sxs_g, site.sx1_g, ntc=ntc, override=override, scale_records=scale,
+                    anchor_period_s=anchor_period_s)
+    return DesignSite.parse(site, floor)
 
 
 def _warn_without_vertical(suite, settings: AuditSettings) -> None:
@@ -344,4 +373,4 @@ def _warn_without_vertical(suite, settings: AuditSettings) -> None:
                           stacklevel=3)
 
 
-__all__ = ["run", "AuditResult", "typed", "design_suite", "load_result"]
+__all__ = ["run", "AuditResult", "typed", "design_suite", "load_result", "REPORT_HTML"]

@@ -55,7 +55,7 @@ def risk(fragility, hazard, site=None, imt: str | None = None):
     from audit.engine.design.risk import LognormalFragility, StripeFragility, risk_integral
     if not isinstance(fragility, (LognormalFragility, StripeFragility)):
         if hasattr(fragility, "get") and "median" in fragility:  # a fragility.csv row
-            values, im = (fragility["median"], fragility["beta"]), fragility.get("im")
+            values, im = (fragility["median"], fragility.get("beta")), fragility.get("im")
         elif isinstance(fragility, (str, bytes)) or not hasattr(fragility, "__len__") \
                 or len(fragility) != 2:
             raise InputError(f"fragility: expected (median_g, beta), a row of "

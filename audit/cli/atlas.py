@@ -60,14 +60,15 @@ def add_parser(sub):
 
 
 def _keywords(args) -> dict:
-    return {"im": args.im, "restitution": args.restitution, "free_motion_s": args.free_motion,
-            **options.floor_values(args)}
+    from audit.api import Solver
+    return {"im": args.im, "solver": Solver(args.restitution, args.free_motion),
+            "floor": options.floor(args)}
 
 
 def run_build(args) -> int:
-    from audit.api import build_atlas
+    from audit.api import Runtime, build_atlas
     done = build_atlas(args.records, scheduler=args.scheduler, progress=True,
-                       jobs=options.cap_jobs(args.jobs), **_keywords(args))
+                       runtime=Runtime(options.cap_jobs(args.jobs)), **_keywords(args))
     print(f"atlas of {done['records']} ({len(done['record_ids'])} records, {done['im']}, "
           f"{done['floor']}): {done['solves']} outcomes in {done['seconds']:.0f} s "
           f"({done['reused']} records reused), on {done['where']}", file=sys.stderr)

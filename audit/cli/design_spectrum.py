@@ -34,14 +34,22 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.api import design_spectrum
+    from audit.api import Site, design_spectrum
+    from audit.errors import InputError
     csv = outputs.checked(files={"--csv": args.csv})["--csv"]
     damping = options.damping_pct(args.damping)
     periods = options.time_grid(args.periods, "--periods", allow_zero=True)
-    spectrum, columns = design_spectrum(
-        args.code, periods, 100.0 * damping, sxs_g=args.sxs, sx1_g=args.sx1, na=args.na,
-        nv=args.nv, ag_g=args.ag, f0=args.f0, tc_star_s=args.tc_star, soil=args.soil,
-        topography=args.topography)
+    needs = {"fema356": ("--sxs", "--sx1"), "ntc2018": ("--ag", "--f0", "--tc-star"),
+             "ubc97": ()}[args.code]
+    absent = [flag for flag in needs if getattr(args, flag[2:].replace("-", "_")) is None]
+    if absent:
+        raise InputError(f"{', '.join(absent)}: {args.code} needs {', '.join(needs)}")
+    site = {"fema356": lambda: Site(args.sxs, args.sx1),
+            "ntc2018": lambda: Site(None, None, ntc=(args.ag, args.f0, args.tc_star, args.soil,
+                                                     args.topography)),
+            "ubc97": lambda: None}[args.code]()
+    spectrum, columns = design_spectrum(args.code, periods, 100.0 * damping, site=site,
+                                        near_source=(args.na, args.nv))
     if args.code == "ubc97":
         print(f"UBC 97: seismic zone 4, soil profile S_D, N_a = {args.na:g}, N_v = {args.nv:g} "
               f"(C_a = {spectrum.ca:.3f}, C_v = {spectrum.cv:.3f})", file=sys.stderr)

@@ -26,6 +26,20 @@ FLAGS = {
     "building_damping": "--building-damping",
     "dt_s": "--dt", "units": "--units", "params": "--param", "mass_kg": "--mass",
     "limit_state": "--limit-state", "method": "--method",
+    # the fields of the API's groups (audit.api.Floor, Site, Hazard, Solver, Runtime, Records)
+    "floor.z_over_h": "--floor", "floor.building": "--building",
+    "floor.building.period_s": "--building", "floor.building.model": "--building-model",
+    "floor.building.damping": "--building-damping", "site.ntc": "--ntc-site",
+    "site.limit_state": "--limit-state", "site.level": "--level",
+    "site.override": "--site-override", "site.scale_records": "--scale-to-site",
+    "site.anchor_period_s": "--anchor-period", "hazard.curve": "--hazard",
+    "hazard.imt": "--hazard-imt", "hazard.location": "--site-location",
+    "hazard.return_period": "--return-period", "hazard.poe": "--poe",
+    "hazard.risk_target": "--risk-target", "solver.restitution": "--restitution",
+    "solver.free_motion_s": "--free-motion", "solver.vertical": "--vertical",
+    "runtime.jobs": "--jobs", "runtime.scheduler": "--scheduler", "runtime.resume": "--resume",
+    "runtime.partial_dir": "--out", "runtime.force": "--force", "records.dt_s": "--dt",
+    "records.units": "--units", "records.skip_bad_records": "--skip-bad-records",
 }
 
 
@@ -38,11 +52,13 @@ def with_flags(message: str, fields) -> str:
     suite's title): it is replaced only outside parentheses and quotes, where the message
     speaks of the argument itself. A field with an underscore (``site_location``) is the
     argument wherever it appears."""
-    for field in dict.fromkeys(fields):
+    # a group's field (floor.building.model) first, and never a part of one: the argument
+    # alone (floor) is replaced only where no field of it follows
+    for field in sorted(dict.fromkeys(fields), key=len, reverse=True):
         flag = FLAGS.get(field)
         if flag:
-            pattern = re.compile(rf"(?<![\w-]){re.escape(field)}(=True)?(?!\w)")
-            if "_" in field:
+            pattern = re.compile(rf"(?<![\w.-]){re.escape(field)}(=True)?(?!\w|\.\w)")
+            if "_" in field or "." in field:
                 message = pattern.sub(flag, message)
             else:
                 message = "".join(pattern.sub(flag, part) if outside else part

@@ -33,8 +33,7 @@ def run(args) -> int:
     import audit.api as api
     csv = outputs.checked(files={"--csv": args.csv},
                           inputs={"--record": args.record, "--records": args.records})["--csv"]
-    result = api.floor_motion(args.record, args.records, **options.reading(args),
-                              **options.floor_values(args))
+    result = api.floor_motion(args.record, options.floor(args), options.records(args))
     from audit.files import write_atomically
     if csv is not None:
         write_atomically({csv: result.csv()})

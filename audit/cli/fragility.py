@@ -38,8 +38,8 @@ def run(args) -> int:
     paths = checked(folders={"--out": (args.out, WRITES)}, files={"--pelicun": args.pelicun},
                     inputs={"--records": args.records})
     out_dir, pelicun = paths["--out"], paths["--pelicun"]
-    result = fragility(args.procedure, args.records, **options.reading(args), progress=True,
-                       **options.floor_values(args), method=args.method)
+    result = fragility(args.procedure, options.records(args), progress=True,
+                       floor=options.floor(args), method=args.method)
     pelicun_csv = result.pelicun_csv() if pelicun else None  # made before anything is written
     result.write(out_dir)
     if pelicun:

@@ -15,7 +15,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.api import (PULSE_SUITE, available_procedures, built_in_suites, pulse_words,
+    from audit.api import (available_procedures, built_in_suites, pulse_words,
                            record_suite)
     print("Procedures:")
     for name, cls in available_procedures().items():
@@ -26,11 +26,9 @@ def run(args) -> int:
               f"{'/'.join(sorted({c.intensity_measure for c in cls.components}))}) of "
               f"{len(cls.components)} components")
     print("\nBuilt-in suites (--records NAME):")
-    print(f"  {PULSE_SUITE:<26} 7 one-cosine pulses idealising the seed records of Table 5.1 "
-          "(not recorded motions)")
     for name, holds in built_in_suites().items():
         print(f"  {name:<26} {holds}")
-    suite = record_suite(args.records, **options.reading(args))
+    suite = record_suite(options.records(args))
     print(f"\nRecords ({suite.description}):")
     unknown = 0
     for entry in suite:

@@ -286,15 +286,14 @@ def motion(args) -> dict:
         if args.pulse == "mp":
             if args.gamma is None or args.nu is None:
                 raise InputError("--pulse mp needs --gamma and --nu DEG")
-            from audit.api import mp_pulse
-            return {"motion": mp_pulse(args.amplitude, args.pulse_period, args.gamma, args.nu)}
-        if args.gamma is not None or args.nu is not None:
+        elif args.gamma is not None or args.nu is not None:
             raise InputError("--gamma and --nu: only for --pulse mp")
-        from audit.api import one_pulse
-        return {"motion": one_pulse(args.pulse, args.amplitude, args.pulse_period)}
+        from audit.api import pulse_motion
+        return {"motion": pulse_motion(args.pulse, args.amplitude, args.pulse_period,
+                                       gamma=args.gamma, nu_deg=args.nu)}
     if not args.record:
         raise InputError("give the excitation: --record ID_OR_PATH, or --pulse cosine|sine|mp")
-    return {"motion": args.record, "records": args.records, **reading(args)}
+    return {"motion": args.record, "records": records(args)}
 
 
 def add_records_option(parser):
@@ -321,6 +320,14 @@ def add_skip_bad_records_option(parser):
     parser.add_argument("--skip-bad-records", action="store_true",
                         help="read the readable records of the suite and list the unreadable "
                              "ones (default: stop at the first)")
+
+
+def records(args):
+    """The :class:`records.Records` of ``--records``, ``--dt``, ``--units`` and
+    ``--skip-bad-records`` (the one place a command's record flags are read)."""
+    from audit.api import Records
+    return Records(args.records, dt_s=args.dt, units=args.units,
+                   skip_bad_records=args.skip_bad_records)
 
 
 def reading(args) -> dict:
@@ -409,6 +416,13 @@ def add_param_option(parser):
                         help="a procedure's or component provision's parameter, e.g. "
                              "asce7_22.I_p=1.5 or nzs1170_5.h_n=28; repeat it for several "
                              "(docs/procedures.md lists each one's keys, ranges and defaults)")
+
+
+def floor(args):
+    """The :class:`~audit.physics.building.floor.Floor` of ``--floor``, ``--building``,
+    ``--building-model`` and ``--building-damping``, checked by the API."""
+    from audit.api import Building, Floor
+    return Floor(args.floor, Building(args.building, args.building_model, args.building_damping))
 
 
 def floor_values(args) -> dict:

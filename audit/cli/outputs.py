@@ -14,14 +14,6 @@ def checked(*, files=None, folders=None, inputs=None) -> dict[str, Path | None]:
     return check_outputs(files=files, folders=folders, inputs=inputs)
 
 
-def figure_png(draw, height: float = 6.0) -> bytes:
-    """A PNG of the matplotlib figure drawn by ``draw(fig)``."""
-    from audit.api import new_figure, png_bytes
-    fig = new_figure(10.0, height)
-    draw(fig)
-    return png_bytes(fig)
-
-
 def csv_text(table) -> tuple[str, int]:
     """CSV text and row count of ``table``: a pandas DataFrame or, for commands that need no
     pandas, a dict of equal-length numeric columns; numbers written with ``%.8g`` either way."""
@@ -48,4 +40,4 @@ def write_csv(table, path: Path | None, extra: dict[Path, bytes] | None = None) 
         print(f"Wrote {rows} rows to {path}", file=sys.stderr)
 
 
-__all__ = ["checked", "figure_png", "csv_text", "write_csv"]
+__all__ = ["checked", "csv_text", "write_csv"]

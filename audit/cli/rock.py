@@ -69,9 +69,10 @@ def run(args) -> int:
         # a size beyond the records is refused naming the flag typed (not --block)
         block = api.within_limits(block, f"--size {args.size:g}" if args.size is not None
                                   else f"--p {args.p:g}")
-    response = api.rock(block, **options.motion(args), free_motion_s=args.free_motion,
-                        restitution=restitution, vertical=args.vertical, friction=args.friction,
-                        force=args.force, **options.floor_values(args))
+    response = api.rock(block, **options.motion(args),
+                        solver=api.Solver(restitution, args.free_motion, vertical=args.vertical),
+                        friction=args.friction, floor=options.floor(args),
+                        runtime=api.Runtime(force=args.force))
     result = {**response.as_dict(),
               "width_m": block.width_m, "height_m": block.height_m,
               "vertical": args.vertical}

@@ -50,22 +50,22 @@ def run(args) -> int:
         periods = options.time_grid(args.periods, "--periods", allow_zero=True)
         frame = api.response_spectra(**options.motion(args), periods_s=periods,
                                      damping_pct=100.0 * damping, free_motion_s=args.free_motion,
-                                     force=args.force, **options.floor_values(args))
+                                     floor=options.floor(args),
+                                     runtime=api.Runtime(force=args.force))
     else:
         alphas = options.alphas_deg(args.alpha)
         sizes = options.sizes(args.size, options.typed_flag(args, "size"))
         frame = api.rocking_spectrum(**options.motion(args), size_s=sizes, alpha_deg=alphas,
-                                     restitution=args.restitution, free_motion_s=args.free_motion,
-                                     vertical=args.vertical, jobs=args.jobs, force=args.force,
-                                     **options.floor_values(args))
+                                     solver=api.Solver(args.restitution, args.free_motion,
+                                                       vertical=args.vertical),
+                                     floor=options.floor(args),
+                                     runtime=api.Runtime(args.jobs, force=args.force))
     if frame.attrs["floor"]["building_model"]:
         print(f"Spectra of the floor motion {frame.attrs['floor']['description']}",
               file=sys.stderr)
     figure = {}
     if plot:  # matplotlib is loaded only for a figure
-        draw = (api.draw_response_spectra if args.kind == "response"
-                else api.draw_rocking_spectra)
-        record_id = frame.attrs.get("record", "")
-        figure = {plot: outputs.figure_png(lambda fig: draw(fig, frame, record_id))}
+        figure = {plot: api.png_bytes(api.spectra_figure(frame, args.kind,
+                                                         frame.attrs.get("record", "")))}
     outputs.write_csv(frame, csv, figure)
     return 0

@@ -5,14 +5,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from audit import G
 from audit.errors import InputError
 
 
 def slenderness(b, h):
     """Slenderness α = atan(b/h) [rad] of a block of half-width ``b`` and half-height ``h`` [m]."""
+    import numpy as np  # here, not at the top: the API's front door imports this module
     return np.arctan2(b, h)
 
 
@@ -26,11 +25,13 @@ def frequency_parameter(radius, g=G):
     g : float
         Acceleration of gravity [m/s²].
     """
+    import numpy as np
     return np.sqrt(3.0 * g / (4.0 * np.asarray(radius, dtype=float)))
 
 
 def radius_from_p(p, g=G):
     """R = 3g / (4p²) [m] from the frequency parameter p [rad/s]."""
+    import numpy as np
     return 3.0 * g / (4.0 * np.asarray(p, dtype=float) ** 2)
 
 
@@ -40,6 +41,7 @@ def rotation_at_displacement(displacement_m, alpha_rad, radius_m):
 
     NaN for d outside [0, R(1 + sin α)]; d ≥ R sin α = b is at or beyond instability (θ ≥ α).
     """
+    import numpy as np
     with np.errstate(invalid="ignore"):
         return alpha_rad - np.arcsin(np.sin(alpha_rad)
                                      - np.asarray(displacement_m, dtype=float) / radius_m)
@@ -56,6 +58,7 @@ def coefficient_of_restitution(alpha_rad):
     alpha_rad : float or array
         Slenderness α [rad].
     """
+    import numpy as np
     return (1.0 - 1.5 * np.sin(alpha_rad) ** 2) ** 2
 
 
@@ -96,6 +99,7 @@ class Restitution:
 
     def r(self, alpha_rad):
         """Coefficient of restitution r [-] of a block of slenderness ``alpha_rad`` [rad]."""
+        import numpy as np
         if self.value is not None:
             return np.full_like(np.asarray(alpha_rad, dtype=float), self.value)[()]
         return self.factor * coefficient_of_restitution(alpha_rad)

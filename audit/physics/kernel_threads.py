@@ -13,7 +13,10 @@ from __future__ import annotations
 import functools
 import os
 import threading
-from concurrent.futures import ThreadPoolExecutor
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the pool is made when a kernel first runs, not when the API is imported
+    from concurrent.futures import ThreadPoolExecutor
 
 #: Threads the calls of a process may hold at once (started only when none is idle).
 MAX_THREADS = 1024
@@ -23,6 +26,7 @@ KERNEL_THREADS = "rocking-audit-kernel"
 
 @functools.cache
 def _pool() -> ThreadPoolExecutor:
+    from concurrent.futures import ThreadPoolExecutor
     return ThreadPoolExecutor(MAX_THREADS, thread_name_prefix=KERNEL_THREADS)
 
 

@@ -55,8 +55,10 @@ def test_rock_reproduces_figure_4_1():
     # the block p = 2 rad/s, α = 15° of Figure 4.1 survives a one-cosine pulse of 0.3148 g and
     # T_p = 2 s and overturns at 0.3152 g
     block = audit.Block(alpha_deg=15.0, size_s=math.pi)
-    survives = audit.rock(block, records.one_pulse("cosine", 0.3148, 2.0), free_motion_s=8.0)
-    overturns = audit.rock(block, records.one_pulse("cosine", 0.3152, 2.0), free_motion_s=8.0)
+    survives = audit.rock(block, records.one_pulse("cosine", 0.3148, 2.0),
+                          solver=audit.Solver(free_motion_s=8.0))
+    overturns = audit.rock(block, records.one_pulse("cosine", 0.3152, 2.0),
+                           solver=audit.Solver(free_motion_s=8.0))
     assert not survives.overturned and overturns.overturned
     history = survives.history
     assert list(history.columns) == ["time_s", "theta_rad", "theta_dot_rad_s", "ground_acc_g"]
@@ -124,7 +126,6 @@ def test_every_entry_point_shows_its_keywords_each_documented(name):
 @pytest.mark.parametrize(("function", "defaults"), [
     ("check", "audit.engine.check.settings:CHECK_DEFAULTS"),
     ("run", "audit.engine.run.settings:AUDIT_DEFAULTS"),
-    ("run", "audit.engine.shared.design_site:SITE_DEFAULTS"),
     ("margins", "audit.engine.design.settings:MARGINS_DEFAULTS")])
 def test_the_keywords_are_the_settings_fields_with_their_defaults(function, defaults):
     """Adding a setting is one field, one keyword, one flag: the keyword is the field, named

@@ -8,6 +8,8 @@ a long computation."""
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -40,6 +42,8 @@ NTC = TEXTS | JUNK | NUMBERS | st.tuples(UNIT_TEXTS, NUMBERS, NUMBERS, st.just("
 SITE_PAIR = PAIR.filter(lambda v: not _lon_lat_text(v))
 #: How records are read: the time step [s] and units of a text record file, skipping the bad.
 READING = {"dt_s": NUMBER, "units": CHOICE | UNIT_TEXTS, "skip_bad_records": FLAG}
+#: The same, as fields of the ``records`` group (``Records(source, dt_s=…)``).
+RECORDS = {f"records.{field}": values for field, values in READING.items()}
 
 
 class Started(Exception):
@@ -53,7 +57,6 @@ def _start(*args, **kwargs):
 @pytest.fixture(autouse=True)
 def _no_work(monkeypatch):
     """The work of every function raises :class:`Started` instead."""
-    import audit.api.rocking
     import audit.engine.check.pipeline
     import audit.engine.fragility.pipeline
     import audit.engine.design.pipeline
@@ -67,7 +70,7 @@ def _no_work(monkeypatch):
                          (audit.engine.design.pipeline, "run_margins"),
                          (audit.engine.validation.pipeline, "run_validation"),
                          (audit.engine.fragility.pipeline, "run_fragility"),
-                         (audit.api.rocking, "simulate"),
+                         (audit.physics.rocking, "simulate"),
                          (audit.physics.rocking, "rocking_spectrum"),
                          (audit.physics.response_spectra, "response_spectra"),
                          (records.campaign, "read_campaign")):
@@ -87,6 +90,10 @@ def _pulse():
 
 
 SITE = (1.5, 0.9)
+ROOF = audit.Floor(1.0, audit.Building(1.0))
+#: The groups a dotted argument (``solver.free_motion_s``) is a field of.
+GROUPS = {"solver": audit.Solver, "runtime": audit.Runtime, "records": audit.Records,
+          "site": audit.Site}
 RUN = {"procedures": "fema356", "records": "pulses"}
 #: function → (valid arguments, {argument: values of a wrong type}).
 CASES = {
@@ -117,9 +124,11 @@ CASES = {
         **READING, "force": FLAG, "jobs": WHOLE, "scheduler": CHOICE,
         "partial_dir": PATH, "resume": FLAG, "progress": CALLBACK}),
     "rock": (audit.rock, {"block": audit.Block(alpha_deg=15.0, size_s=2.0), "motion": _pulse()},
-             {"block": OBJECTS | TEXTS, "motion": OBJECTS, "free_motion_s": NUMBER,
-              "restitution": JUNK, "vertical": FLAG, "friction": NUMBER, "force": FLAG,
-              "floor": NUMBER, **READING}),
+             {"block": OBJECTS | TEXTS, "motion": OBJECTS, "solver": JUNK | TEXTS,
+              "solver.free_motion_s": NUMBER, "solver.restitution": JUNK,
+              "solver.vertical": FLAG, "solver.g": NUMBER.filter(lambda v: v != 9.81),
+              "friction": NUMBER, "runtime": JUNK | TEXTS, "runtime.force": FLAG,
+              "runtime.jobs": st.just(3), "floor": NUMBER, **RECORDS}),
     "rock by id": (audit.rock, {"block": audit.Block(alpha_deg=15.0, size_s=2.0),
                                 "motion": "pacoima_dam_1971"}, {"records": PATH}),
     "Block": (audit.Block, {"alpha_deg": 15.0, "size_s": 2.0},
@@ -129,7 +138,8 @@ CASES = {
                               {"width_m": NUMBER_OR_NONE, "height_m": NUMBER_OR_NONE,
                                "r": NUMBER, "g": NUMBER_OR_NONE}),
     "fragility": (audit.fragility, {"records": "pulses"},
-                  {"procedure": CHOICE, "records": PATH, **READING, "progress": FLAG}),
+                  {"procedure": CHOICE, "records": PATH, **RECORDS, "progress": FLAG,
+                   "floor": NUMBER}),
     "validate": (audit.validate, {"folder": "campaign"},
                  {"folder": PATH | st.none(), "geometry": PATH, "folds": WHOLE, "jobs": WHOLE,
                   "free_motion_s": NUMBER, "band_pass": FLAG, "progress": CALLBACK,
@@ -137,37 +147,39 @@ CASES = {
     "rocking_spectrum": (audit.rocking_spectrum, {"motion": _pulse(), "size_s": [1.0],
                                                   "alpha_deg": [15.0]},
                          {"motion": OBJECTS, "size_s": SEQUENCE | st.none(),
-                          "alpha_deg": SEQUENCE | st.none(), "restitution": JUNK,
-                          "free_motion_s": NUMBER, "vertical": FLAG, "jobs": WHOLE,
-                          "force": FLAG, **READING}),
+                          "alpha_deg": SEQUENCE | st.none(), "solver.restitution": JUNK,
+                          "solver.free_motion_s": NUMBER, "solver.g": NUMBER,
+                          "solver.vertical": FLAG, "runtime.jobs": WHOLE, "runtime.force": FLAG,
+                          "floor": NUMBER, **RECORDS}),
     "rocking_spectrum by id": (audit.rocking_spectrum, {"motion": "pacoima_dam_1971",
                                                         "size_s": [1.0], "alpha_deg": [15.0]},
                                {"records": PATH}),
     "response_spectra": (audit.response_spectra, {"motion": _pulse(), "periods_s": [1.0]},
                          {"motion": OBJECTS, "periods_s": SEQUENCE | st.none(),
                           "damping_pct": SEQUENCE | st.none(), "free_motion_s": NUMBER,
-                          "force": FLAG, **READING}),
+                          "runtime.force": FLAG, "runtime.jobs": st.just(3), "floor": NUMBER,
+                          **RECORDS}),
     "response_spectra by id": (audit.response_spectra, {"motion": "pacoima_dam_1971",
                                                         "periods_s": [1.0]}, {"records": PATH}),
-    "design_suite": (audit.design_suite, {"suite": None, "site": SITE},
-                     {"site": SITE_PAIR, "site_override": FLAG, "scale_to_site": FLAG,
-                      "ntc_site": NTC}),
+    "design_suite": (audit.design_suite, {"suite": None, "site": audit.Site(*SITE)},
+                     {"site": SITE_PAIR, "site.override": FLAG, "site.scale_records": FLAG,
+                      "site.ntc": NTC, "site.level": st.just("design"), "floor": NUMBER}),
     "design_spectrum": (audit.design_spectrum, {"code": "fema356", "periods_s": [0.5],
-                                                "sxs_g": 1.5, "sx1_g": 0.9},
+                                                "site": SITE},
                         {"code": CHOICE, "periods_s": SEQUENCE | st.none(),
-                         "damping_pct": SEQUENCE | st.none(), "sxs_g": NUMBER,
-                         "sx1_g": NUMBER}),
+                         "damping_pct": SEQUENCE | st.none(), "site": SITE_PAIR}),
+    "design_spectrum ubc97": (audit.design_spectrum, {"code": "ubc97", "periods_s": [0.5]},
+                              {"near_source": PAIR, "site": st.just(SITE)}),
     "read_hazard": (audit.read_hazard, {"hazard": "missing.csv"},
                     {"hazard": PATH | st.none(), "site": PAIR, "imt": CHOICE}),
     "risk": (audit.risk, {"fragility": (0.5, 0.4), "hazard": "missing.csv"},
              {"fragility": FRAGILITY, "hazard": PATH | st.none(), "site": PAIR}),
     "load_result": (audit.load_result, {"folder": "audit-out"}, {"folder": PATH | st.none()}),
-    "floor_motion": (audit.floor_motion, {"motion": _pulse(), "building": 1.0},
-                     {"motion": OBJECTS, "building": NUMBER, "floor": NUMBER,
-                      "building_damping": NUMBER, **READING}),
+    "floor_motion": (audit.floor_motion, {"motion": _pulse(), "floor": ROOF},
+                     {"motion": OBJECTS, "floor": NUMBER, **RECORDS}),
     "record_pulses": (audit.record_pulses, {"records": "pulses"},
                       {"records": PATH, "plot": FLAG, **READING}),
-    "floor_motion by id": (audit.floor_motion, {"motion": "pacoima_dam_1971", "building": 1.0},
+    "floor_motion by id": (audit.floor_motion, {"motion": "pacoima_dam_1971", "floor": ROOF},
                            {"records": PATH}),
 }
 
@@ -181,15 +193,37 @@ CASES = {
 def test_a_wrong_type_is_refused_naming_the_argument(case, argument, data):
     function, valid, wrong = CASES[case]
     value = data.draw(wrong[argument], label=argument)
+    keyword = argument.partition(".")[0]
+    if keyword != argument:  # a field of a group: the group with that field wrong
+        field = argument.partition(".")[2]
+        group = valid.get(keyword)
+        value = (dataclasses.replace(group, **{field: value}) if dataclasses.is_dataclass(group)
+                 else GROUPS[keyword](*[group][:group is not None], **{field: value}))
     with pytest.raises(InputError) as caught:
-        function(**{**valid, argument: value})
+        function(**{**valid, keyword: value})
     assert argument in caught.value.fields, (case, argument, value, str(caught.value))
     assert str(caught.value).startswith(argument), str(caught.value)
 
 
 def test_every_public_function_is_covered():
     """A public function added to ``audit`` without a case here fails this test."""
-    functions = {name for name in dir(audit)
+    functions = {name for name in audit.__all__
                  if callable(getattr(audit, name)) and not name[0].isupper()}
     covered = {case.split()[0] for case in CASES}
     assert functions <= covered | {"Block"}, functions - covered
+
+
+@pytest.mark.parametrize("name", ["rock", "rocking_spectrum", "response_spectra",
+                                  "design_spectrum", "fragility", "floor_motion", "design_suite",
+                                  "atlas_settings"])
+def test_the_other_public_functions_take_at_most_eight_parameters(name):
+    """What travels together is one group (Solver, Runtime, Records, Floor, Site): no function of
+    the API but check, run and margins (at most 15) takes more than 8 parameters, and none takes
+    ``**options``."""
+    import inspect
+
+    import audit.api.atlas
+    function = getattr(audit.api, name, None) or getattr(audit.api.atlas, name)
+    parameters = inspect.signature(function).parameters.values()
+    assert len(parameters) <= 8
+    assert not [p for p in parameters if p.kind is inspect.Parameter.VAR_KEYWORD]

@@ -498,11 +498,12 @@ def test_skip_bad_records_keeps_the_rest_and_lists_each(workdir):
 
 
 def test_the_api_skips_bad_records_for_every_command_warning_each(workdir, capsys):
+    from audit.api import Records
     from audit.api.inputs import record_suite
     from audit.errors import InputWarning
     _write(workdir, {"recs/a.AT2": GOOD_AT2, "recs/b.AT2": "", "recs/c.AT2": at2_text(npts="3")})
     with pytest.warns(InputWarning) as caught:
-        suite = record_suite("recs", skip_bad_records=True)
+        suite = record_suite(Records("recs", skip_bad_records=True))
     assert [e.id for e in suite] == ["a"]
     assert [str(w.message).split(" (")[0] for w in caught] == ["not audited: b", "not audited: c"]
     with pytest.raises(InputError, match="b.AT2"):  # without it, the first bad record stops

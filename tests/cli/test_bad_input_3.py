@@ -20,7 +20,7 @@ from scipy.signal import butter, sosfiltfilt
 
 from audit import G
 from audit.cli import main
-from audit.engine.shared.design_site import MAX_SITE_G, DesignSite
+from audit.engine.shared.design_site import MAX_SITE_G, Site
 from audit.errors import InputError
 from records import ENV_VARIABLE, GroundMotion, read_columns
 from records.campaign import read_campaign, read_table_motion
@@ -227,11 +227,11 @@ def test_run_site_in_per_cent_of_g_refused(workdir, capsys):
 
 def test_site_bound_in_the_api():
     with pytest.raises(InputError) as refused:
-        DesignSite.parse(site=(1.5, 90.0))
+        Site.parse((1.5, 90.0))
     assert refused.value.fields == ("site",)
     # the largest mapped design values (S_XS about 4 g) stay accepted
-    assert DesignSite.parse(site=(4.0, 2.4)).site == (4.0, 2.4)
-    assert DesignSite.parse(site=(MAX_SITE_G, MAX_SITE_G)).site == (MAX_SITE_G, MAX_SITE_G)
+    assert Site.parse((4.0, 2.4)).values_g == (4.0, 2.4)
+    assert Site.parse(Site(MAX_SITE_G, MAX_SITE_G)).values_g == (MAX_SITE_G, MAX_SITE_G)
 
 
 # --- check's cost guard --------------------------------------------------------------------------

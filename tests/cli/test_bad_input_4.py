@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import audit
 from audit.cli import main
 from audit.cli.interrupts import EXIT_INTERRUPTED
 from audit.errors import InputError
@@ -152,19 +153,22 @@ def test_building_damping_help_and_check_agree(workdir, capsys):
                                    "--building-damping", value], "--building-damping",
                  "(0, 1)")
     # the API's floor takes the same range, numpy scalars too
-    from audit.physics.building.floor import Floor
-    assert Floor.parse(floor=np.float64(1.0), building=np.int64(1),
-                       building_damping=np.float32(0.999)).building_period_s == 1.0
-    with pytest.raises(InputError, match=r"building_damping: expected a number in \(0, 1\)"):
-        Floor.parse(floor=1.0, building=1.0, building_damping=1.0)
+    from audit.physics.building.floor import Building, Floor
+    assert Floor.parse(Floor(np.float64(1.0), Building(np.int64(1), damping=np.float32(0.999)))
+                       ).building.period_s == 1.0
+    with pytest.raises(InputError, match=r"^floor.building.damping: expected a number in \(0, 1\)"):
+        Floor.parse(Floor(1.0, Building(1.0, damping=1.0)))
+    # a function that takes the floor whole names the argument and the field
+    with pytest.raises(InputError, match=r"^floor.building.damping: expected a number in \(0, 1\)"):
+        audit.floor_motion((np.zeros(8), 0.01), Floor(1.0, Building(1.0, damping=1.0)))
 
 
 def test_malformed_building_values_refused_on_the_ground(workdir, capsys):
     _refused(workdir, capsys, ["check", "--block", "0.6x1.8", "--site", "1.5,0.9",
                                "--building-model", "shear:abc"], "--building-model", "shear:abc")
-    from audit.physics.building.floor import Floor
-    with pytest.raises(InputError, match="building:"):
-        Floor.parse(building=-1.0)
+    from audit.physics.building.floor import Building, Floor
+    with pytest.raises(InputError, match="^floor.building.period_s:"):
+        Floor.parse(Floor(0.0, Building(-1.0)))
 
 
 def test_numpy_integers_where_whole_numbers_are_asked(tmp_path):

@@ -55,20 +55,21 @@ def test_bad_floor_flags_stop_with_one_line_and_no_file(tmp_path, capsys):
         assert not out.exists()
 
 
-def test_api_refuses_a_bad_floor_naming_the_keyword(far_field):
+def test_api_refuses_a_bad_floor_naming_the_field(far_field):
     block = audit.Block.from_dimensions(width_m=0.8, height_m=2.0)
     with pytest.raises(InputError) as info:
-        audit.rock(block, "rsn1111_nis000", records=far_field, floor=0.5)
-    assert info.value.fields == ("building",) or "building" in str(info.value)
+        audit.rock(block, "rsn1111_nis000", records=far_field, floor=audit.Floor(0.5))
+    assert info.value.fields == ("floor.building",) or "floor.building" in str(info.value)
     with pytest.raises(InputError, match="floor"):
-        audit.rock(block, "rsn1111_nis000", records=far_field, floor=-0.1, building=1.0)
+        audit.rock(block, "rsn1111_nis000", records=far_field,
+                   floor=audit.Floor(-0.1, audit.Building(1.0)))
 
 
 def test_floor_motion_is_linear_and_keeps_the_ground_intensity(far_field):
-    from audit.physics.building.floor import Floor
+    from audit.physics.building.floor import Building, Floor
     from audit.physics.building.floor_motion import floor_motion
     ground = far_field.get("rsn1111_nis000").motion
-    floor = Floor.parse(floor=1.0, building=1.0, building_model="continuum:5")
+    floor = Floor.parse(Floor(1.0, Building(1.0, "continuum:5")))
     on_roof = floor_motion(ground, floor)
     np.testing.assert_allclose(floor_motion(ground.scaled(2.5), floor).acceleration,
                                on_roof.scaled(2.5).acceleration, rtol=1e-12, atol=1e-12)
@@ -82,12 +83,12 @@ def test_floor_motion_is_linear_and_keeps_the_ground_intensity(far_field):
 
 def test_rock_on_the_roof_rocks_on_the_floor_motion(far_field):
     block = audit.Block.from_dimensions(width_m=0.8, height_m=2.0)
-    on_roof = audit.rock(block, "rsn1111_nis000", records=far_field, floor=1.0, building=1.0,
-                         building_model="shear:10")
-    from audit.physics.building.floor import Floor
+    on_roof = audit.rock(block, "rsn1111_nis000", records=far_field,
+                         floor=audit.Floor(1.0, audit.Building(1.0, "shear:10")))
+    from audit.physics.building.floor import Building, Floor
     from audit.physics.building.floor_motion import floor_motion
     motion = floor_motion(far_field.get("rsn1111_nis000").motion,
-                          Floor.parse(floor=1.0, building=1.0, building_model="shear:10"))
+                          Floor.parse(Floor(1.0, Building(1.0, "shear:10"))))
     direct = audit.rock(block, motion)
     assert on_roof.peak == direct.peak and on_roof.overturned == direct.overturned
     assert on_roof.as_dict()["floor"]["building_model"] == "shear:10"
@@ -104,13 +105,13 @@ def test_check_on_a_floor_names_it_and_reports_each_records_peaks(far_field):
     assert floor["building_period_s"] == 1.0 and floor["building_damping"] == 0.05
     assert set(floor["records"]) == {e.id for e in two.entries}
     # each record's PFA at the site: its floor motion, scaled so that its ground Sa(1 s) is S_X1
-    from audit.physics.building.floor import Floor
+    from audit.physics.building.floor import Building, Floor
     from audit.physics.building.floor_motion import floor_motion
     measure = IntensityMeasure.parse("sa:1.0")
     for entry in two.entries:
         factor = 0.6 / measure.of_record(entry.motion, 10.0)
         on_floor = floor_motion(entry.motion.scaled(factor),
-                                Floor.parse(floor=1.0, building=1.0, building_model="shear:10"))
+                                Floor.parse(Floor(1.0, Building(1.0, "shear:10"))))
         assert floor["records"][entry.id]["pfa_g"] == pytest.approx(on_floor.pga_g, rel=1e-9)
     assert "z/H = 1" in result.summary_text() and "shear:10" in result.summary_text()
     on_ground = audit.check(["0.8x2.0"], site=(1.0, 0.6), procedures="fema356", records=two)

@@ -10,7 +10,7 @@ from scipy.linalg import eigh
 
 from audit.physics.building.continuum import (ContinuumBuilding, eigenvalues, mode_shape,
                                               participation_factor)
-from audit.physics.building.floor import Floor
+from audit.physics.building.floor import Building, Floor
 from audit.physics.building.floor_motion import floor_acceleration, floor_modes
 from audit.physics.building.shear import ShearBuilding
 from audit.physics.oscillator import oscillator_history
@@ -51,8 +51,7 @@ def nis000():
 
 @pytest.mark.parametrize("z_over_h", [1.0, 0.5])
 def test_shear_building_floor_equals_state_space(nis000, z_over_h):
-    floor = Floor.parse(floor=z_over_h, building=1.0, building_model="shear:10",
-                        building_damping=0.05)
+    floor = Floor.parse(Floor(z_over_h, Building(1.0, "shear:10", 0.05)))
     mine = floor_acceleration(nis000.acceleration, nis000.dt, floor)[:nis000.acceleration.size]
     reference = _state_space_floor(nis000.acceleration, nis000.dt, 10, 1.0, 0.05, z_over_h)
     assert np.max(np.abs(mine - reference)) <= 1e-3 * np.max(np.abs(reference))
@@ -61,7 +60,7 @@ def test_shear_building_floor_equals_state_space(nis000, z_over_h):
 def test_shear_building_between_floors_equals_state_space():
     rng = np.random.default_rng(3)
     acc, dt = rng.normal(size=1500), 0.01
-    floor = Floor.parse(floor=0.43, building=0.7, building_model="shear:5")
+    floor = Floor.parse(Floor(0.43, Building(0.7, "shear:5")))
     mine = floor_acceleration(acc, dt, floor)[:acc.size]
     reference = _state_space_floor(acc, dt, 5, 0.7, 0.05, 0.43)
     assert np.max(np.abs(mine - reference)) <= 1e-3 * np.max(np.abs(reference))
@@ -72,7 +71,7 @@ def test_one_storey_is_one_oscillator():
     # −2ζωu̇ − ω²u, and u comes from the spectra's own history routine
     rng = np.random.default_rng(1)
     acc, dt = rng.normal(size=800), 0.02
-    floor = Floor.parse(floor=1.0, building=0.6, building_model="shear:1", building_damping=0.03)
+    floor = Floor.parse(Floor(1.0, Building(0.6, "shear:1", 0.03)))
     mine = floor_acceleration(acc, dt, floor)[:acc.size]
     _, u = oscillator_history(GroundMotion("x", acc, dt), 0.6, 0.03)
     omega = 2 * np.pi / 0.6
@@ -80,8 +79,7 @@ def test_one_storey_is_one_oscillator():
     absolute = -2 * 0.03 * omega * v - omega ** 2 * u
     assert np.max(np.abs(mine - absolute)) <= 2e-2 * np.max(np.abs(absolute))
     # the displacement route alone, exactly: ü_abs + 2ζωu̇ = −ω²u is what the ζ = 0 limit gives
-    undamped = Floor.parse(floor=1.0, building=0.6, building_model="shear:1",
-                           building_damping=1e-9)
+    undamped = Floor.parse(Floor(1.0, Building(0.6, "shear:1", 1e-9)))
     _, u0 = oscillator_history(GroundMotion("x", acc, dt), 0.6, 1e-9)
     np.testing.assert_allclose(floor_acceleration(acc, dt, undamped)[:acc.size],
                                -omega ** 2 * u0, atol=1e-6 * np.max(np.abs(omega ** 2 * u0)))
@@ -91,7 +89,7 @@ def test_one_storey_is_one_oscillator():
 def test_very_stiff_building_returns_the_ground_motion(model):
     rng = np.random.default_rng(2)
     acc, dt = rng.normal(size=500), 0.01
-    floor = Floor.parse(floor=1.0, building=1e-4, building_model=model)
+    floor = Floor.parse(Floor(1.0, Building(1e-4, model)))
     out = floor_acceleration(acc, dt, floor)
     # from the first step on: at t = 0 a building at rest has no acceleration whatever üg(0) is
     np.testing.assert_allclose(out[1:acc.size], acc[1:], atol=1e-6)
@@ -176,7 +174,7 @@ def test_continuum_modes_against_finite_elements(alpha0):
 
 @pytest.mark.parametrize("alpha0", [0.0, 10.0, 1000.0])
 def test_continuum_modes_sum_towards_one(alpha0):
-    floor = Floor.parse(floor=1.0, building=1.0, building_model=f"continuum:{alpha0}")
+    floor = Floor.parse(Floor(1.0, Building(1.0, f"continuum:{alpha0}")))
     periods, weights = floor_modes(floor, 0.0005)
     coarse_periods, coarse = floor_modes(floor, 0.005)
     # every mode down to the Nyquist period 2·dt, and no other

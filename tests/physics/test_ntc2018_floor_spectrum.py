@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from audit import G
-from audit.physics.building.floor import Floor
+from audit.physics.building.floor import Building, Floor
 from audit.physics.ntc2018_floor_spectrum import NTC2018FloorSpectrum, floor_spectrum_parameters
 from audit.physics.ntc2018_spectrum import NTC2018Spectrum
 from procedures.ntc_2018 import NTC2018
@@ -59,7 +59,7 @@ def test_damping():
 def test_ntc2018_reads_the_floor_spectrum_on_a_floor():
     entry = SimpleNamespace(site=dict(zip(("ntc_ag_g", "ntc_f0", "ntc_tc_star_s", "ntc_soil",
                                            "ntc_topography"), (0.25, 2.5, 0.3, "A", "T1"))))
-    roof = NTC2018(floor=Floor.parse(floor=1.0, building=1.0))
+    roof = NTC2018(floor=Floor.parse(Floor(1.0, Building(1.0))))
     # the floor's peak α·S·(1 + z/H) = 0.5 g in place of a_g·S = 0.25 g
     assert roof.peak_ground_acceleration(entry, None) == pytest.approx(0.5 * G)
     assert NTC2018().peak_ground_acceleration(entry, None) == pytest.approx(0.25 * G)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from audit.physics.block import RigidBlock
-from audit.physics.rocking import pivot_reactions, rocking_spectrum, simulate
+from audit.physics.rocking import RockingOptions, pivot_reactions, rocking_spectrum, simulate
 from records.motion import GroundMotion
 
 G = 9.81
@@ -124,13 +124,14 @@ def test_required_friction_of_a_whole_response():
 def test_spectrum_reports_the_same_reactions_as_one_simulation():
     motion = _rocking_record()
     sizes, alphas = [1.0, 2.0, 3.0], np.radians([10, 20])
-    spectrum = rocking_spectrum(motion, sizes, alphas, free_motion_s=1.0)
+    spectrum = rocking_spectrum(motion, sizes, alphas, options=RockingOptions(free_motion_s=1.0))
     for i, alpha in enumerate(alphas):
         for j, size in enumerate(sizes):
             one = simulate(RigidBlock.from_size(size, alpha), motion, free_motion_s=1.0)
             assert spectrum.required_friction[i, j] == one.required_friction
             assert spectrum.jumps[i, j] == one.jumps
-    off = rocking_spectrum(motion, sizes, alphas, free_motion_s=1.0, reactions=False)
+    off = rocking_spectrum(motion, sizes, alphas, options=RockingOptions(free_motion_s=1.0),
+                           reactions=False)
     assert np.all(np.isnan(off.required_friction))
     assert np.array_equal(off.theta_peak, spectrum.theta_peak)  # tracking changes nothing
 

@@ -10,7 +10,7 @@ from audit.physics.block import RigidBlock, coefficient_of_restitution, frequenc
 from audit.physics.damping import housner_peak_ratio, housner_period
 from audit.errors import InputError
 from audit.physics.reference import simulate_reference
-from audit.physics.rocking import rocking_blocks, rocking_spectrum, simulate
+from audit.physics.rocking import RockingOptions, rocking_blocks, rocking_spectrum, simulate
 from records import GroundMotion, one_pulse
 
 
@@ -171,7 +171,7 @@ def test_halving_the_step_changes_surviving_peaks_by_less_than_0_1_percent(seed_
     for record in ("rinaldi_1994", "sylmar_1994"):
         motion = seed_suite.get(record).motion
         base = rocking_spectrum(motion, sizes, alphas)
-        fine = rocking_spectrum(motion, sizes, alphas, steps_per_radian=80.0)
+        fine = rocking_spectrum(motion, sizes, alphas, options=RockingOptions(steps_per_radian=80.0))
         survive = ~base.overturned & ~fine.overturned & base.uplifted
         assert survive.sum() > 20
         np.testing.assert_allclose(base.theta_peak[survive], fine.theta_peak[survive], rtol=1e-3)
@@ -327,3 +327,11 @@ def test_blocks_the_record_cannot_lift_are_at_rest_as_simulate_has_them(seed_sui
         np.testing.assert_array_equal(getattr(peaks, name),
                                       [getattr(s, single_name) for s in singles], err_msg=name)
     assert np.all(np.isnan(peaks.required_friction[2:]))  # no reactions asked for
+
+
+@pytest.mark.parametrize("function", [rocking_blocks, rocking_spectrum])
+def test_the_many_block_solvers_take_at_most_eight_parameters(function):
+    """Gravity, free motion, the step, the rest rule and the vertical component travel
+    together as :class:`RockingOptions`."""
+    import inspect
+    assert len(inspect.signature(function).parameters) <= 8

@@ -9,14 +9,14 @@ import pytest
 
 from audit.engine.check.component_checks import component_entries
 from audit.errors import InputError
-from audit.physics.building.floor import Floor
+from audit.physics.building.floor import Building, Floor
 from procedures.asce_7_22 import ASCE722
 from procedures.component import ComponentSite
 from procedures.en_1998_1 import EN19981
 from procedures.nzs_1170_5 import NZS11705
 from procedures.registry import COMPONENT_ENTRY_POINT_GROUP, available_component_provisions
 
-ROOF_1S = Floor.parse(floor=1.0, building=1.0, building_model="shear:10")
+ROOF_1S = Floor.parse(Floor(1.0, Building(1.0, "shear:10")))
 GROUND = Floor()
 SITE = ComponentSite.from_design_site((1.0, 0.6))  # S_XS = 1.0 g, S_X1 = 0.6 g
 # The cabinet of check's example: 0.8 m wide, 2.0 m tall: b = 0.4 m, h = 1.0 m, b/h = 0.4.
@@ -89,12 +89,12 @@ def test_en_1998_1_rigid_object_on_the_roof():
 
 
 def test_en_1998_1_flexible_object_and_lower_bound():
-    mid = Floor.parse(floor=0.5, building=1.0)
+    mid = Floor.parse(Floor(0.5, Building(1.0)))
     # T_a = 0.5 s, T1 = 1 s, z/H = 0.5: 3·1.5/(1 + 0.25) − 0.5 = 3.6 − 0.5 = 3.1
     assert EN19981(object_period_s=0.5).check(WIDTH, HEIGHT, SITE, mid).factors["S_a_over_alpha_S"] \
         == pytest.approx(3.1)
     # T_a = 3 s on the ground of a 1 s building: 3/(1 + 4) − 0.5 = 0.1 < 1: the bound α·S
-    ground_of = Floor.parse(floor=0.0, building=1.0)
+    ground_of = Floor.parse(Floor(0.0, Building(1.0)))
     assert EN19981(object_period_s=3.0).amplification(0.0, 1.0) == 1.0
     # on the ground without a building, T_a > 0 cannot be judged
     assert EN19981(object_period_s=3.0).unmet_requirements(ground_of) is not None

@@ -10,7 +10,8 @@ import pytest
 
 from audit.engine.check.component_checks import component_entries, component_provisions
 from audit.errors import InputError
-from audit.physics.building.floor import Floor
+from audit.engine.shared.design_site import Site
+from audit.physics.building.floor import Building, Floor
 from procedures.asce_7_22 import ASCE722
 from procedures.en_1998_1 import EN19981
 from procedures.ntc_2018 import NTC2018
@@ -83,7 +84,7 @@ def test_defaults_declared_for_every_parameter():
 def test_importance_multiplies_the_force():
     # on the roof of a T1 = 1 s building, S_DS = 1: F_p/W_p = 0.4·I_p·(2.84/1.712698)/1.5;
     # I_p = 1: 0.442187, I_p = 1.5: 0.663281 (inside [0.3, 1.6]·S_DS·I_p either way)
-    roof = Floor.parse(floor=1.0, building=1.0, building_model="shear:10")
+    roof = Floor.parse(Floor(1.0, Building(1.0, "shear:10")))
     plain, important = (
         {e["key"]: e for e in component_entries(
             0.8, 2.0, site=(1.0, 0.6), floor=roof,
@@ -114,7 +115,7 @@ def test_ntc_site_read_by_en_1998_1():
     # soil B, a_g = 0.35 g, F0 = 2.4: S_S = 1.40 − 0.40·2.4·0.35 = 1.064 (within [1, 1.2]),
     # S_T = 1 (T1): a_g·S = 0.3724 g; F/W = 0.3724/2 = 0.1862, against 0.4·1.0/2 = 0.2 without
     with_ntc = {e["key"]: e for e in component_entries(
-        0.4, 1.8, site=(1.0, 0.6), ntc_site=(0.35, 2.4, 0.35, "B", "T1"))}
+        0.4, 1.8, site=Site(1.0, 0.6, ntc=(0.35, 2.4, 0.35, "B", "T1")))}
     without = {e["key"]: e for e in component_entries(0.4, 1.8, site=(1.0, 0.6))}
     assert with_ntc["en1998_1"]["demand"] == pytest.approx(0.1862)
     assert with_ntc["en1998_1"]["demand"] / without["en1998_1"]["demand"] \
@@ -127,7 +128,7 @@ def test_ntc_site_read_by_en_1998_1():
     ({"site": (math.nan, 0.6)}, "site"),
     ({"site": "abc"}, "site"),
     ({"site": (1.0, 0.6), "floor": 1.0}, "floor"),
-    ({"site": (1.0, 0.6), "ntc_site": (0.35, 2.4, 0.35, "Z", "T1")}, "ntc_site"),
+    ({"site": Site(1.0, 0.6, ntc=(0.35, 2.4, 0.35, "Z", "T1"))}, "site.ntc"),
     ({"site": (1.0, 0.6), "mass_kg": -1.0}, "mass_kg"),
     ({"site": (1.0, 0.6), "provisions": [1]}, "provisions"),
     ({}, "site"),

@@ -88,9 +88,9 @@ def test_default_is_the_shipped_seed_records(monkeypatch):
     missing = [e for e in suite if e.missing]
     assert [e.id for e in missing] == ["pacoima_dam_1971", "el_centro_5_1979", "los_gatos_1989",
                                        "takatori_1995"]
-    # each says which PEER file to download and the option that reads it
+    # each says which PEER file to download and where it goes
     assert all(f"RSN {e.facts.rsn} " in e.missing_reason and e.facts.peer_file in e.missing_reason
-               and "--records FOLDER" in e.missing_reason for e in missing)
+               and "then read the records from it" in e.missing_reason for e in missing)
     rinaldi = suite.get("rinaldi_1994")
     assert rinaldi.site == {"site_class": "C", "sxs_g": 1.56, "sx1_g": 0.69}  # Table 3.1
     assert rinaldi.facts.pgv_ms == 1.75 and rinaldi.metadata["p695_id"] == "rsn1063_rrs_032"

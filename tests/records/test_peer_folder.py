@@ -58,7 +58,7 @@ def test_folder_of_peer_files_maps_them_to_the_catalogue(tmp_path, monkeypatch):
     missing = suite.get("el_centro_5_1979")
     assert missing.missing and "RSN 180" in missing.missing_reason
     assert "RSN180_IMPVALL.H_H-E05230.AT2" in missing.missing_reason
-    assert "--records FOLDER" in missing.missing_reason
+    assert "in a folder, then read the records from it" in missing.missing_reason
 
 
 def test_list_says_which_files_to_download(capsys, monkeypatch):

@@ -19,7 +19,7 @@ from audit.engine.atlas.settings import AtlasSettings
 from audit.engine.atlas.store import (ATLAS_JSON, ATLAS_NPZ, PARTS_DIR, AtlasParts, atlas_dir,
                                       npz_bytes)
 from audit.files import write_file_atomically
-from audit.physics.rocking import rocking_blocks
+from audit.physics.rocking import RockingOptions, rocking_blocks
 
 
 def atlas_record(entry, procedures, settings: AtlasSettings) -> dict:
@@ -42,7 +42,7 @@ def atlas_record(entry, procedures, settings: AtlasSettings) -> dict:
     blocks = grid_alpha.size
     peaks = rocking_blocks(entry.motion, np.tile(grid_size, levels.size),
                            np.tile(grid_alpha, levels.size), r=settings.restitution,
-                           g=settings.g, free_motion_s=settings.free_motion_s,
+                           options=RockingOptions(settings.g, settings.free_motion_s),
                            jobs=settings.jobs, scale=np.repeat(levels / intensity, blocks))
     shape = (levels.size, alpha.size, size.size)
     overturned = peaks.overturned.reshape(shape)

@@ -99,8 +99,8 @@ def floor_words(floor) -> str:
     """
     if floor.on_ground:
         return "ground"
-    return (f"z/H = {floor.z_over_h:g} of T1 = {floor.building_period_s:g} s, "
-            f"{floor.building_model}, ζ = {floor.building_damping:g}")
+    return (f"z/H = {floor.z_over_h:g} of T1 = {floor.building.period_s:g} s, "
+            f"{floor.building.model}, ζ = {floor.building.damping:g}")
 
 
 __all__ = ["AtlasSettings", "records_digest", "floor_words", "ALPHA_DEG", "SIZE_S"]

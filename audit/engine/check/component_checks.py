@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from audit import G
 from audit.engine.shared import fields as check
-from audit.engine.shared.design_site import DesignSite
+from audit.engine.shared.design_site import Site
 from audit.errors import InputError
 from audit.physics.building.floor import Floor
 from procedures.component import ComponentProvision, ComponentSite
@@ -33,9 +33,8 @@ def component_provisions(params: dict | None = None) -> list[ComponentProvision]
             for name, cls in available_component_provisions().items()]
 
 
-def component_entries(width_m: float, height_m: float, *, site=None, ntc_site=None,
-                      floor: Floor = Floor(), provisions=None,
-                      mass_kg: float | None = None) -> list[dict]:
+def component_entries(width_m: float, height_m: float, *, site=None, floor: Floor = Floor(),
+                      provisions=None, mass_kg: float | None = None) -> list[dict]:
     """One check.json entry per component provision for a block on ``floor``.
 
     Parameters
@@ -43,13 +42,12 @@ def component_entries(width_m: float, height_m: float, *, site=None, ntc_site=No
     width_m, height_m : float
         Full width (the dimension it rocks across) and full height of the object [m]; its
         centre of mass at mid-height.
-    site : (float, float) or None
-        FEMA 356 design site S_XS, S_X1 [g].
-    ntc_site : tuple or None
-        NTC 2018 site (a_g [g], F0, T_C* [s], soil, topography), the values of the limit state
-        assessed.
+    site : audit.engine.shared.design_site.Site, (float, float) or str
+        The design site: FEMA 356 S_XS, S_X1 [g] and/or its ``ntc`` NTC 2018 site (a_g [g],
+        F0, T_C* [s], soil, topography), the values of the limit state assessed
+        (:meth:`Site.parse <audit.engine.shared.design_site.Site.parse>`).
     floor : audit.physics.building.floor.Floor
-        Where the object stands (the ground by default; ``Floor.parse(floor=…, building=…)``).
+        Where the object stands (the ground by default; checked by :meth:`Floor.parse`).
     provisions : list of ComponentProvision or None
         Instances to apply; None applies every registered one with its default settings.
     mass_kg : float or None
@@ -61,15 +59,15 @@ def component_entries(width_m: float, height_m: float, *, site=None, ntc_site=No
         mass_kg = check.number("mass_kg", mass_kg, "a positive mass in kg", 0, low_open=True)
     if not isinstance(floor, Floor):
         raise InputError(f"floor: expected an audit.physics.building.floor.Floor "
-                         f"(Floor.parse(floor=z/H, building=T1)), got {floor!r}", "floor")
-    if site is None and ntc_site is None:
+                         f"(Floor(z_over_h, Building(period_s))), got {floor!r}", "floor")
+    if site is None:
         raise InputError("site: the component provisions need a design site (S_XS, S_X1) or an "
-                         "NTC 2018 site", "site", "ntc_site")
-    checked = DesignSite.parse(site=site, ntc_site=ntc_site)
+                         "NTC 2018 site", "site")
+    checked = Site.parse(site)
     try:
-        codes_site = ComponentSite.from_design_site(checked.site, checked.ntc_site)
+        codes_site = ComponentSite.from_design_site(checked.values_g, checked.ntc)
     except InputError as exc:  # the NTC spectrum names its own field
-        raise InputError(f"ntc_site: {exc}", "ntc_site") from None
+        raise InputError(f"site.ntc: {exc}", "site.ntc") from None
     if provisions is None:
         provisions = component_provisions()
     if not isinstance(provisions, (list, tuple)) or not all(

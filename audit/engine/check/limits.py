@@ -34,11 +34,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from audit import G
+from audit.engine.shared.defaults import BOTH, LIMIT_STATES
 from procedures.base import EXACT_UPLIFT, OVERTURN
-
-#: Limit states a check may be restricted to (``limit_state``); BOTH reports each.
-LIMIT_STATES = ("SLV", "SLC")
-BOTH = "both"
 #: A linear check the text refines by a displacement check of the named limit state.
 SUPERSEDED = {"SLV-linear": "SLV"}
 #: How a procedure reading each record makes the records' demands one (default MEDIAN).

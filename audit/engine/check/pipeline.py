@@ -50,6 +50,7 @@ from audit.engine.check.spectrum_read import (FLOOR, GuidelineSpectra, floor_des
 from audit.engine.check.widths import Family, exact_required_widths, probability_at_site
 from audit.engine.check.other_im import other_im_answers
 from audit.engine.check.component_checks import component_entries, component_provisions
+from audit.engine.shared.design_site import Site
 from audit.engine.shared.floors import floor_at_site
 from audit.engine.design.guideline_lines import guideline_lines
 from audit.engine.check.width_family import width_answer
@@ -250,8 +251,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         answer["component_provisions"] = [
             {**entry, "exact_p_exceed": answer["exact"]["p_overturn_at_site"]}
             for entry in component_entries(obj.width_m, obj.height_m,
-                                           site=(design_site["sxs_g"], design_site["sx1_g"]),
-                                           ntc_site=ntc_site, floor=floor,
+                                           site=Site(design_site["sxs_g"], design_site["sx1_g"],
+                                                     ntc=ntc_site), floor=floor,
                                            provisions=provisions, mass_kg=mass_kg)]
     spectra.annotate(answers, procedures, entries[0], on_other)
     if curve is not None:

@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from audit.engine.shared.ground_truth import slides
-from audit.physics.rocking import rocking_blocks
+from audit.physics.rocking import RockingOptions, rocking_blocks
 
 #: The modes ``check.json`` names.
 ROCKING, SLIDING, SLIDE_ROCK, REST = "rocking", "sliding", "rocking, sliding in some records", \
@@ -58,7 +58,7 @@ def required_friction(motion, factor: float, blocks, restitution, g: float,
     for alpha, index in blocks.groups():
         alpha_rad[index] = alpha
     peaks = rocking_blocks(motion.scaled(float(factor)), blocks.size_s, alpha_rad,
-                           r=restitution, g=g, free_motion_s=free_motion_s, jobs=jobs,
+                           r=restitution, options=RockingOptions(g, free_motion_s), jobs=jobs,
                            reactions=True)
     return np.asarray(peaks.required_friction, dtype=float)
 

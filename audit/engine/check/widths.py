@@ -22,7 +22,7 @@ from scipy.stats import norm
 
 from audit.engine.design.lognormal_fit import lognormal_fits
 from audit.engine.shared.scheduler import computed_parts
-from audit.physics.rocking import rocking_blocks
+from audit.physics.rocking import RockingOptions, rocking_blocks
 
 #: Widths scanned, as fractions of the height: the first and last, and how many in between.
 SCAN_FRACTIONS = (0.03, 0.95)
@@ -72,8 +72,9 @@ def record_family(entry, procedures, settings: FamilySettings) -> np.ndarray:
     factors = np.array([level / intensity for level in settings.levels])
     return rocking_blocks(entry.motion, np.tile(settings.size_s, levels),
                           np.tile(np.radians(settings.alpha_deg), levels),
-                          r=settings.restitution, g=settings.g,
-                          free_motion_s=settings.free_motion_s, jobs=settings.jobs,
+                          r=settings.restitution,
+                          options=RockingOptions(settings.g, settings.free_motion_s),
+                          jobs=settings.jobs,
                           scale=np.repeat(factors, blocks)).overturned.reshape(levels, blocks)
 
 

@@ -10,9 +10,11 @@ from functools import cache
 
 import numpy as np
 
+from audit import G
 from audit.engine.claims.value import CLAIMS_FILE, Value
+from audit.engine.shared.blocks import Block
 from audit.errors import InputError
-from audit.physics.block import RigidBlock, coefficient_of_restitution, radius_from_p
+from audit.physics.block import coefficient_of_restitution, radius_from_p
 from audit.physics.damping import (damping_fema356, damping_free_rocking, damping_priestley,
                                    housner_peak_ratio, housner_period)
 from audit.physics.response_spectra import response_spectra
@@ -44,8 +46,8 @@ def closed_form(ctx, quantity: str, **params) -> Value:
     if quantity == "restitution":
         return Value(float(r))
     if quantity in ("half_height_m", "half_width_m"):
-        block = RigidBlock(params["p_rad_s"], math.radians(params["alpha_deg"]), g=ctx.g)
-        return Value(block.half_height if quantity == "half_height_m" else block.half_width)
+        block = _block(params["p_rad_s"], params["alpha_deg"], ctx.g)
+        return Value(block.height_m / 2 if quantity == "half_height_m" else block.width_m / 2)
     if quantity == "radius_m":
         return Value(float(radius_from_p(2.0 * math.pi / params["size_s"], ctx.g)))
     if quantity == "tan":
@@ -65,10 +67,16 @@ def closed_form(ctx, quantity: str, **params) -> Value:
     raise InputError(f"{CLAIMS_FILE}: closed_form: unknown quantity '{quantity}'")
 
 
+def _block(p_rad_s: float, alpha_deg: float, g: float) -> Block:
+    """The claims' block of frequency parameter p [rad/s] (2π/(2π/p) is p again for the p of
+    claims.toml, 1 and 2 rad/s)."""
+    return Block(alpha_deg=alpha_deg, size_s=2.0 * math.pi / p_rad_s, g=g)
+
+
 @cache
 def _pulse_response(p_rad_s: float, alpha_deg: float, amplitude_g: float):
     motion = one_pulse("cosine", amplitude_g, PULSE_PERIOD_S)
-    return simulate(RigidBlock(p_rad_s, math.radians(alpha_deg)), motion, PULSE_FREE_MOTION_S)
+    return simulate(_block(p_rad_s, alpha_deg, G).rigid, motion, PULSE_FREE_MOTION_S)
 
 
 def pulse_block(ctx, quantity: str, p_rad_s: float, alpha_deg: float,
@@ -151,7 +159,7 @@ def free_rocking(ctx, alpha_deg: float, size_s: float, theta0_ratio: float,
     n_impacts : int
         The impact n after which θn is read.
     """
-    block = RigidBlock.from_size(size_s, math.radians(alpha_deg), g=ctx.g)
+    block = Block(alpha_deg=alpha_deg, size_s=size_s, g=ctx.g).rigid
     # enough time for n impacts: each half-cycle is shorter than a quarter of T(θ0) × 2
     duration = (n_impacts + 2) * float(housner_period(theta0_ratio, block.p))
     still = GroundMotion("free rocking", np.zeros(2), dt=1e-3)

@@ -13,7 +13,8 @@ import pandas as pd
 
 from audit.engine.claims.value import CLAIMS_FILE, CannotCheck, Value
 from audit.errors import InputError
-from audit.physics.block import RigidBlock, coefficient_of_restitution
+from audit.engine.shared.blocks import Block
+from audit.physics.block import coefficient_of_restitution
 from audit.physics.damping import housner_period
 from audit.physics.rocking import simulate
 from procedures.base import CONVERGED, NO_UPLIFT, OVERTURN
@@ -81,8 +82,8 @@ def exact_block(ctx, quantity: str, record: str, alpha_deg: float, size_s: float
                         alpha_deg=alpha_deg)
         return Value(bool(row["overturned"]) if quantity == "overturned"
                      else float(row["theta_peak_rad"]))
-    response = simulate(RigidBlock.from_size(size_s, math.radians(alpha_deg), g=ctx.g),
-                        entry.motion, ctx.free_motion_s)
+    response = simulate(Block(alpha_deg=alpha_deg, size_s=size_s, g=ctx.g).rigid, entry.motion,
+                        ctx.free_motion_s)
     if quantity == "overturned":
         return Value(response.overturned)
     if response.overturned:

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from audit.physics.rocking import rocking_spectrum
+from audit.physics.rocking import RockingOptions, rocking_spectrum
 
 
 @dataclass(frozen=True)
@@ -75,8 +75,9 @@ def stripe_outcomes(motion, factors, size_s, alpha_rad, g: float, free_motion_s:
     overturned, theta_peak_rad : numpy.ndarray
         Shaped (stripe, α, size).
     """
-    spectra = [rocking_spectrum(motion.scaled(float(f)), size_s, alpha_rad, r=r, g=g,
-                                free_motion_s=free_motion_s, jobs=jobs, reactions=False)
+    spectra = [rocking_spectrum(motion.scaled(float(f)), size_s, alpha_rad, r=r,
+                                options=RockingOptions(g, free_motion_s), jobs=jobs,
+                                reactions=False)
                for f in factors]
     return (np.stack([s.overturned for s in spectra]),
             np.stack([s.theta_peak for s in spectra]))

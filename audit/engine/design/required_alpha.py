@@ -25,7 +25,7 @@ from audit.engine.design.settings import MarginsSettings
 from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.scheduler import computed_parts
 from audit.physics.block import Restitution
-from audit.physics.rocking import rocking_blocks, rocking_spectrum
+from audit.physics.rocking import RockingOptions, rocking_blocks, rocking_spectrum
 from procedures.context import RecordContext
 
 #: Slendernesses of the search grid [degrees], 2° apart.
@@ -73,7 +73,7 @@ def record_grid(entry, procedures, settings: SearchSettings) -> RecordGrid:
     """
     size_s, alpha_rad = np.asarray(settings.size_s), np.radians(settings.alpha_deg)
     exact = rocking_spectrum(entry.motion, size_s, alpha_rad, r=settings.restitution,
-                             g=settings.g, free_motion_s=settings.free_motion_s,
+                             options=RockingOptions(settings.g, settings.free_motion_s),
                              jobs=settings.jobs, reactions=False).overturned
     # verdicts alone: the iterations read the spectra only where they go, at ~20 dampings
     context = RecordContext(entry, settings.free_motion_s, settings.jobs).on_demand()
@@ -105,8 +105,9 @@ def record_blocks(entry, procedures, settings: SearchSettings) -> np.ndarray:
         The blocks and solver settings.
     """
     return rocking_blocks(entry.motion, settings.size_s, np.radians(settings.alpha_deg),
-                          r=settings.restitution, g=settings.g,
-                          free_motion_s=settings.free_motion_s, jobs=settings.jobs).overturned
+                          r=settings.restitution,
+                          options=RockingOptions(settings.g, settings.free_motion_s),
+                          jobs=settings.jobs).overturned
 
 
 def last_crossing(share, limit) -> int | None:

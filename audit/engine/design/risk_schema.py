@@ -7,9 +7,9 @@ RISK_GUIDE = {
     "risk.csv": {
         "alpha_deg": ("deg", "slenderness α"),
         "size_s": ("s", "block size 2π/p"),
-        "width_m": ("m", "full base width of a block given by its dimensions (--block); "
+        "width_m": ("m", "full base width of a block given by its dimensions (blocks); "
                          "empty for a grid block"),
-        "height_m": ("m", "full height of a block given by its dimensions (--block); empty "
+        "height_m": ("m", "full height of a block given by its dimensions (blocks); empty "
                           "for a grid block"),
         "im": ("text", "intensity measure of the hazard curve and the fragility"),
         "annual_rate_fit": ("1/yr", "mean annual rate of overturning λ_ov, lognormal fit"),

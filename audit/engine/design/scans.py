@@ -13,7 +13,7 @@ from audit.engine.design.margins import MarginsRun
 from audit.engine.design.settings import MarginsSettings
 from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.schemas import block_labels
-from audit.physics.rocking import rocking_blocks
+from audit.physics.rocking import RockingOptions, rocking_blocks
 
 
 #: Blocks drawn with a fine amplitude scan: the named blocks, else the grid's most islanded.
@@ -78,7 +78,7 @@ def amplitude_scans(run: MarginsRun, suite, settings: MarginsSettings,
         im_levels = low * SCAN_STEP ** np.arange(int(np.log(high / low) / np.log(SCAN_STEP)) + 1)
         peaks = [rocking_blocks(motions[record].scaled(float(level * factor_per_im)),
                                 [block.size_s], [math.radians(block.alpha_deg)], r=restitution,
-                                g=g, free_motion_s=free_motion_s, jobs=jobs)
+                                options=RockingOptions(g, free_motion_s), jobs=jobs)
                  for level in im_levels]
         frames.append(pd.DataFrame({
             "record": record, "alpha_deg": block.alpha_deg, "size_s": block.size_s,

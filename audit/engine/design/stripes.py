@@ -14,7 +14,7 @@ import numpy as np
 from audit.engine.shared.blocks import BlockList
 from audit.engine.shared.intensity import IntensityMeasure
 from audit.physics.block import Restitution
-from audit.physics.rocking import rocking_blocks
+from audit.physics.rocking import RockingOptions, rocking_blocks
 from procedures.context import RecordContext
 from procedures.overturning import overturning_predictions, site_predictions
 from records.sites import scaled_site
@@ -236,7 +236,7 @@ def record_stripes(entry, procedures, settings: StripeSettings,
     if settings.exact:
         peaks = rocking_blocks(entry.motion, np.tile(blocks.size_s, levels.size),
                                np.tile(alpha_rad, levels.size), r=settings.restitution,
-                               g=settings.g, free_motion_s=settings.free_motion_s,
+                               options=RockingOptions(settings.g, settings.free_motion_s),
                                jobs=settings.jobs, scale=np.repeat(factors, len(blocks)))
         exact_over[:], exact_theta[:] = (peaks.overturned.reshape(shape),
                                          peaks.theta_peak.reshape(shape))

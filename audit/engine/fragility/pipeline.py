@@ -26,7 +26,7 @@ from audit.engine.fragility.settings import FragilitySettings
 from audit.engine.design.fragility import stripe_outcomes
 from audit.engine.design.lognormal_fit import fit_lognormal
 from audit.errors import InputError
-from audit.physics.block import RigidBlock
+from audit.engine.shared.blocks import Block
 from procedures.probabilistic import LognormalFragility
 
 #: The files of the audit, written together into the output folder.
@@ -66,18 +66,17 @@ def run_fragility(procedure, record_ids, motions,
     for component in procedure.components:
         if not (component.has_block and component.intensity_measure == "PGV"):
             continue
-        block = RigidBlock.from_dimensions(component.depth_m / 2, component.height_m / 2)
-        alpha_deg = math.degrees(block.alpha)
+        block = Block.of_dimensions(component.depth_m, component.height_m)
         if atlas is None:
             overturned = np.array([stripe_outcomes(motion, levels / motion.pgv, [block.size_s],
-                                                   [block.alpha], G,
+                                                   [block.rigid.alpha], G,
                                                    settings.free_motion_s)[0][:, 0, 0]
                                    for motion in motions])
             source = {"exact_source": "direct", "atlas_key": "", "atlas_error": math.nan}
         else:  # (record, stripe) per-record probabilities
-            overturned = atlas.outcomes([alpha_deg], [block.size_s])[:, :, 0]
+            overturned = atlas.outcomes([block.alpha_deg], [block.size_s])[:, :, 0]
             source = {"exact_source": "atlas", "atlas_key": atlas.key,
-                      "atlas_error": float(atlas.errors([alpha_deg], [block.size_s])[0])}
+                      "atlas_error": float(atlas.errors([block.alpha_deg], [block.size_s])[0])}
         counts = overturned.sum(axis=0)
         try:
             fit = fit_lognormal(levels, np.full(levels.size, len(motions)), counts)
@@ -90,8 +89,8 @@ def run_fragility(procedure, record_ids, motions,
                            if math.isfinite(median) else np.full(overturned.shape, np.nan))
         components.append({
             "component": component.id, "description": component.description,
-            "width_m": 2.0 * block.half_width, "height_m": 2.0 * block.half_height,
-            "alpha_deg": alpha_deg, "p_rad_s": block.p,
+            "width_m": block.width_m, "height_m": block.height_m,
+            "alpha_deg": block.alpha_deg, "p_rad_s": block.p_rad_s,
             "procedure_median_m_s": component.fragility.median,
             "procedure_beta": component.fragility.beta,
             "exact_median_m_s": median, "exact_beta": beta,

@@ -18,7 +18,8 @@ import pandas as pd
 
 from audit.engine.shared.schemas import DESIGN_SPECTRA_COLUMNS, MECHANICS_COLUMNS
 from audit.engine.run.settings import FIGURE_5_DAMPING, HISTORY_POINTS
-from audit.physics.block import RigidBlock, coefficient_of_restitution
+from audit.engine.shared.blocks import Block
+from audit.physics.block import coefficient_of_restitution
 from audit.physics.damping import damping_fema356, damping_free_rocking, damping_priestley
 from audit.physics.design_spectra import FEMA356Spectrum, UBC97Spectrum
 from audit.physics.oscillator import oscillator_history
@@ -79,7 +80,8 @@ def mechanics() -> pd.DataFrame:
                                  ("Eq. 9.1: β = 0.4 (1 − √r)", damping_fema356))]
     spec = sensitivity_facts()
     alpha = math.radians(spec["alpha_deg"])
-    block = RigidBlock(spec["p"], alpha)
+    # 2π/(2π/p) is p again for p = 2 rad/s, so the block is the figure's to the last bit
+    block = Block(alpha_deg=spec["alpha_deg"], size_s=2.0 * math.pi / spec["p"]).rigid
     for amplitude in SENSITIVITY_PULSES_G:
         motion = one_pulse("cosine", amplitude, spec["pulse_period_s"])
         response = simulate(block, motion, spec["free_motion_s"])

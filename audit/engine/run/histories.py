@@ -11,7 +11,7 @@ import pandas as pd
 
 from audit.engine.run.ranking import WORST_CLASSES, worst_positions
 from audit.engine.run.settings import HISTORY_POINTS, AuditSettings
-from audit.physics.block import RigidBlock
+from audit.engine.shared.blocks import Block
 from audit.physics.rocking import simulate
 
 def _representative_sizes(spectrum, alpha_index: int, count: int = 2) -> list[float]:
@@ -96,8 +96,8 @@ def simulate_histories(entry, results: pd.DataFrame, exact, alpha_deg, settings:
     """
     frames, meta = [], []
     for pick in history_blocks(results, exact, alpha_deg):
-        block = RigidBlock.from_size(pick["size_s"], np.radians(pick["alpha_deg"]), g=settings.g)
-        response = simulate(block, entry.motion, settings.free_motion_s)
+        block = Block(alpha_deg=pick["alpha_deg"], size_s=pick["size_s"], g=settings.g)
+        response = simulate(block.rigid, entry.motion, settings.free_motion_s)
         stride = max(1, response.time.size // HISTORY_POINTS)
         frames.append(pd.DataFrame({
             "record": entry.id, "alpha_deg": pick["alpha_deg"], "size_s": pick["size_s"],

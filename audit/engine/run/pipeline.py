@@ -154,7 +154,8 @@ def audit_in_memory(procedures, suite, detail=(), claims: bool = True, **values)
         by name.
     """
     settings = AuditSettings.parse(**{k: v for k, v in values.items() if k in AUDIT_FIELDS})
-    runtime = Runtime.parse(**{k: v for k, v in values.items() if k not in AUDIT_FIELDS})
+    runtime = Runtime.parse(Runtime(**{k: v for k, v in values.items() if k not in AUDIT_FIELDS}),
+                            None)
     with tempfile.TemporaryDirectory(prefix="rocking-audit-") as folder:
         run_audit(procedures, suite, settings, runtime, folder, detail, claims)
         return load_run(folder)

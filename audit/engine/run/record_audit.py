@@ -37,7 +37,7 @@ from audit.engine.shared.verdicts import (
     exact_exceeded,
     reported_ratio,
 )
-from audit.physics.rocking import rocking_spectrum
+from audit.physics.rocking import RockingOptions, rocking_spectrum
 from procedures.base import OVERTURN, STORED_SPECTRUM_PERIODS_S
 from procedures.context import RecordContext
 
@@ -143,8 +143,9 @@ def fragile_overturning(motion, settings: AuditSettings, overturned: np.ndarray)
 def _exact_spectrum(motion, settings: AuditSettings, model, reactions: bool):
     """The exact rocking spectrum of the grid under one ground-truth model."""
     return rocking_spectrum(motion, np.asarray(settings.size_s), np.radians(settings.alpha_deg),
-                            r=model.impact, g=settings.g, free_motion_s=settings.free_motion_s,
-                            jobs=settings.jobs, reactions=reactions, vertical=model.vertical)
+                            r=model.impact, options=RockingOptions(
+                                settings.g, settings.free_motion_s, vertical=model.vertical),
+                            jobs=settings.jobs, reactions=reactions)
 
 
 def _exact_response(motion, settings: AuditSettings):

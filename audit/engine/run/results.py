@@ -35,7 +35,6 @@ CLAIMS_CSV = "claims.csv"
 DESIGN_SPECTRA_CSV = "design-spectra.csv"
 MECHANICS_CSV = "mechanics.csv"
 COLUMNS_JSON = "columns.json"
-REPORT_HTML = "report.html"
 
 
 def summary_bytes(summary: dict) -> bytes:

@@ -14,13 +14,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from audit import G
 from audit.engine.shared import fields as check
 from audit.errors import InputError
 from audit.physics.block import RigidBlock
+
+if TYPE_CHECKING:  # numpy where a list of blocks is built: the API's front door imports Block
+    import numpy as np
 
 #: The largest block a user may name, by its size 2π/p [s] (10 s: R = 3g/(4p²) = 18.6 m, a
 #: 0.6 m wide object 37 m tall). A limit chosen here from the physics, not a code's.
@@ -319,6 +321,7 @@ class BlockList:
         named : iterable of Block
             Named blocks appended after the grid, labelled by :attr:`Block.label`.
         """
+        import numpy as np
         alpha_deg = np.asarray(alpha_deg, dtype=float)
         size_s = np.asarray(size_s, dtype=float)
         grid_alpha, grid_size = (a.ravel() for a in np.meshgrid(alpha_deg, size_s,
@@ -334,11 +337,13 @@ class BlockList:
 
     @property
     def alpha_rad(self) -> np.ndarray:
+        import numpy as np
         return np.radians(self.alpha_deg)
 
     def groups(self) -> list[tuple[float, np.ndarray]]:
         """Blocks of one slenderness together: ``(alpha_rad, indices)`` in order of first
         appearance; a procedure evaluates and the solver solves each group in one call."""
+        import numpy as np
         groups: dict[float, list[int]] = {}
         for index, alpha in enumerate(self.alpha_deg):
             groups.setdefault(float(alpha), []).append(index)

@@ -72,6 +72,10 @@ def sizes_text(sizes=DEFAULT_SIZES) -> str:
 #: P695's collapse margin is over the MCE intensity, 1.5 × the design one (ASCE 7: S_MS =
 #: 1.5 S_DS, S_M1 = 1.5 S_D1).
 SITE_LEVELS = {"mce": 1.0, "design": 1.5}
+#: Limit states of a guideline that names its own (NTC 2018) a check's site may be for
+#: (``site.limit_state``); BOTH reports each.
+LIMIT_STATES = ("SLV", "SLC")
+BOTH = "both"
 #: The hazard level the site's spectral values are taken at.
 DEFAULT_SITE_LEVEL = "mce"
 #: The risk target of the risk-targeted slenderness: probability of overturning in 50 years.
@@ -83,5 +87,6 @@ __all__ = ["DEFAULT_BUILDING_DAMPING", "DEFAULT_BUILDING_MODEL", "DEFAULT_ALPHA_
            "DEFAULT_DESIGN_DAMPING_PCT", "DEFAULT_DESIGN_PERIODS", "DEFAULT_RESPONSE_FREE_MOTION_S",
            "DEFAULT_PROBABILISTIC_PROCEDURE", "DEFAULT_FRAGILITY_RECORDS", "DEFAULT_CHECK_RECORDS",
            "DEFAULT_IM", "DEFAULT_MARGINS_SIZES", "DEFAULT_STRIPES", "alpha_text",
-           "sizes_text", "SITE_LEVELS", "DEFAULT_SITE_LEVEL", "DEFAULT_RISK_TARGET"]
+           "sizes_text", "SITE_LEVELS", "DEFAULT_SITE_LEVEL", "DEFAULT_RISK_TARGET",
+           "LIMIT_STATES", "BOTH"]
 

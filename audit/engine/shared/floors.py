@@ -33,9 +33,10 @@ def floor_document(floor: Floor) -> dict:
     floor : audit.physics.building.Floor
         Where the objects stand.
     """
-    return {"z_over_h": floor.z_over_h, "building_period_s": floor.building_period_s,
-            "building_model": None if floor.on_ground else str(floor.building_model),
-            "building_damping": None if floor.on_ground else floor.building_damping,
+    building = floor.building
+    return {"z_over_h": floor.z_over_h, "building_period_s": building and building.period_s,
+            "building_model": building and str(building.model),
+            "building_damping": building and building.damping,
             "description": floor.describe()}
 
 

@@ -13,16 +13,13 @@ tool's own files, in the run's output directory.
 
 from __future__ import annotations
 
-import hashlib
-import json
-import pickle
-import shutil
 from pathlib import Path
 
 from audit import __version__
-from audit.files import write_file_atomically
 
 PARTIAL_DIR = ".partial"
+# hashlib, json, pickle and the atomic write are imported where a part is keyed or stored: the API's
+# front door imports this module for PARTIAL_DIR and kept_parts
 
 
 def motion_digest(motion) -> str:
@@ -33,12 +30,14 @@ def motion_digest(motion) -> str:
     motion : records.GroundMotion
         The motion.
     """
+    import hashlib
     digest = hashlib.sha256(motion.acceleration.tobytes())
     digest.update(repr(float(motion.dt)).encode())
     return digest.hexdigest()
 
 
 def _sha(text: str) -> str:
+    import hashlib
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -52,6 +51,7 @@ def run_key(procedures, settings) -> str:
     settings : AuditSettings
         The run's settings (anything with ``as_dict()``).
     """
+    import json
     return _sha(json.dumps({
         "version": __version__,
         "procedures": [[p.name, f"{type(p).__module__}.{type(p).__qualname__}",
@@ -68,6 +68,8 @@ def record_key(entry) -> str:
     entry : records.RecordEntry
         The record.
     """
+    import hashlib
+    import json
     motion = entry.motion
     item = {"id": entry.id, "site": entry.site, "facts": repr(entry.facts),
             "component": entry.component, "missing_reason": entry.missing_reason}
@@ -123,6 +125,7 @@ class PartialStore:
         entry : records.RecordEntry
             The record.
         """
+        import pickle
         path, key = self._path_and_key(entry)
         try:
             with open(path, "rb") as file:
@@ -145,12 +148,16 @@ class PartialStore:
         part : object
             Its part of the run (a :class:`~audit.engine.run.record_audit.RecordAudit`), pickled.
         """
+        import pickle
+
+        from audit.files import write_file_atomically
         path, key = self._path_and_key(entry)
         write_file_atomically(path, pickle.dumps({"key": key, "record": entry.id, "part": part},
                                                  protocol=pickle.HIGHEST_PROTOCOL))
 
     def remove(self) -> None:
         """Delete the folder (after the final outputs are saved, or to start afresh)."""
+        import shutil
         shutil.rmtree(self.directory, ignore_errors=True)
 
 

@@ -1,5 +1,6 @@
 """How a run is carried out, apart from what it computes: threads or worker processes, where
-records are computed, the folder of parts kept as they complete, resuming, progress.
+records are computed, progress, whether to start beyond the work's limits, the folder of parts
+kept as they complete, resuming.
 
 None of it changes a number of the results (:class:`~audit.engine.run.settings.AuditSettings` and
 :class:`~audit.engine.design.settings.MarginsSettings` hold what does). Light: no scientific
@@ -13,16 +14,10 @@ from pathlib import Path
 
 from audit.engine.shared import fields as check
 from audit.engine.shared.defaults import DEFAULT_JOBS, DEFAULT_SCHEDULER
-from audit.errors import InputError
+from audit.errors import InputError, field_name
 
 LOCAL = "local"
 DASK = "dask"
-
-#: The fields :meth:`Runtime.parse` takes, and their defaults.
-RUNTIME_DEFAULTS = {"jobs": DEFAULT_JOBS, "scheduler": DEFAULT_SCHEDULER, "partial_dir": None,
-                    "resume": False, "progress": None}
-RUNTIME_FIELDS = tuple(RUNTIME_DEFAULTS)
-
 
 def check_scheduler(text, field: str = "scheduler") -> str:
     """``local``, ``dask`` or a Dask scheduler address ``tcp://HOST:PORT``.
@@ -54,47 +49,62 @@ class Runtime:
     scheduler : str
         ``local``, ``dask`` or ``tcp://HOST:PORT`` (:mod:`audit.engine.shared.scheduler`), or a
         scheduler already open (:func:`~audit.engine.shared.scheduler.open_scheduler`).
+    progress : callable, True or None
+        ``progress(done, total, record_id, how)`` after each record; True: a progress bar on
+        standard error (the API draws it; the engine takes a callable or None).
+    force : bool
+        Start even when the work is estimated beyond the limits of
+        :mod:`audit.engine.shared.guards`.
     partial_dir : Path or None
         Folder for per-record results as they complete (:mod:`audit.engine.shared.partial`), kept
         for a resumed run; None: none kept.
     resume : bool
         Reuse the matching per-record results already in ``partial_dir``.
-    progress : callable or None
-        ``progress(done, total, record_id, how)`` after each record.
     """
 
     jobs: int = DEFAULT_JOBS
     scheduler: object = DEFAULT_SCHEDULER
+    progress: object = None
+    force: bool = False
     partial_dir: Path | None = None
     resume: bool = False
-    progress: object = None
 
     @classmethod
-    def parse(cls, **values) -> Runtime:
-        """The runtime of the given fields, each checked once (InputError naming it).
+    def parse(cls, value=None, argument: str | None = "runtime") -> Runtime:
+        """``value`` with every field checked once (InputError naming ``argument.field``, or
+        the field alone where ``argument`` is None: a function's own keywords).
 
         Parameters
         ----------
-        **values
-            Fields of :data:`RUNTIME_FIELDS` by name (the rest take :data:`RUNTIME_DEFAULTS`).
+        value : Runtime or None
+            None: the defaults. ``progress`` may be True (a progress bar, which the caller
+            draws) or False.
+        argument : str or None
+            The argument the runtime was given as, for the messages.
         """
-        check.unknown("the runtime", values, RUNTIME_FIELDS)
-        value = {**RUNTIME_DEFAULTS, **values}
-        scheduler = value["scheduler"]
+        def name(field):
+            return field_name(argument, field)
+
+        if value is None:
+            value = cls()
+        if not isinstance(value, Runtime):
+            raise InputError(f"{argument}: expected a Runtime(jobs, scheduler, progress, force, "
+                             f"partial_dir, resume), got {value!r}", argument)
+        scheduler = value.scheduler
         if isinstance(scheduler, str) or not hasattr(scheduler, "map"):
-            scheduler = check_scheduler(scheduler)
-        progress = value["progress"]
-        if progress is not None and not callable(progress):
-            raise InputError(f"progress: expected True, False or progress(done, total, "
-                             f"record_id, how), got {progress!r}", "progress")
-        partial = value["partial_dir"]
-        resume = check.flag("resume", value["resume"])
+            scheduler = check_scheduler(scheduler, name("scheduler"))
+        progress = check.callback(name("progress"), False if value.progress is None
+                                  else value.progress, "progress(done, total, record_id, how)")
+        partial = value.partial_dir
+        resume = check.flag(name("resume"), value.resume)
         if resume and partial is None:
-            raise InputError("resume: needs partial_dir, the folder of the interrupted run's "
-                             "parts", "resume", "partial_dir")
-        return cls(check.whole("jobs", value["jobs"], 1), scheduler,
-                   None if partial is None else check.path("partial_dir", partial, "a folder"),
-                   resume, progress)
+            raise InputError(f"{name('resume')}: needs {name('partial_dir')}, the folder of the "
+                             "interrupted run's parts", name("resume"), name("partial_dir"))
+        return cls(check.whole(name("jobs"), value.jobs, 1), scheduler, progress or None,
+                   check.flag(name("force"), value.force),
+                   None if partial is None else check.path(name("partial_dir"), partial,
+                                                           "a folder"),
+                   resume)
 
     def report(self, done: int, total: int, record_id: str, how: str) -> None:
         """Tell :attr:`progress`, if any, that a record is done.
@@ -112,4 +122,4 @@ class Runtime:
             self.progress(done, total, record_id, how)
 
 
-__all__ = ["Runtime", "RUNTIME_DEFAULTS", "RUNTIME_FIELDS", "check_scheduler", "LOCAL", "DASK"]
+__all__ = ["Runtime", "check_scheduler", "LOCAL", "DASK"]

@@ -26,9 +26,9 @@ def verdict_column(verdict: str) -> str:
 
 #: The dimensions of a block named by them (--block), in the design-level audit's tables.
 _NAMED_BLOCK = {
-    "width_m": ("m", "full base width of a block given by its dimensions (--block); empty for a "
+    "width_m": ("m", "full base width of a block given by its dimensions (blocks); empty for a "
                      "block of the α × size grid"),
-    "height_m": ("m", "full height of a block given by its dimensions (--block); empty for a "
+    "height_m": ("m", "full height of a block given by its dimensions (blocks); empty for a "
                       "block of the α × size grid"),
 }
 
@@ -48,11 +48,11 @@ _RESULTS = {
                                      "response needs at its pivot (inf where it would jump)"),
     "exact_jumps": ("bool", "the vertical pivot reaction of the exact response becomes "
                             "negative: the block would leave the ground"),
-    "exact_slides": ("bool", "the response needs more friction than --friction μ: the block "
-                             "would slide, and the verdict is about a model that does not "
-                             "apply; empty without --friction"),
+    "exact_slides": ("bool", "the response needs more friction than the base's μ (friction): "
+                             "the block would slide, and the verdict is about a model that does "
+                             "not apply; empty without friction"),
     "exact_model_sensitive": ("bool", "the verdict class changes under an alternative "
-                                      "ground-truth model of --sensitivity (summary.json "
+                                      "ground-truth model of sensitivity (summary.json "
                                       "settings.sensitivity); empty when not checked"),
     "approx_theta_rad": ("rad", "the procedure's rotation (its iteration from θ₀/α = 0.1); "
                                 "empty where it predicts overturning or does not settle"),
@@ -187,7 +187,7 @@ GUIDE["stripes.csv"] = {
     "scale_factor": ("-", "factor the record as read (before any scaling to the site) is "
                           "scaled by to reach the stripe"),
     "site_factor": ("-", "the part of scale_factor that scales the record to the site "
-                         "(--scale-to-site, FEMA P695); 1 where it is not scaled"),
+                         "(scale_to_site, FEMA P695); 1 where it is not scaled"),
     "exact_overturned": ("bool", "the exact response overturns"),
     "exact_theta_rad": ("rad", "exact peak |θ| (α where the block overturns)"),
     "PROCEDURE_overturns": ("bool", "one column per procedure: it predicts overturning (its "
@@ -215,7 +215,7 @@ GUIDE["fragility.csv"] = {
     "beta_boot_high": ("-", "upper 90 % bound of β, same bootstrap"),
     "median_extrapolated": ("bool", "the median lies beyond the stripes: the fit extrapolates"),
     "cmr": ("-", "collapse margin ratio: median / the site's MCE intensity (summary mce_im: "
-                 "the --site values, × 1.5 with --level design); where the median is "
+                 "the site values, × 1.5 with site_level design); where the median is "
                  "extrapolated, the outermost stripe / the MCE intensity, a bound"),
     "cmr_boot_low": ("-", "median_boot_low / the MCE intensity"),
     "cmr_boot_high": ("-", "median_boot_high / the MCE intensity"),
@@ -260,7 +260,7 @@ GUIDE["capacity.csv"] = {
 # one object, one site (``python -m audit check``): one row per object × procedure × limit
 # state
 GUIDE["check.csv"] = {
-    "object": ("text", "the object's name (--block as typed, or the inventory's name)"),
+    "object": ("text", "the object's name (the block as typed, or the inventory's name)"),
     "width_m": ("m", "full base width of the object"),
     "height_m": ("m", "full height of the object"),
     "alpha_deg": ("deg", "slenderness α = atan(width/height)"),
@@ -315,13 +315,13 @@ GUIDE["check.csv"] = {
                                           "the exact P(overturn) at the site stays ≤ 10 % "
                                           "(empty where none up to 0.95 × the height)"),
     "exact_required_width_m_50pct": ("m", "the same for P(overturn) ≤ 50 %"),
-    "risk_p50": ("-", "with --hazard: P of overturning in 50 years of the object at the width "
+    "risk_p50": ("-", "with a hazard curve: P of overturning in 50 years of the object at the width "
                       "this procedure requires (empty where it requires none)"),
-    "p50": ("-", "with --hazard: the object's P of overturning in 50 years, "
+    "p50": ("-", "with a hazard curve: the object's P of overturning in 50 years, "
                  "1 − exp(−50 annual_rate)"),
-    "annual_rate": ("1/yr", "with --hazard: the object's mean annual rate of overturning, its "
+    "annual_rate": ("1/yr", "with a hazard curve: the object's mean annual rate of overturning, its "
                             "exact fragility integrated over the site's hazard curve"),
-    "exact_required_width_m_risk": ("m", "with --hazard: narrowest width at the object's "
+    "exact_required_width_m_risk": ("m", "with a hazard curve: narrowest width at the object's "
                                          "height above which the exact P in 50 years stays "
                                          "within the risk target (empty where none up to "
                                          "0.95 × the height)"),
@@ -337,7 +337,7 @@ GUIDE["required_alpha.csv"] = {
                                   "to 0.125° (the bracket's upper end), for a procedure "
                                   "interpolated linearly; empty when none up to 40°"),
     "exact_overturning_share": ("-", "exact share of the records (as audited: site-scaled with "
-                                     "--scale-to-site) that overturn the block of this size and "
+                                     "scale_to_site) that overturn the block of this size and "
                                      "required_alpha_deg: how safe the block the curve accepts is"),
 }
 GUIDE["acceptance.csv"] = {

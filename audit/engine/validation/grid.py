@@ -18,7 +18,7 @@ from audit import G
 from audit.engine.validation.settings import ValidationSettings
 from audit.errors import InputError
 from audit.physics.block import Restitution
-from audit.physics.rocking import rocking_blocks
+from audit.physics.rocking import RockingOptions, rocking_blocks
 
 
 def band_passed(motion, settings: ValidationSettings):
@@ -177,7 +177,8 @@ def overturning_grid(motions, settings: ValidationSettings, progress=None,
         for j, factor in enumerate(blocks.restitution_factors):
             peaks = rocking_blocks(motion, size, np.radians(blocks.alpha_deg[j]).ravel(),
                                    Restitution(factor=float(factor)),
-                                   free_motion_s=settings.free_motion_s, jobs=settings.jobs)
+                                   RockingOptions(free_motion_s=settings.free_motion_s),
+                                   jobs=settings.jobs)
             out[i, j] = peaks.overturned.reshape(shape[1:])
         if progress is not None:
             progress(i + 1, len(motions), motion.id)

@@ -35,8 +35,8 @@ FREE_VIBRATION_LEFT = 0.01
 
 
 def building_of(floor: Floor):
-    """The model object of ``floor.building_model`` (``shear:N`` or ``continuum:α0``)."""
-    model = floor.building_model
+    """The model object of ``floor.building.model`` (``shear:N`` or ``continuum:α0``)."""
+    model = floor.building.model
     return (ShearBuilding(int(model.value)) if model.kind == "shear"
             else ContinuumBuilding(model.value))
 
@@ -46,7 +46,7 @@ def floor_modes(floor: Floor, dt: float):
     """(T_n [s], Γ_n φ_n(z) [-]) of the modes the floor motion keeps at sampling step ``dt``
     (remembered: the records of a suite mostly share a few steps, and the continuum's roots
     and integrals cost far more than filtering a record), read-only."""
-    periods, weights = building_of(floor).modes(floor.building_period_s, floor.z_over_h, 2.0 * dt)
+    periods, weights = building_of(floor).modes(floor.building.period_s, floor.z_over_h, 2.0 * dt)
     periods.flags.writeable = weights.flags.writeable = False
     return periods, weights
 
@@ -65,8 +65,8 @@ def _modal_sum(acc, coeffs, weights, two_xi_omega, omega2, out):
 
 def _free_vibration_samples(samples: int, dt: float, floor: Floor) -> int:
     """Samples of the building's free vibration appended to a record of ``samples`` samples."""
-    tail = min(math.log(1.0 / FREE_VIBRATION_LEFT) * floor.building_period_s
-               / (2.0 * math.pi * floor.building_damping), (samples - 1) * dt)
+    tail = min(math.log(1.0 / FREE_VIBRATION_LEFT) * floor.building.period_s
+               / (2.0 * math.pi * floor.building.damping), (samples - 1) * dt)
     return int(math.ceil(tail / dt))
 
 
@@ -103,7 +103,7 @@ def floor_acceleration(acceleration, dt: float, floor: Floor) -> np.ndarray:
                                         if periods.size else 0)))
     out = (1.0 - weights.sum()) * acc
     if periods.size:
-        damping = np.full(periods.size, floor.building_damping)
+        damping = np.full(periods.size, floor.building.damping)
         omega = 2.0 * np.pi / periods
         coeffs = recurrence_coefficients(periods, damping, dt)
         tiered(_modal_sum, run_s)(

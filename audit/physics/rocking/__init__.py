@@ -35,9 +35,9 @@ from audit.physics.rocking.history import (HISTORY_CAPACITY, IMPACT_CAPACITY, Ro
                                            simulate)
 from audit.physics.rocking.motion_equation import pivot_reactions
 from audit.physics.rocking.rest import MIN_REST_TOLERANCE, chatter_time_bound
-from audit.physics.rocking.spectrum import (BlockPeaks, RockingSpectrum, rocking_blocks,
-                                            rocking_spectrum)
+from audit.physics.rocking.spectrum import (BlockPeaks, RockingOptions, RockingSpectrum,
+                                            rocking_blocks, rocking_spectrum)
 
 __all__ = ["simulate", "rocking_spectrum", "rocking_blocks", "pivot_reactions", "RockingHistory",
-           "RockingSpectrum", "BlockPeaks", "chatter_time_bound", "coefficient_of_restitution",
+           "RockingSpectrum", "BlockPeaks", "RockingOptions", "chatter_time_bound", "coefficient_of_restitution",
            "DEFAULT_FREE_MOTION_S", "HISTORY_CAPACITY", "IMPACT_CAPACITY", "MIN_REST_TOLERANCE"]

@@ -17,6 +17,32 @@ from audit.physics.rocking.kernel import _motion_arguments, _spectrum
 from audit.physics.rocking.motion_equation import _SAMPLED
 
 
+@dataclass(frozen=True)
+class RockingOptions:
+    """How blocks are solved beyond what they are: gravity, the free motion after the
+    excitation, the solver's step and rest rule, the vertical component.
+
+    Attributes
+    ----------
+    g : float, optional
+        Acceleration of gravity [m/s²]; the block's default when not given.
+    free_motion_s : float
+        Free motion simulated after the excitation [s].
+    steps_per_radian : float
+        Runge–Kutta steps per radian of pτ: h ≤ 1/(steps_per_radian·p).
+    rest_tolerance : float
+        Rebounds below ``rest_tolerance``·α end the chatter at rest [-].
+    vertical : bool
+        Include the motion's vertical component (gravity g + üv), where it has one.
+    """
+
+    g: float | None = None
+    free_motion_s: float = DEFAULT_FREE_MOTION_S
+    steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN
+    rest_tolerance: float = DEFAULT_REST_TOLERANCE
+    vertical: bool = False
+
+
 class BlockPeaks(NamedTuple):
     """Peaks of blocks given one by one (:func:`rocking_blocks`), one value per block in each
     field (a NamedTuple, so that the compiled kernel fills its arrays in place)."""
@@ -101,12 +127,8 @@ class RockingSpectrum:
             for i in range(self.alpha_rad.size)], ignore_index=True)
 
 
-def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
-                   free_motion_s: float = DEFAULT_FREE_MOTION_S,
-                   steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
-                   rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1,
-                   reactions: bool = False, vertical: bool = False,
-                   scale=None) -> BlockPeaks:
+def rocking_blocks(motion, size_s, alpha_rad, r=None, options: RockingOptions = RockingOptions(),
+                   *, jobs: int = 1, reactions: bool = False, scale=None) -> BlockPeaks:
     """Peaks of blocks given one by one, ``size_s[i]`` with ``alpha_rad[i]``, under one motion
     (block i under the motion × ``scale[i]``, when given).
 
@@ -119,14 +141,12 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
     r : float or Restitution, optional
         Coefficient of restitution for every block, or the impact model giving each α its r;
         Eq. 4.8 of each α when not given.
-    g : float, optional
-        Acceleration of gravity [m/s²].
+    options : RockingOptions
+        Gravity, free motion, the solver's step and rest rule, the vertical component.
     jobs : int
         Threads sharing the blocks (the kernel releases the GIL).
     reactions : bool
         Also evaluate the pivot reactions over the response (about 25 % more work).
-    vertical : bool
-        Include the motion's vertical component (gravity g + üv), where it has one.
     scale : array, optional
         Each block's scale factor of the motion [-]: its peaks are those under
         ``motion.scaled(scale[i])``, bit for bit, so one call solves a record at many levels
@@ -143,6 +163,7 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
         raise InputError("sizes: every 2π/p must be a positive number of seconds")
     # RigidBlock validates α, r and g once per slenderness, with the same messages as elsewhere
     unique, inverse = np.unique(alpha, return_inverse=True)
+    g = options.g
     blocks = [RigidBlock(2 * np.pi / size_s.max(), a, r, **({} if g is None else {"g": g}))
               for a in unique]
     p = 2.0 * np.pi / size_s
@@ -151,7 +172,7 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
     if not np.all(np.isfinite(factor)):
         raise InputError("scale: every scale factor of the motion must be a finite number")
     ratio = np.sqrt(np.array([b.r for b in blocks]))[inverse.ravel()]
-    args = _motion_arguments(motion, free_motion_s, vertical)
+    args = _motion_arguments(motion, options.free_motion_s, options.vertical)
     out = BlockPeaks.empty(p.size)
     rest = _at_rest(args, alpha, factor, blocks[0].g) if not reactions else np.zeros(p.size, bool)
     # the kernel's own answer for a block the motion never lifts (it stops at once there)
@@ -166,7 +187,7 @@ def rocking_blocks(motion, size_s, alpha_rad, r=None, g: float | None = None,
     def run(chunk):
         part = BlockPeaks.empty(chunk.size)
         _spectrum(*args, p[chunk], alpha[chunk], ratio[chunk], factor[chunk], blocks[0].g,
-                  steps_per_radian, rest_tolerance, reactions, part)
+                  options.steps_per_radian, options.rest_tolerance, reactions, part)
         for values, computed in zip(out, part):
             values[chunk] = computed
 
@@ -194,11 +215,9 @@ def _at_rest(args, alpha, factor, g: float) -> np.ndarray:
     return peak * np.abs(factor) <= g * np.tan(alpha) * (1.0 - _REST_MARGIN)
 
 
-def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
-                     free_motion_s: float = DEFAULT_FREE_MOTION_S,
-                     steps_per_radian: float = DEFAULT_STEPS_PER_RADIAN,
-                     rest_tolerance: float = DEFAULT_REST_TOLERANCE, jobs: int = 1,
-                     reactions: bool = True, vertical: bool = False) -> RockingSpectrum:
+def rocking_spectrum(motion, size_s, alpha_rad, r=None,
+                     options: RockingOptions = RockingOptions(), *, jobs: int = 1,
+                     reactions: bool = True) -> RockingSpectrum:
     """Peak rotation and angular velocity of every block of a (α, 2π/p) grid under one motion
     (:func:`rocking_blocks` over the grid).
 
@@ -213,11 +232,11 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
     r : float or Restitution, optional
         Coefficient of restitution for every block, or the impact model giving each α its r;
         Eq. 4.8 of each α when not given.
-    g : float, optional
-        Acceleration of gravity [m/s²].
+    options : RockingOptions
+        Gravity, free motion, the solver's step and rest rule, the vertical component.
     jobs : int
         Threads sharing the blocks (the kernel releases the GIL).
-    reactions, vertical : bool
+    reactions : bool
         As for :func:`rocking_blocks`.
 
     Returns
@@ -227,8 +246,8 @@ def rocking_spectrum(motion, size_s, alpha_rad, r=None, g: float | None = None,
     size_s = np.atleast_1d(np.asarray(size_s, dtype=float))
     alpha_rad = np.atleast_1d(np.asarray(alpha_rad, dtype=float))
     grid_alpha, grid_size = np.meshgrid(alpha_rad, size_s, indexing="ij")
-    peaks = rocking_blocks(motion, grid_size.ravel(), grid_alpha.ravel(), r, g, free_motion_s,
-                           steps_per_radian, rest_tolerance, jobs, reactions, vertical)
+    peaks = rocking_blocks(motion, grid_size.ravel(), grid_alpha.ravel(), r, options, jobs=jobs,
+                           reactions=reactions)
     shape = grid_size.shape
     return RockingSpectrum(size_s, alpha_rad, peaks.theta_peak.reshape(shape),
                            peaks.omega_peak.reshape(shape), peaks.theta_after.reshape(shape),

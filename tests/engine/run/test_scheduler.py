@@ -277,7 +277,7 @@ def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_re
         folders[name] = tmp_path / name
         folders[name].mkdir()
         summaries[name] = suite_run.run_audit(procedures, three_records, settings,
-                                                Runtime.parse(jobs=2, **how), folders[name])
+                                                Runtime.parse(Runtime(jobs=2, **how)), folders[name])
         if name == "scratch":  # all but the first waited in a scratch folder, last first
             assert [record for _, record in saved] == ids[:0:-1]
             assert all(folder != kept for folder, _ in saved)

@@ -26,7 +26,7 @@ from audit.engine.validation.settings import ValidationSettings
 from audit.engine.validation.pipeline import fitted_restitution, methods_statement
 from audit.errors import InputError
 from audit.physics.block import Restitution
-from audit.physics.rocking import rocking_blocks
+from audit.physics.rocking import RockingOptions, rocking_blocks
 from records.campaign import read_campaign
 from records.motion import GroundMotion
 
@@ -69,7 +69,7 @@ def _campaign(folder: Path, seed: int = 1, unknown: int = 6, periods=(0.4, 0.7, 
     alpha = np.radians(TRUE_ALPHA_DEG) * np.exp(TRUE_SIGMA * rng.standard_normal(len(rows)))
     outcome = np.array([rocking_blocks(m, [2 * np.pi / TRUE_P], [a],
                                        Restitution(factor=TRUE_FACTOR),
-                                       free_motion_s=5.0).overturned[0]
+                                       RockingOptions(free_motion_s=5.0)).overturned[0]
                         for m, a in zip(motions, alpha)])
     frame = pd.DataFrame(rows)
     frame["spec_overturned"] = outcome.astype(int).astype(object)
