@@ -46,8 +46,8 @@ def atlases(suite, tmp_path_factory):
     """An Sa(1 s) and a PGV atlas of the seed records, in a folder of their own."""
     before = os.environ.get(ATLAS_DIR_ENV)
     os.environ[ATLAS_DIR_ENV] = str(tmp_path_factory.mktemp("atlases"))
-    api.build_atlas(suite, jobs=2)
-    api.build_atlas(suite, im="pgv", jobs=2)
+    api.build_atlas(suite, runtime=api.Runtime(jobs=2))
+    api.build_atlas(suite, im="pgv", runtime=api.Runtime(jobs=2))
     yield os.environ[ATLAS_DIR_ENV]
     if before is None:
         del os.environ[ATLAS_DIR_ENV]
