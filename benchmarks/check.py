@@ -25,7 +25,7 @@ import numpy as np
 # appended, not inserted: a PYTHONPATH (compare.py's baseline tree) comes first, then this tree
 sys.path.append(str(Path(__file__).resolve().parents[1]))
 
-from audit.api import design_suite  # noqa: E402
+from audit.api import Site, design_suite  # noqa: E402
 from audit.engine.check.pipeline import run_check  # noqa: E402
 from audit.engine.shared.blocks import Block  # noqa: E402
 from audit.engine.check.settings import CheckSettings  # noqa: E402
@@ -50,8 +50,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args()
-    suite = design_suite(load_records(args.records), site=(1.5, 0.9), site_override=True,
-                         scale_to_site=True)
+    suite = design_suite(load_records(args.records),
+                         site=Site(1.5, 0.9, override=True, scale_records=True))
     settings = CheckSettings.parse(im="sa:1.0")
     runtime = Runtime.parse(Runtime(jobs=args.jobs))
     every = get_procedures("all")

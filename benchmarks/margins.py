@@ -24,7 +24,7 @@ import numpy as np
 # appended, not inserted: a PYTHONPATH (compare.py's baseline tree) comes first, then this tree
 sys.path.append(str(Path(__file__).resolve().parents[1]))
 
-from audit.api import MarginsResult, design_suite  # noqa: E402
+from audit.api import MarginsResult, Site, design_suite  # noqa: E402
 from audit.engine.design.margins import margins_tables  # noqa: E402
 from audit.engine.design.scans import amplitude_scans  # noqa: E402
 from audit.engine.design.settings import MarginsSettings  # noqa: E402
@@ -46,7 +46,7 @@ def main() -> None:
     records = load_records(args.records)
     if args.first:
         records = replace(records, entries=records.entries[:args.first])
-    suite = design_suite(records, site=(1.5, 0.9), site_override=True, scale_to_site=True)
+    suite = design_suite(records, site=Site(1.5, 0.9, override=True, scale_records=True))
     settings = MarginsSettings.parse(im="sa:1.0", alpha_deg=(10.0, 15.0, 20.0),
                                      size_s=np.arange(0.5, 8.001, 0.25))
     runtime = Runtime.parse(Runtime(jobs=args.jobs))

@@ -35,7 +35,7 @@ sys.path.append(str(Path(__file__).resolve().parents[1]))
 
 from four_libm_step import StepSwapped, rk4_four_libm  # noqa: E402
 
-from audit.api import design_suite  # noqa: E402
+from audit.api import Site, design_suite  # noqa: E402
 from audit.engine.shared.blocks import BlockList  # noqa: E402
 from audit.engine.design.margins import margins_stripes  # noqa: E402
 from audit.engine.design.settings import MarginsSettings  # noqa: E402
@@ -91,7 +91,7 @@ def main() -> None:
     records = load_records(args.records)
     if args.first:
         records = replace(records, entries=records.entries[:args.first])
-    suite = design_suite(records, site=(1.5, 0.9), site_override=True, scale_to_site=True)
+    suite = design_suite(records, site=Site(1.5, 0.9, override=True, scale_records=True))
     settings = MarginsSettings.parse()
     print(f"load average {os.getloadavg()[0]:.1f}", flush=True)
     grid = (dict(np.load(args.earlier)) if args.earlier

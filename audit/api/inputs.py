@@ -210,12 +210,6 @@ def motion_of(motion, records=None):
                         if hasattr(motion, "shape") else ""), "motion")
 
 
-def settings_fields(keywords: dict, fields) -> dict:
-    """The settings fields among a function's explicit keywords (its ``locals()``): a keyword
-    added to a settings object reaches it by being named in the function's signature."""
-    return {name: keywords[name] for name in fields}
-
-
 #: The keyword of a function that takes the floor one value at a time (``floor``, ``building``,
 #: ``building_model``, ``building_damping``), for each field a message of :class:`Floor` names.
 FLOOR_KEYWORDS = {"floor.building.period_s": "building", "floor.building.model": "building_model",
@@ -263,4 +257,4 @@ def on_floor_of(motion, floor, records=None):
 
 
 __all__ = ["procedures_of", "parameters_of", "record_suite", "built_in_suites", "motion_of",
-           "floor_of", "FLOOR_KEYWORDS", "on_floor_of", "settings_fields"]
+           "floor_of", "FLOOR_KEYWORDS", "on_floor_of", "keywords_named"]
