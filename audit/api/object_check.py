@@ -198,11 +198,11 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.progress import Progress
     from audit.engine.shared.runtime import Runtime
-    if site is None:
-        raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
     # each record is scaled on its own to the site and the stripes (audit.engine.check.pipeline),
     # so no suite scaling first: the records as given, every one given the site
     where = DesignSite.parse(site, floor, "check")
+    if where.site is None or where.site.sxs_g is None:
+        raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
     where = replace(where, site=replace(where.site, override=True))
     settings = CheckSettings.parse(im=im, solver=solver, seed=seed, hazard=hazard,
                                    friction=friction, limit_state=where.site.limit_state,

@@ -315,7 +315,7 @@ def add_skip_bad_records_option(parser):
 
 
 def records(args):
-    """The :class:`records.Records` of ``--records``, ``--dt``, ``--units`` and
+    """The :class:`audit.api.Records` of ``--records``, ``--dt``, ``--units`` and
     ``--skip-bad-records`` (the one place a command's record flags are read)."""
     from audit.api import Records
     return Records(args.records, dt_s=args.dt, units=args.units,

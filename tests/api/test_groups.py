@@ -314,3 +314,8 @@ def test_no_module_of_the_api_reads_its_locals():
                  if isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
                  and node.func.id in ("locals", "vars")]
         assert not calls, (path.name, calls)
+
+
+def test_check_needs_the_fema_values_of_its_site():
+    for site in (None, Site(None, None, ntc=(0.25, 2.4, 0.3, "B", "T1"))):
+        assert "required" in _refused("site", audit.check, ["0.6x1.8"], site, records="pulses")
