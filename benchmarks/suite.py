@@ -108,6 +108,7 @@ def measure(mode, sources, site, workers, size, procedure_names):
     """One timed audit in this process (run as a child): a JSON line on stdout."""
     import tempfile
 
+    from audit.api import Runtime
     from audit.api import run as run_api
     from audit.engine.shared.heap import return_freed_memory_promptly
     from audit.engine.run.record_audit import audit_record
@@ -131,8 +132,9 @@ def measure(mode, sources, site, workers, size, procedure_names):
     start = time.perf_counter()
     cluster_start, scheduler_rss = 0.0, None
     if mode in ("local", "localcluster"):
-        summary = run_api(procedures, suite, jobs=workers, progress=progress, out_dir=out_dir,
-                          scheduler="local" if mode == "local" else "dask").summary
+        summary = run_api(procedures, suite, out_dir=out_dir, runtime=Runtime(
+            jobs=workers, progress=progress,
+            scheduler="local" if mode == "local" else "dask")).summary
         wall = time.perf_counter() - start
     else:
         import logging
@@ -145,8 +147,8 @@ def measure(mode, sources, site, workers, size, procedure_names):
             client.run(audit_record, suite.entries[0], procedures, warm)
             cluster_start = time.perf_counter() - start
             start = time.perf_counter()
-            summary = run_api(procedures, suite, jobs=workers, progress=progress,
-                              scheduler=cluster.scheduler_address, out_dir=out_dir).summary
+            summary = run_api(procedures, suite, out_dir=out_dir, runtime=Runtime(
+                jobs=workers, progress=progress, scheduler=cluster.scheduler_address)).summary
             wall = time.perf_counter() - start
             worker_rss = list(client.run(max_rss_kb).values())
             scheduler_rss = client.run_on_scheduler(max_rss_kb)

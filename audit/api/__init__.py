@@ -3,7 +3,9 @@
     import audit, records
     block = audit.Block.from_dimensions(width_m=0.8, height_m=2.4)
     response = audit.rock(block, "pacoima_dam_1971", records="pulses")
-    result = audit.run("all", records="p695-far-field", site=(1.5, 0.9), scale_to_site=True)
+    result = audit.run("all", records="p695-far-field",
+                       site=audit.Site(1.5, 0.9, scale_records=True),
+                       runtime=audit.Runtime(jobs=4))
     result.bottom_line                       # a DataFrame; result.write("out") for the files
 
 Angles are given in degrees and accelerations in g at this edge, as on the command line;
@@ -12,8 +14,11 @@ everything inside is SI. Every argument is checked before any work starts; a bad
 flag in the argument's place). A run's settings are fields of settings objects
 (:class:`~audit.engine.run.settings.AuditSettings`,
 :class:`~audit.engine.design.settings.MarginsSettings`,
-:class:`~audit.engine.shared.design_site.DesignSite`, :class:`~audit.engine.shared.runtime.Runtime`), given
-as keyword arguments.
+:class:`~audit.engine.check.settings.CheckSettings`), given as keyword arguments; what travels
+together is one small group checked by its own ``parse`` and accepted beside its shorthand
+(:class:`Building`, :class:`Floor`, :class:`Site`, :class:`Hazard`, :class:`Solver`,
+:class:`Runtime`, :class:`Records`), whose fields a message names as ``argument.field``
+(``floor.building.period_s``).
 
 Every name is imported plainly from its module. Importing them is light (no numpy, pandas,
 numba or matplotlib): each module loads its scientific imports inside the functions that use

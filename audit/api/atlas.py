@@ -43,14 +43,11 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solv
     from audit.api.inputs import floor_group, record_suite, runtime_of, solver_of
     from audit.engine.atlas.settings import ALPHA_DEG, SIZE_S, AtlasSettings, floor_words, \
         records_digest
-    from audit.engine.check.settings import CheckSettings
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.intensity import IntensityMeasure
     solver = solver_of(solver, "atlas", ("restitution", "free_motion_s", "g"))
-    # the IM on its own: check's settings refuse PGV (a design spectrum has none), fragility's
-    # stripes are PGV
-    checked = CheckSettings.parse(restitution=solver.restitution,
-                                  free_motion_s=solver.free_motion_s, g=solver.g)
+    # the IM on its own (not check's settings, which refuse PGV: a design spectrum has none):
+    # fragility's stripes are PGV
     im = im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im)
     runtime = runtime_of(runtime, "atlas", ("jobs",))
     site = DesignSite(None, floor_group(floor))
@@ -59,8 +56,8 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solv
     alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
     name = records if isinstance(records, str) else str(getattr(records, "description", records))
     return entries, AtlasSettings(name, records_digest(entries), im,
-                                  floor_words(site.floor), checked.restitution, checked.g,
-                                  checked.free_motion_s,
+                                  floor_words(site.floor), solver.restitution, solver.g,
+                                  solver.free_motion_s,
                                   tuple(float(a) for a in alpha_deg),
                                   tuple(float(s) for s in size_s), runtime.jobs)
 

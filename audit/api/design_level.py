@@ -5,12 +5,8 @@ from __future__ import annotations
 import time
 from dataclasses import replace
 
-from audit import G
 from audit.api.result_shape import Files, with_page
-from audit.engine.shared.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET, DEFAULT_SCHEDULER,
-                                   DEFAULT_SITE_LEVEL)
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_SITE_LEVEL
 
 
 class MarginsResult(Files):
@@ -71,28 +67,19 @@ class MarginsResult(Files):
 
 
 def margins(procedures="all", records=None, *, im: str | None = None, stripes=None,
-            alpha_deg=DEFAULT_ALPHA_DEG, size_s=None, blocks=(),
-            restitution=DEFAULT_RESTITUTION, free_motion_s: float = DEFAULT_FREE_MOTION_S,
-            required: bool = True, g: float = G, site_level: str = DEFAULT_SITE_LEVEL,
-            hazard=None, hazard_imt: str | None = None, site_location=None,
-            risk_target: float = DEFAULT_RISK_TARGET,
-            site=None, scale_to_site: bool = False, anchor_period_s: float | None = None,
-            ntc_site=None, floor: float = 0.0, building: float | None = None,
-            building_model: str | None = None,
-            building_damping: float = DEFAULT_BUILDING_DAMPING,
-            skip_bad_records: bool = False, dt_s: float | None = None,
-            units: str | None = None, force: bool = False,
-            jobs: int = DEFAULT_JOBS, scheduler=DEFAULT_SCHEDULER, partial_dir=None,
-            resume: bool = False, progress=False,
+            alpha_deg=DEFAULT_ALPHA_DEG, size_s=None, blocks=(), solver=None,
+            required: bool = True, hazard=None, site=None, floor=None, runtime=None,
             params: dict | None = None, method: str | None = None) -> MarginsResult:
     """The design-level audit: exact multiple-stripe fragility of every block, and where each
     procedure draws its line against it (see :mod:`audit.engine.design.margins`).
 
     Every argument is checked before anything is read or computed (by
-    :meth:`MarginsSettings.parse <audit.engine.design.settings.MarginsSettings.parse>`,
-    :meth:`DesignSite.parse <audit.engine.shared.design_site.DesignSite.parse>` and
-    :meth:`Runtime.parse <audit.engine.shared.runtime.Runtime.parse>`); a bad one raises
-    :class:`~audit.errors.InputError` naming it.
+    :meth:`MarginsSettings.parse <audit.engine.design.settings.MarginsSettings.parse>` and
+    each group's ``parse``: :class:`~audit.engine.shared.solver.Solver`,
+    :class:`~audit.engine.shared.hazard.Hazard`, :class:`~audit.engine.shared.design_site.Site`,
+    :class:`~audit.physics.building.floor.Floor`, :class:`~audit.engine.shared.runtime.Runtime`,
+    :class:`~audit.engine.shared.record_request.Records`); a bad one raises :class:`~audit.errors.InputError`
+    naming it.
 
     Parameters
     ----------
@@ -111,42 +98,25 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
         Block sizes 2π/p [s]; default 0.5 … 8 s in steps of 0.25 s.
     blocks : sequence of str or Block
         Blocks by their dimensions, ``"WIDTHxHEIGHT"`` [m] or :class:`Block`, beside the grid.
-    restitution : str or float
-        ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or ``xFACTOR`` times Eq. 4.8.
-    free_motion_s : float
-        Free motion after each record [s].
+    solver : Solver, optional
+        The exact solver: ``Solver(restitution="housner", free_motion_s=..., g=9.81)``, as for
+        :func:`audit.check`.
     required : bool
         Also search the required slenderness of each size.
-    g : float
-        Acceleration of gravity [m/s²].
-    site_level : {"mce", "design"}
-        The hazard level of ``site``: the CMR is over the MCE intensity, 1.5 × design values.
-    hazard : records.hazard.HazardCurve, str or pathlib.Path, optional
+    hazard : Hazard, records.hazard.HazardCurve, str or pathlib.Path, optional
         The site's hazard curve or its file: the risk at the site; its IMT sets ``im``.
-    hazard_imt : str, optional
-        The IMT of a hazard file of several (``"SA(1.0)"``, ``"PGA"``); without it, ``im``'s.
-    site_location : (float, float), optional
-        Longitude, latitude [degrees] of the site in a hazard file of several sites.
-    risk_target : float
-        Probability of overturning in 50 years [-], in (0, 1).
-    site : (float, float), optional
+        ``Hazard(curve, imt=..., location=(lon, lat), risk_target=0.01)``: the IMT of a file
+        of several, the site in a file of several sites [degrees], the probability of
+        overturning in 50 years [-] the risk-targeted slenderness meets.
+    site : Site, (float, float) or str, optional
         FEMA 356 S_XS, S_X1 [g], replacing the records' own: the design intensity of the CMR.
-    scale_to_site, anchor_period_s, ntc_site :
-        As for :func:`audit.run` (anchor period in s; NTC 2018 a_g [g], F0, T_C* [s], soil,
-        topography).
-    floor, building, building_model, building_damping :
+        ``Site(sxs_g, sx1_g, level="mce", scale_records=..., anchor_period_s=..., ntc=...)``:
+        the hazard level of the values (``mce``, or ``design``: the CMR is over 1.5 × them),
+        and the scaling and NTC 2018 site as for :func:`audit.run`.
+    floor : Floor, optional
         Where the blocks stand, as for :func:`audit.run`; the stripes stay in the ground's
         intensity measure.
-    skip_bad_records : bool
-        Audit the readable records; the unreadable ones are warned about and left out.
-    dt_s : float, optional
-        Time step [s] of a text record file that states none (no time column, no ``dt =``
-        comment).
-    units : {"g", "m/s2", "cm/s2"}, optional
-        Units of the accelerations of a text record file that states none.
-    force : bool
-        Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
-    jobs, scheduler, partial_dir, resume, progress :
+    runtime : Runtime, optional
         How, as for :func:`audit.run`.
     params : dict, optional
         The procedures' parameters, as for :func:`audit.run`.
@@ -163,42 +133,41 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     -------
     MarginsResult
     """
-    from audit.api.inputs import (floor_of, parameters_of, procedures_of, record_suite,
-                                   settings_fields)
-    from audit.engine.shared.record_request import Records
-    from audit.engine.shared import fields as check
+    from audit.api.atlas import atlas_reading
+    from audit.api.inputs import parameters_of, procedures_of, record_suite
+    from audit.engine.atlas.fragility_read import checked_method
     from audit.engine.shared import guards
     from audit.engine.design.costs import margins_cost
     from audit.engine.design.pipeline import run_margins
-    from audit.engine.design.settings import MARGINS_FIELDS, MarginsSettings
+    from audit.engine.design.settings import MarginsSettings
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.progress import Progress
-    from audit.engine.shared.runtime import Runtime
-    given = locals()
-    settings = MarginsSettings.parse(**settings_fields(given, MARGINS_FIELDS))
-    # one design site: the audit is of that site
-    from audit.api.runs import _design_site
-    site = _design_site(site, site is not None, scale_to_site, anchor_period_s, ntc_site,
-                        floor_of(floor, building, building_model, building_damping))
-    bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
-    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
-                                    resume=resume, force=force,
-                                    progress=progress if callable(progress) else None), None)
-    force = runtime.force
-    chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
-    from audit.api.atlas import atlas_reading
-    from audit.engine.atlas.fragility_read import checked_method
     from audit.engine.shared.blocks import BlockList
+    from audit.engine.shared.runtime import Runtime
     from audit.engine.shared.solver import Solver
+    where = DesignSite.parse(site, floor, "margins")
+    if where.site is not None:  # one design site: the audit is of that site
+        where = replace(where, site=replace(where.site, override=where.site.sxs_g is not None))
+    settings = MarginsSettings.parse(
+        im=im, stripes=stripes, alpha_deg=alpha_deg, size_s=size_s, blocks=blocks,
+        solver=solver, required=required, hazard=hazard,
+        site_level=DEFAULT_SITE_LEVEL if where.site is None else where.site.level)
+    runtime = Runtime.parse(runtime)
     checked_method(method)
-    read = record_suite(Records(records, dt_s, units, skip_bad_records), None)
-    suite = site.apply(read)
-    guards.check(margins_cost(chosen, suite, settings, runtime), force)
+    bar = runtime.progress is True  # drawn here: the engine takes a callable
+    if bar:
+        runtime = replace(runtime, progress=None)
+    chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
+    read = record_suite(records)
+    suite = where.apply(read)
+    guards.check(margins_cost(chosen, suite, settings, runtime), runtime.force,
+                 force_field="runtime.force")
     grid = BlockList.of(settings.alpha_deg, settings.size_s, settings.blocks)
     atlas = atlas_reading(method, read, (grid.alpha_deg, grid.size_s), im=settings.im,
-                          solver=Solver(restitution, settings.free_motion_s, settings.g),
-                          floor=site.floor, stripes=settings.stripes,
-                          named=records) if len(grid) else None
+                          solver=Solver(settings.restitution, settings.free_motion_s,
+                                        settings.g),
+                          floor=where.floor, stripes=settings.stripes,
+                          named=getattr(records, "source", records)) if len(grid) else None
     if bar:
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
     start = time.perf_counter()

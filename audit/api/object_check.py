@@ -16,15 +16,11 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
-from audit import G
 from audit.api.result_shape import Files, with_page
 from audit.engine.shared import fields as check_field
 from audit.engine.check.objects import object_by_slenderness, parse_block_text, read_objects
-from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S, DEFAULT_JOBS,
-                                   BOTH, DEFAULT_RESTITUTION, DEFAULT_RISK_TARGET,
-                                   DEFAULT_SCHEDULER)
+from audit.engine.shared.defaults import DEFAULT_CHECK_RECORDS
 from audit.errors import InputError
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 if TYPE_CHECKING:  # pandas is loaded by the check, not by the front door
     import pandas as pd
@@ -120,104 +116,52 @@ def _objects(objects, g: float) -> list:
 
 
 def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
-          im: str | None = None, restitution=DEFAULT_RESTITUTION,
-          free_motion_s: float = DEFAULT_FREE_MOTION_S, g: float = G, seed: int | None = None,
-          hazard=None, hazard_imt: str | None = None, site_location=None,
-          risk_target: float = DEFAULT_RISK_TARGET, return_period: float | None = None,
-          poe: float | None = None, friction: float | None = None, ntc_site=None,
-          skip_bad_records: bool = False, dt_s: float | None = None,
-          units: str | None = None, jobs: int = DEFAULT_JOBS,
-          scheduler=DEFAULT_SCHEDULER, progress=False, force: bool = False, floor: float = 0.0,
-          building: float | None = None, building_model: str | None = None,
-          building_damping: float = DEFAULT_BUILDING_DAMPING,
-          limit_state: str = BOTH, params: dict | None = None,
-          mass_kg: float | None = None, guideline_spectrum: str = "ground") -> CheckResult:
+          im: str | None = None, seed: int | None = None, hazard=None,
+          friction: float | None = None, params: dict | None = None,
+          mass_kg: float | None = None, guideline_spectrum: str = "ground", floor=None,
+          solver=None, runtime=None) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check.risk`).
 
     Every argument is checked before anything is read or computed (by
-    :meth:`CheckSettings.parse <audit.engine.check.settings.CheckSettings.parse>`,
-    :meth:`DesignSite.parse <audit.engine.shared.design_site.DesignSite.parse>` and
-    :meth:`Runtime.parse <audit.engine.shared.runtime.Runtime.parse>`); a bad one raises
-    :class:`~audit.errors.InputError` naming it.
+    :meth:`CheckSettings.parse <audit.engine.check.settings.CheckSettings.parse>` and each
+    group's ``parse``: :class:`~audit.engine.shared.design_site.Site`,
+    :class:`~audit.physics.building.floor.Floor`, :class:`~audit.engine.shared.hazard.Hazard`,
+    :class:`~audit.engine.shared.solver.Solver`, :class:`~audit.engine.shared.runtime.Runtime`,
+    :class:`~audit.engine.shared.record_request.Records`); a bad one raises :class:`~audit.errors.InputError`
+    naming it (``site``, ``floor.building.period_s``).
 
     Parameters
     ----------
     objects : str, Block or sequence
         ``"WIDTHxHEIGHT"`` [m], :class:`audit.api.Block`, ``(name, width_m, height_m)``,
         or a list of those.
-    site : (float, float)
-        FEMA 356 / ASCE 41 S_XS, S_X1 [g] at the hazard level assessed.
+    site : Site, (float, float) or str
+        The design site: FEMA 356 / ASCE 41 S_XS, S_X1 [g] at the hazard level assessed
+        (``(1.5, 0.9)`` or ``"1.5,0.9"`` for those alone); ``Site(..., ntc=(a_g, F0, T_C*,
+        soil, topography))`` an NTC 2018 site, read by NTC 2018 and EN 1998-1, its values
+        those of ``limit_state``'s return period (``SLV``, ``SLC`` or ``both``, the default:
+        each reported; with ``both`` the one set is read for SLV and SLC alike).
     procedures : str, Procedure, type or list
         As for :func:`audit.api.run`.
-    records : str, path or records.RecordSuite
+    records : str, path, records.RecordSuite or Records
         As for :func:`audit.api.run`; default the FEMA P695 far-field set. Scaled to the site.
     im : str, optional
         Intensity measure, ``pga`` [g] or ``sa:T`` (T in s) [g], read from the site's design
         spectrum; default ``sa:1.0``, or the hazard curve's IMT.
-    restitution : str or float
-        Impact model of the exact solver: ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or
-        ``xFACTOR`` times Eq. 4.8.
-    free_motion_s : float
-        Free motion after each record [s], ≥ 0.
-    g : float
-        Acceleration of gravity [m/s²].
     seed : int, optional
         Seed of the bootstrap over records.
-    hazard : records.hazard.HazardCurve, str or pathlib.Path, optional
+    hazard : Hazard, records.hazard.HazardCurve, str or pathlib.Path, optional
         The site's hazard curve or its file: the annual rate of overturning; its IMT sets
-        ``im``.
-    hazard_imt : str, optional
-        The IMT of a hazard file of several (``"SA(1.0)"``, ``"PGA"``); without it, ``im``'s.
-    site_location : (float, float) or str, optional
-        Longitude, latitude [degrees] of the site in a hazard file of several sites (west and
-        south negative; ``"-118,34"`` too).
-    risk_target : float or str
-        Probability of overturning in 50 years the risk-targeted width meets [-], in (0, 1):
-        0.01 or ``"1%"``.
-    return_period : float, optional
-        With ``hazard``: the site's intensity for the exact answer is the hazard curve's at this
-        return period [years]; ``site`` stays the design spectrum the guidelines read.
-    poe : float or str, optional
-        The same, as a probability of exceedance in 50 years (0.02 or ``"2%"``).
+        ``im``. ``Hazard(curve, imt=..., location=(lon, lat), return_period=..., poe=...,
+        risk_target=0.01)``: the IMT of a file of several, the site in a file of several
+        sites [degrees], the site's intensity for the exact answer at a return period [years]
+        or a probability of exceedance in 50 years (``site`` stays the design spectrum the
+        guidelines read), and the P of overturning in 50 years the risk-targeted width meets.
     friction : float, optional
         Friction coefficient μ of the object's base [-]: which mode governs, sliding or
         rocking; without it no sliding is assumed and the friction the records need is given.
-    ntc_site : (float, float, float, str, str), optional
-        NTC 2018 site a_g [g], F0 [-], T_C* [s], soil, topography
-        (see :func:`audit.api.design_suite`).
-    skip_bad_records : bool
-        Check with the readable records of the suite; the unreadable ones are warned about
-        (:class:`~audit.errors.InputWarning`) and left out.
-    dt_s : float, optional
-        Time step [s] of a text record file that states none (no time column, no ``dt =``
-        comment).
-    units : {"g", "m/s2", "cm/s2"}, optional
-        Units of the accelerations of a text record file that states none.
-    jobs : int
-        Solver threads, or worker processes with ``scheduler="dask"``.
-    scheduler : str
-        ``local``, ``dask`` or ``tcp://HOST:PORT``.
-    progress : bool or callable
-        A progress bar on standard error, or ``progress(done, total, record_id, how)``.
-    force : bool
-        Start even when the work is estimated beyond the limits of
-        :mod:`audit.engine.shared.guards` (as for :func:`audit.api.run`); InputError otherwise.
-    floor : float
-        Where the objects stand: z/H in the building, 0 the ground (the default), 1 the roof.
-    building : float, optional
-        The building's first-mode period T1 [s]; needed above the ground.
-    building_model : str, optional
-        ``shear:N`` or ``continuum:α0`` (default ``continuum:10``), see
-        :mod:`audit.physics.building`.
-    building_damping : float
-        ζ in every mode of the building [-] (default 0.05).
-    limit_state : str
-        The limit state the site's values are for, of a guideline that names its own (NTC
-        2018): ``SLV``, ``SLC`` or ``both`` (the default: each reported). An ``ntc_site``'s
-        a_g, F0, T_C* are the values of this limit state's return period; with ``both`` the
-        one set is read for SLV and SLC alike.
     params : dict, optional
         Parameters of the procedures and component provisions, ``{name: {key: value}}`` with
         keys as the code writes them (``{"asce7_22": {"I_p": 1.5}}``); each plug-in declares
@@ -230,34 +174,44 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         reads: the ground's design spectrum ``site`` as its text is written (the default), or
         the floor's response spectrum (:mod:`audit.engine.check.spectrum_read`); its entry
         gives its verdict on the other too.
+    floor : Floor, optional
+        Where the objects stand: ``Floor(z_over_h, Building(period_s, model="continuum:10",
+        damping=0.05))`` (z/H 1 the roof, T1 [s]; :mod:`audit.physics.building`); None or 0
+        the ground (the default).
+    solver : Solver, optional
+        The exact solver: ``Solver(restitution="housner", free_motion_s=..., g=9.81)``
+        (``housner``, Eq. 4.8, a fixed r in (0, 1] or ``xFACTOR`` times Eq. 4.8; free motion
+        after each record [s]; gravity [m/s²]).
+    runtime : Runtime, optional
+        How: ``Runtime(jobs, scheduler, progress, force)`` (solver threads, or worker
+        processes with ``scheduler="dask"``; ``local``, ``dask`` or ``tcp://HOST:PORT``; a
+        progress bar on standard error, or ``progress(done, total, record_id, how)``; start
+        even when the work is estimated beyond the limits of :mod:`audit.engine.shared.guards`).
 
     Returns
     -------
     CheckResult
     """
-    from audit.api.inputs import (floor_of, parameters_of, procedures_of, record_suite,
-                                   settings_fields)
+    from audit.api.inputs import parameters_of, procedures_of, record_suite
     from audit.engine.shared import guards
     from audit.engine.check.costs import check_cost
     from audit.engine.check.pipeline import run_check
-    from audit.engine.check.settings import CHECK_FIELDS, CheckSettings
-    from audit.engine.shared.design_site import DesignSite, Site
+    from audit.engine.check.settings import CheckSettings
+    from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.progress import Progress
     from audit.engine.shared.runtime import Runtime
-    from audit.engine.shared.record_request import Records
-    settings = CheckSettings.parse(**settings_fields(locals(), CHECK_FIELDS))
-    chosen_objects = _objects(objects, settings.g)
-    progress = check_field.callback("progress", progress, "progress(done, total, record_id, how)")
-    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler,
-                                    progress=progress if callable(progress) else None), None)
-    if site is None:
+    # each record is scaled on its own to the site and the stripes (audit.engine.check.pipeline),
+    # so no suite scaling first: the records as given, every one given the site
+    where = DesignSite.parse(site, floor, "check")
+    if where.site is None or where.site.sxs_g is None:
         raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
-    # each record is scaled on its own to the site and the stripes (audit.engine.check.pipeline), so no
-    # suite scaling first: the records as given
-    from audit.api.runs import _design_site
-    site = _design_site(site, True, False, None, ntc_site,
-                        floor_of(floor, building, building_model, building_damping))
-    if settings.guideline_spectrum == "floor" and site.floor.on_ground:
+    where = replace(where, site=replace(where.site, override=True))
+    settings = CheckSettings.parse(im=im, solver=solver, seed=seed, hazard=hazard,
+                                   friction=friction, limit_state=where.site.limit_state,
+                                   guideline_spectrum=guideline_spectrum)
+    chosen_objects = _objects(objects, settings.g)
+    runtime = Runtime.parse(runtime)
+    if settings.guideline_spectrum == "floor" and where.floor.on_ground:
         raise InputError("guideline_spectrum: 'floor' reads the floor's response spectrum; the "
                          "objects stand on the ground (give floor and building)",
                          "guideline_spectrum")
@@ -265,19 +219,22 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     if mass_kg is not None:
         mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,
                                      low_open=True)
-    given = record_suite(Records(records, dt_s, units, skip_bad_records), None)
+    given = record_suite(records)
+    bar = runtime.progress is True  # drawn here: the engine takes a callable
+    if bar:
+        runtime = replace(runtime, progress=None)
     # the work, before the records are scaled to the site (scaling keeps their samples)
     guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
-                 check_field.flag("force", force))
-    suite = site.apply(given)
-    bar = Progress(len(suite), "record") if progress is True else None
+                 runtime.force, force_field="runtime.force")
+    suite = where.apply(given)
+    if bar:
+        runtime = replace(runtime, progress=Progress(len(suite), "record"))
     try:
-        run = run_check(chosen, suite, chosen_objects, settings,
-                        replace(runtime, progress=bar) if bar else runtime, site.floor,
+        run = run_check(chosen, suite, chosen_objects, settings, runtime, where.floor,
                         provision_params, mass_kg)
     finally:
-        if bar is not None:
-            bar.done()
+        if bar:
+            runtime.progress.done()
     return CheckResult(run)
 
 

@@ -4,20 +4,13 @@
 from __future__ import annotations
 
 import functools
-from dataclasses import replace
 import warnings
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from audit.engine.shared import fields as check
-from audit import G
-from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S,
-                                   DEFAULT_JOBS, DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS,
-                                   DEFAULT_SCHEDULER)
-from audit.api.inputs import settings_fields
-from audit.engine.shared.design_site import DesignSite, Site
-from audit.engine.shared.runtime import Runtime
-from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
+from audit.engine.shared.defaults import DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG, DEFAULT_ROBUSTNESS
 from audit.errors import InputWarning
 
 if TYPE_CHECKING:  # pandas and the engine are loaded by what uses them, not by the front door
@@ -25,6 +18,7 @@ if TYPE_CHECKING:  # pandas and the engine are loaded by what uses them, not by 
 
     from audit.engine.run.audit_run import AuditRun
     from audit.engine.run.settings import AuditSettings
+    from audit.engine.shared.design_site import Site
     from audit.physics.building.floor import Floor
 
 #: The run's self-contained HTML report, beside its files.
@@ -163,76 +157,62 @@ class AuditResult:
 
 
 def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=None,
-        free_motion_s: float = DEFAULT_FREE_MOTION_S, agree_band: float = DEFAULT_AGREE_BAND,
-        robustness: float = DEFAULT_ROBUSTNESS, g: float = G, restitution=DEFAULT_RESTITUTION,
-        vertical: bool = False, friction: float | None = None, sensitivity=(), site=None,
-        site_override: bool = False, scale_to_site: bool = False,
-        anchor_period_s: float | None = None, ntc_site=None, floor: float = 0.0,
-        building: float | None = None, building_model: str | None = None,
-        building_damping: float = DEFAULT_BUILDING_DAMPING, skip_bad_records: bool = False,
-        dt_s: float | None = None, units: str | None = None,
-        detail=(), out_dir=None, force: bool = False, jobs: int = DEFAULT_JOBS,
-        scheduler=DEFAULT_SCHEDULER, partial_dir=None, resume: bool = False,
-        progress=False, params: dict | None = None) -> AuditResult:
+        solver=None, agree_band: float = DEFAULT_AGREE_BAND,
+        robustness: float = DEFAULT_ROBUSTNESS, friction: float | None = None, sensitivity=(),
+        site=None, floor=None, detail=(), out_dir=None, runtime=None,
+        params: dict | None = None) -> AuditResult:
     """Audit guideline procedures on a suite of records over a grid of blocks.
 
     Every argument is checked before anything is read or computed (by
-    :meth:`AuditSettings.parse <audit.engine.run.settings.AuditSettings.parse>`,
-    :meth:`DesignSite.parse <audit.engine.shared.design_site.DesignSite.parse>` and
-    :meth:`Runtime.parse <audit.engine.shared.runtime.Runtime.parse>`); a bad one raises
-    :class:`~audit.errors.InputError` naming it.
+    :meth:`AuditSettings.parse <audit.engine.run.settings.AuditSettings.parse>` and each
+    group's ``parse``: :class:`~audit.engine.shared.solver.Solver`,
+    :class:`~audit.engine.shared.design_site.Site`, :class:`~audit.physics.building.floor.Floor`,
+    :class:`~audit.engine.shared.runtime.Runtime`, :class:`~audit.engine.shared.record_request.Records`); a bad one
+    raises :class:`~audit.errors.InputError` naming it (``size_s``, ``site.anchor_period_s``).
 
     Parameters
     ----------
     procedures : str, Procedure, type or list
         ``"all"``, a registered name (``"fema356"``), a Procedure instance or subclass (a
         plug-in written in the notebook), or a list of those.
-    records : str, path or records.RecordSuite, optional
+    records : str, path, records.RecordSuite or Records, optional
         A built-in suite name, a manifest / record file / folder, or a suite from
-        :func:`records.load`; default: ``$ROCKING_AUDIT_RECORDS``, else the shipped seed records.
+        :func:`records.load`; default: ``$ROCKING_AUDIT_RECORDS``, else the shipped seed
+        records. ``Records(source, dt_s=..., units=..., skip_bad_records=...)`` says how a
+        text record file that states neither is read (time step [s]; ``g``, ``m/s2`` or
+        ``cm/s2``), and audits the readable records of the suite, the unreadable ones warned
+        about (:class:`~audit.errors.InputWarning`) and left out.
     alpha_deg : float or sequence of float
         Slendernesses α [degrees], 0 < α < 45.
     size_s : float or sequence of float, optional
         Block sizes 2π/p [s]; default 0.5 … 8.0 s in steps of 0.05 s.
-    free_motion_s : float
-        Free motion after each record, for the exact solver and the record spectra [s].
+    solver : Solver, optional
+        The exact solver: ``Solver(restitution="housner", free_motion_s=..., g=9.81,
+        vertical=False)``: the impact model (``housner``, Eq. 4.8, a fixed r in (0, 1] [-] or
+        ``xFACTOR`` times Eq. 4.8), the free motion after each record for the exact solver
+        and the record spectra [s], gravity [m/s²], and the records' vertical components in
+        the exact response.
     agree_band : float
         Half-width of the agreement band on approx/exact [-], in [0, 1).
     robustness : float
         ε of the fragility flag: exact spectra also at the record × (1 ± ε) [-]; 0 = off.
-    g : float
-        Acceleration of gravity [m/s²].
-    restitution : str or float
-        ``housner`` (Eq. 4.8), a fixed r in (0, 1] [-] or ``xFACTOR`` times Eq. 4.8.
-    vertical : bool
-        Include the records' vertical components in the exact response.
     friction : float, optional
         Friction coefficient μ of the base [-]: blocks that would slide are flagged.
     sensitivity : str or sequence of str
         Alternative ground-truth models (``"restitution=x0.9,x0.8"``, ``"vertical"``).
-    site : (float, float), optional
-        FEMA 356 design site S_XS, S_X1 [g] for every record without one.
-    site_override : bool
-        Also replace the sites records carry (Table 3.1).
-    scale_to_site : bool
-        Scale the suite to the design spectrum at ``anchor_period_s`` (FEMA P695).
-    anchor_period_s : float, optional
-        Anchor period of the scaling [s] (1 s when not given).
-    ntc_site : (float, float, float, str, str), optional
-        NTC 2018 site a_g [g], F0 [-], T_C* [s], soil category A–E, topography T1–T4.
-    floor, building, building_model, building_damping :
-        Where the blocks stand: z/H in the building (0 the ground, the default), its
-        first-mode period T1 [s], its model (``shear:N`` or ``continuum:α0``, default
-        ``continuum:10``) and damping ζ [-] (default 0.05); the site scales the ground
-        motion, the blocks rock on the floor's (:mod:`audit.engine.shared.floors`).
-    skip_bad_records : bool
-        Audit the readable records of the suite; the unreadable ones are warned about
-        (:class:`~audit.errors.InputWarning`) and left out.
-    dt_s : float, optional
-        Time step [s] of a text record file that states none (no time column, no ``dt =``
-        comment).
-    units : {"g", "m/s2", "cm/s2"}, optional
-        Units of the accelerations of a text record file that states none.
+    site : Site, (float, float) or str, optional
+        FEMA 356 design site S_XS, S_X1 [g] for every record without one (``(1.5, 0.9)`` or
+        ``"1.5,0.9"``); ``Site(sxs_g, sx1_g, ntc=..., override=..., scale_records=...,
+        anchor_period_s=...)``: an NTC 2018 site a_g [g], F0 [-], T_C* [s], soil category A–E,
+        topography T1–T4 (``Site(None, None, ntc=...)`` alone); also replace the sites records
+        carry (Table 3.1); scale the suite to the design spectrum at the anchor period [s]
+        (1 s when not given) the FEMA P695 way.
+    floor : Floor, optional
+        Where the blocks stand: ``Floor(z_over_h, Building(period_s, model="continuum:10",
+        damping=0.05))``, z/H in the building (1 the roof), its first-mode period T1 [s], its
+        model (``shear:N`` or ``continuum:α0``) and damping ζ [-]; None or 0 the ground (the
+        default). The site scales the ground motion, the blocks rock on the floor's
+        (:mod:`audit.engine.shared.floors`).
     detail : str or sequence of str
         Records whose detail the report shows.
     out_dir : str or Path, optional
@@ -240,18 +220,13 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
         record: memory does not grow with the suite beyond a small term per record until the
         tables are read (``.results``, ``.run``). Default: the data files in a scratch folder
         kept with the result (``.write(out_dir)`` saves them later).
-    force : bool
-        Start even when the estimated work is beyond the limits (:mod:`audit.engine.shared.guards`).
-    jobs : int
-        Threads of the exact solver, or worker processes with ``scheduler="dask"``.
-    scheduler : str
-        ``local``, ``dask`` or ``tcp://HOST:PORT``.
-    partial_dir : str or Path, optional
-        Folder for the per-record results as they complete (for ``resume``).
-    resume : bool
-        Reuse the matching per-record results already in ``partial_dir``.
-    progress : bool or callable
-        A progress bar on standard error, or ``progress(done, total, record_id, how)``.
+    runtime : Runtime, optional
+        How: ``Runtime(jobs, scheduler, progress, force, partial_dir, resume)``: threads of
+        the exact solver, or worker processes with ``scheduler="dask"``; ``local``, ``dask``
+        or ``tcp://HOST:PORT``; a progress bar on standard error (True), or
+        ``progress(done, total, record_id, how)``; start even when the estimated work is
+        beyond the limits (:mod:`audit.engine.shared.guards`); the folder for the per-record
+        results as they complete, and reuse of the matching ones already there.
     params : dict, optional
         The procedures' parameters, ``{name: {key: value}}`` (``{"ntc2018": {"q": 1.5}}``),
         each declared by its procedure (docs/procedures.md); an unknown one is refused.
@@ -260,30 +235,31 @@ def run(procedures="all", records=None, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=N
     -------
     AuditResult
     """
-    from audit.api.inputs import floor_of, parameters_of, procedures_of, record_suite
+    from audit.api.inputs import parameters_of, procedures_of, record_suite
     from audit.engine.shared import guards
     from audit.engine.run.costs import audit_cost
     from audit.engine.shared.progress import Progress
     from audit.engine.run.pipeline import run_audit, compiles_first
-    from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
+    from audit.engine.run.settings import AuditSettings
+    from audit.engine.shared.design_site import DesignSite
+    from audit.engine.shared.runtime import Runtime
     from audit.files import staged_folder
-    from audit.engine.shared.record_request import Records
-    given = locals()
-    settings = AuditSettings.parse(**settings_fields(given, AUDIT_FIELDS))
-    site = _design_site(site, site_override, scale_to_site, anchor_period_s, ntc_site,
-                        floor_of(floor, building, building_model, building_damping))
+    settings = AuditSettings.parse(alpha_deg=alpha_deg, size_s=size_s, solver=solver,
+                                   agree_band=agree_band, robustness=robustness,
+                                   friction=friction, sensitivity=sensitivity)
+    where = DesignSite.parse(site, floor, "run")
     detail = check.words("detail", detail)
-    bar = check.callback("progress", progress, "progress(done, total, record_id, how)") is True
-    runtime = Runtime.parse(Runtime(jobs=jobs, scheduler=scheduler, partial_dir=partial_dir,
-                                    resume=resume, force=force,
-                                    progress=progress if callable(progress) else None), None)
-    force = runtime.force
+    runtime = Runtime.parse(runtime)
+    bar = runtime.progress is True  # drawn here: the engine takes a callable
+    if bar:
+        runtime = replace(runtime, progress=None)
     if out_dir is not None:
         out_dir = check.path("out_dir", out_dir, "a folder")
     chosen, _ = parameters_of(params, procedures_of(procedures), provisions=False)
-    suite = site.apply(record_suite(Records(records, dt_s, units, skip_bad_records), None))
+    suite = where.apply(record_suite(records))
     _warn_without_vertical(suite, settings)
-    guards.check(audit_cost(chosen, suite, settings, runtime), force)
+    guards.check(audit_cost(chosen, suite, settings, runtime), runtime.force,
+                 force_field="runtime.force")
     stage = Progress(len(suite), "record") if bar else runtime.progress
     if bar:
         runtime = replace(runtime, progress=stage)
@@ -343,26 +319,8 @@ def design_suite(suite, *, site: Site | None = None, floor: Floor | None = None)
         default the ground); the site scales the ground motion, the blocks rock on the
         floor's (:mod:`audit.engine.shared.floors`).
     """
+    from audit.engine.shared.design_site import DesignSite
     return DesignSite.parse(site, floor, "run").apply(suite)
-
-
-def _design_site(site, override, scale, anchor_period_s, ntc, floor) -> DesignSite:
-    from audit.api.inputs import keywords_named
-    with keywords_named({"site.ntc": "ntc_site", "site.override": "site_override",
-                         "site.scale_records": "scale_to_site",
-                         "site.anchor_period_s": "anchor_period_s"}):
-        return _site_of(site, override, scale, anchor_period_s, ntc, floor)
-
-
-def _site_of(site, override, scale, anchor_period_s, ntc, floor) -> DesignSite:
-    if site is None:
-        site = None if ntc is None and override is False and scale is False else Site(None, None)
-    elif not isinstance(site, Site):
-        site = Site.parse(site)
-    if site is not None:
-        site = Site(site.sxs_g, site.sx1_g, ntc=ntc, override=override, scale_records=scale,
-                    anchor_period_s=anchor_period_s)
-    return DesignSite.parse(site, floor)
 
 
 def _warn_without_vertical(suite, settings: AuditSettings) -> None:

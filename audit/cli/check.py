@@ -128,7 +128,7 @@ def objects_of(args) -> list:
 
 
 def run(args) -> int:
-    from audit.api import check
+    from audit.api import Hazard, Runtime, Solver, check
     from audit.cli.outputs import checked
     if not args.site:
         raise InputError("--site: required, S_XS,S_X1 [g] of the hazard level assessed "
@@ -136,32 +136,27 @@ def run(args) -> int:
     out_dir = checked(folders={"--out": (args.out, WRITES)},
                       inputs={"--records": args.records, "--objects": args.objects,
                               "--hazard": args.hazard}).get("--out")
-    site = options.design_site(args)
+    site = options.site(args)
     objects = objects_of(args)
     if args.guideline_spectrum == "floor" and not args.floor:
         raise InputError("--guideline-spectrum floor: reads the floor's response spectrum; the "
                          "objects stand on the ground (give --floor Z/H and --building T1)")
     start = time.perf_counter()
-    values = {"restitution": args.restitution, "free_motion_s": args.free_motion,
-              "risk_target": args.risk_target, "friction": args.friction,
-              "limit_state": args.limit_state,
-              "guideline_spectrum": args.guideline_spectrum, **options.floor_values(args)}
-    if args.im is not None:  # without it, the default or the hazard file's IMT
-        values["im"] = args.im
-    if args.hazard:
-        values.update(hazard=args.hazard, hazard_imt=args.hazard_imt,
-                      site_location=args.site_location,
-                      return_period=args.return_period, poe=args.poe)
-    else:
+    if not args.hazard:
         for flag in ("site_location", "hazard_imt", "return_period", "poe"):
             if getattr(args, flag) is not None:
                 raise InputError(f"--{flag.replace('_', '-')}: read on the --hazard file; no "
                                  "--hazard given")
-    result = check(objects, site["site"], procedures=args.procedure, records=args.records,
-                   ntc_site=site.get("ntc_site"), params=args.param, mass_kg=args.mass,
-                   **options.reading(args),
-                   jobs=args.jobs, scheduler=args.scheduler, progress=True, force=args.force,
-                   **values)
+    result = check(objects, site, procedures=args.procedure, records=options.records(args),
+                   im=args.im, friction=args.friction, params=args.param, mass_kg=args.mass,
+                   guideline_spectrum=args.guideline_spectrum,
+                   hazard=Hazard(args.hazard, imt=args.hazard_imt,
+                                 location=args.site_location, return_period=args.return_period,
+                                 poe=args.poe, risk_target=args.risk_target),
+                   floor=options.floor(args),
+                   solver=Solver(args.restitution, free_motion_s=args.free_motion),
+                   runtime=Runtime(jobs=args.jobs, scheduler=args.scheduler, progress=True,
+                                   force=args.force))
     if out_dir is not None:
         result.write(out_dir)
     print(f"done in {time.perf_counter() - start:.1f} s", file=sys.stderr)

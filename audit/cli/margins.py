@@ -72,33 +72,30 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.api import PARTIAL_DIR, margins
+    from audit.api import PARTIAL_DIR, Hazard, Runtime, Solver, margins
     from audit.cli.outputs import checked
     out_dir = checked(folders={"--out": (args.out, WRITES)},
                       inputs={"--records": args.records, "--hazard": args.hazard})["--out"]
     out_dir_existed = out_dir.exists()
     values = {"alpha_deg": options.alphas_deg(args.alpha),
               "size_s": options.sizes(args.size, options.typed_flag(args, "size")),
-              "blocks": args.block or (),
-              "restitution": args.restitution, "free_motion_s": args.free_motion,
-              "site_level": args.level, "risk_target": args.risk_target}
-    if args.im is not None:  # without it, the default or the hazard file's IMT
-        values["im"] = args.im
-    if args.hazard:
-        values.update(hazard=args.hazard, hazard_imt=args.hazard_imt,
-                      site_location=args.site_location)
-    elif args.site_location or args.hazard_imt:
+              "blocks": args.block or ()}
+    if not args.hazard and (args.site_location or args.hazard_imt):
         raise InputError(f"{'--site-location' if args.site_location else '--hazard-imt'}: read "
                          "on the --hazard file; no --hazard given")
     if args.stripes is not None:  # '' is refused, not taken for the default
         values["stripes"] = options.float_list(args.stripes, "--stripes")
-    site = options.design_site(args)
-    del site["site_override"]  # one design site: the audit is of that site
     try:
-        result = margins(args.procedure, args.records, **options.reading(args), params=args.param,
-                         force=args.force, **values, **site, **options.floor_values(args),
-                         jobs=args.jobs, scheduler=args.scheduler,
-                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True,
+        result = margins(args.procedure, options.records(args), im=args.im, params=args.param,
+                         **values,
+                         solver=Solver(args.restitution, free_motion_s=args.free_motion),
+                         hazard=Hazard(args.hazard, imt=args.hazard_imt,
+                                       location=args.site_location,
+                                       risk_target=args.risk_target),
+                         site=options.site(args), floor=options.floor(args),
+                         runtime=Runtime(jobs=args.jobs, scheduler=args.scheduler,
+                                         progress=True, force=args.force,
+                                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume),
                          method=args.method)
     except KeyboardInterrupt:
         return options.interrupted(out_dir, out_dir_existed)

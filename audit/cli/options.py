@@ -323,7 +323,7 @@ def add_skip_bad_records_option(parser):
 
 
 def records(args):
-    """The :class:`records.Records` of ``--records``, ``--dt``, ``--units`` and
+    """The :class:`audit.api.Records` of ``--records``, ``--dt``, ``--units`` and
     ``--skip-bad-records`` (the one place a command's record flags are read)."""
     from audit.api import Records
     return Records(args.records, dt_s=args.dt, units=args.units,
@@ -369,21 +369,30 @@ def add_hazard_options(parser):
                         help="risk target: probability of overturning in 50 years (0.02 or 2%%)")
 
 
-def design_site(args) -> dict:
-    """The design-site arguments of the API from ``--site``, ``--site-override``,
-    ``--scale-to-site``, ``--anchor-period`` and ``--ntc-site``, those the command has (the
-    one place the command line reads them); the floor's flags are :func:`floor_values`'."""
-    site = {"site_override": getattr(args, "site_override", False),
-            "scale_to_site": getattr(args, "scale_to_site", False),
-            "anchor_period_s": getattr(args, "anchor_period", None)}
+def site(args):
+    """The :class:`audit.api.Site` of ``--site``, ``--ntc-site`` and those of
+    ``--limit-state``, ``--level``, ``--site-override``, ``--scale-to-site`` and
+    ``--anchor-period`` the command has (the one place the command line reads them), or None
+    without ``--site`` and ``--ntc-site``; the floor's flags are :func:`floor`'s."""
+    from audit.api import Site
+    ntc = None
     if args.ntc_site:
         fields = args.ntc_site.split(",")
         if len(fields) != 5:
             raise InputError(f"--ntc-site: expected AG,F0,TC,SOIL,TOPO, got '{args.ntc_site}'")
-        site["ntc_site"] = (*float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
-    if args.site:  # "S_XS,S_X1", read by the API (DesignSite.parse)
-        site["site"] = args.site
-    return site
+        ntc = (*float_list(",".join(fields[:3]), "--ntc-site"), *fields[3:])
+    options = {"override": getattr(args, "site_override", False),
+               "scale_records": getattr(args, "scale_to_site", False),
+               "anchor_period_s": getattr(args, "anchor_period", None)}
+    for name, flag in (("limit_state", "limit_state"), ("level", "level")):
+        if hasattr(args, flag):
+            options[name] = getattr(args, flag)
+    if args.site:  # "S_XS,S_X1", read as the API reads it
+        return Site(*Site.parse(args.site).values_g, ntc=ntc, **options)
+    if ntc is None and not (options["override"] or options["scale_records"]
+                            or options["anchor_period_s"] is not None):
+        return None
+    return Site(None, None, ntc=ntc, **options)
 
 
 def add_floor_options(parser):
@@ -419,13 +428,17 @@ def add_param_option(parser):
 
 
 def floor(args):
-    """The :class:`~audit.physics.building.floor.Floor` of ``--floor``, ``--building``,
-    ``--building-model`` and ``--building-damping``, checked by the API."""
+    """The :class:`audit.api.Floor` of the floor flags, for the commands whose API takes one
+    (the one place they read them); its building whenever one of the building flags is given,
+    so that a malformed one is refused on the ground too."""
     from audit.api import Building, Floor
+    if args.building is None and args.building_model is None and not args.floor:
+        return Floor()
     return Floor(args.floor, Building(args.building, args.building_model, args.building_damping))
 
 
 def floor_values(args) -> dict:
-    """The API keywords of the floor flags (the one place the command line reads them)."""
+    """The API keywords of the floor flags, for the commands whose API takes them one by one
+    (the one place they read them)."""
     return {"floor": args.floor, "building": args.building,
             "building_model": args.building_model, "building_damping": args.building_damping}

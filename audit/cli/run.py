@@ -66,7 +66,7 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from audit.api import PARTIAL_DIR, REPORT_HTML
+    from audit.api import PARTIAL_DIR, REPORT_HTML, Runtime, Solver
     from audit.api import run as run_api
     from audit.cli.outputs import checked
     out = Path(args.out) if args.out else Path(DEFAULT_OUT) / args.procedure
@@ -74,18 +74,19 @@ def run(args) -> int:
     out_dir_existed = out_dir.exists()
     grid = {"alpha_deg": options.alphas_deg(args.alpha),
             "size_s": options.sizes(args.size, options.typed_flag(args, "size"))}
-    site = options.design_site(args)
+    site = options.site(args)
     start = time.perf_counter()
     try:
-        result = run_api(args.procedure, args.records, **options.reading(args), params=args.param,
-                         out_dir=out_dir, force=args.force,
-                         **grid, free_motion_s=args.free_motion, agree_band=args.agree_band,
-                         robustness=args.robustness, restitution=args.restitution,
-                         vertical=args.vertical, friction=args.friction,
-                         sensitivity=args.sensitivity or (), **site,
-                         **options.floor_values(args),
-                         jobs=args.jobs, scheduler=args.scheduler,
-                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume, progress=True,
+        result = run_api(args.procedure, options.records(args), params=args.param,
+                         out_dir=out_dir, **grid,
+                         solver=Solver(args.restitution, free_motion_s=args.free_motion,
+                                       vertical=args.vertical),
+                         agree_band=args.agree_band, robustness=args.robustness,
+                         friction=args.friction, sensitivity=args.sensitivity or (), site=site,
+                         floor=options.floor(args),
+                         runtime=Runtime(jobs=args.jobs, scheduler=args.scheduler,
+                                         progress=True, force=args.force,
+                                         partial_dir=out_dir / PARTIAL_DIR, resume=args.resume),
                          detail=[item.strip() for item in (args.detail or "").split(",")
                                  if item.strip()])
     except KeyboardInterrupt:

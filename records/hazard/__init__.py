@@ -15,7 +15,7 @@ from records.hazard.usgs import read_usgs_curve
 
 
 def read_hazard(path, site=None, imt: str | None = None,
-                imt_field: str = "hazard_imt") -> HazardCurve:
+                imt_field: str = "hazard.imt") -> HazardCurve:
     """The hazard curve in ``path``: USGS JSON (``.json``), an OpenQuake export (a CSV opening
     with its ``#`` metadata line) or a plain CSV.
 
@@ -28,7 +28,7 @@ def read_hazard(path, site=None, imt: str | None = None,
     imt : str, optional
         Chooses among the IMTs of a USGS response (``PGA``, ``SA(1.0)``).
     imt_field : str
-        The argument ``imt`` came from (``hazard_imt``, or ``im`` whose IMT it is), for the
+        The argument ``imt`` came from (``hazard.imt``, or ``im`` whose IMT it is), for the
         message.
     """
     from records.hazard.curve import read_text

@@ -21,7 +21,7 @@ TOTAL = "Total"
 
 
 def read_usgs_curve(path, imt: str | None = None, site=None,
-                    imt_field: str = "hazard_imt") -> HazardCurve:
+                    imt_field: str = "hazard.imt") -> HazardCurve:
     """The hazard curve of one IMT from a USGS hazard service response.
 
     Parameters
@@ -32,7 +32,7 @@ def read_usgs_curve(path, imt: str | None = None, site=None,
     site : (float, float), optional
         Longitude, latitude [degrees]; checked against the response's site when given.
     imt_field : str
-        The argument that chose ``imt`` (``hazard_imt``, or ``im`` whose IMT it is), named
+        The argument that chose ``imt`` (``hazard.imt``, or ``im`` whose IMT it is), named
         when the response has no curve of it.
 
     Returns
@@ -52,15 +52,15 @@ def read_usgs_curve(path, imt: str | None = None, site=None,
         wanted = parse_imt(imt, str(path))
         chosen = [c for c in curves if (c[0], c[1]) == wanted]
         if not chosen:
-            chooser = ("hazard_imt" if imt_field == "hazard_imt"
-                       else f"{imt_field} or hazard_imt")
+            chooser = ("hazard.imt" if imt_field == "hazard.imt"
+                       else f"{imt_field} or hazard.imt")
             raise InputError(f"{path}: imt: no curve of {imt}, asked by {imt_field}; the "
                              f"response has {', '.join(sorted({c[2] for c in curves}))}: "
-                             f"choose one of them with {chooser}", imt_field, "hazard_imt")
+                             f"choose one of them with {chooser}", imt_field, "hazard.imt")
     elif len({(c[0], c[1]) for c in curves}) > 1:
         raise InputError(f"{path}: imt: the response holds curves of "
-                         f"{', '.join(c[2] for c in curves)}; say which one with hazard_imt "
-                         "or im", "hazard_imt", "im")
+                         f"{', '.join(c[2] for c in curves)}; say which one with hazard.imt "
+                         "or im", "hazard.imt", "im")
     else:
         chosen = curves
     sites = [c[3] for c in chosen]

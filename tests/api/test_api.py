@@ -23,7 +23,8 @@ GRID = ["--alpha", "15,20", "--size", "1:3:0.5"]
 def test_run_from_python_gives_the_command_line_results_and_claims(tmp_path, monkeypatch):
     monkeypatch.delenv(ENV_VARIABLE, raising=False)
     assert main(["run", "fema356", *GRID, "--out", str(tmp_path / "cli")]) == 0
-    result = audit.run("fema356", alpha_deg=[15, 20], size_s=np.arange(1.0, 3.01, 0.5), jobs=1)
+    result = audit.run("fema356", alpha_deg=[15, 20], size_s=np.arange(1.0, 3.01, 0.5),
+                       runtime=audit.Runtime(jobs=1))
     result.write(tmp_path / "api")
     for name in ("results.csv", "checks.csv", "suite.csv", "claims.csv", "rocking.csv"):
         assert (tmp_path / "api" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
@@ -77,8 +78,8 @@ def test_a_plug_in_written_in_python_is_audited():
             return 0.5 * super().damping(r)
 
     suite = records.load("pulses")
-    result = audit.run([HalfDamped, "priestley1978"], suite, alpha_deg=[15],
-                       size_s=[1.0, 2.0], jobs=1, robustness=0.0)
+    result = audit.run([HalfDamped, "priestley1978"], suite, alpha_deg=[15], size_s=[1.0, 2.0],
+                       robustness=0.0, runtime=audit.Runtime(jobs=1))
     beta = result.results.groupby("procedure")["beta_pct"].first()
     assert beta["half"] == pytest.approx(0.5 * beta["priestley1978"])
 
@@ -123,18 +124,22 @@ def test_every_entry_point_shows_its_keywords_each_documented(name):
             (name, parameter.name)
 
 
-@pytest.mark.parametrize(("function", "defaults"), [
-    ("check", "audit.engine.check.settings:CHECK_DEFAULTS"),
-    ("run", "audit.engine.run.settings:AUDIT_DEFAULTS"),
-    ("margins", "audit.engine.design.settings:MARGINS_DEFAULTS")])
-def test_the_keywords_are_the_settings_fields_with_their_defaults(function, defaults):
-    """Adding a setting is one field, one keyword, one flag: the keyword is the field, named
-    and defaulted alike (the function hands its keywords to the settings' parse by name)."""
+@pytest.mark.parametrize(("function", "parse", "from_site"), [
+    ("check", "audit.engine.check.settings:CheckSettings", {"limit_state"}),
+    ("run", "audit.engine.run.settings:AuditSettings", set()),
+    ("margins", "audit.engine.design.settings:MarginsSettings", {"site_level"})])
+def test_the_keywords_are_the_settings_fields_with_their_defaults(function, parse, from_site):
+    """Adding a setting is one field, one keyword of its parse, one keyword here (or a field of
+    a group), one flag: the function's keyword is the parse's, named and defaulted alike (the
+    function hands it on by name); what the site says (its limit state, its hazard level) is
+    read from the function's ``site``."""
     import importlib
-    module, _, table = defaults.partition(":")
-    fields = getattr(importlib.import_module(module), table)
+    module, _, name = parse.partition(":")
+    fields = _keywords(getattr(importlib.import_module(module), name).parse)
     keywords = _keywords(getattr(audit, function))
-    assert {name: keywords.get(name, "absent") for name in fields} == fields
+    assert set(fields) & set(keywords) == set(fields) - from_site and from_site <= set(fields)
+    assert {name: keywords[name] for name in set(fields) - from_site} == \
+        {name: fields[name] for name in set(fields) - from_site}
 
 
 @pytest.mark.parametrize("name", ["CheckResult", "AuditResult", "MarginsResult",

@@ -1,6 +1,7 @@
 """Property: every public function of the API, given one argument of a wrong type (text with
 units where a number is expected, None, a dict, a one-element or one-string pair, a number
-where a path is expected, ...), raises InputError naming that argument, at the front door.
+where a path is expected, ...), or one field of a group (``solver.g``, ``floor.building.period_s``)
+of a wrong type, raises InputError naming that argument or field, at the front door.
 
 The work each function would start is replaced by a sentinel that raises: a wrong value that
 slipped through the front door shows as that sentinel (or as a TypeError from inside), never as
@@ -8,7 +9,6 @@ a long computation."""
 
 from __future__ import annotations
 
-import dataclasses
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -42,8 +42,7 @@ NTC = TEXTS | JUNK | NUMBERS | st.tuples(UNIT_TEXTS, NUMBERS, NUMBERS, st.just("
 SITE_PAIR = PAIR.filter(lambda v: not _lon_lat_text(v))
 #: How records are read: the time step [s] and units of a text record file, skipping the bad.
 READING = {"dt_s": NUMBER, "units": CHOICE | UNIT_TEXTS, "skip_bad_records": FLAG}
-#: The same, as fields of the ``records`` group (``Records(source, dt_s=…)``).
-RECORDS = {f"records.{field}": values for field, values in READING.items()}
+READING_GROUP = {f"records.{name}": values for name, values in READING.items()}
 
 
 class Started(Exception):
@@ -91,38 +90,59 @@ def _pulse():
 
 SITE = (1.5, 0.9)
 ROOF = audit.Floor(1.0, audit.Building(1.0))
-#: The groups a dotted argument (``solver.free_motion_s``) is a field of.
-GROUPS = {"solver": audit.Solver, "runtime": audit.Runtime, "records": audit.Records,
-          "site": audit.Site}
 RUN = {"procedures": "fema356", "records": "pulses"}
+#: A progress that is not one: None is the default (no progress).
+PROGRESS = CALLBACK.filter(lambda v: v is not None)
+#: How a wrong value of a group's field is given: the group with that field, the rest valid.
+GROUPS = {
+    "solver": lambda field, value: audit.Solver(**{field: value}),
+    "runtime": lambda field, value: audit.Runtime(**{field: value}),
+    "records": lambda field, value: audit.Records("pulses", **{field: value}),
+    "hazard": lambda field, value: audit.Hazard("missing.csv", **{field: value}),
+    "site": lambda field, value: audit.Site(*SITE, **{
+        field: value, **({"scale_records": True} if field == "anchor_period_s" else {})}),
+    "floor": lambda field, value: (
+        audit.Floor(value, audit.Building(1.0)) if field == "z_over_h" else
+        audit.Floor(1.0, audit.Building(**{"period_s": 1.0,
+                                           field.removeprefix("building."): value}))),
+}
+#: The groups' fields every command reads alike.
+SOLVER = {"solver": JUNK, "solver.restitution": JUNK, "solver.free_motion_s": NUMBER,
+          "solver.g": NUMBER}
+RUNTIME = {"runtime": JUNK | NUMBERS, "runtime.jobs": WHOLE, "runtime.scheduler": CHOICE,
+           "runtime.progress": PROGRESS, "runtime.force": FLAG}
+RECORDS = {"records.dt_s": NUMBER, "records.units": CHOICE | UNIT_TEXTS,
+           "records.skip_bad_records": FLAG}
+FLOOR = {"floor": NUMBER, "floor.z_over_h": NUMBER, "floor.building.period_s": NUMBER,
+         "floor.building.damping": NUMBER, "floor.building.model": JUNK | NUMBERS | TEXTS}
 #: function → (valid arguments, {argument: values of a wrong type}).
 CASES = {
     "check": (audit.check, {"objects": ["0.6x1.8"], "site": SITE, "records": "pulses"}, {
-        **READING, "objects": OBJECTS, "site": SITE_PAIR, "procedures": OBJECTS, "records": PATH,
-        "im": CHOICE, "free_motion_s": NUMBER, "g": NUMBER, "seed": WHOLE.filter(lambda v: v is not None), "hazard": PATH,
-        "risk_target": NUMBER, "ntc_site": NTC, "skip_bad_records": FLAG, "jobs": WHOLE,
-        "scheduler": CHOICE, "progress": CALLBACK}),
+        **READING_GROUP, "objects": OBJECTS, "site": SITE_PAIR, "procedures": OBJECTS,
+        "records": PATH, "im": CHOICE, "seed": WHOLE.filter(lambda v: v is not None),
+        "hazard": PATH, "site.ntc": NTC, "site.limit_state": CHOICE, **SOLVER, **RUNTIME,
+        **FLOOR}),
     "check with a hazard": (audit.check, {"objects": ["0.6x1.8"], "site": SITE,
                                           "records": "pulses", "hazard": "missing.csv"},
                             # "LON,LAT" text is a site too (west and south negative)
-                            {"site_location": PAIR.filter(lambda v: not _lon_lat_text(v))}),
+                            {"hazard.location": PAIR.filter(lambda v: not _lon_lat_text(v)),
+                             "hazard.risk_target": NUMBER, "hazard.imt": CHOICE,
+                             "hazard.return_period": NUMBER, "hazard.poe": NUMBER}),
     "run": (audit.run, RUN, {
         "procedures": OBJECTS, "records": PATH, "alpha_deg": SEQUENCE, "size_s": SEQUENCE,
-        "free_motion_s": NUMBER, "agree_band": NUMBER, "robustness": NUMBER, "g": NUMBER,
-        "restitution": JUNK, "vertical": FLAG, "friction": NUMBER, "sensitivity": CHOICE,
-        "site": SITE_PAIR, "site_override": FLAG, "scale_to_site": FLAG, "ntc_site": NTC,
-        **READING, "detail": JUNK | NUMBERS, "out_dir": PATH, "force": FLAG,
-        "jobs": WHOLE, "scheduler": CHOICE, "partial_dir": PATH, "resume": FLAG,
-        "progress": CALLBACK}),
-    "run scaled": (audit.run, {**RUN, "site": SITE, "scale_to_site": True},
-                   {"anchor_period_s": NUMBER}),
+        "agree_band": NUMBER, "robustness": NUMBER, "friction": NUMBER, "sensitivity": CHOICE,
+        "solver.vertical": FLAG, "site": SITE_PAIR, "site.override": FLAG,
+        "site.scale_records": FLAG, "site.ntc": NTC, **READING_GROUP,
+        "detail": JUNK | NUMBERS, "out_dir": PATH, "runtime.partial_dir": PATH,
+        "runtime.resume": FLAG, **SOLVER, **RUNTIME, **FLOOR}),
+    "run scaled": (audit.run, RUN, {"site.anchor_period_s": NUMBER}),
     "margins": (audit.margins, RUN, {
         "procedures": OBJECTS, "records": PATH, "im": CHOICE, "stripes": SEQUENCE,
-        "alpha_deg": SEQUENCE, "size_s": SEQUENCE, "restitution": JUNK,
-        "free_motion_s": NUMBER, "required": FLAG, "g": NUMBER, "site_level": CHOICE,
-        "hazard": PATH, "risk_target": NUMBER, "site": SITE_PAIR, "ntc_site": NTC,
-        **READING, "force": FLAG, "jobs": WHOLE, "scheduler": CHOICE,
-        "partial_dir": PATH, "resume": FLAG, "progress": CALLBACK}),
+        "alpha_deg": SEQUENCE, "size_s": SEQUENCE, "required": FLAG, "site.level": CHOICE,
+        "hazard": PATH, "site": SITE_PAIR, "site.ntc": NTC, **READING_GROUP,
+        "runtime.partial_dir": PATH, "runtime.resume": FLAG, **SOLVER, **RUNTIME, **FLOOR}),
+    "margins with a hazard": (audit.margins, {**RUN, "hazard": "missing.csv"},
+                              {"hazard.risk_target": NUMBER, "hazard.imt": CHOICE}),
     "rock": (audit.rock, {"block": audit.Block(alpha_deg=15.0, size_s=2.0), "motion": _pulse()},
              {"block": OBJECTS | TEXTS, "motion": OBJECTS, "solver": JUNK | TEXTS,
               "solver.free_motion_s": NUMBER, "solver.restitution": JUNK,
@@ -161,9 +181,9 @@ CASES = {
                           **RECORDS}),
     "response_spectra by id": (audit.response_spectra, {"motion": "pacoima_dam_1971",
                                                         "periods_s": [1.0]}, {"records": PATH}),
-    "design_suite": (audit.design_suite, {"suite": None, "site": audit.Site(*SITE)},
+    "design_suite": (audit.design_suite, {"suite": None, "site": SITE},
                      {"site": SITE_PAIR, "site.override": FLAG, "site.scale_records": FLAG,
-                      "site.ntc": NTC, "site.level": st.just("design"), "floor": NUMBER}),
+                      "site.ntc": NTC, "site.level": st.just("design"), **FLOOR}),
     "design_spectrum": (audit.design_spectrum, {"code": "fema356", "periods_s": [0.5],
                                                 "site": SITE},
                         {"code": CHOICE, "periods_s": SEQUENCE | st.none(),
@@ -193,14 +213,10 @@ CASES = {
 def test_a_wrong_type_is_refused_naming_the_argument(case, argument, data):
     function, valid, wrong = CASES[case]
     value = data.draw(wrong[argument], label=argument)
-    keyword = argument.partition(".")[0]
-    if keyword != argument:  # a field of a group: the group with that field wrong
-        field = argument.partition(".")[2]
-        group = valid.get(keyword)
-        value = (dataclasses.replace(group, **{field: value}) if dataclasses.is_dataclass(group)
-                 else GROUPS[keyword](*[group][:group is not None], **{field: value}))
+    group, _, field = argument.partition(".")
+    given = {group: GROUPS[group](field, value)} if field else {argument: value}
     with pytest.raises(InputError) as caught:
-        function(**{**valid, keyword: value})
+        function(**{**valid, **given})
     assert argument in caught.value.fields, (case, argument, value, str(caught.value))
     assert str(caught.value).startswith(argument), str(caught.value)
 

@@ -95,7 +95,7 @@ def test_run_site_one_value():
 
 
 def test_run_no_jobs():
-    _raises("jobs", audit.run, "fema356", "pulses", jobs=0)
+    _raises("runtime.jobs", audit.run, "fema356", "pulses", runtime=audit.Runtime(jobs=0))
 
 
 def test_run_negative_agree_band():
@@ -238,7 +238,8 @@ def test_margins_cost_counts_the_spectra_the_procedures_read():
     suite = records.RecordSuite((records.RecordEntry("long", motion),), "one long record")
     with pytest.raises(InputError, match=r"^work: 29 blocks and 16,821 oscillators") as caught:
         audit.margins("priestley1978", suite, stripes=[0.5], alpha_deg=15, size_s=2.0)
-    assert "h, beyond the limit" in str(caught.value) and "force" in caught.value.fields
+    assert "h, beyond the limit" in str(caught.value) and "runtime.force" in caught.value.fields
+    assert str(caught.value).endswith("or pass runtime.force=True")
 
 
 # --- what the API gives back ---------------------------------------------------------------------
@@ -256,11 +257,12 @@ def test_tables_are_typed_from_the_schema():
 
 
 def test_scalars_where_lists_are_and_the_reprs():
-    result = audit.run("fema356", "pulses", alpha_deg=15, size_s=2.0, robustness=0.0, jobs=1)
+    result = audit.run("fema356", "pulses", alpha_deg=15, size_s=2.0, robustness=0.0,
+                       runtime=audit.Runtime(jobs=1))
     assert set(result.results["alpha_deg"]) == {15.0} and set(result.results["size_s"]) == {2.0}
     assert result.results["alpha_deg"].dtype.kind in "if"  # numbers, not text
     assert "block comparisons" in repr(result)
     margins = audit.margins("fema356", "pulses", im="pga", stripes=[0.2, 0.4], alpha_deg=15,
-                            size_s=2.0, required=False, free_motion_s=2.0)
+                            size_s=2.0, required=False, solver=audit.Solver(free_motion_s=2.0))
     assert repr(margins).startswith("MarginsResult(fema356 on ") and "2 stripes of pga" in \
         repr(margins)

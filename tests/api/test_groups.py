@@ -15,7 +15,7 @@ from audit.api import Building, Floor, Hazard, Records, Runtime, Site, Solver
 from audit.cli.flags import FLAGS, with_flags
 from audit.errors import InputError
 
-SITE_ROOT = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _refused(name, call, *args, **kwargs) -> str:
@@ -165,7 +165,8 @@ def test_hazard_shorthand_and_fields(tmp_path):
     read = Hazard.parse(Hazard(curve, imt="SA(1.0)", location="-118,34", poe="2%",
                                risk_target="1%"))
     assert (read.location, read.poe, read.risk_target) == ((-118.0, 34.0), 0.02, 0.01)
-    _refused("hazard.curve", Hazard.parse, 42)
+    _refused("hazard", Hazard.parse, 42)
+    _refused("hazard.curve", Hazard.parse, Hazard(42))
     _refused("hazard.location", Hazard.parse, Hazard(curve, location=(-118, 134)))
     _refused("hazard.imt", Hazard.parse, Hazard(curve, imt=1.0))
     _refused("hazard.risk_target", Hazard.parse, Hazard(curve, risk_target=1.5))
@@ -281,3 +282,40 @@ def test_a_group_field_is_replaced_whole():
         "--building-model: shear:abc")
     assert with_flags("floor.building.period_s: needs T1", ("floor", "floor.building.period_s")) \
         == "--building: needs T1"
+
+
+# --- a narrow front door -----------------------------------------------------------------------
+
+@pytest.mark.parametrize("name", ["check", "run", "margins"])
+def test_check_run_margins_take_at_most_15_parameters_none_of_them_open(name):
+    import inspect
+    parameters = inspect.signature(getattr(audit, name)).parameters.values()
+    assert len(parameters) <= 15, (name, len(parameters))
+    assert not [p for p in parameters if p.kind in (p.VAR_KEYWORD, p.VAR_POSITIONAL)]
+
+
+@pytest.mark.parametrize("settings", ["audit.engine.check.settings:CheckSettings",
+                                      "audit.engine.run.settings:AuditSettings",
+                                      "audit.engine.design.settings:MarginsSettings"])
+def test_each_settings_parse_takes_explicit_keywords(settings):
+    import importlib
+    import inspect
+    module, _, name = settings.partition(":")
+    parameters = inspect.signature(getattr(importlib.import_module(module), name).parse) \
+        .parameters.values()
+    assert parameters and all(p.kind is p.KEYWORD_ONLY for p in parameters), settings
+
+
+def test_no_module_of_the_api_reads_its_locals():
+    """A keyword reaches its settings by name, never through ``locals()``."""
+    import ast
+    for path in sorted((REPO / "audit" / "api").glob("*.py")):
+        calls = [node.lineno for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+                 if isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+                 and node.func.id in ("locals", "vars")]
+        assert not calls, (path.name, calls)
+
+
+def test_check_needs_the_fema_values_of_its_site():
+    for site in (None, Site(None, None, ntc=(0.25, 2.4, 0.3, "B", "T1"))):
+        assert "required" in _refused("site", audit.check, ["0.6x1.8"], site, records="pulses")

@@ -281,12 +281,13 @@ def test_long_width_search_passes_report_each_record(monkeypatch):
     import records
     from audit.engine.check import widths as check_widths
     from audit.engine.check.settings import CheckSettings
+    from audit.engine.shared.solver import Solver
     monkeypatch.setattr(check_widths, "PROGRESS_BLOCKS", 2)  # 1,000 blocks, made small
     pulse = records.one_pulse("cosine", 0.3, 1.0)
     entries = [SimpleNamespace(id=f"p{i}", motion=pulse) for i in range(2)]
     calls = []
     family = check_widths.Family(entries, np.array([0.1, 0.2]), {"p0": 0.3, "p1": 0.3},
-                                 CheckSettings.parse(free_motion_s=1.0), 1, "local",
+                                 CheckSettings.parse(solver=Solver(free_motion_s=1.0)), 1, "local",
                                  lambda done, total, what, how: calls.append((done, total, what)))
     family.overturned([1.0], [0.2])  # one block: a short pass says nothing
     assert calls == []

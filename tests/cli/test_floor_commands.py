@@ -99,7 +99,7 @@ def test_rock_on_the_roof_rocks_on_the_floor_motion(far_field):
 def test_check_on_a_floor_names_it_and_reports_each_records_peaks(far_field):
     two = replace(far_field, entries=far_field.entries[:2])
     result = audit.check(["0.8x2.0"], site=(1.0, 0.6), procedures="fema356", records=two,
-                         floor=1.0, building=1.0, building_model="shear:10")
+                         floor=audit.Floor(1.0, audit.Building(1.0, "shear:10")))
     floor = result.document["floor"]
     assert floor["z_over_h"] == 1.0 and floor["building_model"] == "shear:10"
     assert floor["building_period_s"] == 1.0 and floor["building_damping"] == 0.05

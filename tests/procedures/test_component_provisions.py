@@ -166,8 +166,8 @@ def test_check_lists_the_provisions():
     pulses = RecordSuite(tuple(RecordEntry(f"cosine_{t:g}s", one_pulse("cosine", 0.5, t,
                                                                        record_id=f"c{t:g}"))
                                for t in (0.5, 1.0, 2.0)), "three one-cosine pulses")
-    result = audit.check(["0.6x1.8"], (1.5, 0.9), procedures=["fema356"], records=pulses,
-                         im="pga", free_motion_s=5.0)
+    result = audit.check(["0.6x1.8"], (1.5, 0.9), procedures=["fema356"], records=pulses, im="pga",
+                         solver=audit.Solver(free_motion_s=5.0))
     (obj,) = result.document["objects"]
     by_key = {entry["key"]: entry for entry in obj["component_provisions"]}
     # on the ground, S_DS = 1.5 g: ASCE's 0.4·1.5/1.712698/1.5 = 0.2335 < 0.3·1.5 = 0.45, the

@@ -12,6 +12,7 @@ from audit.physics.damping import housner_period
 from audit.errors import InputError
 from audit.engine.shared.grid import size_grid
 from audit.engine.run.pipeline import audit_in_memory
+from audit.engine.shared.runtime import Runtime
 from procedures.context import RecordContext
 from procedures import available_procedures, get_procedures, iterate_rotation
 from procedures.fema_356 import FEMA356
@@ -141,7 +142,7 @@ def test_registry():
 
 @pytest.fixture(scope="module")
 def seed_audit(seed_suite):
-    return audit_in_memory(get_procedures("all"), seed_suite, jobs=2)
+    return audit_in_memory(get_procedures("all"), seed_suite, runtime=Runtime(jobs=2))
 
 
 def test_fema_predicts_overturning_of_every_slender_block(seed_audit):

@@ -82,7 +82,7 @@ def _own_markup(html: str) -> str:
 def seed_report(seed_suite, tmp_path_factory):
     """The report of ``run all`` on the real seed suite, written as the CLI writes it."""
     out = tmp_path_factory.mktemp("report") / "run"
-    audit.api.run("all", seed_suite, jobs=2, out_dir=out)
+    audit.api.run("all", seed_suite, out_dir=out, runtime=audit.Runtime(jobs=2))
     return out
 
 

@@ -58,7 +58,7 @@ def check_cost(procedures, suite, objects: int, settings: CheckSettings,
         guards.suite_motions(suite), settings.free_motion_s,
         blocks=stripes * objects * per_object,
         oscillators=ITERATION_PERIODS * (1 + GUIDELINE_TRIES) * readers * objects,
-        jobs=runtime.jobs,
+        jobs=runtime.jobs, free_motion_option="solver.free_motion_s",
         settings=(guards.Setting("objects", objects, 0),))
 
 

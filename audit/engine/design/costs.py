@@ -45,7 +45,7 @@ def margins_cost(procedures, suite, settings: MarginsSettings,
         blocks=(stripes * (sizes * alphas + len(settings.blocks))
                 + (sizes * (SEARCH_ALPHAS + SEARCH_BISECTIONS) if settings.required else 0)),
         oscillators=SPECTRUM_PERIODS_S.size * (slendernesses + search) * readers,
-        jobs=runtime.jobs,
+        jobs=runtime.jobs, free_motion_option="solver.free_motion_s",
         settings=(guards.Setting("stripes", stripes, DEFAULT_STRIPES),
                   guards.Setting("size_s", sizes, size_grid(*DEFAULT_MARGINS_SIZES).size),
                   guards.Setting("alpha_deg", alphas, len(DEFAULT_ALPHA_DEG)),

@@ -238,52 +238,41 @@ def check_same_im(curve, im: str | None, what: str = "fragility") -> None:
                          f"{theirs.name} for both", "hazard", what)
 
 
-def site_hazard(hazard, site_location, risk_target: float, im=None, hazard_imt=None):
-    """(curve, intensity measure) of a settings object's ``hazard`` field: the curve read from
-    its file (at ``site_location``; of the IMT ``hazard_imt``, else of ``im`` in a file of
-    several IMTs) unless given, ``im`` (when the user gave one) held to the curve's IMT, which
-    sets the intensity measure, and the risk target checked.
+def site_hazard(hazard, im=None):
+    """(curve, intensity measure) of a command's ``hazard`` (an
+    :class:`~audit.engine.shared.hazard.Hazard`, parsed): the curve read from its file (at
+    ``hazard.location``; of the IMT ``hazard.imt``, else of ``im`` in a file of several IMTs)
+    unless given, ``im`` (when the user gave one) held to the curve's IMT, which sets the
+    intensity measure.
 
     Parameters
     ----------
-    hazard : records.hazard.HazardCurve, str or pathlib.Path
-        A hazard curve or its file.
-    site_location : sequence of two float or str, optional
-        Longitude, latitude of the site in a file of several sites [degrees].
-    risk_target : float
-        Target P of overturning in 50 years [-].
+    hazard : audit.engine.shared.hazard.Hazard
+        Its fields checked (:meth:`Hazard.parse <audit.engine.shared.hazard.Hazard.parse>`),
+        with a curve.
     im : str or IntensityMeasure, optional
         The intensity measure the user gave.
-    hazard_imt : str, optional
-        The IMT to read from a file of several (``PGA``, ``SA(1.0)``).
 
     Returns
     -------
     tuple of (records.hazard.HazardCurve, IntensityMeasure)
     """
-    from audit.engine.shared import fields
     from audit.engine.shared.hazard_imt import im_of_imt, imt_of
     from audit.engine.shared.intensity import IntensityMeasure
     from records.hazard import HazardCurve, read_hazard
-    if site_location is not None:
-        site_location = fields.lon_lat("site_location", site_location)
+    curve, imt = hazard.curve, hazard.imt
     im_text = None if im is None else im if isinstance(im, str) else im.name
-    if hazard_imt is not None and not isinstance(hazard_imt, str):
-        raise InputError(f"hazard_imt: expected an IMT of the hazard file (PGA, SA(1.0)), got "
-                         f"{hazard_imt!r}", "hazard_imt")
-    if not isinstance(hazard, HazardCurve):
-        hazard = read_hazard(fields.path("hazard", hazard, "a hazard curve or its file"),
-                             site_location, hazard_imt or (imt_of(im_text) if im_text else None),
-                             imt_field="hazard_imt" if hazard_imt else "im")
-    if hazard_imt is not None:  # a file of one IMT has no choice: it must be the one asked
-        asked = IntensityMeasure.parse(im_of_imt(hazard_imt))
-        if not _same_im(asked, hazard_im(hazard)):
-            raise InputError(f"hazard_imt: {hazard_imt}: the curve is of {hazard.im_name} "
-                             f"({hazard.source}), not {hazard_imt}", "hazard_imt")
+    if not isinstance(curve, HazardCurve):
+        curve = read_hazard(curve, hazard.location, imt or (imt_of(im_text) if im_text else None),
+                            imt_field="hazard.imt" if imt else "im")
+    if imt is not None:  # a file of one IMT has no choice: it must be the one asked
+        asked = IntensityMeasure.parse(im_of_imt(imt))
+        if not _same_im(asked, hazard_im(curve)):
+            raise InputError(f"hazard.imt: {imt}: the curve is of {curve.im_name} "
+                             f"({curve.source}), not {imt}", "hazard.imt")
     if im_text is not None:
-        check_same_im(hazard, im_text, "im")
-    annual_rate_for(risk_target)
-    return hazard, hazard_im(hazard)
+        check_same_im(curve, im_text, "im")
+    return curve, hazard_im(curve)
 
 
 def risk_integral(fragility, curve) -> OverturningRisk:

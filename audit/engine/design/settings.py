@@ -5,27 +5,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from audit import G
 from audit.engine.shared import fields as check
 from audit.engine.shared.blocks import Block, parse_blocks, within_limits
-from audit.engine.shared.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_FREE_MOTION_S, DEFAULT_IM,
-                                   DEFAULT_MARGINS_SIZES, DEFAULT_RESTITUTION,
-                                   DEFAULT_RISK_TARGET, DEFAULT_SITE_LEVEL,
-                                   SITE_LEVELS)
+from audit.engine.shared.defaults import (DEFAULT_ALPHA_DEG, DEFAULT_IM, DEFAULT_MARGINS_SIZES,
+                                          DEFAULT_RISK_TARGET, DEFAULT_SITE_LEVEL, SITE_LEVELS)
 from audit.engine.shared.grid import size_grid
 from audit.engine.shared.intensity import IntensityMeasure
 from audit.errors import InputError
 from audit.physics.block import Restitution
-
-#: The fields :meth:`MarginsSettings.parse` takes, and their defaults (``im``: None, the hazard
-#: curve's IMT, else ``DEFAULT_IM``; ``size_s``: None, the default grid; ``stripes``: None,
-#: levels around the design intensity).
-MARGINS_DEFAULTS = {"im": None, "stripes": None, "alpha_deg": DEFAULT_ALPHA_DEG,
-                    "size_s": None, "blocks": (), "restitution": DEFAULT_RESTITUTION,
-                    "free_motion_s": DEFAULT_FREE_MOTION_S, "required": True, "g": G,
-                    "site_level": DEFAULT_SITE_LEVEL, "hazard": None, "site_location": None,
-                    "risk_target": DEFAULT_RISK_TARGET, "hazard_imt": None}
-MARGINS_FIELDS = tuple(MARGINS_DEFAULTS)
 
 
 @dataclass(frozen=True)
@@ -74,79 +61,66 @@ class MarginsSettings:
     risk_target: float = DEFAULT_RISK_TARGET
 
     @classmethod
-    def parse(cls, **values) -> MarginsSettings:
-        """The settings of the given fields, each checked once (InputError naming the field).
+    def parse(cls, *, im=None, stripes=None, alpha_deg=DEFAULT_ALPHA_DEG, size_s=None,
+              blocks=(), solver=None, required: bool = True,
+              site_level: str = DEFAULT_SITE_LEVEL, hazard=None) -> MarginsSettings:
+        """The settings of the given fields, each checked once (InputError naming the
+        argument, or the group's field: ``solver.g``, ``hazard.imt``).
 
         Parameters
         ----------
-        im : str or IntensityMeasure
-            ``pga`` [g], ``pgv`` [m/s] or ``sa:T``.
+        im : str or IntensityMeasure, optional
+            ``pga`` [g], ``pgv`` [m/s] or ``sa:T``; default the hazard curve's IMT, else
+            ``DEFAULT_IM``.
         stripes : float or sequence of float, optional
-            Positive, finite, increasing, each once.
+            Positive, finite, increasing, each once; None: the fixed lattice.
         alpha_deg, size_s : float or sequence of float
+            ``size_s`` None: the default grid.
         blocks : sequence of str or objects with ``width_m``, ``height_m``
             ``"WIDTHxHEIGHT"`` [m], or a block (e.g. :class:`audit.Block`).
-        restitution : str, float or Restitution
-        free_motion_s : float
+        solver : audit.engine.shared.solver.Solver, optional
+            The exact solver's impact model, free motion and g (``vertical`` refused).
         required : bool
-        g : float
         site_level : {"mce", "design"}
-        hazard : records.hazard.HazardCurve, str or pathlib.Path, optional
-            A hazard curve or its file (OpenQuake, USGS or plain CSV); its IMT sets ``im``
-            when ``im`` is not given, and must be ``im`` when it is.
-        site_location : (float, float), optional
-            Longitude, latitude [degrees] of the site in a hazard file of several sites.
-        risk_target : float or str
-            In (0, 1): 0.02 or '2%'.
-        hazard_imt : str, optional
-            The IMT of a hazard file of several (``PGA``, ``SA(1.0)``); without it, ``im``'s.
+            The site's hazard level (``site.level``).
+        hazard : audit.engine.shared.hazard.Hazard, records.hazard.HazardCurve, str or path
+            The site's hazard (:meth:`Hazard.parse <audit.engine.shared.hazard.Hazard.parse>`):
+            its curve's IMT sets ``im`` when ``im`` is not given, and must be ``im`` when it
+            is; its risk target the risk-targeted slenderness's.
         """
-        check.unknown("the design-level audit", values, MARGINS_FIELDS)
-        value = {**MARGINS_DEFAULTS, **values}
-        im = value["im"]
-        g = check.number("g", value["g"], "a positive acceleration in m/s²", 0, low_open=True)
-        stripes = value["stripes"]
+        from audit.engine.shared.design_site import level_of
+        from audit.engine.shared.hazard import Hazard
+        from audit.engine.shared.solver import Solver
+        solver = Solver.parse(solver, "margins")
         if stripes is not None:
             stripes = check.numbers("stripes", stripes, "positive finite intensity levels", 0,
                                     low_open=True)
             if any(b <= a for a, b in zip(stripes, stripes[1:])):
                 raise InputError(f"stripes: expected increasing intensity levels, each once, "
                                  f"got {', '.join(f'{s:g}' for s in stripes)}", "stripes")
-        sizes = value["size_s"]
-        if value["site_location"] is not None and value["hazard"] is None:
-            raise InputError("site_location: a site of the hazard file; no hazard given",
-                             "site_location")
-        if not isinstance(value["site_level"], str) or value["site_level"] not in SITE_LEVELS:
-            raise InputError(f"site_level: expected {' or '.join(SITE_LEVELS)}, got "
-                             f"{value['site_level']!r}", "site_level")
-        risk_target = check.probability("risk_target", value["risk_target"])
-        hazard = value["hazard"]
+        site_level = level_of(site_level, "site.level")
+        hazard = Hazard.parse(hazard, "margins")
+        risk_target = DEFAULT_RISK_TARGET if hazard is None else hazard.risk_target
+        if hazard is not None and hazard.curve is None:
+            hazard = None  # a risk target alone: no curve to read it on
         if not isinstance(im, (str, IntensityMeasure, type(None))):
             IntensityMeasure.parse(im)  # refused, naming im
-        location = (None if value["site_location"] is None
-                    else check.lon_lat("site_location", value["site_location"]))
+        curve = None
         if hazard is not None:  # read and checked before any work
             from audit.engine.design.risk import site_hazard
-            hazard, im = site_hazard(hazard, location, risk_target, im, value["hazard_imt"])
-        elif value["hazard_imt"] is not None:
-            raise InputError("hazard_imt: the IMT of a hazard file; no hazard given",
-                             "hazard_imt")
+            curve, im = site_hazard(hazard, im)
         im = DEFAULT_IM if im is None else im
         return cls(
             im=im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im),
             stripes=stripes,
-            alpha_deg=_grid("alpha_deg", value["alpha_deg"], "slendernesses between 0 and 45 "
-                            "degrees", 0, 45),
-            size_s=(tuple(float(s) for s in size_grid(*DEFAULT_MARGINS_SIZES)) if sizes is None
-                    else _grid("size_s", sizes, "positive block sizes 2π/p in s", 0,
+            alpha_deg=_grid("alpha_deg", alpha_deg, "slendernesses between 0 and 45 degrees",
+                            0, 45),
+            size_s=(tuple(float(s) for s in size_grid(*DEFAULT_MARGINS_SIZES)) if size_s is None
+                    else _grid("size_s", size_s, "positive block sizes 2π/p in s", 0,
                                math.inf)),
-            blocks=_blocks(value["blocks"], g),
-            restitution=(value["restitution"] if isinstance(value["restitution"], Restitution)
-                         else Restitution.parse(value["restitution"], "restitution")),
-            free_motion_s=check.number("free_motion_s", value["free_motion_s"],
-                                       "a duration ≥ 0 s", 0),
-            required=check.flag("required", value["required"]),
-            g=g, site_level=value["site_level"], hazard=hazard,
+            blocks=_blocks(blocks, solver.g), restitution=solver.restitution,
+            free_motion_s=solver.free_motion_s, required=check.flag("required", required),
+            g=solver.g, site_level=site_level, hazard=curve,
             risk_target=risk_target)
 
 
@@ -176,4 +150,4 @@ def _blocks(items, g: float) -> tuple:
     return tuple(blocks)
 
 
-__all__ = ["MarginsSettings", "MARGINS_DEFAULTS", "MARGINS_FIELDS", "SITE_LEVELS"]
+__all__ = ["MarginsSettings", "SITE_LEVELS"]

@@ -36,7 +36,7 @@ def audit_cost(procedures, suite, settings: AuditSettings, runtime: Runtime) -> 
         guards.suite_motions(suite), settings.free_motion_s,
         blocks=sizes * alphas * ((3 if settings.robustness else 1) + len(settings.sensitivity)),
         oscillators=SPECTRUM_PERIODS_S.size * (RECORD_SPECTRA + alphas * len(procedures)),
-        jobs=runtime.jobs,
+        jobs=runtime.jobs, free_motion_option="solver.free_motion_s",
         settings=(guards.Setting("size_s", sizes, size_grid(*DEFAULT_SIZES).size),
                   guards.Setting("alpha_deg", alphas, len(DEFAULT_ALPHA_DEG))))
 

@@ -26,8 +26,9 @@ from audit.engine.run.writer import RunWriter
 from audit.engine.shared.scheduler import computed_parts
 from audit.engine.run.audit_run import AuditRun
 from audit.engine.shared.schemas import CLAIM_COLUMNS
+from audit.engine.shared.defaults import DEFAULT_ALPHA_DEG, DEFAULT_ROBUSTNESS
 from audit.engine.shared.runtime import Runtime
-from audit.engine.run.settings import AUDIT_FIELDS, AuditSettings
+from audit.engine.run.settings import AuditSettings
 from audit.errors import InputError
 
 
@@ -134,10 +135,11 @@ def run_audit(procedures, suite, settings: AuditSettings, runtime: Runtime, fold
     return summary
 
 
-def audit_in_memory(procedures, suite, detail=(), claims: bool = True, **values) -> AuditRun:
-    """The whole run of :func:`run_audit`, its settings and runtime given by their fields
-    (``alpha_deg=…, size_s=…, jobs=…``), written and read back from its files into memory:
-    for a test or a script, not for a suite of thousands of records.
+def audit_in_memory(procedures, suite, detail=(), claims: bool = True, *,
+                    alpha_deg=DEFAULT_ALPHA_DEG, size_s=None,
+                    robustness: float = DEFAULT_ROBUSTNESS, runtime=None) -> AuditRun:
+    """The whole run of :func:`run_audit` on a grid, written and read back from its files into
+    memory: for a test or a script, not for a suite of thousands of records.
 
     Parameters
     ----------
@@ -149,13 +151,13 @@ def audit_in_memory(procedures, suite, detail=(), claims: bool = True, **values)
         Record ids whose per-record detail the report should show.
     claims : bool
         Check the claims of the reference report.
-    **values
-        Fields of :class:`AuditSettings` and of :class:`~audit.engine.shared.runtime.Runtime`,
-        by name.
+    alpha_deg, size_s, robustness :
+        As for :meth:`AuditSettings.parse` (the rest its defaults).
+    runtime : audit.engine.shared.runtime.Runtime, optional
+        How (:meth:`Runtime.parse <audit.engine.shared.runtime.Runtime.parse>`).
     """
-    settings = AuditSettings.parse(**{k: v for k, v in values.items() if k in AUDIT_FIELDS})
-    runtime = Runtime.parse(Runtime(**{k: v for k, v in values.items() if k not in AUDIT_FIELDS}),
-                            None)
+    settings = AuditSettings.parse(alpha_deg=alpha_deg, size_s=size_s, robustness=robustness)
+    runtime = Runtime.parse(runtime)
     with tempfile.TemporaryDirectory(prefix="rocking-audit-") as folder:
         run_audit(procedures, suite, settings, runtime, folder, detail, claims)
         return load_run(folder)

@@ -10,7 +10,6 @@ from audit.engine.shared.defaults import (DEFAULT_AGREE_BAND, DEFAULT_ALPHA_DEG,
                                    DEFAULT_RESTITUTION, DEFAULT_ROBUSTNESS, DEFAULT_SIZES)
 from audit.engine.shared.grid import size_grid
 from audit.engine.shared.ground_truth import GroundTruth, parse_sensitivity
-from audit.physics.block import Restitution
 from audit.physics.defaults import DEFAULT_REST_TOLERANCE, DEFAULT_STEPS_PER_RADIAN
 from procedures.iteration import (CYCLE_TOLERANCE_RATIO, INITIAL_ROTATION_RATIO, MAX_CYCLE_LENGTH,
                                   MAX_ITERATIONS, TOLERANCE_RATIO)
@@ -71,9 +70,12 @@ class AuditSettings:
     jobs: int = 1
 
     @classmethod
-    def parse(cls, **values) -> AuditSettings:
-        """The settings of the given fields, each checked once (InputError naming the field);
-        a field not given takes its default (:mod:`audit.engine.shared.defaults`).
+    def parse(cls, *, alpha_deg=DEFAULT_ALPHA_DEG, size_s=None, solver=None,
+              agree_band: float = DEFAULT_AGREE_BAND, robustness: float = DEFAULT_ROBUSTNESS,
+              friction: float | None = None, sensitivity=()) -> AuditSettings:
+        """The settings of the given fields, each checked once (InputError naming the
+        argument, or the solver's field: ``solver.restitution``); a field not given takes its
+        default (:mod:`audit.engine.shared.defaults`).
 
         Parameters
         ----------
@@ -81,40 +83,33 @@ class AuditSettings:
             Slendernesses [degrees], 0 < α < 45.
         size_s : float or sequence of float, optional
             Block sizes 2π/p [s], positive; default the grid of ``DEFAULT_SIZES``.
-        free_motion_s, agree_band, robustness, g :
-            As the attributes: ≥ 0 s; in [0, 1); in [0, 0.5); positive m/s².
-        restitution : str, float or Restitution
-            ``housner``, a fixed r in (0, 1] or ``xFACTOR``.
-        vertical : bool
+        solver : audit.engine.shared.solver.Solver, optional
+            The exact solver's impact model, free motion, g and vertical motion
+            (:meth:`Solver.parse <audit.engine.shared.solver.Solver.parse>`).
+        agree_band, robustness :
+            As the attributes: in [0, 1); in [0, 0.5).
         friction : float, optional
             Positive.
         sensitivity : str or sequence of str
         """
-        check.unknown("the audit settings", values, AUDIT_FIELDS)
-        value = {**AUDIT_DEFAULTS, **values}
-        sizes = value["size_s"]
+        from audit.engine.shared.solver import Solver
+        solver = Solver.parse(solver, "run")
         return cls(
-            alpha_deg=check.numbers("alpha_deg", value["alpha_deg"],
+            alpha_deg=check.numbers("alpha_deg", alpha_deg,
                                     "slendernesses between 0 and 45 degrees", 0, 45,
                                     low_open=True, high_open=True),
-            size_s=(tuple(float(s) for s in size_grid(*DEFAULT_SIZES)) if sizes is None
-                    else check.numbers("size_s", sizes, "positive block sizes 2π/p in s", 0,
+            size_s=(tuple(float(s) for s in size_grid(*DEFAULT_SIZES)) if size_s is None
+                    else check.numbers("size_s", size_s, "positive block sizes 2π/p in s", 0,
                                        low_open=True)),
-            free_motion_s=check.number("free_motion_s", value["free_motion_s"],
-                                       "a duration ≥ 0 s", 0),
-            agree_band=check.number("agree_band", value["agree_band"], "a number in [0, 1)",
-                                    0, 1, high_open=True),
-            robustness=check.number("robustness", value["robustness"],
-                                    "a number in [0, 0.5)", 0, 0.5, high_open=True),
-            g=check.number("g", value["g"], "a positive acceleration in m/s²", 0,
-                           low_open=True),
-            restitution=str(value["restitution"] if isinstance(value["restitution"], Restitution)
-                            else Restitution.parse(value["restitution"], "restitution")),
-            vertical=check.flag("vertical", value["vertical"]),
-            friction=(None if value["friction"] is None else check.number(
-                "friction", value["friction"], "a positive friction coefficient μ", 0,
-                low_open=True)),
-            sensitivity=parse_sensitivity(check.words("sensitivity", value["sensitivity"]),
+            free_motion_s=solver.free_motion_s,
+            agree_band=check.number("agree_band", agree_band, "a number in [0, 1)", 0, 1,
+                                    high_open=True),
+            robustness=check.number("robustness", robustness, "a number in [0, 0.5)", 0, 0.5,
+                                    high_open=True),
+            g=solver.g, restitution=str(solver.restitution), vertical=solver.vertical,
+            friction=(None if friction is None else check.number(
+                "friction", friction, "a positive friction coefficient μ", 0, low_open=True)),
+            sensitivity=parse_sensitivity(check.words("sensitivity", sensitivity),
                                           "sensitivity"))
 
     @property
@@ -143,12 +138,4 @@ class AuditSettings:
                 "figure_5_damping_pct": [100.0 * d for d in FIGURE_5_DAMPING]}
 
 
-#: The fields :meth:`AuditSettings.parse` takes, and their defaults (``size_s``: None, the
-#: default grid).
-AUDIT_DEFAULTS = {"alpha_deg": DEFAULT_ALPHA_DEG, "size_s": None,
-                  "free_motion_s": DEFAULT_FREE_MOTION_S, "agree_band": DEFAULT_AGREE_BAND,
-                  "robustness": DEFAULT_ROBUSTNESS, "g": G, "restitution": DEFAULT_RESTITUTION,
-                  "vertical": False, "friction": None, "sensitivity": ()}
-AUDIT_FIELDS = tuple(AUDIT_DEFAULTS)
-
-__all__ = ["AuditSettings", "AUDIT_DEFAULTS", "AUDIT_FIELDS", "FIGURE_5_DAMPING", "HISTORY_POINTS"]
+__all__ = ["AuditSettings", "FIGURE_5_DAMPING", "HISTORY_POINTS"]

@@ -118,15 +118,8 @@ class Site:
                                  f"{ntc!r}", name)
             ntc = (*check.numbers(name, ntc[:3], "numbers a_g, F0, T_C*"),
                    str(ntc[3]).strip().upper(), str(ntc[4]).strip().upper())
-        limit_state = value.limit_state
-        choices = (*LIMIT_STATES, BOTH)
-        if not isinstance(limit_state, str) or limit_state.upper() not in (
-                c.upper() for c in choices):
-            raise InputError(f"{argument}.limit_state: expected {', '.join(choices)}, got "
-                             f"{limit_state!r}", f"{argument}.limit_state")
-        if not isinstance(value.level, str) or value.level not in SITE_LEVELS:
-            raise InputError(f"{argument}.level: expected {' or '.join(SITE_LEVELS)}, got "
-                             f"{value.level!r}", f"{argument}.level")
+        limit_state = limit_state_of(value.limit_state, f"{argument}.limit_state")
+        level = level_of(value.level, f"{argument}.level")
         scale = check.flag(f"{argument}.scale_records", value.scale_records)
         override = check.flag(f"{argument}.override", value.override)
         anchor = value.anchor_period_s
@@ -142,14 +135,44 @@ class Site:
                              argument)
         if site is None and ntc is None:  # neither site: refused as the values missing
             check.pair(argument, values, "S_XS, S_X1 in g (positive)", 0, low_open=True)
-        return cls(*(site or (None, None)), ntc,
-                   limit_state.upper() if limit_state.upper() in LIMIT_STATES else BOTH,
-                   value.level, override, scale, anchor)
+        return cls(*(site or (None, None)), ntc, limit_state, level, override, scale, anchor)
 
     @property
     def values_g(self) -> tuple[float, float] | None:
         """(S_XS, S_X1) [g], or None with an NTC 2018 site only."""
         return None if self.sxs_g is None else (self.sxs_g, self.sx1_g)
+
+
+def limit_state_of(value, name: str) -> str:
+    """``SLV``, ``SLC`` or ``both`` of ``value`` (any case); InputError naming ``name``.
+
+    Parameters
+    ----------
+    value : str
+        What was given.
+    name : str
+        The argument or field it was given as (``site.limit_state``), for the message.
+    """
+    choices = (*LIMIT_STATES, BOTH)
+    if not isinstance(value, str) or value.upper() not in (c.upper() for c in choices):
+        raise InputError(f"{name}: expected {', '.join(choices)}, got {value!r}", name)
+    return value.upper() if value.upper() in LIMIT_STATES else BOTH
+
+
+def level_of(value, name: str) -> str:
+    """The hazard level ``mce`` or ``design`` of ``value`` (:data:`SITE_LEVELS`); InputError
+    naming ``name``.
+
+    Parameters
+    ----------
+    value : str
+        What was given.
+    name : str
+        The argument or field it was given as (``site.level``), for the message.
+    """
+    if not isinstance(value, str) or value not in SITE_LEVELS:
+        raise InputError(f"{name}: expected {' or '.join(SITE_LEVELS)}, got {value!r}", name)
+    return value
 
 
 @dataclass(frozen=True)
@@ -218,4 +241,4 @@ def _numbers_of(text: str) -> list[float] | None:
         return None
 
 
-__all__ = ["Site", "DesignSite", "SITE_READS", "MAX_SITE_G"]
+__all__ = ["Site", "DesignSite", "SITE_READS", "MAX_SITE_G", "limit_state_of", "level_of"]

@@ -182,7 +182,7 @@ def _record_cause(motion) -> Cause:
                  f"({motion.acceleration.size:,} samples): shorten it or leave it out")
 
 
-def check(cost: Estimate, force: bool, out=None) -> None:
+def check(cost: Estimate, force: bool, out=None, force_field: str = "force") -> None:
     """Refuse ``cost`` above the limits unless ``force``; warn on one line above the lower one.
 
     Parameters
@@ -193,6 +193,8 @@ def check(cost: Estimate, force: bool, out=None) -> None:
         Run whatever the estimate.
     out : file-like, optional
         Where the warning goes; standard error when not given.
+    force_field : str
+        The argument that says ``force`` (``runtime.force``), for the message.
     """
     out = out or sys.stderr
     too_long = cost.seconds > REFUSE_SECONDS
@@ -203,8 +205,8 @@ def check(cost: Estimate, force: bool, out=None) -> None:
                                cost.memory_cause))
         raise InputError(f"work: {cost.work} would take {reason}, beyond the limit of "
                          f"{_duration(REFUSE_SECONDS)} / {REFUSE_MEMORY_BYTES / 1e9:g} GB, "
-                         f"mostly because of {cause}; or pass force=True", *cost.fields,
-                         "force")
+                         f"mostly because of {cause}; or pass {force_field}=True", *cost.fields,
+                         force_field)
     if cost.seconds > WARN_SECONDS:
         print(f"warning: {cost.work}: this may take up to {_duration(cost.seconds)}",
               file=out)

@@ -67,6 +67,9 @@ class Hazard:
         if value is None:
             return None
         if not isinstance(value, Hazard):
+            if not isinstance(value, (str, Path)) and not hasattr(value, "annual_rate"):
+                raise InputError(f"{argument}: expected a Hazard, a HazardCurve or its file, got "
+                                 f"{value!r}", argument)
             value = cls(value)
         for field, readers in HAZARD_READS.items():
             if command is not None and command not in readers \

@@ -27,7 +27,7 @@ def imt_of(im: str) -> str | None:
 
 def im_of_imt(imt: str) -> str:
     """``--im``'s name (``pga``, ``sa:1``) of a hazard file's IMT (``PGA``, ``SA(1.0)``,
-    ``SA1P0``); InputError naming ``hazard_imt`` otherwise.
+    ``SA1P0``); InputError naming ``hazard.imt`` otherwise.
 
     Parameters
     ----------
@@ -36,9 +36,9 @@ def im_of_imt(imt: str) -> str:
     """
     from records.hazard import parse_imt
     try:
-        kind, period = parse_imt(imt, "hazard_imt")
+        kind, period = parse_imt(imt, "hazard.imt")
     except InputError as exc:
-        raise InputError(str(exc), "hazard_imt") from None
+        raise InputError(str(exc), "hazard.imt") from None
     return "pga" if kind == "PGA" else f"sa:{period:g}"
 
 

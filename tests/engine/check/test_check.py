@@ -39,7 +39,7 @@ SIZE_S = 2.0 * math.pi / math.sqrt(3.0 * G / (4.0 * RADIUS_M))
 def result():
     by_slenderness = Block(alpha_deg=ALPHA_DEG, size_s=SIZE_S, name="by-alpha")
     return audit.check(["0.6x1.8", by_slenderness], SITE, procedures=["fema356", "housner1963"],
-                       records=eight_pulses(), im="pga", free_motion_s=5.0)
+                       records=eight_pulses(), im="pga", solver=audit.Solver(free_motion_s=5.0))
 
 
 def test_check_json_has_the_fields_of_the_issue(result, tmp_path):
@@ -281,8 +281,9 @@ def test_a_dask_cluster_gives_the_same_answers(result):
     answer as in this process (the width search sends its records with no procedure, and the
     check's work sets its stripes' solver threads)."""
     dask = audit.check(["0.6x1.8", Block(alpha_deg=ALPHA_DEG, size_s=SIZE_S, name="by-alpha")],
-                       SITE, procedures=["fema356", "housner1963"], records=eight_pulses(), im="pga",
-                       free_motion_s=5.0, scheduler="dask", jobs=2)
+                       SITE, procedures=["fema356", "housner1963"], records=eight_pulses(),
+                       im="pga", solver=audit.Solver(free_motion_s=5.0),
+                       runtime=audit.Runtime(jobs=2, scheduler="dask"))
     assert "LocalCluster of 2" in dask.document["scheduler"]
     assert dask.document["objects"] == result.document["objects"]
 
@@ -291,10 +292,10 @@ def test_an_objects_exact_answer_does_not_depend_on_the_objects_checked_beside_i
     # objects of one height share their width search: beside a narrower object of its height
     # and one of another height, the cabinet's exact answer (required widths, the family fitted
     # on each solved width once, bands) is the one it gets alone
-    alone = audit.check(["0.6x1.8"], SITE, procedures=["fema356"], records=eight_pulses(), im="pga",
-                        free_motion_s=5.0)
+    alone = audit.check(["0.6x1.8"], SITE, procedures=["fema356"], records=eight_pulses(),
+                        im="pga", solver=audit.Solver(free_motion_s=5.0))
     beside = audit.check(["0.6x1.8", "0.45x1.8", "0.5x1.2"], SITE, procedures=["fema356"],
-                         records=eight_pulses(), im="pga", free_motion_s=5.0)
+                         records=eight_pulses(), im="pga", solver=audit.Solver(free_motion_s=5.0))
     assert beside.document["objects"][0]["exact"] == alone.document["objects"][0]["exact"]
 
 

@@ -18,8 +18,9 @@ NTC = (0.35, 2.4, 0.35, "B", "T1")
 
 
 def _check(**keywords):
-    result = audit.check(["0.4x1.8"], (1.0, 0.6), procedures=["ntc2018"], records=eight_pulses(),
-                         im="pga", free_motion_s=5.0, **keywords)
+    result = audit.check(["0.4x1.8"], keywords.pop("site", (1.0, 0.6)), procedures=["ntc2018"],
+                         records=eight_pulses(), im="pga", solver=audit.Solver(free_motion_s=5.0),
+                         **keywords)
     (obj,) = result.document["objects"]
     return result, obj
 
@@ -44,7 +45,7 @@ def _ntc_slv_displacement() -> float:
 
 @pytest.fixture(scope="module")
 def without_and_with_ntc():
-    return _check(), _check(ntc_site=NTC)
+    return _check(), _check(site=audit.Site(1.0, 0.6, ntc=NTC))
 
 
 def test_ntc_site_read_by_ntc_2018(without_and_with_ntc):
@@ -75,8 +76,9 @@ def test_importance_param_multiplies_asce_on_a_roof():
     # F_p/W_p = 0.4·I_p·(2.84/1.712698)/1.5 = 0.442187·I_p; I_p = 1.5: 0.663281
     def asce(params):
         result = audit.check(["0.4x1.8"], (1.0, 0.6), procedures=["fema356"],
-                             records=eight_pulses(), im="pga", free_motion_s=5.0, floor=1.0,
-                             building=1.0, params=params, mass_kg=100)
+                             records=eight_pulses(), im="pga", params=params, mass_kg=100,
+                             floor=audit.Floor(1.0, audit.Building(1.0)),
+                             solver=audit.Solver(free_motion_s=5.0))
         (obj,) = result.document["objects"]
         return result, {e["key"]: e for e in obj["component_provisions"]}["asce7_22"]
     _, plain = asce(None)

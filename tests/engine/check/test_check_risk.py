@@ -29,9 +29,10 @@ def _power_law(levels=np.geomspace(1e-4, 60.0, 90)):
 
 
 def _check(objects, **options):
-    return audit.check(objects, SITE, procedures=["fema356", "priestley1978"], records=eight_pulses(),
-                       im="pga", free_motion_s=5.0, hazard=_power_law(), risk_target=TARGET,
-                       **options)
+    return audit.check(objects, SITE, procedures=["fema356", "priestley1978"],
+                       records=eight_pulses(), im="pga",
+                       hazard=audit.Hazard(_power_law(), risk_target=TARGET),
+                       solver=audit.Solver(free_motion_s=5.0), **options)
 
 
 @pytest.fixture(scope="module")
@@ -94,10 +95,12 @@ def test_the_hazard_curve_sets_the_intensity_measure():
                              1e-4 * np.geomspace(0.01, 5, 20) ** -2.0, "sa curve")
     with pytest.raises(InputError, match="im.*SA\\(1.0\\).*pga"):
         audit.check(["0.4x1.8"], SITE, records=eight_pulses(), im="pga", hazard=sa)
-    with pytest.raises(InputError, match="site_location"):
-        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), site_location=(0.0, -0.3))
-    with pytest.raises(InputError, match="risk_target"):
-        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), hazard=sa, risk_target=1.5)
+    with pytest.raises(InputError, match="^hazard.location"):
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(),
+                    hazard=audit.Hazard(None, location=(0.0, -0.3)))
+    with pytest.raises(InputError, match="^hazard.risk_target"):
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(),
+                    hazard=audit.Hazard(sa, risk_target=1.5))
 
 
 def test_cli_refuses_a_hazard_of_another_im_in_one_line(tmp_path, capsys):

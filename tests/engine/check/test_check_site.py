@@ -13,6 +13,7 @@ import math
 import pytest
 
 import audit
+from audit.api import Hazard
 from audit.cli import build_parser, main
 from audit.engine.check.settings import CheckSettings
 from audit.engine.shared.fields import probability
@@ -50,8 +51,8 @@ def test_return_period_sets_the_exact_answers_intensity_from_the_curve(hazard_di
     assert expected == pytest.approx(0.764, rel=0.01)  # the engine's own hazard map (README)
     with pytest.warns(UserWarning, match="hazard curve gives sa:1 = 0.7"):
         result = audit.check(["0.4x1.8"], SITE, procedures=["fema356"], records=eight_pulses(),
-                             free_motion_s=5.0, hazard=path, site_location=(0.0, -0.3),
-                             return_period=2475)
+                             hazard=audit.Hazard(path, location=(0.0, -0.3), return_period=2475),
+                             solver=audit.Solver(free_motion_s=5.0))
     document = result.document
     assert document["site_im"] == pytest.approx(expected, rel=0.01)
     assert document["objects"][0]["exact"]["site_im_g"] == document["site_im"]
@@ -63,34 +64,35 @@ def test_return_period_sets_the_exact_answers_intensity_from_the_curve(hazard_di
     assert "+" not in site_hazard["warning"] and "-15 %" in site_hazard["warning"]
     assert "hazard curve at 2,475 years" in result.summary_text()
     # 2 % in 50 years is a return period of −50/ln(0.98) = 2474.9 years
-    by_poe = CheckSettings.parse(hazard=path, site_location=(0.0, -0.3), poe="2%")
+    by_poe = CheckSettings.parse(hazard=Hazard(path, location=(0.0, -0.3), poe="2%"))
     assert by_poe.site_return_period_years == pytest.approx(-50.0 / math.log(0.98))
 
 
 def test_poe_and_return_period_need_a_hazard_and_one_of_them(hazard_dir):
-    with pytest.raises(InputError, match="^return_period:.*no hazard") as excinfo:
-        CheckSettings.parse(return_period=475)
-    assert excinfo.value.fields == ("return_period",)
-    with pytest.raises(InputError, match="return_period and poe"):
-        CheckSettings.parse(hazard=hazard_dir / OQ_SA1, site_location=(0.0, -0.3),
-                            return_period=475, poe=0.1)
-    with pytest.raises(InputError, match="return_period: the hazard curve .* covers"):
-        audit.check(["0.4x1.8"], SITE, records=eight_pulses(), hazard=hazard_dir / OQ_SA1,
-                    site_location=(0.0, -0.3), return_period=1e9)
+    with pytest.raises(InputError, match="^hazard.return_period:.*no curve") as excinfo:
+        CheckSettings.parse(hazard=Hazard(None, return_period=475))
+    assert excinfo.value.fields == ("hazard.return_period",)
+    with pytest.raises(InputError, match="return_period and hazard.poe"):
+        CheckSettings.parse(hazard=Hazard(hazard_dir / OQ_SA1, location=(0.0, -0.3),
+                                          return_period=475, poe=0.1))
+    with pytest.raises(InputError, match="^hazard.return_period: the hazard curve .* covers"):
+        audit.check(["0.4x1.8"], SITE, records=eight_pulses(),
+                    hazard=Hazard(hazard_dir / OQ_SA1, location=(0.0, -0.3), return_period=1e9))
 
 
 @pytest.mark.parametrize("given, expected", [("2%", 0.02), ("2 %", 0.02), (0.02, 0.02),
                                              ("0.1", 0.1), ("10%", 0.1)])
 def test_a_probability_may_be_a_percentage(given, expected):
     assert probability("risk_target", given) == pytest.approx(expected)
-    assert CheckSettings.parse(risk_target=given).risk_target == pytest.approx(expected)
+    assert CheckSettings.parse(hazard=Hazard(None, risk_target=given)).risk_target == \
+        pytest.approx(expected)
 
 
 @pytest.mark.parametrize("given", ["2", "0%", "100%", "two", None, True, float("nan")])
 def test_a_probability_outside_0_1_is_refused_naming_the_argument(given):
     with pytest.raises(InputError) as excinfo:
-        CheckSettings.parse(risk_target=given)
-    assert excinfo.value.fields == ("risk_target",)
+        CheckSettings.parse(hazard=Hazard(None, risk_target=given))
+    assert excinfo.value.fields == ("hazard.risk_target",)
 
 
 def test_the_command_line_takes_percentages_and_western_coordinates():
@@ -122,13 +124,13 @@ def test_the_usgs_file_is_read_at_the_ims_imt(hazard_dir):
     path = hazard_dir / "usgs-example.json"
     by_im = CheckSettings.parse(hazard=path, im="sa:1.0")
     assert by_im.hazard.im_name == "SA(1.0)" and by_im.im.name == "sa:1"
-    by_imt = CheckSettings.parse(hazard=path, hazard_imt="PGA")
+    by_imt = CheckSettings.parse(hazard=Hazard(path, imt="PGA"))
     assert by_imt.im.name == "pga"
     assert by_imt.hazard.annual_rate.tolist() == \
         json.loads(path.read_text())["response"][0]["data"][0]["yvals"]
-    with pytest.raises(InputError, match="hazard_imt") as excinfo:
+    with pytest.raises(InputError, match="hazard.imt") as excinfo:
         CheckSettings.parse(hazard=path)
-    assert "hazard_imt" in excinfo.value.fields
+    assert "hazard.imt" in excinfo.value.fields
 
 
 def test_the_imt_mismatch_keeps_the_services_name(hazard_dir, capsys):
@@ -178,7 +180,8 @@ BLOCK = "0.8x1.2"  # tan α = 0.667 > 0.6: at PGA 0.6 g it never lifts off
 def stocky():
     def run(**options):
         return audit.check([BLOCK, "0.3x1.8"], SITE, procedures=["fema356"],
-                           records=eight_pulses(), im="pga", free_motion_s=5.0, **options).document
+                           records=eight_pulses(), im="pga",
+                           solver=audit.Solver(free_motion_s=5.0), **options).document
     return {mu: run(**({} if mu is None else {"friction": mu})) for mu in (None, 10.0, 0.2)}
 
 
@@ -229,17 +232,17 @@ def test_a_stocky_block_on_mu_02_slides_before_it_rocks(stocky):
 
 @pytest.mark.parametrize("given", [(-118, 34), [-118.0, 34.0], "-118,34", "-118, 34"])
 def test_a_site_location_is_a_pair_or_its_text(hazard_dir, given):
-    settings = CheckSettings.parse(hazard=hazard_dir / "usgs-example.json", hazard_imt="PGA",
-                                   site_location=given)
+    settings = CheckSettings.parse(hazard=Hazard(hazard_dir / "usgs-example.json", imt="PGA",
+                                                 location=given))
     assert settings.hazard.site == (-118.0, 34.0)
 
 
 @pytest.mark.parametrize("given", ["-118", "west,34", (1, 2, 3), 5.0, (-118, 95)])
 def test_a_bad_site_location_names_the_argument(hazard_dir, given):
     with pytest.raises(InputError) as excinfo:
-        CheckSettings.parse(hazard=hazard_dir / "usgs-example.json", hazard_imt="PGA",
-                            site_location=given)
-    assert excinfo.value.fields == ("site_location",)
+        CheckSettings.parse(hazard=Hazard(hazard_dir / "usgs-example.json", imt="PGA",
+                                          location=given))
+    assert excinfo.value.fields == ("hazard.location",)
 
 
 def test_sliding_governs_when_most_records_slide_the_object():

@@ -25,8 +25,8 @@ WIDTH_M, HEIGHT_M = 0.4, 1.8  # the issue's vitrine
 @pytest.fixture(scope="module")
 def vitrine():
     return audit.check([f"{WIDTH_M}x{HEIGHT_M}"], SITE,
-                       procedures=["ntc2018", "fema356", "housner1963"],
-                       records=eight_pulses(), im="pga", free_motion_s=5.0)
+                       procedures=["ntc2018", "fema356", "housner1963"], records=eight_pulses(),
+                       im="pga", solver=audit.Solver(free_motion_s=5.0))
 
 
 def _peak_displacement(amplitude_g: float, pulse_s: float, period_s: float,
@@ -88,11 +88,11 @@ def test_ntc_judges_the_vitrine_by_its_own_slv_and_slc_on_d(vitrine):
 
 
 def test_only_the_limit_state_asked_for_is_reported():
-    result = audit.check(["0.4x1.8"], SITE, procedures=["ntc2018"], records=eight_pulses(), im="pga",
-                         free_motion_s=5.0, limit_state="slc")
+    result = audit.check(["0.4x1.8"], audit.Site(*SITE, limit_state="slc"), procedures=["ntc2018"],
+                         records=eight_pulses(), im="pga", solver=audit.Solver(free_motion_s=5.0))
     assert [e["limit_state"] for e in result.document["objects"][0]["procedures"]] == ["SLC"]
     with pytest.raises(audit.errors.InputError, match="limit_state"):
-        audit.check(["0.4x1.8"], SITE, limit_state="SLD")
+        audit.check(["0.4x1.8"], audit.Site(*SITE, limit_state="SLD"))
 
 
 def test_a_suite_rule_makes_the_records_demands_one():

@@ -19,7 +19,7 @@ from tests.engine.check.pulses import eight_pulses
 
 SITE = (1.0, 0.6)
 BLOCK = "0.7x1.7"
-ROOF = {"floor": 1.0, "building": 1.0}
+ROOF = {"floor": audit.Floor(1.0, audit.Building(1.0))}
 
 
 def test_the_floor_site_is_read_off_the_spectrum_by_asce_7_section_21_4():
@@ -34,9 +34,9 @@ def test_the_floor_site_is_read_off_the_spectrum_by_asce_7_section_21_4():
 def roof():
     pulses = eight_pulses()
     four = replace(pulses, entries=pulses.entries[::2], description="four one-cosine pulses")
-    return {choice: audit.check(BLOCK, SITE, procedures=["fema356", "priestley1978"],
-                                records=four, free_motion_s=2.0,
-                                guideline_spectrum=choice, **ROOF).document
+    return {choice: audit.check(BLOCK, SITE, procedures=["fema356", "priestley1978"], records=four,
+                                guideline_spectrum=choice, solver=audit.Solver(free_motion_s=2.0),
+                                **ROOF).document
             for choice in ("ground", "floor")}
 
 

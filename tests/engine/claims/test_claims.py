@@ -11,6 +11,7 @@ from audit.engine.claims.checklist import (CLAIM_FIELDS, EVALUATORS, STATUSES, C
 from audit.engine.shared.schemas import CLAIM_COLUMNS
 from audit.engine.run.audit_run import AuditRun
 from audit.engine.run.pipeline import audit_in_memory
+from audit.engine.shared.runtime import Runtime
 from audit.errors import InputError
 from procedures import get_procedures
 
@@ -139,7 +140,8 @@ def test_ratio_combines_two_evaluations():
 def seed_claims(seed_suite):
     # the fragility flag plays no part in any claim: leave it off to keep the fixture short
     procedures = get_procedures("priestley1978") + get_procedures("fema356")
-    run = audit_in_memory(procedures, seed_suite, jobs=2, robustness=0.0)
+    run = audit_in_memory(procedures, seed_suite, robustness=0.0,
+                          runtime=Runtime(jobs=2))
     return run, evaluate_claims(run, seed_suite).set_index("id")
 
 

@@ -26,10 +26,11 @@ def test_fema356_line_is_its_uplift_step_in_check_and_in_margins():
     assert uplift_g == pytest.approx(0.441, abs=5e-4)
     block = f"{WIDTH_M}x{HEIGHT_M}"
     checked = audit.check(block, (SXS_G, SX1_G), procedures="fema356", records=eight_pulses(),
-                          im="sa:1.0", free_motion_s=2.0)
+                          im="sa:1.0", solver=audit.Solver(free_motion_s=2.0))
     (entry,) = checked.document["objects"][0]["procedures"]
     margins = audit.margins("fema356", eight_pulses(), im="sa:1.0", alpha_deg=(), blocks=[block],
-                            site=(SXS_G, SX1_G), required=False, free_motion_s=2.0)
+                            site=(SXS_G, SX1_G), required=False,
+                            solver=audit.Solver(free_motion_s=2.0))
     capacity = margins.capacity
     margins_line = float(capacity.loc[capacity["procedure"] == "fema356", "guideline_im"].iloc[0])
     assert entry["guideline_im"] == pytest.approx(uplift_g, rel=1e-6)

@@ -18,6 +18,7 @@ from audit.engine.design.margins import margins_tables
 from audit.engine.design.tables import fragility_rows
 from audit.engine.design.settings import MarginsSettings
 from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.solver import Solver
 from audit.engine.shared.sites import scale_to_site, with_design_site
 from audit.errors import InputError
 from audit.physics.block import RigidBlock, coefficient_of_restitution
@@ -31,11 +32,12 @@ LEVELS_G = np.geomspace(0.15, 1.2, 9)
 SIZE_S, ALPHA_DEG = 3.0, 15.0
 
 
-def _settings(**values):
+def _settings(restitution="housner", **values):
     """The settings of these tests: PGA stripes LEVELS_G, the block (ALPHA_DEG, SIZE_S), 8 s of
     free motion; ``values`` replace them."""
     return MarginsSettings.parse(**{"im": "pga", "stripes": LEVELS_G, "alpha_deg": (ALPHA_DEG,),
-                                    "size_s": [SIZE_S], "free_motion_s": 8.0, **values})
+                                    "size_s": [SIZE_S],
+                                    "solver": Solver(restitution, free_motion_s=8.0), **values})
 
 
 def _suite():
@@ -128,7 +130,7 @@ def test_the_cmr_is_over_the_mce_and_a_bound_beyond_the_stripes():
     row = rows.iloc[0]
     assert row["median"] > 0.3 and row["median_extrapolated"]
     assert row["cmr_bound"] == "at least" and row["cmr"] == pytest.approx(0.3 / 0.6)
-    with pytest.raises(InputError, match="^site_level"):
+    with pytest.raises(InputError, match="^site.level"):
         _settings(site_level="maximum")
 
 
@@ -178,7 +180,7 @@ def test_intensity_measures_and_bad_input(tmp_path, capsys):
 def test_margins_from_python(tmp_path):
     import audit
     result = audit.margins("fema356", _suite(), im="pga", stripes=LEVELS_G, alpha_deg=[15],
-                           size_s=[SIZE_S], free_motion_s=8.0, required=False)
+                           size_s=[SIZE_S], required=False, solver=audit.Solver(free_motion_s=8.0))
     assert len(result.fragility) == 1 and "fema356" in result._repr_html_()
     written = sorted(p.name for p in result.write(tmp_path / "m").iterdir())
     assert written == ["capacity.csv", "columns.json", "fragility.csv", "margins.html",
@@ -247,14 +249,16 @@ def test_resumed_and_dask_margins_are_identical(tmp_path):
     import audit
     from audit.engine.shared.partial import kept_parts
     common = dict(im="pga", stripes=LEVELS_G, alpha_deg=[15], size_s=[SIZE_S],
-                  free_motion_s=8.0, required=False)
+                  solver=audit.Solver(free_motion_s=8.0), required=False)
     local = audit.margins("priestley1978", _suite(), **common)
     partial = tmp_path / ".partial"
-    audit.margins("priestley1978", _suite(), partial_dir=partial, **common)
+    audit.margins("priestley1978", _suite(), runtime=audit.Runtime(partial_dir=partial), **common)
     assert len(kept_parts(partial)) == 3  # one part per record, kept for a resume
-    resumed = audit.margins("priestley1978", _suite(), partial_dir=partial, resume=True, **common)
+    resumed = audit.margins("priestley1978", _suite(),
+                            runtime=audit.Runtime(partial_dir=partial, resume=True), **common)
     assert resumed.summary["resumed"] == [e.id for e in _suite()]
-    on_dask = audit.margins("priestley1978", _suite(), scheduler="dask", jobs=2, **common)
+    on_dask = audit.margins("priestley1978", _suite(),
+                            runtime=audit.Runtime(jobs=2, scheduler="dask"), **common)
     for other in (resumed, on_dask):
         assert other.stripes.equals(local.stripes)
         assert other.fragility.equals(local.fragility)
@@ -264,7 +268,7 @@ def test_margins_page_from_the_files(tmp_path):
     import audit
     result = audit.margins(["priestley1978", "fema356"], _suite(), im="pga", stripes=LEVELS_G,
                            alpha_deg=[15], size_s=[SIZE_S], blocks=["0.8x4"],
-                           free_motion_s=8.0)
+                           solver=audit.Solver(free_motion_s=8.0))
     page = (result.write(tmp_path / "m") / "margins.html").read_text()
     share = result.required_alpha.set_index("procedure").loc["fema356", "exact_overturning_share"]
     assert ("Blocks sized by FEMA 356 (2000) for S_XS = 1.5 g, S_X1 = 0.9 g" in page

@@ -108,7 +108,8 @@ def test_margins_at_a_site_from_python_and_its_page(tmp_path):
     from tests.engine.design.test_margins import LEVELS_G, _suite
     curve = _power_law_csv(tmp_path / "curve.csv")
     result = audit.margins("priestley1978", _suite(), stripes=LEVELS_G, alpha_deg=[15, 25],
-                           size_s=[3.0], blocks=["0.8x4"], free_motion_s=8.0, hazard=curve)
+                           size_s=[3.0], blocks=["0.8x4"], hazard=curve,
+                           solver=audit.Solver(free_motion_s=8.0))
     assert result.summary["im"] == "pga"  # from the curve
     named = result.fragility[result.fragility["width_m"] == 0.8].iloc[0]
     alone = audit.risk(named, curve)

@@ -15,6 +15,7 @@ from audit.engine.design.tables import exact_fit
 from audit.engine.design.p695_acceptance import counted_fit, p695_acceptance, sized_blocks
 from audit.engine.shared.blocks import Block
 from audit.engine.shared.runtime import Runtime
+from audit.engine.shared.solver import Solver
 from audit.physics.block import Restitution
 from audit.engine.shared.sites import with_design_site
 from records import RecordEntry, RecordSuite, one_pulse
@@ -29,9 +30,10 @@ def _suite():
                             override=True)
 
 
-def _settings(**values):
+def _settings(restitution="housner", **values):
     return MarginsSettings.parse(**{"im": "pga", "stripes": LEVELS_G, "alpha_deg": (15.0,),
-                                    "size_s": [3.0], "free_motion_s": 8.0, **values})
+                                    "size_s": [3.0],
+                                    "solver": Solver(restitution, free_motion_s=8.0), **values})
 
 
 def test_blocks_sized_alike_share_their_fit_and_every_value_is_the_full_audits():

@@ -13,6 +13,7 @@ from audit.engine.run.record_audit import audit_record
 from audit.engine.shared.schemas import SUITE_COLUMNS
 from audit.engine.run.settings import AuditSettings
 from audit.engine.run.pipeline import audit_in_memory
+from audit.engine.shared.runtime import Runtime
 from audit.engine.shared.record_references import RecordReference, by_reference, resolve
 from audit.engine.shared.scheduler import check_scheduler, open_scheduler
 from audit.cli import main
@@ -33,8 +34,8 @@ def three_records(seed_suite):
 
 @pytest.fixture(scope="module")
 def local_run(three_records):
-    return audit_in_memory(get_procedures("all"), three_records, jobs=2, detail=["sylmar_1994"],
-                           **GRID)
+    return audit_in_memory(get_procedures("all"), three_records, detail=["sylmar_1994"],
+                           runtime=Runtime(jobs=2), **GRID)
 
 
 def _assert_same_run(run, reference):
@@ -59,8 +60,9 @@ def test_local_run_fills_suite_statistics(local_run):
 
 @pytest.mark.slow  # end to end: a local dask cluster
 def test_dask_local_cluster_gives_identical_values(three_records, local_run):
-    run = audit_in_memory(get_procedures("all"), three_records, jobs=2, scheduler="dask",
-                    detail=["sylmar_1994"], **GRID)
+    run = audit_in_memory(get_procedures("all"), three_records,
+                          runtime=Runtime(jobs=2, scheduler="dask"),
+                          detail=["sylmar_1994"], **GRID)
     assert "LocalCluster of 2" in run.summary["scheduler"]
     _assert_same_run(run, local_run)
 
@@ -71,7 +73,8 @@ def test_existing_cluster_by_address_gives_identical_values(three_records, local
                       dashboard_address=None) as cluster:
         address = cluster.scheduler_address
         assert address.startswith("tcp://")
-        run = audit_in_memory(get_procedures("all"), three_records, scheduler=address, **GRID)
+        run = audit_in_memory(get_procedures("all"), three_records,
+                              runtime=Runtime(scheduler=address), **GRID)
         # a record scaled after reading cannot be read back by reference: sent again by value
         pacoima = three_records.get("pacoima_dam_1971")
         scaled = replace(pacoima, motion=replace(pacoima.motion,
@@ -245,7 +248,6 @@ def test_parts_handed_back_out_of_order_are_written_in_the_suites_order(three_re
     come first: the files are the local run's byte for byte, and each part ahead of its turn
     waits on disk, not in memory (in a scratch folder, or among the parts kept to resume)."""
     from audit.engine.run import pipeline as suite_run
-    from audit.engine.shared.runtime import Runtime
     from audit.engine.shared.scheduler import LocalScheduler
 
     class LastFirst(LocalScheduler):
