@@ -29,6 +29,28 @@ def field_name(argument: str | None, field: str) -> str:
     return f"{argument}.{field}" if argument else field
 
 
+class NoAtlas(InputError):
+    """``method='atlas'`` asked where no atlas answers (:mod:`audit.engine.atlas`).
+
+    Parameters
+    ----------
+    reason : str
+        Why none answers (none built for these records and settings, a block outside its
+        grid, stripes other than its own).
+    build : dict, optional
+        What builds the one asked for, as :func:`audit.api.build_atlas` takes it (``records``
+        as the user named them, ``im``, ``solver``, ``floor``); None where one is built but
+        cannot answer. The command line words it as its own ``atlas build`` command.
+    """
+
+    def __init__(self, reason: str, build: dict | None = None):
+        self.reason, self.build = reason, build
+        how = ("" if build is None else "build it with audit.build_atlas() given the same "
+               f"{', '.join(build)}, or ")
+        super().__init__(f"method: atlas asked, but {reason}; {how}use method='direct'",
+                         "method")
+
+
 class InputWarning(UserWarning):
     """Input that is accepted but probably wrong (e.g. a PGA implausibly small for the declared
     units); the command-line interface prints it on one line and carries on."""

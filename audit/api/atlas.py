@@ -98,24 +98,9 @@ def atlas_reading(method, records, blocks, *, im, solver: Solver | None = None,
     atlas = Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
     name = named if isinstance(named, (str, os.PathLike)) else getattr(records, "description",
                                                                         records)
-    return atlas_for(method, atlas, key, *blocks, atlas_command(name, im, solver, floor),
+    return atlas_for(method, atlas, key, *blocks,
+                     {"records": name, "im": im, "solver": solver, "floor": floor},
                      stripes=stripes)
-
-
-def atlas_command(records, im, solver: Solver | None, floor: Floor | None) -> str:
-    """The command line that builds the atlas of ``records`` (as named) on ``floor``."""
-    from audit.engine.shared.defaults import DEFAULT_RESTITUTION
-    from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
-    command = f"python -m audit atlas build --records {records} --im {im}"
-    if solver is not None and str(solver.restitution) != DEFAULT_RESTITUTION:
-        command += f" --restitution {solver.restitution}"
-    building = getattr(floor, "building", None)
-    if building is not None and floor.z_over_h:
-        command += f" --floor {floor.z_over_h:g} --building {building.period_s:g}"
-        command += f" --building-model {building.model}"
-        if building.damping != DEFAULT_BUILDING_DAMPING:
-            command += f" --building-damping {building.damping:g}"
-    return command
 
 
 def build_atlas(records=DEFAULT_CHECK_RECORDS, *, scheduler=DEFAULT_SCHEDULER,

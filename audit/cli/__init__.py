@@ -20,7 +20,7 @@ from audit.cli import (atlas, check, design_spectrum, floor_motion, fragility, l
                        options, pulse, report, rock, run, spectrum, validate)
 from audit.cli.flags import with_flags
 from audit.cli.interrupts import EXIT_INTERRUPTED, interruptible, stop_threads
-from audit.errors import InputError, InputWarning
+from audit.errors import InputError, InputWarning, NoAtlas
 
 COMMANDS = (listing, check, rock, spectrum, design_spectrum, floor_motion, run, margins, fragility,
             report, validate, pulse, atlas)
@@ -89,6 +89,12 @@ def _run(args) -> int:
         if getattr(args, "jobs", None) is not None:
             args.jobs = options.cap_jobs(args.jobs)
         return args.func(args)
+    except NoAtlas as exc:  # the atlas command that builds it, in the command line's words
+        from audit.cli.atlas import build_command
+        build = "" if exc.build is None else f"build it with '{build_command(exc.build)}', or "
+        print(f"error: --method: atlas asked, but {' '.join(exc.reason.split())}; {build}use "
+              "--method direct", file=sys.stderr)
+        return 2
     except InputError as exc:
         message = with_flags(str(exc), getattr(exc, "fields", ()))
         print(f"error: {' '.join(message.split())}", file=sys.stderr)

@@ -22,6 +22,24 @@ def _atlas_options(p):
                    metavar="S", help="free motion after each record [s]")
 
 
+def build_command(build: dict) -> str:
+    """The ``atlas build`` command line that builds the atlas a :class:`~audit.errors.NoAtlas`
+    asked for (``build``: records as named, im, solver, floor)."""
+    from audit.api import DEFAULT_RESTITUTION, Solver
+    solver = build.get("solver") or Solver()
+    command = f"python -m audit atlas build --records {build['records']} --im {build['im']}"
+    if str(solver.restitution) != DEFAULT_RESTITUTION:
+        command += f" --restitution {solver.restitution}"
+    if solver.free_motion_s != DEFAULT_FREE_MOTION_S:
+        command += f" --free-motion {solver.free_motion_s:g}"
+    floor = build.get("floor")
+    building = getattr(floor, "building", None)
+    if building is not None and floor.z_over_h:
+        command += (f" --floor {floor.z_over_h:g} --building {building.period_s:g}"
+                    f" --building-model {building.model} --building-damping {building.damping:g}")
+    return command
+
+
 def add_parser(sub):
     p = sub.add_parser("atlas", help="build, list, remove or read the exact-fragility atlas of "
                                      "a record set on a floor (check's answers in seconds)",

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from audit.engine.atlas.answers import Atlas
-from audit.errors import InputError
+from audit.errors import InputError, NoAtlas
 
 #: The values of ``method``: None is the atlas where one answers, else the direct solve.
 METHODS = ("atlas", "direct")
@@ -101,10 +101,10 @@ def checked_method(method):
     return method
 
 
-def atlas_for(method, atlas: Atlas | None, key: str, alpha_deg, size_s, build_command: str,
+def atlas_for(method, atlas: Atlas | None, key: str, alpha_deg, size_s, build: dict,
               stripes=None) -> AtlasReading | None:
     """The atlas the answer reads (None: the direct solve) by ``method``: ``direct`` never,
-    ``atlas`` always (InputError naming ``method`` and the build command where it cannot
+    ``atlas`` always (:class:`~audit.errors.NoAtlas` naming ``method`` where it cannot
     answer), None where it can answer every block.
 
     It cannot where there is none for these records, intensity measure, floor, restitution,
@@ -120,8 +120,8 @@ def atlas_for(method, atlas: Atlas | None, key: str, alpha_deg, size_s, build_co
         Its key.
     alpha_deg, size_s : array_like of float
         The blocks [degrees], [s].
-    build_command : str
-        The command line that builds the atlas (the message names it).
+    build : dict
+        What builds the atlas asked for (:class:`~audit.errors.NoAtlas`).
     stripes : sequence of float, optional
         Stripes asked for explicitly.
     """
@@ -141,9 +141,7 @@ def atlas_for(method, atlas: Atlas | None, key: str, alpha_deg, size_s, build_co
     if reason is None:
         return AtlasReading(atlas, key)
     if method == "atlas":
-        build = f"build it with '{build_command}', or " if atlas is None else ""
-        raise InputError(f"method: atlas asked, but {reason}; {build}use method direct",
-                         "method")
+        raise NoAtlas(reason, build if atlas is None else None)
     return None
 
 

@@ -225,7 +225,7 @@ GUIDE["fragility.csv"] = {
                                   "first overturning one (depends on the stripe spacing)"),
     "island_share": ("-", "records_with_islands / records"),
     "exact_source": ("text", "where the exact outcomes come from: 'direct' (the records solved) "
-                             "or 'atlas' (read from the atlas at its stripes, --method; "
+                             "or 'atlas' (read from the atlas at its stripes, method; "
                              "docs/atlas.md)"),
     "atlas_key": ("text", "the atlas's key (atlas list), empty when direct"),
     "atlas_error": ("-", "the atlas's stated error of P along the block's curve: the largest "
@@ -393,7 +393,7 @@ GUIDE["fragility-components.csv"] = {
     "exact_fit_log_likelihood": ("-", "log-likelihood of the exact fit (in-sample)"),
     "outcomes": ("-", "records × stripes scored"),
     "exact_source": ("text", "where the exact outcomes come from: 'direct' (the records solved) "
-                             "or 'atlas' (read from the atlas at its stripes, --method; "
+                             "or 'atlas' (read from the atlas at its stripes, method; "
                              "docs/atlas.md)"),
     "atlas_key": ("text", "the atlas's key (atlas list), empty when direct"),
     "atlas_error": ("-", "the atlas's stated error of P along the block's curve: the largest "

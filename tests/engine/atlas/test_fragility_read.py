@@ -25,7 +25,7 @@ from audit.engine.check.pipeline import LATTICE_EVERY
 from audit.engine.fragility.pipeline import COMPONENTS_CSV, STRIPES_CSV, run_fragility
 from audit.engine.fragility.settings import FragilitySettings
 from audit.engine.shared.lattice import stripe_lattice
-from audit.errors import InputError
+from audit.errors import InputError, NoAtlas
 from procedures.probabilistic import (FragilityComponent, LognormalFragility,
                                       ProbabilisticProcedure)
 from records import shipped_seed_suite
@@ -106,8 +106,8 @@ def test_margins_default_reads_the_atlas_where_one_answers(atlases, suite):
     other = api.margins("fema356", suite, alpha_deg=NODES[0], size_s=NODES[1],
                         site=(1.5, 0.9), required=False, stripes=(0.3, 0.6))
     assert other.summary["exact_source"]["method"] == "direct"
-    with pytest.raises(InputError, match="stripes other than the atlas's .*; use method "
-                                         "direct$") as caught:
+    with pytest.raises(NoAtlas, match="stripes other than the atlas's .*; use method='direct'$") \
+            as caught:
         api.margins("fema356", suite, alpha_deg=NODES[0], size_s=NODES[1], required=False,
                     stripes=(0.3, 0.6), method="atlas")
     assert caught.value.fields == ("method",)
@@ -155,11 +155,13 @@ def test_fragility_reads_the_pgv_atlas_and_says_so(atlases, suite):
 
 def test_method_atlas_without_an_atlas_is_refused(suite, tmp_path, monkeypatch):
     monkeypatch.setenv(ATLAS_DIR_ENV, str(tmp_path / "none"))
-    with pytest.raises(InputError, match="atlas build --records") as caught:
+    with pytest.raises(NoAtlas, match=r"build it with audit\.build_atlas\(\)") as caught:
         api.margins("fema356", suite, alpha_deg=NODES[0], size_s=NODES[1], method="atlas")
     assert caught.value.fields == ("method",)
-    with pytest.raises(InputError, match="--im pgv"):
+    assert caught.value.build["im"] == "sa:1"
+    with pytest.raises(NoAtlas) as caught:
         api.fragility("femap58", suite, method="atlas")
+    assert caught.value.build["im"] == "pgv"
     with pytest.raises(InputError, match="method: expected atlas or direct"):
         api.fragility("femap58", suite, method="exact")
 
