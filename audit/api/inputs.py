@@ -4,9 +4,7 @@ motions (ids, paths, GroundMotions, (array, dt) pairs), and a floor given one va
 
 from __future__ import annotations
 
-import contextlib
 import math
-import re
 from numbers import Real
 from typing import TYPE_CHECKING
 
@@ -242,25 +240,6 @@ def motion_of(motion, records=None):
                         if hasattr(motion, "shape") else ""), "motion")
 
 
-#: The keyword of a function that takes the floor one value at a time (``floor``, ``building``,
-#: ``building_model``, ``building_damping``), for each field a message of :class:`Floor` names.
-FLOOR_KEYWORDS = {"floor.building.period_s": "building", "floor.building.model": "building_model",
-                  "floor.building.damping": "building_damping", "floor.building": "building",
-                  "floor.z_over_h": "floor"}
-
-
-def floor_of(floor=0.0, building=None, building_model=None, building_damping=None):
-    """The :class:`~audit.physics.building.floor.Floor` of a function that takes it one value
-    at a time (z/H, T1 [s], the model, ζ; None: the default), checked once by
-    :meth:`DesignSite.parse`, whose messages then name these keywords."""
-    from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING, Building, Floor
-    from audit.engine.shared.design_site import DesignSite
-    given = Floor(floor, Building(building, building_model, DEFAULT_BUILDING_DAMPING
-                                  if building_damping is None else building_damping))
-    with keywords_named(FLOOR_KEYWORDS):
-        return DesignSite.parse(None, given).floor
-
-
 def floor_group(floor=None):
     """The :class:`~audit.physics.building.floor.Floor` of a function that takes it whole
     (a Floor, 0 or None: the ground), checked once by :meth:`DesignSite.parse`."""
@@ -300,18 +279,6 @@ def solver_of(solver, command: str, read: tuple):
     return parsed
 
 
-@contextlib.contextmanager
-def keywords_named(keywords: dict):
-    """An InputError inside names each group field of ``keywords`` (``floor.building.model``)
-    by its keyword (``building_model``), for a function that takes the fields one by one."""
-    try:
-        yield
-    except InputError as exc:
-        names = re.compile("|".join(re.escape(name) for name in keywords))
-        raise InputError(names.sub(lambda m: keywords[m.group()], str(exc)),
-                         *(keywords.get(field, field) for field in exc.fields)) from None
-
-
 def on_floor_of(motion, floor, records=None):
     """(the motion of :func:`motion_of` filtered to ``floor``, a checked
     :class:`~audit.physics.building.floor.Floor`, the floor's JSON document); ``records`` as
@@ -328,4 +295,4 @@ def on_floor_of(motion, floor, records=None):
 
 
 __all__ = ["procedures_of", "parameters_of", "record_suite", "built_in_suites", "motion_of",
-           "floor_of", "FLOOR_KEYWORDS", "on_floor_of"]
+           "floor_group", "on_floor_of"]

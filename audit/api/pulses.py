@@ -5,19 +5,16 @@ from __future__ import annotations
 import math
 
 
-def record_pulses(records=None, *, plot: bool = False, dt_s: float | None = None,
-                  units: str | None = None, skip_bad_records: bool = False):
+def record_pulses(records=None, *, plot: bool = False):
     """The pulse of each record of a suite (Shahi & Baker 2014 and the Mavroeidis &
     Papageorgiou fit, :mod:`audit.physics.pulses.record_pulse`).
 
     Parameters
     ----------
-    records : str, path or records.RecordSuite, optional
-        The suite, as for :func:`audit.api.inputs.record_suite`.
+    records : Records, str, path or records.RecordSuite, optional
+        The suite, and how its files are read, as for :func:`audit.api.inputs.record_suite`.
     plot : bool
         Also return the figure of each record's velocity with its pulse.
-    dt_s, units, skip_bad_records :
-        How records are read (:func:`audit.api.inputs.record_suite`).
 
     Returns
     -------
@@ -35,13 +32,12 @@ def record_pulses(records=None, *, plot: bool = False, dt_s: float | None = None
 
     from audit import G
     from audit.api.inputs import record_suite
-    from audit.engine.shared.record_request import Records
     from audit.engine.shared.fields import flag
     from audit.physics.pulses.record_pulse import classify_entry, record_pulse
     from audit.physics.pulses.shahi_baker_2014 import velocity_cm_s
 
     plot = flag("plot", plot)
-    suite = record_suite(Records(records, dt_s, units, skip_bad_records), None)
+    suite = record_suite(records)
     rows, panels = [], []
     for entry in suite:
         found = record_pulse(entry)

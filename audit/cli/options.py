@@ -330,12 +330,6 @@ def records(args):
                    skip_bad_records=args.skip_bad_records)
 
 
-def reading(args) -> dict:
-    """The API keywords of how records are read: ``--dt``, ``--units``,
-    ``--skip-bad-records``."""
-    return {"dt_s": args.dt, "units": args.units, "skip_bad_records": args.skip_bad_records}
-
-
 def add_excitation_options(parser):
     add_records_option(parser)
     add_skip_bad_records_option(parser)
@@ -437,8 +431,3 @@ def floor(args):
     return Floor(args.floor, Building(args.building, args.building_model, args.building_damping))
 
 
-def floor_values(args) -> dict:
-    """The API keywords of the floor flags, for the commands whose API takes them one by one
-    (the one place they read them)."""
-    return {"floor": args.floor, "building": args.building,
-            "building_model": args.building_model, "building_damping": args.building_damping}

@@ -29,8 +29,7 @@ def run(args) -> int:
     paths = outputs.checked(files={"--csv": args.csv, "--plot": args.plot},
                             inputs={"--records": args.records})
     csv, plot = paths["--csv"], paths["--plot"]
-    frame, figure = api.record_pulses(args.records, plot=plot is not None,
-                                      **options.reading(args))
+    frame, figure = api.record_pulses(options.records(args), plot=plot is not None)
     files = {}
     if plot is not None and figure is not None:
         files[plot] = api.png_bytes(figure)

@@ -198,7 +198,7 @@ CASES = {
     "floor_motion": (audit.floor_motion, {"motion": _pulse(), "floor": ROOF},
                      {"motion": OBJECTS, "floor": NUMBER, **RECORDS}),
     "record_pulses": (audit.record_pulses, {"records": "pulses"},
-                      {"records": PATH, "plot": FLAG, **READING}),
+                      {"records": PATH, "plot": FLAG, **RECORDS}),
     "floor_motion by id": (audit.floor_motion, {"motion": "pacoima_dam_1971", "floor": ROOF},
                            {"records": PATH}),
 }

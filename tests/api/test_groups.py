@@ -91,19 +91,6 @@ def test_building_alone_and_not_a_building():
     _refused("building.damping", Building.parse, Building(1.0, damping=2))
 
 
-def test_the_floor_keywords_of_a_function_that_takes_them_one_by_one():
-    """rock, spectrum, floor_motion, fragility name their own keywords (floor, building,
-    building_model, building_damping), as their command line shows its flags."""
-    from audit.api.inputs import floor_of
-    assert floor_of(1.0, 1.0, "shear:10", 0.05) == Floor.parse(
-        Floor(1.0, Building(1.0, "shear:10", 0.05)))
-    assert floor_of() == Floor()
-    _refused("floor", floor_of, 1.5, 1.0)
-    assert "needs T1" in _refused("building", floor_of, 0.5)
-    _refused("building_model", floor_of, 0.5, 1.0, "frame:3")
-    _refused("building_damping", floor_of, 0.5, 1.0, None, 1.0)
-
-
 # --- Site --------------------------------------------------------------------------------------
 
 def test_site_shorthand():
