@@ -32,6 +32,16 @@ _NAMED_BLOCK = {
                       "block of the α × size grid"),
 }
 
+#: Where a fragility's exact outcomes come from (margins' and fragility's tables).
+_ATLAS_SOURCE = {
+    "exact_source": ("text", "where the exact outcomes come from: 'direct' (the records solved) "
+                             "or 'atlas' (read from the atlas at its stripes, method; "
+                             "docs/atlas.md)"),
+    "atlas_key": ("text", "the atlas's key (atlas list), empty when direct"),
+    "atlas_error": ("-", "the atlas's stated error of P along the block's curve: the largest "
+                         "at its stripes (empty when direct)"),
+}
+
 _RESULTS = {
     "record": ("text", "record id"),
     "procedure": ("text", "guideline procedure (registry name)"),
@@ -224,12 +234,7 @@ GUIDE["fragility.csv"] = {
     "records_with_islands": ("-", "records under which the block survives a stripe above its "
                                   "first overturning one (depends on the stripe spacing)"),
     "island_share": ("-", "records_with_islands / records"),
-    "exact_source": ("text", "where the exact outcomes come from: 'direct' (the records solved) "
-                             "or 'atlas' (read from the atlas at its stripes, method; "
-                             "docs/atlas.md)"),
-    "atlas_key": ("text", "the atlas's key (atlas list), empty when direct"),
-    "atlas_error": ("-", "the atlas's stated error of P along the block's curve: the largest "
-                         "at its stripes (empty when direct)"),
+    **_ATLAS_SOURCE,
 }
 GUIDE["capacity.csv"] = {
     "procedure": ("text", "guideline procedure"),
@@ -392,12 +397,7 @@ GUIDE["fragility-components.csv"] = {
     "exact_fit_brier": ("-", "Brier score of the exact fit (in-sample, for comparison)"),
     "exact_fit_log_likelihood": ("-", "log-likelihood of the exact fit (in-sample)"),
     "outcomes": ("-", "records × stripes scored"),
-    "exact_source": ("text", "where the exact outcomes come from: 'direct' (the records solved) "
-                             "or 'atlas' (read from the atlas at its stripes, method; "
-                             "docs/atlas.md)"),
-    "atlas_key": ("text", "the atlas's key (atlas list), empty when direct"),
-    "atlas_error": ("-", "the atlas's stated error of P along the block's curve: the largest "
-                         "at its stripes (empty when direct)"),
+    **_ATLAS_SOURCE,
 }
 GUIDE["fragility-stripes.csv"] = {
     "component": _COMPONENT,
