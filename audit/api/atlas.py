@@ -11,67 +11,29 @@ for answers in seconds.
 from __future__ import annotations
 
 from audit import G
+from audit.api.atlas_lookup import atlas_settings, stored_atlas
 from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S,
                                           DEFAULT_IM, DEFAULT_JOBS, DEFAULT_RESTITUTION,
                                           DEFAULT_SCHEDULER)
 from audit.physics.building.floor import DEFAULT_BUILDING_DAMPING
 
 
-def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
-                   restitution=DEFAULT_RESTITUTION, free_motion_s=DEFAULT_FREE_MOTION_S,
-                   g=G, floor: float = 0.0, building=None, building_model=None,
-                   building_damping=DEFAULT_BUILDING_DAMPING, jobs: int = DEFAULT_JOBS,
-                   grid=None):
-    """(the records on their floor, :class:`~audit.engine.atlas.settings.AtlasSettings`): what
-    an atlas of ``records`` on the floor is, each argument checked (InputError naming it).
-
-    Parameters
-    ----------
-    records : str, path or records.RecordSuite
-    im : str
-        ``sa:T`` or ``pga``.
-    restitution : str
-    free_motion_s, g : float
-    floor, building, building_model, building_damping :
-        The floor, as for :func:`audit.check`.
-    jobs : int
-        Solver threads of a record (worker processes of ``scheduler="dask"``).
-    grid : (sequence, sequence), optional
-        The (α [degrees], 2π/p [s]) grid; default the atlas's
-        (:data:`~audit.engine.atlas.settings.ALPHA_DEG`, :data:`~audit.engine.atlas.settings.SIZE_S`).
-    """
-    from audit.api.inputs import record_suite
-    from audit.engine.atlas.settings import ALPHA_DEG, SIZE_S, AtlasSettings, floor_words, \
-        records_digest
-    from audit.engine.check.settings import CheckSettings
-    from audit.engine.shared.design_site import DesignSite
-    from audit.engine.shared.runtime import Runtime
-    checked = CheckSettings.parse(im=im, restitution=restitution, free_motion_s=free_motion_s,
-                                  g=g)
-    runtime = Runtime.parse(jobs=jobs)
-    site = DesignSite.parse(floor=floor, building=building, building_model=building_model,
-                            building_damping=building_damping)
-    suite = site.apply(record_suite(records))
-    entries = [entry for entry in suite if entry.motion is not None]
-    alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
-    name = records if isinstance(records, str) else str(getattr(records, "description", records))
-    return entries, AtlasSettings(name, records_digest(entries), checked.im,
-                                  floor_words(site.floor), checked.restitution, checked.g,
-                                  checked.free_motion_s,
-                                  tuple(float(a) for a in alpha_deg),
-                                  tuple(float(s) for s in size_s), runtime.jobs)
-
-
-def build_atlas(records=DEFAULT_CHECK_RECORDS, *, scheduler=DEFAULT_SCHEDULER,
-                progress=False, **keywords) -> dict:
+def build_atlas(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
+                restitution=DEFAULT_RESTITUTION, free_motion_s=DEFAULT_FREE_MOTION_S, g=G,
+                floor: float = 0.0, building=None, building_model=None,
+                building_damping=DEFAULT_BUILDING_DAMPING, jobs: int = DEFAULT_JOBS, grid=None,
+                scheduler=DEFAULT_SCHEDULER, progress=False) -> dict:
     """Build the atlas (or complete an interrupted build: its chunks are reused) and return
-    its provenance. Keywords as :func:`atlas_settings`; ``scheduler`` ``local``, ``dask`` or
+    its provenance. Arguments as :func:`atlas_settings`; ``scheduler`` ``local``, ``dask`` or
     ``tcp://HOST:PORT``; ``progress`` a bar on standard error."""
     from audit.engine.atlas.pipeline import build_atlas as build
     from audit.engine.shared.progress import Progress
     from audit.engine.shared.runtime import check_scheduler
     scheduler = check_scheduler(scheduler)
-    entries, settings = atlas_settings(records, **keywords)
+    entries, settings = atlas_settings(
+        records, im=im, restitution=restitution, free_motion_s=free_motion_s, g=g, floor=floor,
+        building=building, building_model=building_model, building_damping=building_damping,
+        jobs=jobs, grid=grid)
     bar = Progress(len(entries), "record") if progress else None
     try:
         return build(entries, settings, scheduler, progress=bar)
@@ -80,17 +42,24 @@ def build_atlas(records=DEFAULT_CHECK_RECORDS, *, scheduler=DEFAULT_SCHEDULER,
             bar.done()
 
 
-def find_atlas(records=DEFAULT_CHECK_RECORDS, **keywords):
-    """The complete atlas of ``records`` on the floor (keywords as :func:`atlas_settings`), or
-    None where none is built."""
-    from audit.engine.atlas.answers import Atlas
-    from audit.engine.atlas.store import ATLAS_NPZ, atlas_dir
-    _, settings = atlas_settings(records, **keywords)
-    directory = atlas_dir(settings.key())
-    return Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
+def find_atlas(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM,
+               restitution=DEFAULT_RESTITUTION, free_motion_s=DEFAULT_FREE_MOTION_S, g=G,
+               floor: float = 0.0, building=None, building_model=None,
+               building_damping=DEFAULT_BUILDING_DAMPING):
+    """The complete atlas of ``records`` on the floor (arguments as :func:`atlas_settings`),
+    or None where none is built."""
+    found = stored_atlas(records, im=im, restitution=restitution, free_motion_s=free_motion_s,
+                          g=g, floor=floor, building=building, building_model=building_model,
+                          building_damping=building_damping)
+    return found[0] if found is not None else None
 
 
-def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **keywords) -> list:
+
+
+def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, im=DEFAULT_IM,
+                restitution=DEFAULT_RESTITUTION, free_motion_s=DEFAULT_FREE_MOTION_S, g=G,
+                floor: float = 0.0, building=None, building_model=None,
+                building_damping=DEFAULT_BUILDING_DAMPING) -> list:
     """Each object's exact P(overturn) at the site and its exact widths for P ≤ 10 % and
     ≤ 50 % at its height, read from the atlas of ``records`` on the floor (InputError naming
     ``records`` where none is built), each P with the atlas's error there.
@@ -105,9 +74,9 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
         The record set of the atlas.
     seed : int, optional
         The bootstrap's seed.
-    **keywords
-        Of :func:`atlas_settings` (the atlas's intensity measure, floor, restitution, ...):
-        explicit there, passed on unchanged.
+    im, restitution, free_motion_s, g, floor, building, building_model, building_damping :
+        The atlas's intensity measure, impact model, free motion, gravity and floor, as for
+        :func:`atlas_settings`.
 
     Returns
     -------
@@ -123,7 +92,9 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
     from audit.engine.atlas.answers import atlas_required_widths
     from audit.engine.check.pipeline import TARGETS
     from audit.errors import InputError
-    atlas = find_atlas(records, **keywords)
+    atlas = find_atlas(records, im=im, restitution=restitution, free_motion_s=free_motion_s,
+                       g=g, floor=floor, building=building, building_model=building_model,
+                       building_damping=building_damping)
     if atlas is None:
         raise InputError(f"records: no atlas of {records} on this floor; build it with "
                          "'python -m audit atlas build'", "records")

@@ -129,7 +129,8 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           building: float | None = None, building_model: str | None = None,
           building_damping: float = DEFAULT_BUILDING_DAMPING,
           limit_state: str = BOTH, params: dict | None = None,
-          mass_kg: float | None = None, guideline_spectrum: str = "ground") -> CheckResult:
+          mass_kg: float | None = None, guideline_spectrum: str = "ground",
+          method: str | None = None) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check.risk`).
@@ -228,11 +229,19 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         reads: the ground's design spectrum ``site`` as its text is written (the default), or
         the floor's response spectrum (:mod:`audit.engine.check.spectrum_read`); its entry
         gives its verdict on the other too.
+    method : {None, "atlas", "direct"}
+        Where the exact side (the fragility, P at the site, the exact widths, the risk) comes
+        from: ``"atlas"`` the atlas of ``records`` on the floor with this intensity measure,
+        restitution, g and free motion (``audit.build_atlas``; InputError naming ``method``
+        where none is built), for each object inside its grid, with its error there;
+        ``"direct"`` solved; None (the default) the atlas where one is built, else solved. The
+        guidelines are judged directly either way (docs/atlas.md).
 
     Returns
     -------
     CheckResult
     """
+    from audit.api.atlas_lookup import check_atlas, checked_method
     from audit.api.inputs import parameters_of, procedures_of, record_suite, settings_fields
     from audit.engine.shared import guards
     from audit.engine.check.costs import check_cost
@@ -243,6 +252,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     from audit.engine.shared.runtime import Runtime
     settings = CheckSettings.parse(**settings_fields(locals(), CHECK_FIELDS))
     chosen_objects = _objects(objects, settings.g)
+    checked_method(method)
     progress = check_field.callback("progress", progress, "progress(done, total, record_id, how)")
     runtime = Runtime.parse(jobs=jobs, scheduler=scheduler,
                             progress=progress if callable(progress) else None)
@@ -265,12 +275,16 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     # the work, before the records are scaled to the site (scaling keeps their samples)
     guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
                  check_field.flag("force", force))
+    atlas = check_atlas(method, given, im=settings.im.name, restitution=restitution,
+                        free_motion_s=settings.free_motion_s, g=settings.g, floor=floor,
+                        building=building, building_model=building_model,
+                        building_damping=building_damping)
     suite = site.apply(given)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
         run = run_check(chosen, suite, chosen_objects, settings,
                         replace(runtime, progress=bar) if bar else runtime, site.floor,
-                        provision_params, mass_kg)
+                        provision_params, mass_kg, atlas)
     finally:
         if bar is not None:
             bar.done()

@@ -25,7 +25,7 @@ FLAGS = {
     "floor": "--floor", "building": "--building", "building_model": "--building-model",
     "building_damping": "--building-damping",
     "dt_s": "--dt", "units": "--units", "params": "--param", "mass_kg": "--mass",
-    "limit_state": "--limit-state",
+    "limit_state": "--limit-state", "method": "--method",
 }
 
 
