@@ -103,3 +103,17 @@ def hazard_dir() -> Path:
     if not (path / "usgs-example.json").is_file():
         pytest.fail(f"{HAZARD_VARIABLE}={value}: no usgs-example.json there")
     return path
+
+
+@pytest.fixture(scope="session", autouse=True)
+def no_user_atlas(tmp_path_factory):
+    """Atlases in an empty folder of the test run's own: ``check`` reads an atlas where one is
+    built (docs/atlas.md), and one in the user's cache would silently change what the tests of
+    the direct check measure. A test that builds an atlas points the variable at its own."""
+    before = os.environ.get("ROCKING_AUDIT_ATLAS_DIR")
+    os.environ["ROCKING_AUDIT_ATLAS_DIR"] = str(tmp_path_factory.mktemp("no-atlas"))
+    yield
+    if before is None:
+        del os.environ["ROCKING_AUDIT_ATLAS_DIR"]
+    else:
+        os.environ["ROCKING_AUDIT_ATLAS_DIR"] = before

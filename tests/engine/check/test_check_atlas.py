@@ -119,3 +119,25 @@ def test_the_command_line_refuses_method_atlas_in_one_line(tmp_path, monkeypatch
     assert status == 2 and len(err) == 1
     assert err[0].startswith("error: --method: 'atlas': no atlas") and "atlas build" in err[0]
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.slow  # ~60 s: the far-field atlas built, two cabinets checked both ways
+def test_the_far_field_cabinets_within_the_measured_bounds(tmp_path, monkeypatch):
+    # docs/atlas.md: P at the site within 0.03 of the direct answer or inside its band, and
+    # within the stated ±x; each width within its stated ±x of the direct search's
+    monkeypatch.setenv("ROCKING_AUDIT_ATLAS_DIR", str(tmp_path / "atlases"))
+    audit.api.build_atlas("p695-far-field", jobs=2)
+    objects = [("0.6x1.8", 0.6, 1.8), ("0.5x1.7", 0.5, 1.7)]
+    from_atlas, direct = (audit.check(objects, (1.5, 0.9), procedures="fema356",
+                                      records="p695-far-field", method=method)
+                          for method in ("atlas", "direct"))
+    for a, d in zip(from_atlas.document["objects"], direct.document["objects"]):
+        p, p_direct, band = (a["exact"]["p_overturn_at_site"], d["exact"]["p_overturn_at_site"],
+                             d["exact"]["p_band"])
+        assert abs(p - p_direct) <= 0.03 or band[0] <= p <= band[1]
+        assert abs(p - p_direct) <= a["exact"]["atlas"]["p_error"]
+        for target in ("10", "50"):
+            width = a["exact"][f"required_width_m_{target}pct"]
+            solved = d["exact"][f"required_width_m_{target}pct_searched"]
+            stated = a["exact"]["atlas"][f"required_width_m_{target}pct_error"]
+            assert stated is not None and abs(width / solved - 1) <= stated
