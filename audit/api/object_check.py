@@ -272,13 +272,16 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,
                                      low_open=True)
     given = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
-    # the work, before the records are scaled to the site (scaling keeps their samples)
-    guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
-                 check_field.flag("force", force))
     atlas = check_atlas(method, given, im=settings.im.name, restitution=restitution,
                         free_motion_s=settings.free_motion_s, g=settings.g, floor=floor,
                         building=building, building_model=building_model,
                         building_damping=building_damping)
+    searched = len(chosen_objects) - (int(atlas[0].covers(
+        [o.alpha_deg for o in chosen_objects], [o.size_s for o in chosen_objects]).sum())
+        if atlas is not None else 0)
+    # the work, before the records are scaled to the site (scaling keeps their samples)
+    guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime, searched),
+                 check_field.flag("force", force))
     suite = site.apply(given)
     bar = Progress(len(suite), "record") if progress is True else None
     try:
