@@ -85,8 +85,7 @@ def main() -> int:
         if args.large:
             large = inventory_csv(args.large, folder)
             report(f"{args.large} objects, check (atlas)",
-                   [timed(check + ["--objects", str(large), "--method", "atlas",
-                                   "--out", str(folder / "large")])])
+                   [timed(check + ["--objects", str(large), "--method", "atlas"])])
     return 0
 
 

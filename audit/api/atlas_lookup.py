@@ -5,6 +5,8 @@ and its key), :func:`stored_atlas` (the complete one in the cache), and ``method
 
 from __future__ import annotations
 
+import os
+
 from audit import G
 from audit.engine.shared.defaults import (DEFAULT_CHECK_RECORDS, DEFAULT_FREE_MOTION_S,
                                           DEFAULT_IM, DEFAULT_JOBS, DEFAULT_RESTITUTION)
@@ -88,7 +90,7 @@ def checked_method(method):
     return method
 
 
-def check_atlas(method, records, *, im, restitution, free_motion_s, g, floor, building,
+def check_atlas(method, records, *, named, im, restitution, free_motion_s, g, floor, building,
                 building_model, building_damping):
     """(atlas, key) the exact side of :func:`audit.check` reads, or None where it solves:
     ``method`` None reads the atlas of ``records`` on the floor (with this intensity measure,
@@ -99,8 +101,10 @@ def check_atlas(method, records, *, im, restitution, free_motion_s, g, floor, bu
     Parameters
     ----------
     method : {None, "atlas", "direct"}
-    records : str, path or records.RecordSuite
-        The records as given (before the site is applied).
+    records : records.RecordSuite
+        The records read (before the site is applied).
+    named : str, path or records.RecordSuite
+        ``records`` as the caller named them (for the command that builds the atlas).
     im : str
     restitution : str or float
     free_motion_s, g : float
@@ -114,12 +118,22 @@ def check_atlas(method, records, *, im, restitution, free_motion_s, g, floor, bu
                           free_motion_s=free_motion_s, g=g, floor=floor, building=building,
                           building_model=building_model, building_damping=building_damping)
     if found is None and method == "atlas":
-        name = records if isinstance(records, str) else getattr(records, "description", "")
-        where = f" --floor {floor:g} --building {building:g}" if building is not None else ""
-        raise InputError(f"method: 'atlas': no atlas of these records for {im}{where}, "
-                         f"restitution {restitution}, g {g:g}, free motion {free_motion_s:g} s; "
-                         f"build it with 'python -m audit atlas build --records {name} "
-                         f"--im {im}{where}'", "method")
+        name = named if isinstance(named, (str, os.PathLike)) else "RECORDS"
+        flags = f" --im {im}"
+        if building is not None:
+            flags += f" --floor {floor:g} --building {building:g}"
+            if building_model is not None:
+                flags += f" --building-model {building_model}"
+            if building_damping != DEFAULT_BUILDING_DAMPING:
+                flags += f" --building-damping {building_damping:g}"
+        if str(restitution) != str(DEFAULT_RESTITUTION):
+            flags += f" --restitution {restitution}"
+        if free_motion_s != DEFAULT_FREE_MOTION_S:
+            flags += f" --free-motion {free_motion_s:g}"
+        raise InputError(f"method: 'atlas': no atlas of these records for {im} (floor "
+                         f"{floor:g}, restitution {restitution}, g {g:g}, free motion "
+                         f"{free_motion_s:g} s); build it with 'python -m audit atlas build "
+                         f"--records {name}{flags}'", "method")
     return found
 
 

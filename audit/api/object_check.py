@@ -272,8 +272,9 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,
                                      low_open=True)
     given = record_suite(records, dt_s=dt_s, units=units, skip_bad_records=skip_bad_records)
-    atlas = check_atlas(method, given, im=settings.im.name, restitution=restitution,
-                        free_motion_s=settings.free_motion_s, g=settings.g, floor=floor,
+    atlas = check_atlas(method, given, named=records, im=settings.im.name,
+                        restitution=restitution, free_motion_s=settings.free_motion_s,
+                        g=settings.g, floor=floor,
                         building=building, building_model=building_model,
                         building_damping=building_damping)
     searched = len(chosen_objects) - (int(atlas[0].covers(

@@ -25,6 +25,10 @@ hazard curve and a return period, the curve's, while the guidelines keep the des
 * the width each guideline requires at the object's height, against the exact widths for
   P(overturn) at the site ≤ 10 % and ≤ 50 % (:mod:`audit.engine.check.widths`): each record's
   bracket found with its judgement, the brackets that matter halved after.
+
+With an atlas of the records on the floor, the exact side of every object inside its grid (the
+fragility, P at the site, the exact widths, the risk) is read from it instead
+(:mod:`audit.engine.check.atlas_side`), with its error there; the rest is solved as above.
 """
 
 from __future__ import annotations
