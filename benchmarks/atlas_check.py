@@ -70,8 +70,12 @@ def main() -> int:
                                                              "direct"],
                "one object, atlas check (exact side alone)": [
                    "atlas", "check", "--block", "0.6x1.8", "--site", SITE, "--records", RECORDS]}
+        objects = str(inventory_csv(args.inventory, folder))
         many = {f"{args.inventory} objects, check (atlas)": check + [
-                    "--objects", str(inventory_csv(args.inventory, folder)), "--method", "atlas"],
+                    "--objects", objects, "--method", "atlas"],
+                f"{args.inventory} objects, atlas check (exact side alone)": [
+                    "atlas", "check", "--objects", objects, "--site", SITE, "--records",
+                    RECORDS],
                 "20 objects (benchmarks/inventory_20.csv), check --method direct": check + [
                     "--objects", str(HERE / "inventory_20.csv"), "--method", "direct"]}
         timed(check + ["--block", "0.5x1.5", "--method", "atlas"])  # warm-up
