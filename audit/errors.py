@@ -30,7 +30,8 @@ def field_name(argument: str | None, field: str) -> str:
 
 
 class NoAtlas(InputError):
-    """``method='atlas'`` asked where no atlas answers (:mod:`audit.engine.atlas`).
+    """An atlas asked for (``method='atlas'``, or ``atlas_check``'s records) where none
+    answers (:mod:`audit.engine.atlas`).
 
     Parameters
     ----------
@@ -41,14 +42,19 @@ class NoAtlas(InputError):
         What builds the one asked for, as :func:`audit.api.build_atlas` takes it (``records``
         as the user named them, ``im``, ``solver``, ``floor``); None where one is built but
         cannot answer. The command line words it as its own ``atlas build`` command.
+    field : str
+        The argument that asked for it: ``method`` (then the direct solve is the way out) or
+        ``records``.
     """
 
-    def __init__(self, reason: str, build: dict | None = None):
-        self.reason, self.build = reason, build
-        how = ("" if build is None else "build it with audit.build_atlas() given the same "
-               f"{', '.join(build)}, or ")
-        super().__init__(f"method: atlas asked, but {reason}; {how}use method='direct'",
-                         "method")
+    def __init__(self, reason: str, build: dict | None = None, field: str = "method"):
+        self.reason, self.build, self.field = reason, build, field
+        steps = ([] if build is None else
+                 [f"build it with audit.build_atlas() given the same {', '.join(build)}"])
+        steps += ["use method='direct'"] if field == "method" else []
+        asked = "atlas asked, but " if field == "method" else ""
+        super().__init__(f"{field}: {asked}{reason}" + ("; " + ", or ".join(steps) if steps
+                                                        else ""), field)
 
 
 class InputWarning(UserWarning):

@@ -7,7 +7,8 @@ lattice plus the site's stripe), against what the atlas answers there.
 Per object and site intensity: P(overturn) at the site, the headline by the check's rule and
 the lognormal's, direct against atlas, with the atlas's stated error there; per object the
 exact width for P ≤ 10 % at the site (S_X1 = 0.9 g), direct and from the atlas, against the
-widths where the direct P is 7 % and 13 % (the width's band for a tolerance of 0.03 in P). The
+widths where the direct P is 7 % and 13 % (the width's band for a tolerance of 0.03 in P), and
+check's widths from the atlas for 10 % and 50 % against the direct ones with their stated ±x. The
 atlas must be built first (``python -m audit atlas build --records ...``).
 """
 
@@ -28,8 +29,9 @@ sys.path.append(str(Path(__file__).resolve().parents[1]))
 from scipy.stats import norm  # noqa: E402
 
 from audit.api import find_atlas  # noqa: E402
-from audit.api.atlas import atlas_settings  # noqa: E402
+from audit.api.atlas_lookup import atlas_settings  # noqa: E402
 from audit.engine.atlas.answers import atlas_required_widths, size_of  # noqa: E402
+from audit.engine.check.atlas_side import AtlasSide  # noqa: E402
 from audit.engine.check.pipeline import check_levels, fitted_stripes  # noqa: E402
 from audit.engine.check.settings import CheckSettings  # noqa: E402
 from audit.engine.check.widths import Family, probability_at_site, required_width  # noqa: E402
@@ -113,7 +115,7 @@ def main() -> int:
                                  * np.cos(np.radians(alpha_deg)), 4))
     levels = check_levels(WIDTH_SITE_IM)
     lattice = levels[fitted_stripes(levels)]
-    targets = (0.13, 0.10, 0.07)
+    targets = (0.13, 0.10, 0.07, 0.50)
     intensity = {e.id: settings.im.of_record(e.motion, settings.free_motion_s) for e in entries}
     with open_scheduler("local", args.jobs) as executor:
         family = Family(entries, lattice, intensity, settings, args.jobs, executor)
@@ -121,12 +123,25 @@ def main() -> int:
             lambda h, w: probability_at_site(family.overturned(h, w), lattice, WIDTH_SITE_IM),
             heights, targets)
     atlas_w = atlas_required_widths(atlas, heights, WIDTH_SITE_IM, [0.10], settings.g)[:, 0]
+    # check's own reading (audit.engine.check.atlas_side): the widths for 10 % and 50 % with
+    # their stated errors
+    side = AtlasSide.of(atlas, "", [], levels, fitted_stripes(levels), WIDTH_SITE_IM,
+                        settings.g)
+    check_w = side.required_widths(
+        heights, (0.10, 0.50), lambda over, lv: probability_at_site(over, lv, WIDTH_SITE_IM))
+    check_err = side.width_errors(heights, check_w, (0.10, 0.50))
     widths = [{"height_m": float(h), "direct_w10": float(w[1]), "band": [float(w[0]), float(w[2])],
-               "atlas_w10": float(aw),
+               "atlas_w10": float(aw), "direct_w50": float(w[3]),
+               "check_w10": float(cw[0]), "check_w50": float(cw[1]),
+               "stated_w10": float(ce[0]), "stated_w50": float(ce[1]),
+               # the stated ±x (a fraction of the width) covers the direct search's width
+               "stated_covers": [bool(not math.isfinite(d) or not math.isfinite(c)
+                                      or abs(c / d - 1) <= e)
+                                 for d, c, e in zip((w[1], w[3]), cw, ce)],
                # a band end where the direct P stays above 7 % even at the widest is open
                "within_band": bool(math.isfinite(aw) and w[0] * 0.995 <= aw
                                    and (not math.isfinite(w[2]) or aw <= w[2] * 1.005))}
-              for h, w, aw in zip(heights, direct_w, atlas_w)]
+              for h, w, aw, cw, ce in zip(heights, direct_w, atlas_w, check_w, check_err)]
     load = os.getloadavg()[0]
     for r in rows:
         print(f"{r['object']:28s} x={r['site_im']:4.2f} g  direct {100 * r['direct_p']:5.1f} % "
@@ -137,7 +152,10 @@ def main() -> int:
     for w in widths:
         print(f"h {w['height_m']:.3f} m: 10 % width direct {w['direct_w10']:.3f} m "
               f"[{w['band'][1]:.3f}–{w['band'][0]:.3f}] atlas {w['atlas_w10']:.3f} m "
-              f"{'ok' if w['within_band'] else 'OUTSIDE'}")
+              f"{'ok' if w['within_band'] else 'OUTSIDE'}; check from the atlas "
+              f"{w['check_w10']:.3f} m ±{100 * w['stated_w10']:.1f} %, 50 % "
+              f"{w['check_w50']:.3f} m ±{100 * w['stated_w50']:.1f} % (direct "
+              f"{w['direct_w50']:.3f} m) {'covered' if all(w['stated_covers']) else 'EXCEEDS'}")
     errors = np.array([abs(r["atlas_p"] - r["direct_p"]) for r in rows])
     model_err = np.array([abs(r["atlas_model_p"] - r["direct_model_p"]) for r in rows
                           if r["atlas_model_p"] is not None and r["direct_model_p"] is not None])
@@ -147,7 +165,11 @@ def main() -> int:
           f"{model_err.max():.4f}; {sum(r['within_tolerance'] for r in rows)}/{len(rows)} within "
           f"0.03 or the direct band; the error exceeds the stated ±x at "
           f"{int(np.sum(errors > stated))}/{len(rows)}; widths within band "
-          f"{sum(w['within_band'] for w in widths)}/{len(widths)}; direct solves "
+          f"{sum(w['within_band'] for w in widths)}/{len(widths)}; widths' stated ±x "
+          f"covers the direct width at {sum(sum(w['stated_covers']) for w in widths)}/"
+          f"{2 * len(widths)} (relative errors: 10 % median "
+          f"{np.nanmedian([abs(w['check_w10'] / w['direct_w10'] - 1) for w in widths]):.3f}, "
+          f"stated median {np.nanmedian([w['stated_w10'] for w in widths]):.3f}); direct solves "
           f"{solve_s:.0f} s; load {load:.1f}")
     if args.json:
         Path(args.json).write_text(json.dumps({"rows": rows, "widths": widths}, indent=1))

@@ -123,7 +123,8 @@ def _fragility(obj, document, colours) -> dict:
                              "arrayminus": [p - low], "color": SITE_COLOUR},
                  "marker": {"color": SITE_COLOUR, "size": 12, "symbol": "star"},
                  "name": f"at the site, {im_name(im)} = {site:.3g} {unit}: P "
-                         f"{'' if at['bound'] else '= '}{at['headline']} ({'lognormal' if at['estimator'] == 'lognormal' else 'count at the site'})"})
+                         f"{'' if at['bound'] else '= '}{at['headline']} ({'lognormal' if at['estimator'] == 'lognormal' else 'count at the site'})"
+                         + (f", {exact['atlas']['text']}" if exact.get("atlas") else "")})
     shapes = [vertical_line(site, SITE_COLOUR, "dot")]
     drawn = set()
     for proc in obj["procedures"]:

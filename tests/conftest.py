@@ -105,11 +105,15 @@ def hazard_dir() -> Path:
     return path
 
 
-@pytest.fixture(autouse=True)
-def _no_user_atlas(monkeypatch, tmp_path_factory):
-    """``margins`` and ``fragility`` read an atlas where one is built (``method=None``): an
-    atlas in the user's cache must not change what a test computes. A test that builds its
-    own sets ``ROCKING_AUDIT_ATLAS_DIR`` itself."""
-    from audit.engine.atlas.store import ATLAS_DIR_ENV
-    if ATLAS_DIR_ENV not in os.environ:
-        monkeypatch.setenv(ATLAS_DIR_ENV, str(tmp_path_factory.getbasetemp() / "no-atlas"))
+@pytest.fixture(scope="session", autouse=True)
+def no_user_atlas(tmp_path_factory):
+    """Atlases in an empty folder of the test run's own: ``check`` reads an atlas where one is
+    built (docs/atlas.md), and one in the user's cache would silently change what the tests of
+    the direct check measure. A test that builds an atlas points the variable at its own."""
+    before = os.environ.get("ROCKING_AUDIT_ATLAS_DIR")
+    os.environ["ROCKING_AUDIT_ATLAS_DIR"] = str(tmp_path_factory.mktemp("no-atlas"))
+    yield
+    if before is None:
+        del os.environ["ROCKING_AUDIT_ATLAS_DIR"]
+    else:
+        os.environ["ROCKING_AUDIT_ATLAS_DIR"] = before

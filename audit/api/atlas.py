@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from audit.api.atlas_lookup import atlas_settings, records_named, stored_atlas
 from audit.engine.shared.defaults import DEFAULT_CHECK_RECORDS, DEFAULT_IM, DEFAULT_SCHEDULER
 
 if TYPE_CHECKING:
@@ -20,99 +21,18 @@ if TYPE_CHECKING:
     from audit.physics.building.floor import Floor
 
 
-def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solver | None = None,
-                   floor: Floor | None = None, runtime: Runtime | None = None, grid=None):
-    """(the records on their floor, :class:`~audit.engine.atlas.settings.AtlasSettings`): what
-    an atlas of ``records`` on the floor is, each argument checked (InputError naming it).
-
-    Parameters
-    ----------
-    records : str, path or records.RecordSuite
-    im : str
-        ``sa:T``, ``pga`` or ``pgv`` (the IM of ``fragility``'s stripes).
-    solver : Solver, optional
-        The solver's ``restitution``, ``free_motion_s`` [s] and ``g`` [m/s²].
-    floor : Floor, optional
-        The floor, as for :func:`audit.rock`.
-    runtime : Runtime, optional
-        ``jobs``: solver threads of a record (worker processes of ``scheduler="dask"``).
-    grid : (sequence, sequence), optional
-        The (α [degrees], 2π/p [s]) grid; default the atlas's
-        (:data:`~audit.engine.atlas.settings.ALPHA_DEG`, :data:`~audit.engine.atlas.settings.SIZE_S`).
-    """
-    from audit.api.inputs import floor_group, record_suite, runtime_of, solver_of
-    from audit.engine.atlas.settings import ALPHA_DEG, SIZE_S, AtlasSettings, floor_words, \
-        records_digest
-    from audit.engine.shared.design_site import DesignSite
-    from audit.engine.shared.intensity import IntensityMeasure
-    solver = solver_of(solver, "atlas", ("restitution", "free_motion_s", "g"))
-    # the IM on its own (not check's settings, which refuse PGV: a design spectrum has none):
-    # fragility's stripes are PGV
-    im = im if isinstance(im, IntensityMeasure) else IntensityMeasure.parse(im)
-    runtime = runtime_of(runtime, "atlas", ("jobs",))
-    site = DesignSite(None, floor_group(floor))
-    suite = site.apply(record_suite(records))
-    entries = [entry for entry in suite if entry.motion is not None]
-    alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
-    name = records if isinstance(records, str) else str(getattr(records, "description", records))
-    return entries, AtlasSettings(name, records_digest(entries), im,
-                                  floor_words(site.floor), solver.restitution, solver.g,
-                                  solver.free_motion_s,
-                                  tuple(float(a) for a in alpha_deg),
-                                  tuple(float(s) for s in size_s), runtime.jobs)
-
-
-def atlas_reading(method, records, blocks, *, im, solver: Solver | None = None,
-                  floor: Floor | None = None, stripes=None, named=None):
-    """The atlas a fragility reads by ``method`` (:func:`~audit.engine.atlas.fragility_read.atlas_for`):
-    an :class:`~audit.engine.atlas.fragility_read.AtlasReading`, or None for the direct solve.
-    ``direct`` reads no record for it.
-
-    Parameters
-    ----------
-    method : {None, "atlas", "direct"}
-    records : str, path or records.RecordSuite
-        The records as read (before a floor or a site scaled them: a fragility on the lattice
-        does not depend on the scaling, and the atlas applies the floor itself).
-    blocks : (sequence, sequence)
-        The blocks' (α [degrees], 2π/p [s]).
-    im, solver, floor :
-        What names the atlas, as for :func:`atlas_settings`.
-    stripes : sequence of float, optional
-        Stripes asked for explicitly (refused where not all the atlas's).
-    named : str or path, optional
-        The records as the user named them (the build command the message gives); default
-        the suite's description.
-    """
-    import os
-
-    from audit.engine.atlas.answers import Atlas
-    from audit.engine.atlas.fragility_read import atlas_for, checked_method
-    from audit.engine.atlas.store import ATLAS_NPZ, atlas_dir
-    if checked_method(method) == "direct":
-        return None
-    im = getattr(im, "name", im)
-    _, settings = atlas_settings(records, im=im, solver=solver, floor=floor)
-    key = settings.key()
-    directory = atlas_dir(key)
-    atlas = Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
-    name = named if isinstance(named, (str, os.PathLike)) else getattr(records, "description",
-                                                                        records)
-    return atlas_for(method, atlas, key, *blocks,
-                     {"records": name, "im": im, "solver": solver, "floor": floor},
-                     stripes=stripes)
-
-
-def build_atlas(records=DEFAULT_CHECK_RECORDS, *, scheduler=DEFAULT_SCHEDULER,
-                progress=False, **keywords) -> dict:
+def build_atlas(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solver | None = None,
+                floor: Floor | None = None, runtime: Runtime | None = None, grid=None,
+                scheduler=DEFAULT_SCHEDULER, progress=False) -> dict:
     """Build the atlas (or complete an interrupted build: its chunks are reused) and return
-    its provenance. Keywords as :func:`atlas_settings`; ``scheduler`` ``local``, ``dask`` or
-    ``tcp://HOST:PORT``; ``progress`` a bar on standard error."""
+    its provenance. Arguments as :func:`~audit.api.atlas_lookup.atlas_settings`; ``scheduler``
+    ``local``, ``dask`` or ``tcp://HOST:PORT``; ``progress`` a bar on standard error."""
     from audit.engine.atlas.pipeline import build_atlas as build
     from audit.engine.shared.progress import Progress
     from audit.engine.shared.runtime import check_scheduler
     scheduler = check_scheduler(scheduler)
-    entries, settings = atlas_settings(records, **keywords)
+    entries, settings = atlas_settings(records, im=im, solver=solver, floor=floor,
+                                       runtime=runtime, grid=grid)
     bar = Progress(len(entries), "record") if progress else None
     try:
         return build(entries, settings, scheduler, progress=bar)
@@ -121,17 +41,16 @@ def build_atlas(records=DEFAULT_CHECK_RECORDS, *, scheduler=DEFAULT_SCHEDULER,
             bar.done()
 
 
-def find_atlas(records=DEFAULT_CHECK_RECORDS, **keywords):
-    """The complete atlas of ``records`` on the floor (keywords as :func:`atlas_settings`), or
-    None where none is built."""
-    from audit.engine.atlas.answers import Atlas
-    from audit.engine.atlas.store import ATLAS_NPZ, atlas_dir
-    _, settings = atlas_settings(records, **keywords)
-    directory = atlas_dir(settings.key())
-    return Atlas(directory) if (directory / ATLAS_NPZ).is_file() else None
+def find_atlas(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solver | None = None,
+               floor: Floor | None = None):
+    """The complete atlas of ``records`` on the floor (arguments as
+    :func:`~audit.api.atlas_lookup.atlas_settings`), or None where none is built."""
+    found = stored_atlas(records, im=im, solver=solver, floor=floor)
+    return found[0] if found is not None else None
 
 
-def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **keywords) -> list:
+def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, im=DEFAULT_IM,
+                solver: Solver | None = None, floor: Floor | None = None) -> list:
     """Each object's exact P(overturn) at the site and its exact widths for P ≤ 10 % and
     ≤ 50 % at its height, read from the atlas of ``records`` on the floor (InputError naming
     ``records`` where none is built), each P with the atlas's error there.
@@ -146,9 +65,9 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
         The record set of the atlas.
     seed : int, optional
         The bootstrap's seed.
-    **keywords
-        Of :func:`atlas_settings` (the atlas's intensity measure, floor, restitution, ...):
-        explicit there, passed on unchanged.
+    im, solver, floor :
+        The atlas's intensity measure, solver (impact model, free motion, gravity) and floor,
+        as for :func:`~audit.api.atlas_lookup.atlas_settings`.
 
     Returns
     -------
@@ -163,15 +82,19 @@ def atlas_check(objects, site, records=DEFAULT_CHECK_RECORDS, *, seed=None, **ke
     from audit.api.object_check import _objects
     from audit.engine.atlas.answers import atlas_required_widths
     from audit.engine.check.pipeline import TARGETS
-    from audit.errors import InputError
-    atlas = find_atlas(records, **keywords)
+    from audit.errors import InputError, NoAtlas
+    atlas = find_atlas(records, im=im, solver=solver, floor=floor)
     if atlas is None:
-        raise InputError(f"records: no atlas of {records} on this floor; build it with "
-                         "'python -m audit atlas build'", "records")
+        named = records_named(None, records)
+        raise NoAtlas(f"no atlas of {named} on this floor", {
+            "records": named, "im": im, "solver": solver, "floor": floor}, "records")
     chosen = _objects(objects, atlas.provenance["g"])
     from audit.engine.shared.design_site import Site
     from audit.engine.shared.intensity import IntensityMeasure
-    sxs_g, sx1_g = Site.parse(site).values_g
+    parsed = Site.parse(site, "check")
+    if parsed is None or parsed.values_g is None:
+        raise InputError("site: required, S_XS, S_X1 [g] of the hazard level assessed", "site")
+    sxs_g, sx1_g = parsed.values_g
     site_im = IntensityMeasure.parse(atlas.provenance["im"]).of_design_site(
         {"sxs_g": sxs_g, "sx1_g": sx1_g})
     g = atlas.provenance["g"]

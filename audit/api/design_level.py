@@ -133,7 +133,7 @@ def margins(procedures="all", records=None, *, im: str | None = None, stripes=No
     -------
     MarginsResult
     """
-    from audit.api.atlas import atlas_reading
+    from audit.api.atlas_lookup import atlas_reading
     from audit.api.inputs import parameters_of, procedures_of, record_suite
     from audit.engine.atlas.fragility_read import checked_method
     from audit.engine.shared import guards

@@ -119,7 +119,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
           im: str | None = None, seed: int | None = None, hazard=None,
           friction: float | None = None, params: dict | None = None,
           mass_kg: float | None = None, guideline_spectrum: str = "ground", floor=None,
-          solver=None, runtime=None) -> CheckResult:
+          solver=None, runtime=None, method: str | None = None) -> CheckResult:
     """Check objects at one site: each guideline's verdict, the exact P(overturn) at the site's
     intensity with a bootstrap band, and the widths required (see :mod:`audit.engine.check.pipeline`);
     with a hazard curve, also the annual rate of overturning (:mod:`audit.engine.check.risk`).
@@ -187,12 +187,21 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         processes with ``scheduler="dask"``; ``local``, ``dask`` or ``tcp://HOST:PORT``; a
         progress bar on standard error, or ``progress(done, total, record_id, how)``; start
         even when the work is estimated beyond the limits of :mod:`audit.engine.shared.guards`).
+    method : {None, "atlas", "direct"}
+        Where the exact side (the fragility, P at the site, the exact widths, the risk) comes
+        from: ``"atlas"`` the atlas of ``records`` on the floor with this intensity measure,
+        restitution, g and free motion (``audit.api.build_atlas``;
+        :class:`~audit.errors.NoAtlas` naming ``method`` where none is built), for each object inside its grid, with its error there;
+        ``"direct"`` solved; None (the default) the atlas where one is built, else solved. The
+        guidelines are judged directly either way (docs/atlas.md).
 
     Returns
     -------
     CheckResult
     """
+    from audit.api.atlas_lookup import check_atlas
     from audit.api.inputs import parameters_of, procedures_of, record_suite
+    from audit.engine.atlas.fragility_read import checked_method
     from audit.engine.shared import guards
     from audit.engine.check.costs import check_cost
     from audit.engine.check.pipeline import run_check
@@ -200,6 +209,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     from audit.engine.shared.design_site import DesignSite
     from audit.engine.shared.progress import Progress
     from audit.engine.shared.runtime import Runtime
+    from audit.engine.shared.solver import Solver
     # each record is scaled on its own to the site and the stripes (audit.engine.check.pipeline),
     # so no suite scaling first: the records as given, every one given the site
     where = DesignSite.parse(site, floor, "check")
@@ -209,6 +219,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     settings = CheckSettings.parse(im=im, solver=solver, seed=seed, hazard=hazard,
                                    friction=friction, limit_state=where.site.limit_state,
                                    guideline_spectrum=guideline_spectrum)
+    checked_method(method)
     chosen_objects = _objects(objects, settings.g)
     runtime = Runtime.parse(runtime)
     if settings.guideline_spectrum == "floor" and where.floor.on_ground:
@@ -220,18 +231,26 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,
                                      low_open=True)
     given = record_suite(records)
+    atlas = check_atlas(method, given, named=getattr(records, "source", records),
+                        im=settings.im.name,
+                        solver=Solver(settings.restitution, settings.free_motion_s, settings.g),
+                        floor=where.floor)
+    # the objects the atlas answers have no exact width search to solve
+    searched = len(chosen_objects) - (int(atlas[0].covers(
+        [o.alpha_deg for o in chosen_objects], [o.size_s for o in chosen_objects]).sum())
+        if atlas is not None else 0)
     bar = runtime.progress is True  # drawn here: the engine takes a callable
     if bar:
         runtime = replace(runtime, progress=None)
     # the work, before the records are scaled to the site (scaling keeps their samples)
-    guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime),
+    guards.check(check_cost(chosen, given, len(chosen_objects), settings, runtime, searched),
                  runtime.force, force_field="runtime.force")
     suite = where.apply(given)
     if bar:
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
     try:
         run = run_check(chosen, suite, chosen_objects, settings, runtime, where.floor,
-                        provision_params, mass_kg)
+                        provision_params, mass_kg, atlas)
     finally:
         if bar:
             runtime.progress.done()

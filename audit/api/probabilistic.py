@@ -119,7 +119,7 @@ def fragility(procedure: str = DEFAULT_PROBABILISTIC_PROCEDURE, records=DEFAULT_
         raise InputError(f"procedure: unknown {procedure!r}, available: {', '.join(found)}",
                          "procedure")
     from audit.engine.shared.design_site import DesignSite
-    from audit.api.atlas import atlas_reading
+    from audit.api.atlas_lookup import atlas_reading
     from audit.engine.atlas.fragility_read import checked_method
     from audit.engine.shared.record_request import Records
     checked_method(method)

@@ -91,9 +91,11 @@ def _run(args) -> int:
         return args.func(args)
     except NoAtlas as exc:  # the atlas command that builds it, in the command line's words
         from audit.cli.atlas import build_command
-        build = "" if exc.build is None else f"build it with '{build_command(exc.build)}', or "
-        print(f"error: --method: atlas asked, but {' '.join(exc.reason.split())}; {build}use "
-              "--method direct", file=sys.stderr)
+        steps = [] if exc.build is None else [f"build it with '{build_command(exc.build)}'"]
+        steps += ["use --method direct"] if exc.field == "method" else []
+        asked = "atlas asked, but " if exc.field == "method" else ""
+        print(f"error: {with_flags(exc.field, (exc.field,))}: {asked}{' '.join(exc.reason.split())}"
+              + ("; " + ", or ".join(steps) if steps else ""), file=sys.stderr)
         return 2
     except InputError as exc:
         message = with_flags(str(exc), getattr(exc, "fields", ()))

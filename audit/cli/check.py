@@ -88,6 +88,12 @@ def add_parser(sub):
                         "spectrum (the median of the floor motions at the site, as S_XS, S_X1); "
                         "its entry gives its verdict on the other too")
     options.add_restitution_option(p)
+    p.add_argument("--method", choices=("atlas", "direct"), default=None,
+                   help="where the exact side (fragility, P at the site, exact widths, risk) "
+                        "comes from: the atlas of --records on this floor ('audit atlas "
+                        "build'), each answer with its error there, or solved; default: the "
+                        "atlas where one is built, else solved. The guidelines are judged "
+                        "directly either way")
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
@@ -156,7 +162,8 @@ def run(args) -> int:
                    floor=options.floor(args),
                    solver=Solver(args.restitution, free_motion_s=args.free_motion),
                    runtime=Runtime(jobs=args.jobs, scheduler=args.scheduler, progress=True,
-                                   force=args.force))
+                                   force=args.force),
+                   method=args.method)
     if out_dir is not None:
         result.write(out_dir)
     print(f"done in {time.perf_counter() - start:.1f} s", file=sys.stderr)

@@ -265,6 +265,9 @@ def test_check_cost_counts_objects_stripes_and_widths():
                              SimpleNamespace(hazard=object(), free_motion_s=0.0), runtime)
     # a third target (the risk) and each procedure's width: 15 × (1 + 12 + 3 × 6 + 2) = 495
     assert with_hazard.work.startswith("990 blocks")
+    # one of the two objects read from an atlas: its width search not solved, 15 × 1 for it
+    from_atlas = check_cost(procedures, _entries(3, 1000), 2, settings, runtime, searched=1)
+    assert from_atlas.work.startswith("390 blocks and 340 oscillators")
 
 
 def test_ten_thousand_objects_refused_with_the_estimate_and_force(workdir, capsys):

@@ -135,6 +135,32 @@ def stored_atlases() -> list[StoredAtlas]:
     return out
 
 
+#: What an atlas's grid is: an atlas of other provenance but these answers the same objects.
+GRID_FIELDS = ("alpha_deg", "size_s")
+
+
+def complete_atlas_like(provenance: dict, key: str) -> StoredAtlas | None:
+    """The complete atlas of ``key``, else one whose provenance is ``provenance`` but for the
+    grid (and the record set's name, which its digest stands for): a finer or smaller grid
+    answers the same objects inside it; None where there is none.
+
+    Parameters
+    ----------
+    provenance : dict
+        :meth:`~audit.engine.atlas.settings.AtlasSettings.as_dict` of the atlas wanted.
+    key : str
+        Its key.
+    """
+    if (atlas_dir(key) / ATLAS_NPZ).is_file():
+        return StoredAtlas(atlas_dir(key), json.loads((atlas_dir(key) / ATLAS_JSON).read_text()),
+                           True)
+    wanted = {k: v for k, v in provenance.items() if k not in (*GRID_FIELDS, "records")}
+    for stored in stored_atlases():
+        if stored.complete and all(stored.provenance.get(k) == v for k, v in wanted.items()):
+            return stored
+    return None
+
+
 def remove_atlas(key_prefix: str) -> list[str]:
     """Remove the atlases whose key starts with ``key_prefix``; their keys.
 
@@ -150,4 +176,4 @@ def remove_atlas(key_prefix: str) -> list[str]:
 
 
 __all__ = ["atlas_root", "AtlasParts", "StoredAtlas", "stored_atlases", "remove_atlas", "atlas_dir",
-           "npz_bytes", "ATLAS_DIR_ENV", "ATLAS_NPZ", "ATLAS_JSON", "PARTS_DIR"]
+           "complete_atlas_like", "npz_bytes", "GRID_FIELDS", "ATLAS_DIR_ENV", "ATLAS_NPZ", "ATLAS_JSON", "PARTS_DIR"]

@@ -28,7 +28,7 @@ def width_halvings() -> int:
 
 
 def check_cost(procedures, suite, objects: int, settings: CheckSettings,
-               runtime: Runtime) -> guards.Estimate:
+               runtime: Runtime, searched: int | None = None) -> guards.Estimate:
     """The work of :func:`audit.engine.check.pipeline.run_check`, per record: every object at every
     stripe, then its exact width search at its height (the scanned widths, and each target's
     bracket halved), each at every stripe; with a hazard curve, also the object at the width
@@ -48,15 +48,19 @@ def check_cost(procedures, suite, objects: int, settings: CheckSettings,
         The check's settings (hazard, free-motion time).
     runtime : Runtime
         How it runs (the number of jobs).
+    searched : int, optional
+        Objects whose exact width search is solved; the others' reads an atlas
+        (:mod:`audit.engine.check.atlas_side`). Every object when None.
     """
     stripes = stripe_lattice(LATTICE_EVERY).size + 1  # and the site's own
     targets = len(TARGETS) + (settings.hazard is not None)
-    per_object = 1 + SCAN_WIDTHS + targets * width_halvings()
-    per_object += len(procedures) if settings.hazard is not None else 0
+    per_object = 1 + (len(procedures) if settings.hazard is not None else 0)
+    search = SCAN_WIDTHS + targets * width_halvings()
+    searched = objects if searched is None else searched
     readers = sum(p.requires_motion for p in procedures)
     return guards.estimate(
         guards.suite_motions(suite), settings.free_motion_s,
-        blocks=stripes * objects * per_object,
+        blocks=stripes * (objects * per_object + searched * search),
         oscillators=ITERATION_PERIODS * (1 + GUIDELINE_TRIES) * readers * objects,
         jobs=runtime.jobs, free_motion_option="solver.free_motion_s",
         settings=(guards.Setting("objects", objects, 0),))

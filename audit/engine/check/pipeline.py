@@ -25,6 +25,10 @@ hazard curve and a return period, the curve's, while the guidelines keep the des
 * the width each guideline requires at the object's height, against the exact widths for
   P(overturn) at the site ≤ 10 % and ≤ 50 % (:mod:`audit.engine.check.widths`): each record's
   bracket found with its judgement, the brackets that matter halved after.
+
+With an atlas of the records on the floor, the exact side of every object inside its grid (the
+fragility, P at the site, the exact widths, the risk) is read from it instead
+(:mod:`audit.engine.check.atlas_side`), with its error there; the rest is solved as above.
 """
 
 from __future__ import annotations
@@ -39,6 +43,7 @@ from audit.engine.shared.blocks import BlockList
 from audit.engine.shared.lattice import on_lattice, with_site
 from audit.engine.check.risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check.settings import CheckSettings
+from audit.engine.check.atlas_side import AtlasSide
 from audit.engine.check.site import site_intensity
 from audit.engine.check.sliding import sliding_answer
 from audit.engine.check.words import sentence
@@ -105,7 +110,7 @@ class CheckRun:
 
 def run_check(procedures, suite, objects, settings: CheckSettings,
               runtime: Runtime, floor: Floor = Floor(), provision_params: dict | None = None,
-              mass_kg: float | None = None) -> CheckRun:
+              mass_kg: float | None = None, atlas=None) -> CheckRun:
     """Check every object at the suite's design site (see the module).
 
     Parameters
@@ -125,6 +130,10 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         The component provisions' parameters, ``{name: {attribute: value}}`` (checked).
     mass_kg : float, optional
         Each object's mass [kg]: the anchorage forces also in kN.
+    atlas : (audit.engine.atlas.answers.Atlas, str), optional
+        An atlas of the suite on this floor (its intensity measure, restitution, g and free
+        motion the check's) and its key: the exact side of every object inside its grid read
+        from it (:mod:`audit.engine.check.atlas_side`); the others solved.
     """
     from audit.engine.check.summary import (CheckFrame, ObjectFindings, object_answer,
                                             run_summary)
@@ -144,6 +153,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     levels = check_levels(site_im)
     fitted = fitted_stripes(levels)  # the fragility's stripes: the lattice, not the site's
     objects = tuple(objects)
+    side = (AtlasSide.of(atlas[0], atlas[1], objects, levels, fitted, site_im, g)
+            if atlas is not None else None)
+    covered = side.covered if side is not None else np.zeros(len(objects), dtype=bool)
     jobs, progress = runtime.jobs, runtime.progress
     per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
     work = CheckWork(StripeSettings(im, tuple(levels.tolist()), design_im,
@@ -206,9 +218,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         with side_thread() as beside:
             guidelines = beside.submit(beside_the_exact_search)
             solved = []
-            # objects of one height share their search: the width it finds is the height's
-            heights, height_of = np.unique([o.height_m for o in objects], return_inverse=True)
-            widths = exact_required_widths(family, heights, targets, measure, solved)[height_of]
+            widths, width_errors = _exact_widths(family, objects, covered, side, targets,
+                                                 measure, solved)
             _stage(progress, "the exact P(overturn) at the other standard intensity measure")
             others = other_im_answers(family, objects, suite.design_site, check_levels,
                                       fitted_stripes, settings.seed)
@@ -221,9 +232,23 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     frame = CheckFrame(levels, site_im, im, [e.id for e in entries], entries[0],
                        settings.limit_state, fitted)
     answers = []
+    read = np.flatnonzero(covered)  # the objects whose exact side is the atlas's
+    from_atlas = (side.outcomes([objects[b].alpha_deg for b in read],
+                                [objects[b].size_s for b in read]) if read.size else None)
+    p_errors = (side.p_error([objects[b].alpha_deg for b in read],
+                             [objects[b].size_s for b in read]) if read.size else None)
     for b, obj in enumerate(objects):
-        over = exact_over[:, :, b]  # (record, stripe)
-        family_widths = _family_widths(obj, over[:, fitted], solved, levels[fitted], site_im)
+        solved_over = exact_over[:, :, b]  # (record, stripe)
+        source = None
+        if covered[b]:
+            k = int(np.searchsorted(read, b))
+            over = from_atlas[:, :, k]
+            source = side.source(float(p_errors[k]), width_errors[b])
+            family_widths = None  # the width family is fitted on solved widths: none here
+        else:
+            over = solved_over
+            family_widths = _family_widths(obj, over[:, fitted], solved, levels[fitted],
+                                           site_im)
         fit, boot = lattice_fragility(levels[fitted], over[:, fitted], settings.seed)
         risk = None
         if curve is not None:
@@ -235,7 +260,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
                            guideline_p50.get(b, {}), exact_theta[:, :, b], family_widths,
-                           others[b]),
+                           others[b], solved_over, source),
             frame))
         sliding = sliding_answer([part.required_friction[b] for part in parts], frame.record_ids,
                                  obj.alpha_deg, settings.friction)
@@ -270,6 +295,29 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)
     return CheckRun(answers, summary)
+
+
+def _exact_widths(family: Family, objects, covered, side, targets, measure, solved):
+    """Each object's exact widths for ``targets`` (object, target) [m] and, where they are the
+    atlas's, their relative errors for the first two (object, 2) [-] (NaN where solved).
+    Objects of one height share their search: the width it finds is the height's; the heights
+    of objects inside the atlas searched on it, the others' solved (appended to ``solved``)."""
+    heights = np.array([o.height_m for o in objects])
+    widths = np.full((len(objects), len(targets)), np.nan)
+    errors = np.full((len(objects), 2), np.nan)
+    for on_atlas in (False, True):
+        mine = np.flatnonzero(covered == on_atlas)
+        if not mine.size:
+            continue
+        unique, height_of = np.unique(heights[mine], return_inverse=True)
+        if on_atlas:
+            found = side.required_widths(unique, targets, measure)
+            errors[mine] = side.width_errors(unique, found[:, :len(TARGETS)],
+                                             TARGETS)[height_of]
+        else:
+            found = exact_required_widths(family, unique, targets, measure, solved)
+        widths[mine] = found[height_of]
+    return widths, errors
 
 
 def _family_widths(obj, over, solved, levels, site_im):

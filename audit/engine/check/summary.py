@@ -31,7 +31,7 @@ CHECK_JSON, CHECK_CSV, CHECK_HTML = "check.json", "check.csv", "check.html"
 #: Columns of ``check.csv`` (their units and meanings in :mod:`audit.engine.shared.schemas`).
 CSV_COLUMNS = list(GUIDE[CHECK_CSV])
 TEXT_COLUMNS = ("object", "procedure", "limit_state", "verdict", "compares", "unit", "basis",
-                "reason", "im", "building_model", "p_estimator")
+                "reason", "im", "building_model", "p_estimator", "exact_source")
 
 
 def _number(value) -> float | None:
@@ -112,6 +112,13 @@ class ObjectFindings:
     family : audit.engine.check.width_family.WidthAnswer or None
         The object's height as one fragility family: P(width) at the site, the 10 % and 50 %
         widths read from it with their bootstrap bands.
+    solved_overturned : numpy.ndarray or None
+        Where ``overturned`` is an atlas's (per-record probabilities), the outcomes solved
+        (record, stripe), which ``theta_rad`` goes with: the limits' P(exceed) and the records
+        overturning at the site read them. None: ``overturned`` is solved.
+    source : dict or None
+        ``exact.atlas`` (:meth:`~audit.engine.check.atlas_side.AtlasSide.source`) where the
+        exact side is an atlas's; None where it is solved.
     """
 
     obj: object
@@ -126,6 +133,8 @@ class ObjectFindings:
     theta_rad: np.ndarray | None = None
     family: object = None
     other_im: dict | None = None
+    solved_overturned: np.ndarray | None = None
+    source: dict | None = None
 
 
 def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
@@ -142,14 +151,16 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
     levels, site_im, im = frame.levels, frame.site_im, frame.im
     fitted = frame.fitted if frame.fitted is not None else np.ones(levels.size, dtype=bool)
     site = int(np.argmin(np.abs(levels - site_im)))  # the site's own stripe
+    # an atlas's count at the site is a sum of per-record probabilities: to a whole record
     at_site = site_probability(float(fit.probability(site_im)) if fit is not None else None,
                                [float(v) for v in boot.probability_band(site_im)]
                                if fit is not None else None,
-                               int(overturned[:, site].sum()), overturned.shape[0])
+                               int(np.rint(overturned[:, site].sum())), overturned.shape[0])
+    solved = found.solved_overturned if found.solved_overturned is not None else overturned
     p_site = at_site.p
     curve = np.geomspace(levels.min(), levels.max(), 61)  # the band over every stripe
     theta = found.theta_rad if found.theta_rad is not None else np.zeros(overturned.shape)
-    exact = ExactRotations(theta, overturned, levels, site_im, p_site, fitted)
+    exact = ExactRotations(theta, solved, levels, site_im, p_site, fitted)
     curve_low, curve_high = boot.probability_band(curve)
     answer = {
         "name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
@@ -170,10 +181,14 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                   "site_im_g": site_im,
                   **_family_widths(found.family, found.widths, obj.height_m),
                   "other_im": found.other_im,
+                  "source": "direct" if found.source is None else "atlas",
+                  "atlas": found.source,
                   "records_overturning_at_site": [r for r, o in zip(frame.record_ids,
-                                                                    overturned[:, site]) if o],
+                                                                    solved[:, site]) if o],
                   "stripes": {"im": levels.tolist(),
-                              "overturned": overturned.sum(axis=0).tolist(),
+                              "overturned": (overturned.sum(axis=0).tolist()
+                                             if found.source is None else
+                                             np.round(overturned.sum(axis=0), 3).tolist()),
                               "records": int(overturned.shape[0]),
                               "fitted": fitted.tolist()},
                   "band_curve": {"im": curve.tolist(), "low": curve_low.tolist(),
@@ -263,7 +278,9 @@ def check_table(objects: list, floor: dict | None = None) -> pd.DataFrame:
                 "risk_p50": proc["risk_p50"],
                 "p50": risk["p50"] if risk else None,
                 "annual_rate": risk["annual_rate"] if risk else None,
-                "exact_required_width_m_risk": risk["required_width_m"] if risk else None})
+                "exact_required_width_m_risk": risk["required_width_m"] if risk else None,
+                "exact_source": exact.get("source", "direct"),
+                "exact_p_error": (exact["atlas"] or {}).get("p_error")})
     return pd.DataFrame(rows, columns=CSV_COLUMNS).astype(
         {c: float for c in CSV_COLUMNS if c not in TEXT_COLUMNS})
 

@@ -63,6 +63,10 @@ def exact_width_words(exact: dict, target: str) -> str:
     if width is None:
         return "none ≤ 0.95 h (restrain it)"
     band = exact.get(f"required_width_m_{target}pct_band")
+    atlas = exact.get("atlas")
+    error = atlas and atlas[f"required_width_m_{target}pct_error"]
+    if atlas:  # the atlas's width has no band over records: its own error instead
+        return f"{width:.2f} m" + (f" ±{100 * error:.1f} %" if error is not None else "")
     return quoted(width, band) if band else f"{width:.2f} m"
 
 
@@ -96,14 +100,16 @@ def p_words(exact: dict, records: int) -> str:
     at = exact["p_at_site"]
     count = at["count"]
     k, n = count["overturned"], count["records"]
+    atlas = exact.get("atlas")
+    source = f", {atlas['text']}" if atlas else ""
     if at["bound"] is not None:
         return (f"{at['headline']} (one-sided 95 % bound: {k} of {n} records overturn it at "
-                "the site's intensity)")
+                f"the site's intensity{source})")
     if at["estimator"] == "count":
         return (f"{at['headline']} ({k} of {n} records at the site's intensity, exact band; "
-                + (f"they reject the lognormal's {100 * at['model']['p']:.0f} %)"
-                   if at["model"]["p"] is not None else "no lognormal fits)"))
-    return f"{at['headline']} (lognormal; {k} of {n} records at the site's intensity)"
+                + (f"they reject the lognormal's {100 * at['model']['p']:.0f} %{source})"
+                   if at["model"]["p"] is not None else f"no lognormal fits{source})"))
+    return f"{at['headline']} (lognormal; {k} of {n} records at the site's intensity{source})"
 
 
 def sentence(answer: dict, im, sliding: dict | None = None) -> str:

@@ -330,6 +330,11 @@ GUIDE["check.csv"] = {
                                          "height above which the exact P in 50 years stays "
                                          "within the risk target (empty where none up to "
                                          "0.95 × the height)"),
+    "exact_source": ("text", "where the exact side (the fragility, P at the site, the exact "
+                             "widths, the risk) comes from: atlas (read from the atlas of the "
+                             "records on this floor, docs/atlas.md) or direct (solved)"),
+    "exact_p_error": ("-", "from the atlas: its error of P(overturn) at the site at this "
+                           "object, absolute (the ±x said beside it); empty where direct"),
 }
 
 GUIDE["required_alpha.csv"] = {

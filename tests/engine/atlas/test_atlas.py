@@ -37,11 +37,15 @@ def settings_of(entries, grid=GRID):
 @pytest.fixture(scope="module")
 def atlas(entries, tmp_path_factory):
     import os
+    before = os.environ.get("ROCKING_AUDIT_ATLAS_DIR")
     os.environ["ROCKING_AUDIT_ATLAS_DIR"] = str(tmp_path_factory.mktemp("atlases"))
     settings = settings_of(entries)
     build_atlas(entries, settings, "local")
     yield Atlas(atlas_dir(settings.key()))
-    del os.environ["ROCKING_AUDIT_ATLAS_DIR"]
+    if before is None:
+        del os.environ["ROCKING_AUDIT_ATLAS_DIR"]
+    else:  # the run's own empty folder (tests/conftest.py)
+        os.environ["ROCKING_AUDIT_ATLAS_DIR"] = before
 
 
 def direct(entries, alpha_deg, size_s):

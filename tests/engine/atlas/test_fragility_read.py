@@ -19,7 +19,7 @@ import pytest
 from scipy.stats import norm
 
 import audit.api as api
-from audit.api.atlas import atlas_reading
+from audit.api.atlas_lookup import atlas_reading
 from audit.engine.atlas.store import ATLAS_DIR_ENV
 from audit.engine.check.pipeline import LATTICE_EVERY
 from audit.engine.fragility.pipeline import COMPONENTS_CSV, STRIPES_CSV, run_fragility
