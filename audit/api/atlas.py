@@ -1,10 +1,10 @@
-"""``audit.build_atlas``, ``audit.find_atlas``, ``audit.atlas_check``: the exact-fragility atlas
+"""``audit.api.build_atlas``, ``find_atlas``, ``atlas_check``: the exact-fragility atlas
 of a record set on a floor (:mod:`audit.engine.atlas`), built once into the user cache and read
 for answers in seconds.
 
-    import audit
-    audit.build_atlas("p695-far-field")                     # once: minutes
-    answer = audit.atlas_check(["0.6x1.8"], site=(1.5, 0.9), records="p695-far-field")
+    from audit import api
+    api.build_atlas("p695-far-field")                       # once: minutes
+    answer = api.atlas_check(["0.6x1.8"], site=(1.5, 0.9), records="p695-far-field")
     answer[0]["p_overturn_at_site"]
 """
 

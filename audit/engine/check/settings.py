@@ -18,6 +18,8 @@ from audit.physics.block import Restitution
 class CheckSettings:
     """What a check computes, for any objects at any site.
 
+    Build it with :meth:`parse`, which checks every field once.
+
     Attributes
     ----------
     im : IntensityMeasure
@@ -45,8 +47,6 @@ class CheckSettings:
         On a floor, the spectrum a guideline reading the site's design spectrum (FEMA 356)
         reads: ``ground`` (as written) or ``floor``
         (:mod:`audit.engine.check.spectrum_read`).
-
-    Build it with :meth:`parse`, which checks every field once.
     """
 
     im: IntensityMeasure

@@ -19,6 +19,8 @@ from audit.physics.block import Restitution
 class MarginsSettings:
     """What a design-level audit computes.
 
+    Build it with :meth:`parse`, which checks every field once.
+
     Attributes
     ----------
     im : IntensityMeasure
@@ -43,8 +45,6 @@ class MarginsSettings:
         slenderness each size needs for ``risk_target`` (:mod:`audit.engine.design.margins_risk`).
     risk_target : float
         Probability of overturning in 50 years the risk-targeted slenderness meets [-].
-
-    Build it with :meth:`parse`, which checks every field once.
     """
 
     im: IntensityMeasure

@@ -24,6 +24,8 @@ HISTORY_POINTS = 2000
 class AuditSettings:
     """What a run computes, the same for every record.
 
+    Build it with :meth:`parse`, which checks every field once.
+
     Attributes
     ----------
     alpha_deg : tuple of float
@@ -53,8 +55,6 @@ class AuditSettings:
     jobs : int
         Threads of the exact solver of one record: set by the engine from the run's
         :class:`~audit.engine.shared.runtime.Runtime` (not part of what is computed).
-
-    Build it with :meth:`parse`, which checks every field once.
     """
 
     alpha_deg: tuple = DEFAULT_ALPHA_DEG

@@ -33,6 +33,9 @@ class Site:
     """The design site: FEMA 356 / ASCE 41 S_XS, S_X1, NTC 2018's site, and how the records meet
     them.
 
+    :meth:`parse` checks every field once and takes the shorthand ``(S_XS, S_X1)`` or the text
+    ``"S_XS,S_X1"`` (the one place ``--site`` is read).
+
     Attributes
     ----------
     sxs_g, sx1_g : float or None
@@ -55,9 +58,6 @@ class Site:
         normalisation factor).
     anchor_period_s : float or None
         Anchor period of that scaling [s] (1 s when not given).
-
-    :meth:`parse` checks every field once and takes the shorthand ``(S_XS, S_X1)`` or the text
-    ``"S_XS,S_X1"`` (the one place ``--site`` is read).
     """
 
     sxs_g: float | None

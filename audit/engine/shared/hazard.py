@@ -19,6 +19,8 @@ HAZARD_READS = {"return_period": ("check",), "poe": ("check",)}
 class Hazard:
     """The site's hazard curve and how it is read.
 
+    :meth:`parse` checks every field once and takes the shorthand of a curve or its file alone.
+
     Attributes
     ----------
     curve : records.hazard.HazardCurve, str, pathlib.Path or None
@@ -38,8 +40,6 @@ class Hazard:
     risk_target : float or str
         Probability of overturning in 50 years the risk-targeted size meets [-], in (0, 1):
         0.01 or ``"1%"``.
-
-    :meth:`parse` checks every field once and takes the shorthand of a curve or its file alone.
     """
 
     curve: object = None

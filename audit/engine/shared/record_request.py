@@ -18,6 +18,8 @@ RECORD_UNITS = ("g", "m/s2", "cm/s2")
 class Records:
     """Records to read, and how.
 
+    :meth:`parse` checks every field once and takes the shorthand of the source alone.
+
     Attributes
     ----------
     source : str, pathlib.Path, records.RecordSuite or None
@@ -30,8 +32,6 @@ class Records:
         Units of the accelerations of a text record file that states none.
     skip_bad_records : bool
         Leave out the unreadable records of a path, each warned about.
-
-    :meth:`parse` checks every field once and takes the shorthand of the source alone.
     """
 
     source: object = None

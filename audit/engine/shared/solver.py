@@ -18,6 +18,8 @@ VERTICAL_READERS = ("run",)
 class Solver:
     """The exact rocking solver's model.
 
+    :meth:`parse` checks every field once.
+
     Attributes
     ----------
     restitution : str, float or audit.physics.block.Restitution
@@ -30,8 +32,6 @@ class Solver:
     vertical : bool
         ``run``: the records' vertical components in the equation of motion and at uplift,
         where they have one.
-
-    :meth:`parse` checks every field once.
     """
 
     restitution: object = DEFAULT_RESTITUTION

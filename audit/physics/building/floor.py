@@ -62,6 +62,8 @@ def _real(name, value, low, high, low_open=False, high_open=False) -> float:
 class Building:
     """The linear building an object's floor is in.
 
+    :meth:`parse` checks every field once.
+
     Attributes
     ----------
     period_s : float or None
@@ -71,8 +73,6 @@ class Building:
         :data:`DEFAULT_BUILDING_MODEL`.
     damping : float
         ζ in every mode [-], 0 < ζ < 1.
-
-    :meth:`parse` checks every field once.
     """
 
     period_s: float | None
@@ -110,14 +110,14 @@ class Building:
 class Floor:
     """The object's floor: relative height z/H in a building.
 
+    :meth:`parse` checks every field once; it takes ``None`` or ``0`` for the ground.
+
     Attributes
     ----------
     z_over_h : float
         0 = the ground (the default: no building filter), 1 = the roof [-].
     building : Building or None
         The building the floor is in; None on the ground.
-
-    :meth:`parse` checks every field once; it takes ``None`` or ``0`` for the ground.
     """
 
     z_over_h: float = 0.0
