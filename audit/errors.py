@@ -50,7 +50,7 @@ class NoAtlas(InputError):
     def __init__(self, reason: str, build: dict | None = None, field: str = "method"):
         self.reason, self.build, self.field = reason, build, field
         steps = ([] if build is None else
-                 [f"build it with audit.build_atlas() given the same {', '.join(build)}"])
+                 [f"build it with audit.api.build_atlas() given the same {', '.join(build)}"])
         steps += ["use method='direct'"] if field == "method" else []
         asked = "atlas asked, but " if field == "method" else ""
         super().__init__(f"{field}: {asked}{reason}" + ("; " + ", or ".join(steps) if steps

@@ -133,7 +133,7 @@ def scale_to_site(suite: RecordSuite, sxs_g: float, sx1_g: float,
     if elsewhere:
         raise InputError(f"scale to site: {', '.join(elsewhere)} keep another FEMA 356 site than "
                          "the one they would be scaled to; give them the design site "
-                         "(site_override)", "site_override")
+                         "(site.override)", "site.override")
     normalisation = {entry.id: entry.metadata.get("p695_normalisation_factor", 1.0)
                      for entry in records}
     # the pseudo-spectral acceleration ω²·S_d, as the design spectrum and hazard curves define it

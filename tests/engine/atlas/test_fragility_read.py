@@ -155,7 +155,7 @@ def test_fragility_reads_the_pgv_atlas_and_says_so(atlases, suite):
 
 def test_method_atlas_without_an_atlas_is_refused(suite, tmp_path, monkeypatch):
     monkeypatch.setenv(ATLAS_DIR_ENV, str(tmp_path / "none"))
-    with pytest.raises(NoAtlas, match=r"build it with audit\.build_atlas\(\)") as caught:
+    with pytest.raises(NoAtlas, match=r"build it with audit\.api\.build_atlas\(\)") as caught:
         api.margins("fema356", suite, alpha_deg=NODES[0], size_s=NODES[1], method="atlas")
     assert caught.value.fields == ("method",)
     assert caught.value.build["im"] == "sa:1"

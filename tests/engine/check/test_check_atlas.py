@@ -97,7 +97,7 @@ def test_off_the_nodes_p_stays_within_the_stated_error(atlas_dir, suite):
 
 def test_method_atlas_without_one_is_refused_naming_it(suite, tmp_path, monkeypatch):
     monkeypatch.setenv("ROCKING_AUDIT_ATLAS_DIR", str(tmp_path / "none"))
-    with pytest.raises(NoAtlas, match=r"^method: atlas asked, but no atlas .*audit\.build_atlas") \
+    with pytest.raises(NoAtlas, match=r"^method: atlas asked, but no atlas .*audit\.api\.build_atlas") \
             as caught:
         audit.check(["0.6x1.8"], (1.5, 0.9), procedures="fema356", records=suite,
                     method="atlas")
