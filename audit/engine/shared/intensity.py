@@ -92,14 +92,15 @@ class IntensityMeasure:
         Parameters
         ----------
         site : dict or None
-            The design site, ``sxs_g`` and ``sx1_g`` [g].
+            The design site, ``sxs_g`` and ``sx1_g`` [g] (absent where only an NTC 2018 site
+            was given).
 
         Returns
         -------
         float or None
-            The intensity [g].
+            The intensity [g]; None without a FEMA 356 site.
         """
-        if not site or self.kind == PGV:
+        if not site or site.get("sxs_g") is None or self.kind == PGV:
             return None
         from audit.physics.design_spectra import FEMA356Spectrum
         spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])

@@ -99,3 +99,15 @@ def test_a_step_is_found_to_its_tolerance(seed_suite):
     step = locate_steps(get_procedures("fema356")[0], entry, settings,
                         {0: (uplift * 0.9, uplift * 1.1)})[0]
     assert step == pytest.approx(uplift, rel=STEP_TOLERANCE)
+
+
+def test_an_ntc_site_alone_has_no_fema_design_intensity(seed_suite):
+    """An NTC 2018 site without a FEMA 356 one leaves the suite's design site without S_XS,
+    S_X1: no design intensity (margins' CMR then has none), not a KeyError; with the FEMA site
+    it is the spectrum's Sa(1 s) = S_X1 / 1 s."""
+    from audit.engine.shared.sites import with_ntc_site
+    im = IntensityMeasure.parse("sa:1.0")
+    ntc_only = with_ntc_site(seed_suite, 0.25, 2.4, 0.3, "B", "T1")
+    assert "ntc" in ntc_only.design_site and im.of_design_site(ntc_only.design_site) is None
+    both = with_design_site(ntc_only, 1.5, 0.9, override=True)
+    assert im.of_design_site(both.design_site) == pytest.approx(0.9)
