@@ -5,7 +5,10 @@ direct check of benchmarks/inventory_20.csv, alternating, at S_XS = 1.5 g, S_X1 
 far-field set; and ``audit atlas check`` (the exact side alone) for reference.
 
     python benchmarks/atlas_check.py [--inventory 200] [--large 10000] [--repeat 3]
-                                     [--procedure all]
+                                     [--procedure all] [--before TREE]
+
+``--before TREE`` (an earlier commit unpacked there: ``git archive COMMIT | tar -x -C TREE``)
+times every case in both trees, alternating, the before/after of a change.
 
 The atlas must be built (``python -m audit atlas build --records p695-far-field``). Every case
 is the command line in a fresh process (warm: kernels compiled, records and atlas in the
@@ -43,9 +46,12 @@ def inventory_csv(count: int, folder: Path, seed: int = 58) -> Path:
     return path
 
 
-def timed(command: list[str]) -> float:
+def timed(command: list[str], tree: str | None = None) -> float:
+    """Wall time of ``audit COMMAND`` in a fresh process, importing ``tree``'s audit if given."""
+    env = None if tree is None else {**os.environ, "PYTHONPATH": tree}
     start = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "audit", *command], check=True, capture_output=True)
+    subprocess.run([sys.executable, "-m", "audit", *command], check=True, capture_output=True,
+                   env=env, cwd=tree)
     return time.perf_counter() - start
 
 
@@ -60,7 +66,12 @@ def main() -> int:
     parser.add_argument("--large", type=int, default=10000, help="0: not run")
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--procedure", default="all", help="check's procedure argument")
+    parser.add_argument("--before", metavar="TREE",
+                        help="a copy of an earlier tree (git archive): each case timed there "
+                             "too, alternating with this one")
     args = parser.parse_args()
+    trees = {"": None} if args.before is None else {"before: ": args.before,
+                                                     "after: ": str(HERE.parent)}
     # --force: the guard estimates the guidelines' side of 200 objects beyond 15 min
     check = ["check", args.procedure, "--site", SITE, "--records", RECORDS, "--force"]
     with tempfile.TemporaryDirectory() as scratch:
@@ -80,11 +91,12 @@ def main() -> int:
                     "--objects", str(HERE / "inventory_20.csv"), "--method", "direct"]}
         timed(check + ["--block", "0.5x1.5", "--method", "atlas"])  # warm-up
         for cases in (one, many):
-            times = {name: [] for name in cases}
+            times = {tag + name: [] for name in cases for tag in trees}
             for _ in range(args.repeat):  # alternating
                 for name, command in cases.items():
-                    times[name].append(timed(command))
-            for name in cases:
+                    for tag, tree in trees.items():
+                        times[tag + name].append(timed(command, tree))
+            for name in times:
                 report(name, times[name])
         if args.large:
             large = inventory_csv(args.large, folder)

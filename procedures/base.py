@@ -88,6 +88,10 @@ class Procedure:
     #: shape, one per block, element by element (closed forms in numpy, no iteration): blocks
     #: of many slendernesses are then judged in one call, with the numbers of one call each.
     alpha_per_block: ClassVar[bool] = False
+    #: True for a procedure with a limit state whose exact event is the peak rotation reaching
+    #: a limit short of α (:data:`EXACT_ROTATION`): judging it needs each record's exact peak θ,
+    #: which a check reading the atlas otherwise does not solve.
+    rotation_limits: ClassVar[bool] = False
 
     def unmet_requirements(self, entry) -> str | None:
         """Why this procedure cannot evaluate the record ``entry``, or None."""

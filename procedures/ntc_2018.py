@@ -145,6 +145,7 @@ class NTC2018(Procedure):
     floor: Floor = Floor()
 
     name = "ntc2018"
+    rotation_limits = True  # SLV and SLC on d/d₀: θ short of α
     alpha_per_block = True
     title = "NTC 2018 / Circolare 2019"
     reference = ("NTC 2018, D.M. 17 gennaio 2018, §3.2.3.2; Circolare 21 gennaio 2019 n. 7 "

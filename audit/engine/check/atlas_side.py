@@ -186,7 +186,7 @@ class AtlasSide:
             far = np.maximum(far, np.where(np.isfinite(other), np.abs(other - widths), np.inf))
         return np.where(np.isfinite(widths), far / widths, np.nan)
 
-    def source(self, p_error: float, width_errors) -> dict:
+    def source(self, p_error: float, width_errors, rotations: bool = True) -> dict:
         """``exact.atlas`` of an object's entry in ``check.json``.
 
         Parameters
@@ -195,6 +195,10 @@ class AtlasSide:
             P's error at the object [-].
         width_errors : sequence of float
             The relative errors of its exact widths for P ≤ 10 % and ≤ 50 % [-].
+        rotations : bool
+            Whether the object's exact response was solved at the stripes besides (for a
+            guideline's limit short of overturning); if not, its limits' P(exceed) are
+            P(overturn) and the records overturning at the site are not given.
         """
         def number(value):  # JSON: null where not finite (no width reaches P ± error)
             return float(value) if value is not None and math.isfinite(value) else None
@@ -207,9 +211,13 @@ class AtlasSide:
                           "between the atlas's nodes (at the site's stripe, linearly in "
                           "ln IM between the lattice's), then check's rules; the errors are "
                           "the atlas's at this point (docs/atlas.md)",
-                "direct": "the guidelines, the limits' P(exceed) other than overturning, the "
-                          "records overturning at the site, the friction, the other IM and "
-                          "the guidelines' P in 50 years: solved directly"}
+                "direct": ("the guidelines, the limits' P(exceed) other than overturning, the "
+                           "records overturning at the site, the friction, the other IM and "
+                           "the guidelines' P in 50 years: solved directly" if rotations else
+                           "the guidelines, the friction, the other IM and the guidelines' P "
+                           "in 50 years: solved directly; no chosen guideline has a limit "
+                           "short of overturning, so the object is not solved record by "
+                           "record and the records overturning at the site are not given")}
 
 
 __all__ = ["AtlasSide", "CHUNK_BLOCKS"]

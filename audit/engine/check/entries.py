@@ -57,15 +57,18 @@ class ExactRotations:
     """The object's exact response at the check's stripes: peak rotations and overturning
     (record, stripe), the stripes (the site's among them), the site's intensity and
     P(overturn) there, and which stripes the fragility is fitted on; the answers per limit found
-    so far (one per limit rotation: guidelines share theirs)."""
+    so far (one per limit rotation: guidelines share theirs). Rotations and overturning None
+    where they are not solved (an atlas's object that no guideline judges short of overturning):
+    then every limit is the object's α (``alpha_rad``) and its P(exceed) is P(overturn)."""
 
-    theta_rad: np.ndarray
-    overturned: np.ndarray
+    theta_rad: np.ndarray | None
+    overturned: np.ndarray | None
     levels: np.ndarray
     site_im: float
     p_overturn: float
     fitted: np.ndarray | None = None
     found: dict = field(default_factory=dict)
+    alpha_rad: float | None = None
 
     def p_exceed(self, limit_rad: float) -> float:
         """Exact P at the site's intensity of the peak rotation reaching ``limit_rad`` (or
@@ -76,6 +79,12 @@ class ExactRotations:
         limit_rad : float
             The limit rotation [rad].
         """
+        if self.theta_rad is None:
+            # exceeding α is overturning; a limit short of it needs the rotations (not solved)
+            if not limit_rad >= self.alpha_rad * (1.0 - 1e-12):
+                raise ValueError(f"a limit of {limit_rad} rad, short of α, needs the exact "
+                                 "rotations, which were not solved")
+            return self.p_overturn
         if limit_rad not in self.found:
             self.found[limit_rad] = p_exceed_at_site(
                 self.theta_rad, self.overturned, self.levels, self.site_im, limit_rad,

@@ -158,9 +158,12 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     covered = side.covered if side is not None else np.zeros(len(objects), dtype=bool)
     jobs, progress = runtime.jobs, runtime.progress
     per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
+    # the atlas answers whether each record overturns each object; the records' exact peak θ
+    # is read only by a limit short of overturning: with none chosen, nothing is solved
+    rotations = not covered.all() or any(p.rotation_limits for p in procedures)
     work = CheckWork(StripeSettings(im, tuple(levels.tolist()), design_im,
                                     BlockList.of(named=objects), restitution, g,
-                                    settings.free_motion_s, jobs),
+                                    settings.free_motion_s, jobs, exact=rotations),
                      objects, per_record, site_im)
     curve = settings.hazard
     targets = TARGETS + ((settings.risk_target,) if curve is not None else ())
@@ -243,7 +246,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         if covered[b]:
             k = int(np.searchsorted(read, b))
             over = from_atlas[:, :, k]
-            source = side.source(float(p_errors[k]), width_errors[b])
+            source = side.source(float(p_errors[k]), width_errors[b], rotations)
             family_widths = None  # the width family is fitted on solved widths: none here
         else:
             over = solved_over
@@ -259,8 +262,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                float(width) if math.isfinite(width) else None)
         answers.append(object_answer(
             ObjectFindings(obj, b, fit, boot, over, widths[b], judged[b], risk,
-                           guideline_p50.get(b, {}), exact_theta[:, :, b], family_widths,
-                           others[b], solved_over, source),
+                           guideline_p50.get(b, {}), exact_theta[:, :, b] if rotations else None,
+                           family_widths, others[b], solved_over if rotations else None, source),
             frame))
         sliding = sliding_answer([part.required_friction[b] for part in parts], frame.record_ids,
                                  obj.alpha_deg, settings.friction)

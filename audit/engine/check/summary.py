@@ -115,7 +115,9 @@ class ObjectFindings:
     solved_overturned : numpy.ndarray or None
         Where ``overturned`` is an atlas's (per-record probabilities), the outcomes solved
         (record, stripe), which ``theta_rad`` goes with: the limits' P(exceed) and the records
-        overturning at the site read them. None: ``overturned`` is solved.
+        overturning at the site read them. None: ``overturned`` is solved, or, where it is an
+        atlas's, nothing is (no chosen guideline reads a limit short of overturning: each
+        limit's P(exceed) is P(overturn), the records overturning at the site are not given).
     source : dict or None
         ``exact.atlas`` (:meth:`~audit.engine.check.atlas_side.AtlasSide.source`) where the
         exact side is an atlas's; None where it is solved.
@@ -156,11 +158,14 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                                [float(v) for v in boot.probability_band(site_im)]
                                if fit is not None else None,
                                int(np.rint(overturned[:, site].sum())), overturned.shape[0])
+    unsolved = found.source is not None and found.solved_overturned is None
     solved = found.solved_overturned if found.solved_overturned is not None else overturned
     p_site = at_site.p
     curve = np.geomspace(levels.min(), levels.max(), 61)  # the band over every stripe
     theta = found.theta_rad if found.theta_rad is not None else np.zeros(overturned.shape)
-    exact = ExactRotations(theta, solved, levels, site_im, p_site, fitted)
+    exact = (ExactRotations(None, None, levels, site_im, p_site, fitted,
+                            alpha_rad=math.radians(obj.alpha_deg)) if unsolved else
+             ExactRotations(theta, solved, levels, site_im, p_site, fitted))
     curve_low, curve_high = boot.probability_band(curve)
     answer = {
         "name": obj.name, "width_m": obj.width_m, "height_m": obj.height_m,
@@ -183,8 +188,8 @@ def object_answer(found: ObjectFindings, frame: CheckFrame) -> dict:
                   "other_im": found.other_im,
                   "source": "direct" if found.source is None else "atlas",
                   "atlas": found.source,
-                  "records_overturning_at_site": [r for r, o in zip(frame.record_ids,
-                                                                    solved[:, site]) if o],
+                  "records_overturning_at_site": None if unsolved else [
+                      r for r, o in zip(frame.record_ids, solved[:, site]) if o],
                   "stripes": {"im": levels.tolist(),
                               "overturned": (overturned.sum(axis=0).tolist()
                                              if found.source is None else

@@ -143,3 +143,44 @@ def test_the_far_field_cabinets_within_the_measured_bounds(tmp_path, monkeypatch
             solved = d["exact"][f"required_width_m_{target}pct_searched"]
             stated = a["exact"]["atlas"][f"required_width_m_{target}pct_error"]
             assert stated is not None and abs(width / solved - 1) <= stated
+
+
+def test_no_limit_short_of_overturning_solves_nothing_record_by_record(atlas_dir, suite,
+                                                                       tmp_path):
+    # FEMA 356 and Priestley judge overturning alone: the atlas's object is not solved at the
+    # stripes, each limit's P(exceed) is P(overturn) (the direct answer's at a node), and the
+    # records overturning at the site are not given; NTC 2018's d/d₀ limits need the peak θ,
+    # so with it chosen the object is solved and every number is the direct one
+    node = replace(object_by_slenderness("node", 18.0, 2.2, "node"), alpha_deg=18.0, size_s=2.2)
+    from_atlas, direct = both(suite, [node], ON_LATTICE)
+    a, d = from_atlas.document["objects"][0], direct.document["objects"][0]
+    assert a["exact"]["records_overturning_at_site"] is None
+    assert isinstance(d["exact"]["records_overturning_at_site"], list)
+    assert "not given" in a["exact"]["atlas"]["direct"]
+    assert [(p["key"], p["limit_state"], p["exact_p_exceed"]) for p in a["procedures"]] == [
+        (p["key"], p["limit_state"], p["exact_p_exceed"]) for p in d["procedures"]]
+    assert all(p["limit_state"] == "overturning" for p in a["procedures"])
+    from_atlas.write(tmp_path)
+    page = (tmp_path / "check.html").read_text()
+    assert "Not given: the exact side is from the atlas" in page
+    assert "each limit's P(exceed) is P(overturn) and the records" in page
+
+    chosen = ["fema356", "ntc2018"]
+    with_ntc, with_ntc_direct = [
+        audit.check([node], ON_LATTICE, procedures=chosen, records=suite, method=method)
+        .document["objects"][0] for method in ("atlas", "direct")]
+    assert with_ntc["exact"]["source"] == "atlas"
+    assert (with_ntc["exact"]["records_overturning_at_site"]
+            == with_ntc_direct["exact"]["records_overturning_at_site"])
+    limits = [(p["key"], p["limit_state"], p["exact_p_exceed"]) for p in with_ntc["procedures"]]
+    assert limits == [(p["key"], p["limit_state"], p["exact_p_exceed"])
+                      for p in with_ntc_direct["procedures"]]
+    assert {state for key, state, _ in limits if key == "ntc2018"} - {"overturning"}
+
+
+def test_a_limit_short_of_alpha_without_rotations_is_refused():
+    from audit.engine.check.entries import ExactRotations
+    unsolved = ExactRotations(None, None, np.array([0.5, 1.0]), 1.0, 0.3, alpha_rad=0.3)
+    assert unsolved.p_exceed(0.3) == 0.3  # α itself: overturning
+    with pytest.raises(ValueError, match="not solved"):
+        unsolved.p_exceed(0.2)
