@@ -17,7 +17,6 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from audit.api.result_shape import Files, with_page
-from audit.engine.shared import fields as check_field
 from audit.engine.check.objects import object_by_slenderness, parse_block_text, read_objects
 from audit.engine.shared.defaults import DEFAULT_CHECK_RECORDS
 from audit.errors import InputError
@@ -218,7 +217,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     where = replace(where, site=replace(where.site, override=True))
     settings = CheckSettings.parse(im=im, solver=solver, seed=seed, hazard=hazard,
                                    friction=friction, limit_state=where.site.limit_state,
-                                   guideline_spectrum=guideline_spectrum)
+                                   guideline_spectrum=guideline_spectrum, mass_kg=mass_kg)
     checked_method(method)
     chosen_objects = _objects(objects, settings.g)
     runtime = Runtime.parse(runtime)
@@ -227,9 +226,6 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
                          "objects stand on the ground (give floor and building)",
                          "guideline_spectrum")
     chosen, provision_params = parameters_of(params, procedures_of(procedures))
-    if mass_kg is not None:
-        mass_kg = check_field.number("mass_kg", mass_kg, "a positive mass in kg", 0,
-                                     low_open=True)
     given = record_suite(records)
     atlas = check_atlas(method, given, named=getattr(records, "source", records),
                         im=settings.im.name,
@@ -250,7 +246,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
     try:
         run = run_check(chosen, suite, chosen_objects, settings, runtime, where.floor,
-                        provision_params, mass_kg, atlas)
+                        provision_params, atlas)
     finally:
         if bar:
             runtime.progress.done()

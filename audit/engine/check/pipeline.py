@@ -110,7 +110,7 @@ class CheckRun:
 
 def run_check(procedures, suite, objects, settings: CheckSettings,
               runtime: Runtime, floor: Floor = Floor(), provision_params: dict | None = None,
-              mass_kg: float | None = None, atlas=None) -> CheckRun:
+              atlas=None) -> CheckRun:
     """Check every object at the suite's design site (see the module).
 
     Parameters
@@ -128,8 +128,6 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         (:mod:`audit.engine.check.component_checks`, ``component_provisions`` of each object).
     provision_params : dict, optional
         The component provisions' parameters, ``{name: {attribute: value}}`` (checked).
-    mass_kg : float, optional
-        Each object's mass [kg]: the anchorage forces also in kN.
     atlas : (audit.engine.atlas.answers.Atlas, str), optional
         An atlas of the suite on this floor (its intensity measure, restitution, g and free
         motion the check's) and its key: the exact side of every object inside its grid read
@@ -281,7 +279,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
             for entry in component_entries(obj.width_m, obj.height_m,
                                            site=Site(design_site["sxs_g"], design_site["sx1_g"],
                                                      ntc=ntc_site), floor=floor,
-                                           provisions=provisions, mass_kg=mass_kg)]
+                                           provisions=provisions, mass_kg=settings.mass_kg)]
     spectra.annotate(answers, procedures, entries[0], on_other)
     if curve is not None:
         _warn_truncated(answers, curve)
@@ -293,7 +291,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     summary["parameters"] = {plug_in.name: parameters_used(plug_in)
                              for plug_in in (*procedures, *provisions)
                              if type(plug_in).parameters}
-    summary["mass_kg"] = mass_kg
+    summary["mass_kg"] = settings.mass_kg
     summary["guideline_spectrum"] = spectra.as_dict()
     if curve is not None:
         summary["hazard"] = hazard_document(curve, settings.risk_target)

@@ -47,6 +47,9 @@ class CheckSettings:
         On a floor, the spectrum a guideline reading the site's design spectrum (FEMA 356)
         reads: ``ground`` (as written) or ``floor``
         (:mod:`audit.engine.check.spectrum_read`).
+    mass_kg : float or None
+        Each object's mass [kg]: the anchorage forces of the component provisions it fails
+        also in kN (:mod:`audit.engine.check.component_checks`).
     """
 
     im: IntensityMeasure
@@ -60,11 +63,12 @@ class CheckSettings:
     friction: float | None = None
     limit_state: str = BOTH
     guideline_spectrum: str = GROUND
+    mass_kg: float | None = None
 
     @classmethod
     def parse(cls, *, im=None, solver=None, seed: int | None = None, hazard=None,
               friction: float | None = None, limit_state: str = BOTH,
-              guideline_spectrum: str = GROUND) -> CheckSettings:
+              guideline_spectrum: str = GROUND, mass_kg: float | None = None) -> CheckSettings:
         """The settings of the given fields, each checked once (InputError naming the
         argument, or the group's field: ``solver.g``, ``hazard.poe``).
 
@@ -88,6 +92,8 @@ class CheckSettings:
             ``SLV``, ``SLC`` or ``both`` (any case), the site's (``site.limit_state``).
         guideline_spectrum : str
             ``ground`` or ``floor``.
+        mass_kg : float, optional
+            Each object's mass [kg], > 0.
         """
         from audit.engine.shared.design_site import limit_state_of
         from audit.engine.shared.hazard import Hazard
@@ -120,12 +126,16 @@ class CheckSettings:
         if return_period_years is not None:  # on the curve, or refused naming what was given
             curve.im_at_rate(1.0 / return_period_years,
                              "hazard.return_period" if hazard.poe is None else "hazard.poe")
+        if mass_kg is not None:
+            mass_kg = check.number("mass_kg", mass_kg, "a positive mass in kg", 0,
+                                   low_open=True)
         solver = Solver.parse(solver, "check")
         return cls(im=im, restitution=solver.restitution, free_motion_s=solver.free_motion_s,
                    g=solver.g, seed=seed, hazard=curve,
                    risk_target=risk_target,
                    site_return_period_years=return_period_years, friction=friction,
-                   limit_state=limit_state, guideline_spectrum=guideline_spectrum)
+                   limit_state=limit_state, guideline_spectrum=guideline_spectrum,
+                   mass_kg=mass_kg)
 
 
 def site_return_period(hazard) -> float | None:
