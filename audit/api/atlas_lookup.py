@@ -50,7 +50,7 @@ def atlas_settings(records=DEFAULT_CHECK_RECORDS, *, im=DEFAULT_IM, solver: Solv
     suite = site.apply(record_suite(records))
     entries = [entry for entry in suite if entry.motion is not None]
     alpha_deg, size_s = grid if grid is not None else (ALPHA_DEG, SIZE_S)
-    name = records if isinstance(records, str) else str(getattr(records, "description", records))
+    name = str(records_named(getattr(records, "source", records), suite))
     return entries, AtlasSettings(name, records_digest(entries), im,
                                   floor_words(site.floor), solver.restitution, solver.g,
                                   solver.free_motion_s,

@@ -131,8 +131,8 @@ def atlas_for(method, atlas: Atlas | None, key: str, alpha_deg, size_s, build: d
     if atlas is None:
         reason = ("no atlas of these records, intensity measure, floor, restitution, g and "
                   "free motion")
-    elif not np.all(atlas.covers(alpha_deg, size_s)):
-        outside = int(np.sum(~atlas.covers(alpha_deg, size_s)))
+    elif not np.all(inside := atlas.covers(alpha_deg, size_s)):
+        outside = int(np.sum(~inside))
         reason = (f"{outside} block(s) outside the atlas's grid (α {atlas.alpha_deg[0]:g}–"
                   f"{atlas.alpha_deg[-1]:g}°, 2π/p {atlas.size_s[0]:g}–{atlas.size_s[-1]:g} s)")
     elif stripes is not None and not np.all(_among(stripes, atlas.levels)):
