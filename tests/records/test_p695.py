@@ -266,3 +266,17 @@ def test_a_records_sa_is_the_pseudo_spectral_acceleration():
     motion = GroundMotion("base", base, 0.01)
     im = IntensityMeasure.parse("sa:1.0").of_record(motion, 0.0)
     assert im == pytest.approx(_sa_by_lsim(motion, 1.0, 0.05) / G, rel=1e-3)
+
+
+def test_a_set_is_read_once_a_process_and_shared_read_only(monkeypatch):
+    """A check asks for a station's two components for every record's pulse: the set is
+    decompressed once, the arrays shared cannot be written, and a changed file is read again."""
+    first = p695.record_set("farfield")
+    monkeypatch.setattr(p695, "_read_cache", lambda path: pytest.fail("read again"))
+    again = p695.record_set("farfield")
+    key = first[0][0]["id"]
+    assert again[1][key] is first[1][key] and again[0] == first[0]
+    with pytest.raises(ValueError, match="read-only"):
+        again[1][key][0] = 0.0
+    again[0][0]["id"] = "changed"  # the metadata handed out are the caller's own
+    assert p695.record_set("farfield")[0][0]["id"] == key
