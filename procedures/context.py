@@ -1,4 +1,5 @@
-"""What a procedure may ask of one record: its response spectra, computed once and cached.
+"""What a procedure may ask of one record: its response spectra, computed once and cached (in
+the process, and between runs in the user cache: :mod:`audit.physics.spectra_store`).
 
 Record spectra are tabulated on :data:`procedures.base.SPECTRUM_PERIODS_S`, linear in T in
 between, which is what the root scan of :func:`procedures.rotation_map.fixed_points` relies on.
@@ -10,6 +11,7 @@ from concurrent.futures import Future
 
 from audit.physics.defaults import DEFAULT_FREE_MOTION_S
 from audit.physics.response_spectra import DisplacementOnDemand, response_spectra
+from audit.physics.spectra_store import stored_spectra
 from procedures.base import SPECTRUM_PERIODS_S
 from procedures.tabulated import TabulatedDisplacement, TabulatedOnDemand
 
@@ -78,8 +80,9 @@ class RecordContext:
         if cached is not None and isinstance(cached[0], Future):  # prefetched
             cached = self._spectra[key] = (cached[0].result(), cached[1])
         if cached is None or (cached[1] and not displacement_only):
-            self._spectra[key] = (response_spectra(
-                self._motion, SPECTRUM_PERIODS_S, [key], self.free_motion_s, jobs=self.jobs,
+            # a record's property at a damping its guideline fixes: kept between runs
+            self._spectra[key] = (stored_spectra(
+                self._motion, SPECTRUM_PERIODS_S, key, self.free_motion_s, jobs=self.jobs,
                 displacement_only=displacement_only), displacement_only)
         spectra = self._spectra[key][0]
         if self._factor == 1.0:
