@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from scipy.stats import norm
+from scipy.special import ndtr
 
 from audit import G
 from audit.engine.atlas.store import ATLAS_JSON, ATLAS_NPZ
@@ -281,7 +281,7 @@ def _lognormal_p(levels, records: int, counts, site_im: float) -> np.ndarray:
     overturns at any stripe, 1 where every record does at every stripe)."""
     medians, betas = lognormal_fits(levels, records, counts)
     with np.errstate(divide="ignore", invalid="ignore"):
-        p = norm.cdf(np.log(site_im / medians) / betas)
+        p = ndtr(np.log(site_im / medians) / betas)
     return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, p))
 
 

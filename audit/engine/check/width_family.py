@@ -15,8 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import minimize
-from scipy.special import log_ndtr, ndtri
-from scipy.stats import norm
+from scipy.special import log_ndtr, ndtr, ndtri
 
 #: Resamples of the bootstrap over records, and its band.
 RESAMPLES = 200
@@ -49,7 +48,7 @@ class WidthFamily:
             Full base width [m].
         """
         median = self.intercept + self.slope * np.log(width_m)
-        return norm.cdf((np.log(im) - median) / self.beta)
+        return ndtr((np.log(im) - median) / self.beta)
 
     def width_for(self, target: float, im: float) -> float:
         """The width whose P(overturn) at ``im`` is ``target`` [m].

@@ -18,7 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.stats import norm
+from scipy.special import ndtr
 
 from audit.engine.design.lognormal_fit import lognormal_fits
 from audit.engine.shared.scheduler import computed_parts
@@ -94,7 +94,7 @@ def probability_at_site(overturned, levels, site_im: float) -> np.ndarray:
     counts = overturned.sum(axis=0).T  # (block, stripe)
     medians, betas = lognormal_fits(levels, overturned.shape[0], counts)
     with np.errstate(divide="ignore", invalid="ignore"):
-        p = norm.cdf(np.log(site_im / medians) / betas)
+        p = ndtr(np.log(site_im / medians) / betas)
     return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, p))
 
 

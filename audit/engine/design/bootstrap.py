@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.stats import norm
+from scipy.special import ndtr
 
 from audit.engine.design.lognormal_fit import lognormal_fits
 
@@ -48,7 +48,7 @@ class BootstrapFits:
         betas = self.betas.reshape(medians.shape)
         with np.errstate(divide="ignore", invalid="ignore"):
             z = np.log(im / medians) / betas
-        return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, norm.cdf(z)))
+        return np.where(np.isinf(medians), 0.0, np.where(medians == 0.0, 1.0, ndtr(z)))
 
     def probability_band(self, im) -> tuple[np.ndarray, np.ndarray]:
         """Percentile band of P(overturn | IM = im) at :attr:`confidence` over the resamples.

@@ -11,8 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import minimize
-from scipy.special import ndtr
-from scipy.stats import norm
+from scipy.special import ndtr, ndtri
 
 #: √(2π), the normal density's constant as scipy.stats.norm has it.
 _SQRT_2PI = math.sqrt(2.0 * math.pi)
@@ -52,7 +51,7 @@ class LognormalFit:
         im : float or array_like of float
             Intensity, in the unit of the stripes (e.g. [g]).
         """
-        return norm.cdf(np.log(np.asarray(im, dtype=float) / self.median) / self.beta)
+        return ndtr(np.log(np.asarray(im, dtype=float) / self.median) / self.beta)
 
     def probability_band(self, im) -> tuple[np.ndarray, np.ndarray]:
         """Confidence band of :meth:`probability` at ``im``, by the delta method on
@@ -72,8 +71,8 @@ class LognormalFit:
         # ∂z/∂ln θ = −1/β, ∂z/∂ln β = −z
         gradient = np.stack([-np.ones_like(z) / self.beta, -z])
         spread = np.sqrt(np.einsum("i...,ij,j...->...", gradient, self.covariance, gradient))
-        k = norm.ppf(0.5 + self.confidence / 2.0)
-        return norm.cdf(z - k * spread), norm.cdf(z + k * spread)
+        k = ndtri(0.5 + self.confidence / 2.0)
+        return ndtr(z - k * spread), ndtr(z + k * spread)
 
 
 def _negative_log_likelihood(params, log_levels, trials, successes):
@@ -161,7 +160,7 @@ def fit_lognormal(levels, trials, successes, confidence: float = 0.90) -> Lognor
     else:
         covariance = np.full((2, 2), np.nan)
     log_median, log_beta = best.x
-    k = norm.ppf(0.5 + confidence / 2.0)
+    k = ndtri(0.5 + confidence / 2.0)
     se_median, se_beta = np.sqrt(np.diag(covariance))
     estimate = _estimate(best.x)
     with np.errstate(over="ignore"):  # a band wider than floats hold is unbounded: inf
@@ -253,7 +252,7 @@ def _step_fit(levels, trials: int, counts):
     if not (np.all(counts[:cut] == 0) and np.all(counts[cut + mixed.size:] == trials)):
         return None
     if mixed.size:  # Φ(ln(x/θ)/β) equals the stripe's share at its level
-        return levels[cut] * math.exp(-STEP_BETA * norm.ppf(counts[cut] / trials)), STEP_BETA
+        return levels[cut] * math.exp(-STEP_BETA * ndtri(counts[cut] / trials)), STEP_BETA
     return math.sqrt(levels[cut - 1] * levels[cut]), STEP_BETA
 
 
@@ -273,7 +272,7 @@ def _probit_fits(log_levels, trials: int, counts, share):
     x = np.asarray(log_levels, dtype=float)[None, :]
     # start: the probit line through the pooled shares, Φ⁻¹(share) = a + b ln x by least squares
     share = np.clip(share, 0.02, 0.98)
-    slope, intercept = np.polyfit(x[0], norm.ppf(share), 1)
+    slope, intercept = np.polyfit(x[0], ndtri(share), 1)
     if not slope > 0:  # shares that do not rise: a median at the middle stripe, β = 0.4
         slope, intercept = 2.5, -2.5 * float(np.median(x))
     a, b = np.full(len(counts), intercept), np.full(len(counts), slope)

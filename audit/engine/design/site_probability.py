@@ -26,7 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.stats import beta as beta_distribution
+from scipy.special import betaincinv
 
 from audit.engine.design.bootstrap import bootstrap_lognormal
 from audit.engine.design.lognormal_fit import fit_lognormal
@@ -52,10 +52,12 @@ def clopper_pearson(overturned: int, records: int,
         Two-sided level [-].
     """
     tail = (1.0 - confidence) / 2.0
-    low = 0.0 if overturned == 0 else float(beta_distribution.ppf(
-        tail, overturned, records - overturned + 1))
-    high = 1.0 if overturned == records else float(beta_distribution.ppf(
-        1.0 - tail, overturned + 1, records - overturned))
+    # the beta distribution's quantiles (what scipy.stats.beta.ppf computes, without importing
+    # scipy.stats: ~0.6 s of a check's start)
+    low = 0.0 if overturned == 0 else float(betaincinv(
+        overturned, records - overturned + 1, tail))
+    high = 1.0 if overturned == records else float(betaincinv(
+        overturned + 1, records - overturned, 1.0 - tail))
     return low, high
 
 
