@@ -15,6 +15,7 @@ velocity; the derivative and integral are tested numerically.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -85,6 +86,7 @@ def mp_residual_displacement(amplitude, frequency_hz, gamma, nu_rad) -> float:
             / (2.0 * math.pi * frequency_hz * (1.0 - gamma * gamma)))
 
 
+@functools.lru_cache(maxsize=1024)  # a check asks for each record's pulse at every stripe
 def mp_peak_acceleration(amplitude, frequency_hz, gamma, nu_rad, samples: int = 20001) -> float:
     """max |a(τ)| [m/s²] over the pulse (on a grid of ``samples`` points of its support)."""
     half = gamma / (2.0 * frequency_hz)

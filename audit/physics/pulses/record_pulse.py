@@ -15,6 +15,7 @@ import hashlib
 import json
 import math
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,9 +23,10 @@ from audit import G
 from audit.errors import InputError
 from audit.files import write_file_atomically
 from audit.physics.pulses.mp_fit import MPFit, fit_mp_pulse
-from audit.physics.pulses.shahi_baker_2014 import (PulseClassification, shahi_baker_2014,
-                                                   velocity_cm_s)
 from records.p695 import cache_dir, station_components
+
+if TYPE_CHECKING:
+    from audit.physics.pulses.shahi_baker_2014 import PulseClassification
 
 #: Part of the cache key: bump when the identification or the fit changes.
 CACHE_VERSION = "shahi-baker-2014-matlab-2000226/mp-fit-2"
@@ -113,6 +115,9 @@ def _key(accelerations: list[np.ndarray], dt: float) -> str:
 def pair_velocities(accelerations_m_s2: list[np.ndarray], dt: float):
     """The two velocities [cm/s] the classification takes: one length (the longer cut, as the
     MATLAB does), zeros as the second of a record of one component."""
+    # imported where a pulse is identified: its wavelets (scipy.signal) cost ~0.5 s of a
+    # check whose records' pulses are all in the cache
+    from audit.physics.pulses.shahi_baker_2014 import velocity_cm_s
     if len(accelerations_m_s2) == 1:
         first = velocity_cm_s(accelerations_m_s2[0], dt)
         return first, np.zeros_like(first)
@@ -144,6 +149,7 @@ def classification_summary(accelerations_m_s2: list[np.ndarray], dt: float) -> d
     try:
         summary = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
+        from audit.physics.pulses.shahi_baker_2014 import shahi_baker_2014
         summary = _summary(shahi_baker_2014(*pair_velocities(accelerations_m_s2, dt), dt))
         try:
             write_file_atomically(path, json.dumps(summary).encode())
@@ -191,6 +197,7 @@ def classify_entry(entry) -> tuple[PulseClassification, int, float]:
     """The full classification of an entry's record (arrays included, not cached), which of
     the components classified the entry is (0 or 1), and its scale factor (as audited / as
     classified)."""
+    from audit.physics.pulses.shahi_baker_2014 import shahi_baker_2014
     accelerations, index, _, scale = _components(entry)
     return (shahi_baker_2014(*pair_velocities(accelerations, entry.motion.dt), entry.motion.dt),
             index, scale)
