@@ -191,14 +191,18 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         from: ``"atlas"`` the atlas of ``records`` on the floor with this intensity measure,
         restitution, g and free motion (``audit.api.build_atlas``;
         :class:`~audit.errors.NoAtlas` naming ``method`` where none is built), for each object inside its grid, with its error there;
-        ``"direct"`` solved; None (the default) the atlas where one is built, else solved. The
-        guidelines are judged directly either way (docs/atlas.md).
+        ``"direct"`` solved; None (the default) the atlas where one is built, else solved. P
+        at the other standard IM is read from that IM's atlas where one is built (unless
+        ``"direct"``), else solved. The guidelines are judged directly either way
+        (docs/atlas.md).
 
     Returns
     -------
     CheckResult
     """
-    from audit.api.atlas_lookup import check_atlas
+    from audit.api.atlas_lookup import check_atlas, stored_atlas
+    from audit.engine.check.atlas_side import CheckAtlases
+    from audit.engine.check.other_im import other_im
     from audit.api.inputs import parameters_of, procedures_of, record_suite
     from audit.engine.atlas.fragility_read import checked_method
     from audit.engine.shared import guards
@@ -227,10 +231,13 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
                          "guideline_spectrum")
     chosen, provision_params = parameters_of(params, procedures_of(procedures))
     given = record_suite(records)
+    exact_solver = Solver(settings.restitution, settings.free_motion_s, settings.g)
     atlas = check_atlas(method, given, named=getattr(records, "source", records),
-                        im=settings.im.name,
-                        solver=Solver(settings.restitution, settings.free_motion_s, settings.g),
-                        floor=where.floor)
+                        im=settings.im.name, solver=exact_solver, floor=where.floor)
+    # P at the other standard IM from its own atlas where one is built (else solved, whatever
+    # the method: the method names the check's own IM's)
+    other = (stored_atlas(given, im=other_im(settings.im).name, solver=exact_solver,
+                          floor=where.floor) if checked_method(method) != "direct" else None)
     # the objects the atlas answers have no exact width search to solve
     searched = len(chosen_objects) - (int(atlas[0].covers(
         [o.alpha_deg for o in chosen_objects], [o.size_s for o in chosen_objects]).sum())
@@ -246,7 +253,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
         runtime = replace(runtime, progress=Progress(len(suite), "record"))
     try:
         run = run_check(chosen, suite, chosen_objects, settings, runtime, where.floor,
-                        provision_params, atlas)
+                        provision_params, CheckAtlases(atlas, other))
     finally:
         if bar:
             runtime.progress.done()

@@ -31,6 +31,22 @@ CHUNK_BLOCKS = 2000
 
 
 @dataclass(frozen=True)
+class CheckAtlases:
+    """The atlases a check reads, each (atlas, key) or None where it solves.
+
+    Attributes
+    ----------
+    own : (audit.engine.atlas.answers.Atlas, str) or None
+        Of the check's intensity measure: its exact side.
+    other : (audit.engine.atlas.answers.Atlas, str) or None
+        Of the other standard intensity measure (:mod:`audit.engine.check.other_im`).
+    """
+
+    own: tuple | None = None
+    other: tuple | None = None
+
+
+@dataclass(frozen=True)
 class AtlasSide:
     """The atlas a check reads its exact side from, and which of its objects it covers.
 
@@ -186,7 +202,8 @@ class AtlasSide:
             far = np.maximum(far, np.where(np.isfinite(other), np.abs(other - widths), np.inf))
         return np.where(np.isfinite(widths), far / widths, np.nan)
 
-    def source(self, p_error: float, width_errors, rotations: bool = True) -> dict:
+    def source(self, p_error: float, width_errors, rotations: bool = True,
+               other_im: str = "direct") -> dict:
         """``exact.atlas`` of an object's entry in ``check.json``.
 
         Parameters
@@ -199,6 +216,8 @@ class AtlasSide:
             Whether the object's exact response was solved at the stripes besides (for a
             guideline's limit short of overturning); if not, its limits' P(exceed) are
             P(overturn) and the records overturning at the site are not given.
+        other_im : {"direct", "atlas"}
+            Whether P at the other standard IM was solved or read from its own atlas.
         """
         def number(value):  # JSON: null where not finite (no width reaches P ± error)
             return float(value) if value is not None and math.isfinite(value) else None
@@ -211,13 +230,23 @@ class AtlasSide:
                           "between the atlas's nodes (at the site's stripe, linearly in "
                           "ln IM between the lattice's), then check's rules; the errors are "
                           "the atlas's at this point (docs/atlas.md)",
-                "direct": ("the guidelines, the limits' P(exceed) other than overturning, the "
-                           "records overturning at the site, the friction, the other IM and "
-                           "the guidelines' P in 50 years: solved directly" if rotations else
-                           "the guidelines, the friction, the other IM and the guidelines' P "
-                           "in 50 years: solved directly; no chosen guideline has a limit "
-                           "short of overturning, so the object is not solved record by "
-                           "record and the records overturning at the site are not given")}
+                "direct": self._solved(rotations, other_im)}
+
+    @staticmethod
+    def _solved(rotations: bool, other_im: str) -> str:
+        """What a check from this atlas solved directly, in words."""
+        solved = ["the guidelines"]
+        if rotations:
+            solved += ["the limits' P(exceed) other than overturning",
+                       "the records overturning at the site"]
+        solved += ["the friction"] + (["the other IM"] if other_im == "direct" else [])
+        words = (", ".join(solved) + " and the guidelines' P in 50 years: solved directly"
+                 + ("; the other IM read from its own atlas" if other_im == "atlas" else ""))
+        if rotations:
+            return words
+        return (words + "; no chosen guideline has a limit short of overturning, so the object "
+                "is not solved record by record and the records overturning at the site are "
+                "not given")
 
 
-__all__ = ["AtlasSide", "CHUNK_BLOCKS"]
+__all__ = ["AtlasSide", "CheckAtlases", "CHUNK_BLOCKS"]

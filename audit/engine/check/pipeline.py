@@ -43,7 +43,7 @@ from audit.engine.shared.blocks import BlockList
 from audit.engine.shared.lattice import on_lattice, with_site
 from audit.engine.check.risk import hazard_document, object_risk, p50_of_blocks
 from audit.engine.check.settings import CheckSettings
-from audit.engine.check.atlas_side import AtlasSide
+from audit.engine.check.atlas_side import AtlasSide, CheckAtlases
 from audit.engine.check.site import site_intensity
 from audit.engine.check.sliding import sliding_answer
 from audit.engine.check.words import sentence
@@ -110,7 +110,7 @@ class CheckRun:
 
 def run_check(procedures, suite, objects, settings: CheckSettings,
               runtime: Runtime, floor: Floor = Floor(), provision_params: dict | None = None,
-              atlas=None) -> CheckRun:
+              atlases: CheckAtlases | None = None) -> CheckRun:
     """Check every object at the suite's design site (see the module).
 
     Parameters
@@ -128,10 +128,11 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         (:mod:`audit.engine.check.component_checks`, ``component_provisions`` of each object).
     provision_params : dict, optional
         The component provisions' parameters, ``{name: {attribute: value}}`` (checked).
-    atlas : (audit.engine.atlas.answers.Atlas, str), optional
-        An atlas of the suite on this floor (its intensity measure, restitution, g and free
-        motion the check's) and its key: the exact side of every object inside its grid read
-        from it (:mod:`audit.engine.check.atlas_side`); the others solved.
+    atlases : audit.engine.check.atlas_side.CheckAtlases, optional
+        Atlases of the suite on this floor (restitution, g and free motion the check's) and
+        their keys: of the check's intensity measure, the exact side of every object inside
+        its grid read from it (:mod:`audit.engine.check.atlas_side`), the others solved; of
+        the other standard one, P there (:mod:`audit.engine.check.other_im`).
     """
     from audit.engine.check.summary import (CheckFrame, ObjectFindings, object_answer,
                                             run_summary)
@@ -151,8 +152,9 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
     levels = check_levels(site_im)
     fitted = fitted_stripes(levels)  # the fragility's stripes: the lattice, not the site's
     objects = tuple(objects)
-    side = (AtlasSide.of(atlas[0], atlas[1], objects, levels, fitted, site_im, g)
-            if atlas is not None else None)
+    atlases = atlases or CheckAtlases()
+    side = (AtlasSide.of(*atlases.own, objects, levels, fitted, site_im, g)
+            if atlases.own is not None else None)
     covered = side.covered if side is not None else np.zeros(len(objects), dtype=bool)
     jobs, progress = runtime.jobs, runtime.progress
     per_record = tuple(p.name for p in procedures if p.reads_record(entries[0]))
@@ -223,7 +225,7 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
                                                  measure, solved)
             _stage(progress, "the exact P(overturn) at the other standard intensity measure")
             others = other_im_answers(family, objects, suite.design_site, check_levels,
-                                      fitted_stripes, settings.seed)
+                                      fitted_stripes, settings.seed, atlases.other)
             _stage(progress, "the width each guideline requires at each object's height")
             judged, floor_document, on_other = guidelines.result()
         exact_over = np.stack([part.stripes.exact_overturned for part in parts])
@@ -244,7 +246,8 @@ def run_check(procedures, suite, objects, settings: CheckSettings,
         if covered[b]:
             k = int(np.searchsorted(read, b))
             over = from_atlas[:, :, k]
-            source = side.source(float(p_errors[k]), width_errors[b], rotations)
+            source = side.source(float(p_errors[k]), width_errors[b], rotations,
+                                 others[b]["source"])
             family_widths = None  # the width family is fitted on solved widths: none here
         else:
             over = solved_over

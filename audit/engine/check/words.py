@@ -332,7 +332,9 @@ def summary_text(document: dict) -> str:
         if other:
             lines += [f"  (at the other standard intensity measure, the records scaled to "
                       f"{im_words(_intensity(other['im']), other['site_im'])} instead: exact "
-                      f"P(overturn) {other['p_at_site']['headline']}; use the IM of "
+                      f"P(overturn) {other['p_at_site']['headline']}"
+                      + (f" from its atlas, ±{100 * other['p_error']:.1f} %"
+                         if other.get("source") == "atlas" else "") + "; use the IM of "
                       "your hazard, see docs/check.md)"]
         lines += [""]
         lines += [f"  {proc['procedure']} {proc['limit_state']}: {proc['basis']}."

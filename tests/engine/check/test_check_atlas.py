@@ -184,3 +184,26 @@ def test_a_limit_short_of_alpha_without_rotations_is_refused():
     assert unsolved.p_exceed(0.3) == 0.3  # α itself: overturning
     with pytest.raises(ValueError, match="not solved"):
         unsolved.p_exceed(0.2)
+
+
+def test_the_other_im_is_read_from_its_own_atlas(atlas_dir, suite):
+    """With an atlas at the other standard IM (PGA beside S_a(1 s)), P there is read from it:
+    at a grid node the direct answer's numbers, said to come from the atlas with its error;
+    without one, or with method 'direct', it is solved."""
+    node = replace(object_by_slenderness("node", 18.0, 2.2, "node"), alpha_deg=18.0, size_s=2.2)
+    # S_XS = 2.5 g: PGA = 0.4 S_XS = 1.0 g, a level of the lattice, as S_X1 = 1.0 g is
+    site = (2.5, 1.0)
+    solved_first = audit.check([node], site, procedures=["fema356"], records=suite)
+    assert solved_first.document["objects"][0]["exact"]["other_im"]["source"] == "direct"
+    audit.api.build_atlas(suite, im="pga", grid=GRID, runtime=audit.Runtime(jobs=2))
+    from_atlas, direct = [audit.check([node], site, procedures=["fema356"], records=suite,
+                                      method=method) for method in ("atlas", "direct")]
+    a = from_atlas.document["objects"][0]["exact"]
+    d = direct.document["objects"][0]["exact"]["other_im"]
+    assert (a["other_im"]["source"], d["source"]) == ("atlas", "direct")
+    assert d == solved_first.document["objects"][0]["exact"]["other_im"]
+    for field in ("median", "beta", "p_overturn_at_site", "p_at_site", "site_im"):
+        assert a["other_im"][field] == d[field], field
+    assert d["p_error"] is None and 0.0 <= a["other_im"]["p_error"] < 0.2
+    assert "the other IM read from its own atlas" in a["atlas"]["direct"]
+    assert "from its atlas, ±" in from_atlas.summary_text()
