@@ -91,7 +91,13 @@ def _oscillators(period_s, damping, dt):
     return recurrence_coefficients(period_s, damping, dt), 2.0 * np.pi / period_s
 
 
-@lru_cache(maxsize=64)
+#: Oscillator tables kept (~64 kB each for the 801 periods): a check asks for one per damping
+#: (Priestley's β(r(α)): one per object and width tried) and record step, record by record,
+#: so fewer than the objects in flight make every record compute them all again.
+TABLES_KEPT = 1024
+
+
+@lru_cache(maxsize=TABLES_KEPT)
 def _table_oscillators(period_bytes: bytes, damping: float, dt: float) -> tuple:
     """(coeffs, omega, damping) of every period of a table (its bytes) at one damping and
     step; rows at T = 0 are placeholders, never computed (known), so indices stay the
