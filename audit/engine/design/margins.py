@@ -160,7 +160,11 @@ def margins_stripes(procedures, suite, settings: MarginsSettings, runtime: Runti
                          f"record), so no stripe can be reached by scaling it; leave it out"
                          + (f" ({len(zero) - 1} other record(s) too)" if len(zero) > 1 else ""),
                          "records")
-    design = im.of_design_site(suite.design_site)
+    design = im.of_design_site(suite.design_site)  # FEMA 356's: the MCE of the margins
+    # what each record's design spectra are scaled from to a stripe: FEMA 356's intensity, else
+    # an NTC 2018 site's own at the IM (unscaled, NTC's spectrum would be the same at every
+    # stripe, and its line the lowest stripe where it fails or none)
+    scaled_from = design if design is not None else im.of_ntc_site(entries[0].site)
     if levels is None:  # the fixed lattice: the fragility is the block's, not the site's
         levels = stripe_lattice() if atlas is None else atlas.levels
     blocks = BlockList.of(alpha_deg, size_s if size_s is not None else (), named_blocks)
@@ -168,7 +172,7 @@ def margins_stripes(procedures, suite, settings: MarginsSettings, runtime: Runti
         raise InputError("size_s, alpha_deg, blocks: no block to audit", "size_s",
                          "alpha_deg", "blocks")
     settings_of_stripes = StripeSettings(
-        im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()), design, blocks,
+        im, tuple(np.sort(np.asarray(levels, dtype=float)).tolist()), scaled_from, blocks,
         restitution, float(g), float(free_motion_s), int(jobs), exact=atlas is None)
     store = (PartialStore(partial_dir, procedures, settings_of_stripes, resume) if partial_dir
              else None)
@@ -237,7 +241,8 @@ def margins_tables(procedures, suite, settings: MarginsSettings, runtime: Runtim
     capacity = capacity_rows(procedures, run, fits, boots, lines)
     named_blocks = settings.blocks
     summary = {"im": im.name, "im_unit": im.unit, "levels": levels.tolist(),
-               "design_im": run.settings.design_im, "site_level": settings.site_level,
+               "design_im": im.of_design_site(suite.design_site),
+               "site_level": settings.site_level,
                "mce_im": run.mce_im, "records": [e.id for e in entries],
                "records_source": suite.description, "design_site": suite.design_site,
                "scaling": suite.scaling, "floor": suite_floor(suite),

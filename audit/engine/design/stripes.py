@@ -52,7 +52,7 @@ class StripeSettings:
         Stripes, ascending [unit of ``im``].
     design_im : float or None
         The site's design intensity [unit of ``im``]: design spectra are scaled by
-        level / design_im.
+        level / design_im (FEMA 356's, or an NTC 2018 site's own where it is the only one).
     blocks : audit.engine.shared.blocks.BlockList
     restitution : audit.physics.block.Restitution
     g, free_motion_s : float

@@ -106,5 +106,28 @@ class IntensityMeasure:
         spectrum = FEMA356Spectrum(site["sxs_g"], site["sx1_g"])
         return float(spectrum.acceleration(0.0 if self.kind == PGA else self.period_s, 0.05))
 
+    def of_ntc_site(self, site: dict) -> float | None:
+        """The intensity of an NTC 2018 site (a_g, F0, T_C*, soil, topography): its elastic
+        spectrum S_e (Eq. 3.2.2) at 5 % at T = 0 (PGA) or at the IM's period, or None: PGV has
+        no design value, and a site without every NTC value has none.
+
+        Parameters
+        ----------
+        site : dict or None
+            A record's site (:data:`records.sites.NTC2018_SITE_KEYS` among its keys).
+
+        Returns
+        -------
+        float or None
+            The intensity [g].
+        """
+        from records.sites import NTC2018_SITE_KEYS
+        if not site or self.kind == PGV or any(site.get(key) is None
+                                               for key in NTC2018_SITE_KEYS):
+            return None
+        from audit.physics.ntc2018_spectrum import NTC2018Spectrum
+        spectrum = NTC2018Spectrum.from_site(site)
+        return float(spectrum.acceleration(0.0 if self.kind == PGA else self.period_s, 0.05))
+
 
 __all__ = ["IntensityMeasure", "PGA", "PGV", "SA", "IM_DAMPING"]

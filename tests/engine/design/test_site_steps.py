@@ -111,3 +111,30 @@ def test_an_ntc_site_alone_has_no_fema_design_intensity(seed_suite):
     assert "ntc" in ntc_only.design_site and im.of_design_site(ntc_only.design_site) is None
     both = with_design_site(ntc_only, 1.5, 0.9, override=True)
     assert im.of_design_site(both.design_site) == pytest.approx(0.9)
+
+
+def test_an_ntc_site_alone_is_scaled_to_every_stripe_from_its_own_intensity(seed_suite):
+    """With an NTC 2018 site and no FEMA 356 one, margins scales the NTC site to each stripe
+    from its own S_e at the IM (it stayed as given at every stripe, so NTC drew its line at
+    the lowest stripe where it failed). S_e(1 s) by hand for a_g 0.35 g, F0 2.4, T_C* 0.35 s,
+    soil B, T1 (§3.2.3): S_S = 1.40 − 0.40·2.4·0.35 = 1.064, C_C = 1.10·0.35^−0.20, T_C =
+    C_C·0.35 s, T_D = 4·0.35 + 1.6 = 3.0 s; T_C < 1 s < T_D: S_e = a_g·S_S·F0·T_C/1 s."""
+    from audit.engine.design.margins import margins_stripes
+    from audit.engine.design.settings import MarginsSettings
+    from audit.engine.shared.runtime import Runtime
+    from audit.engine.shared.sites import with_ntc_site
+    t_c = 1.10 * 0.35 ** -0.20 * 0.35
+    by_hand = 0.35 * 1.064 * 2.4 * t_c / 1.0
+    im = IntensityMeasure.parse("sa:1.0")
+    ntc_only = with_ntc_site(seed_suite, 0.35, 2.4, 0.35, "B", "T1")
+    entry = next(e for e in ntc_only if e.motion is not None)
+    assert im.of_ntc_site(entry.site) == pytest.approx(by_hand, rel=1e-12)
+    assert IntensityMeasure.parse("pga").of_ntc_site(entry.site) == pytest.approx(0.35 * 1.064)
+    assert IntensityMeasure.parse("pgv").of_ntc_site(entry.site) is None
+    settings = MarginsSettings.parse(im="sa:1.0", alpha_deg=(15.0,), size_s=(2.0,))
+    run = margins_stripes(get_procedures("ntc2018"), ntc_only, settings, Runtime(jobs=2))
+    assert run.settings.design_im == pytest.approx(by_hand, rel=1e-12)
+    assert run.mce_im is None  # NTC's intensity scales its site; it is not FEMA P695's MCE
+    # NTC's answer now changes along the stripes: not overturning low, overturning high
+    predicted = run.predicted["ntc2018"][:, :, 0]  # (record, stripe)
+    assert not predicted[:, 0].any() and predicted[:, -1].all()
