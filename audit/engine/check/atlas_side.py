@@ -108,11 +108,16 @@ class AtlasSide:
         alpha_deg, size_s : array_like of float
             Objects inside the grid [degrees], [s].
         """
-        lattice = self.atlas.outcomes(alpha_deg, size_s)  # (object, record, lattice stripe)
-        out = np.empty((lattice.shape[1], self.levels.size, lattice.shape[0]))
-        out[:, self.fitted, :] = np.moveaxis(lattice, 0, 2)
-        if not self.fitted.all():  # the site's stripe, between the lattice's
-            out[:, ~self.fitted, :] = self.atlas.site_outcomes(lattice, self.site_im).T[:, None, :]
+        alpha_deg, size_s = np.asarray(alpha_deg, dtype=float), np.asarray(size_s, dtype=float)
+        out = np.empty((self.atlas.records, self.levels.size, alpha_deg.size))
+        for start in range(0, alpha_deg.size, CHUNK_BLOCKS):  # memory: an inventory's objects
+            chunk = slice(start, start + CHUNK_BLOCKS)
+            # (object, record, lattice stripe)
+            lattice = self.atlas.outcomes(alpha_deg[chunk], size_s[chunk])
+            out[:, self.fitted, chunk] = np.moveaxis(lattice, 0, 2)
+            if not self.fitted.all():  # the site's stripe, between the lattice's
+                out[:, ~self.fitted, chunk] = self.atlas.site_outcomes(
+                    lattice, self.site_im).T[:, None, :]
         return out
 
     def p_error(self, alpha_deg, size_s) -> np.ndarray:
