@@ -237,7 +237,7 @@ def check(objects, site, procedures="all", records=DEFAULT_CHECK_RECORDS, *,
     # P at the other standard IM from its own atlas where one is built (else solved, whatever
     # the method: the method names the check's own IM's)
     other = (stored_atlas(given, im=other_im(settings.im).name, solver=exact_solver,
-                          floor=where.floor) if checked_method(method) != "direct" else None)
+                          floor=where.floor) if method != "direct" else None)
     # the objects the atlas answers have no exact width search to solve
     searched = len(chosen_objects) - (int(atlas[0].covers(
         [o.alpha_deg for o in chosen_objects], [o.size_s for o in chosen_objects]).sum())

@@ -38,12 +38,19 @@ def _code_digest() -> bytes:
                           + Path(spectra_module.__file__).read_bytes()).digest()
 
 
-def _key(motion, period_s: np.ndarray, damping: float, free_motion_s: float,
-         displacement_only: bool) -> str:
-    digest = hashlib.sha256(f"{FORMAT} {motion.dt!r} {damping!r} {free_motion_s!r} "
-                            f"{displacement_only}".encode() + _code_digest())
+def _samples_digest(motion, period_s: np.ndarray, damping: float, free_motion_s: float):
+    """SHA-256 of everything a file depends on but whether it holds Sd alone (hashed once a
+    request: a record's samples are its bulk)."""
+    digest = hashlib.sha256(f"{FORMAT} {motion.dt!r} {damping!r} {free_motion_s!r} ".encode()
+                            + _code_digest())
     digest.update(np.ascontiguousarray(period_s, dtype=float).tobytes())
     digest.update(np.ascontiguousarray(motion.acceleration, dtype=float).tobytes())
+    return digest
+
+
+def _key(samples, displacement_only: bool) -> str:
+    digest = samples.copy()
+    digest.update(f" {displacement_only}".encode())
     return digest.hexdigest()
 
 
@@ -85,9 +92,8 @@ def stored_spectra(motion, period_s, damping: float, free_motion_s: float, jobs:
     """
     period_s = np.asarray(period_s, dtype=float)
     damping = float(damping)
-    keys = [_key(motion, period_s, damping, free_motion_s, False)]
-    if displacement_only:
-        keys.append(_key(motion, period_s, damping, free_motion_s, True))
+    samples = _samples_digest(motion, period_s, damping, free_motion_s)
+    keys = [_key(samples, False)] + ([_key(samples, True)] if displacement_only else [])
     for key in keys:
         found = _read(_path(key), period_s, damping)
         if found is not None:
