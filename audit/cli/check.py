@@ -92,8 +92,9 @@ def add_parser(sub):
                    help="where the exact side (fragility, P at the site, exact widths, risk) "
                         "comes from: the atlas of --records on this floor ('audit atlas "
                         "build'), each answer with its error there, or solved; default: the "
-                        "atlas where one is built, else solved. The guidelines are judged "
-                        "directly either way")
+                        "atlas where one is built, else solved. P at the other standard IM: "
+                        "its own atlas where one is built ('atlas build --im pga' beside "
+                        "sa:1), unless direct. The guidelines are judged directly either way")
     p.add_argument("--jobs", type=options.jobs, default=DEFAULT_JOBS,
                    help="solver threads, or worker processes with --scheduler dask")
     p.add_argument("--free-motion", type=options.NON_NEGATIVE, default=DEFAULT_FREE_MOTION_S,
